@@ -1,0 +1,51 @@
+// Campbell diagram: the modes tracked across spin speed. Modes are matched
+// between neighbouring speeds by eigenvector correlation (MAC) plus eigenvalue
+// continuity; where the match is ambiguous (crossing, veering) the speed step
+// is bisected.
+#pragma once
+
+#include "core/gyroscopic_system.hpp"
+#include "eig/quadratic_eigensolver.hpp"
+
+#include <vector>
+
+namespace gyrokit {
+
+struct CampbellOptions {
+    EigenOptions eig;
+    int modes = 0;            // keep the K lowest branches by frequency at the first speed; 0 = all
+    int max_refine = 8;       // bisection levels allowed between two grid speeds
+    double mac_min = 0.9;     // a match with a lower MAC is ambiguous
+};
+
+struct BranchPoint {
+    double speed;
+    Mode mode;
+};
+
+// One tracked mode: its points in increasing speed.
+struct Branch {
+    int id = 0;   // 1-based, in order of frequency at the first speed
+    std::vector<BranchPoint> points;
+};
+
+struct CampbellDiagram {
+    std::vector<double> speeds;     // grid plus inserted refinement speeds
+    std::vector<Branch> branches;
+    int inserted_speeds = 0;        // speeds added by refinement
+    int ambiguous_steps = 0;        // steps still ambiguous at the refinement limit
+    double max_backward_error = 0;
+};
+
+CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>& speeds,
+                         const CampbellOptions& opt = {});
+
+// Matching cost between two modes (0 = identical shape and eigenvalue).
+double match_cost(const Mode& a, std::complex<double> predicted, const Mode& b);
+
+// The mode of `spectrum` that continues `branch` at speed w, which lies between
+// branch points i and i + 1: the best match to the nearer point, with the
+// eigenvalue predicted by linear interpolation.
+const Mode& continue_branch(const Branch& branch, size_t i, double w, const QuadraticSpectrum& spectrum);
+
+}  // namespace gyrokit

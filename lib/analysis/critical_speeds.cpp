@@ -1,0 +1,106 @@
+#include "analysis/critical_speeds.hpp"
+
+#include "analysis/scalar_search.hpp"
+#include "core/error.hpp"
+#include "eig/lapack.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gyrokit {
+
+namespace {
+
+// Refines a sign change of g(mode, w) between points i and i+1 of a branch.
+template <class G>
+std::pair<double, Mode> refine_on_branch(const GyroscopicSystem& sys, const Branch& b, size_t i, const G& g,
+                                         const EigenOptions& eig) {
+    const auto mode_at = [&](double w) {
+        return continue_branch(b, i, w, solve_at_speed(sys, w, eig));
+    };
+    const double w = find_root([&](double x) { return g(mode_at(x), x); }, b.points[i].speed,
+                               b.points[i + 1].speed);
+    return {w, mode_at(w)};
+}
+
+template <class G, class Emit>
+void scan_branches(const GyroscopicSystem& sys, const CampbellDiagram& cd, const G& g, const Emit& emit,
+                   const EigenOptions& eig) {
+    for (const Branch& b : cd.branches) {
+        for (size_t i = 0; i + 1 < b.points.size(); ++i) {
+            const Mode& m0 = b.points[i].mode;
+            const Mode& m1 = b.points[i + 1].mode;
+            if (m0.whirl == Whirl::Real || m1.whirl == Whirl::Real) continue;
+            const double g0 = g(m0, b.points[i].speed), g1 = g(m1, b.points[i + 1].speed);
+            if (g0 == 0.0 && i > 0) continue;   // counted as the end of the previous interval
+            if ((g0 > 0) == (g1 > 0) && g0 != 0.0 && g1 != 0.0) continue;
+            auto [w, m] = refine_on_branch(sys, b, i, g, eig);
+            emit(b, w, std::move(m), g0, g1);
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<CriticalSpeed> critical_speeds(const GyroscopicSystem& sys, const CampbellDiagram& cd,
+                                           const std::vector<int>& harmonics, const EigenOptions& eig) {
+    std::vector<CriticalSpeed> out;
+    for (int k : harmonics) {
+        if (k < 1) throw InputError("harmonic " + std::to_string(k) + " is not allowed; allowed: k >= 1");
+        const auto g = [k](const Mode& m, double w) { return m.lambda.imag() - k * w; };
+        scan_branches(sys, cd, g, [&](const Branch& b, double w, Mode m, double, double) {
+            out.push_back({w, k, b.id, std::move(m)});
+        }, eig);
+    }
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
+    return out;
+}
+
+std::vector<StabilityChange> stability_changes(const GyroscopicSystem& sys, const CampbellDiagram& cd,
+                                               const EigenOptions& eig) {
+    std::vector<StabilityChange> out;
+    const auto g = [](const Mode& m, double) { return m.lambda.real(); };
+    scan_branches(sys, cd, g, [&](const Branch& b, double w, Mode m, double g0, double g1) {
+        out.push_back({w, b.id, g1 > g0, std::move(m)});
+    }, eig);
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
+    return out;
+}
+
+std::vector<CriticalSpeed> critical_speeds_direct(const GyroscopicSystem& sys, int harmonic, double from,
+                                                  double to) {
+    if (sys.has_damping())
+        throw InputError("the direct critical-speed method needs an undamped system; this one has damping "
+                         "(use the branch method)");
+    if (sys.has_circulatory())
+        throw InputError("the direct critical-speed method needs a system without circulatory matrix N");
+    if (harmonic < 1) throw InputError("harmonic must be >= 1");
+    const double k = harmonic;
+    const std::complex<double> I(0.0, 1.0);
+    Eigen::MatrixXcd A = sys.K.cast<std::complex<double>>();
+    Eigen::MatrixXcd B = (k * k) * sys.M.cast<std::complex<double>>();
+    if (sys.G.size() > 0) B -= (I * k) * sys.G.cast<std::complex<double>>();
+    const GeneralizedEigen ge = lapack_zggev(A, B);
+    std::vector<CriticalSpeed> out;
+    const double eps = std::numeric_limits<double>::epsilon();
+    for (Eigen::Index j = 0; j < ge.alpha.size(); ++j) {
+        if (std::abs(ge.beta_c(j)) <= 100 * eps * std::abs(ge.alpha(j))) continue;   // infinite
+        const std::complex<double> mu = ge.alpha(j) / ge.beta_c(j);
+        // Hermitian pencil: real mu up to rounding; mu = w^2 > 0.
+        if (mu.real() <= 0.0 || std::abs(mu.imag()) > 1e-8 * std::abs(mu)) continue;
+        const double w = std::sqrt(mu.real());
+        if (w < from || w > to) continue;
+        CriticalSpeed c;
+        c.speed = w;
+        c.harmonic = harmonic;
+        c.mode.lambda = I * (k * w);
+        c.mode.right = ge.right.col(j).normalized();
+        c.mode.backward_error = backward_error(sys.at_speed(w), c.mode.lambda, c.mode.right);
+        c.mode.whirl = classify_whirl(c.mode.lambda, c.mode.right, sys.whirl_pairs, 0.0);
+        out.push_back(std::move(c));
+    }
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
+    return out;
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,41 @@
+// Critical speeds (a tracked branch crosses a harmonic line k w) and stability
+// thresholds (a branch's real part crosses zero), refined by root finding on
+// the branch rather than read off the grid.
+#pragma once
+
+#include "analysis/campbell.hpp"
+
+#include <vector>
+
+namespace gyrokit {
+
+struct CriticalSpeed {
+    double speed = 0;      // rad/s
+    int harmonic = 1;      // k of the line Im(lambda) = k w
+    int branch = 0;        // Campbell branch id (0 for the direct method)
+    Mode mode;             // the mode at the critical speed
+};
+
+// Crossings of every oscillating branch with the lines k w, k in `harmonics`,
+// refined with GSL Brent on f(w) = Im lambda(w) - k w.
+std::vector<CriticalSpeed> critical_speeds(const GyroscopicSystem& sys, const CampbellDiagram& cd,
+                                           const std::vector<int>& harmonics, const EigenOptions& eig = {});
+
+// For undamped systems without circulatory terms, lambda = i k w is an
+// eigenvalue exactly at a critical speed, so w^2 solves the linear Hermitian
+// pencil K x = w^2 (k^2 M - i k G) x. Throws InputError for damped systems.
+std::vector<CriticalSpeed> critical_speeds_direct(const GyroscopicSystem& sys, int harmonic, double from,
+                                                  double to);
+
+struct StabilityChange {
+    double speed = 0;
+    int branch = 0;
+    bool becomes_unstable = true;   // with increasing speed
+    Mode mode;
+};
+
+// Speeds where a branch's real part changes sign.
+std::vector<StabilityChange> stability_changes(const GyroscopicSystem& sys, const CampbellDiagram& cd,
+                                               const EigenOptions& eig = {});
+
+}  // namespace gyrokit

@@ -1,0 +1,41 @@
+// Pervasive damping (Hautus / Mueller test, eq. (24) of the gyrostat paper):
+// the damping D does not reach a mode at speed w if some z != 0 satisfies
+// z^T P(lambda) = 0 and z^T D = 0. Measured by the smallest singular value of
+// [P(lambda)^T; D] (both blocks normalized) over the eigenvalues lambda of the
+// system damped by D alone; it vanishes like |w - w*| at a loss, so the loss
+// speed is located by golden section to near machine precision.
+#pragma once
+
+#include "core/gyroscopic_system.hpp"
+#include "eig/mode.hpp"
+
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+struct PervasiveOptions {
+    double tolerance = 1e-8;   // residual below which the damping does not pervade
+};
+
+struct DampingLoss {
+    std::string damping;   // component name, or "total"
+    double speed = 0;      // rad/s
+    int mode = 0;          // Campbell branch id of the system damped by this set alone
+    Mode lost;             // the undamped mode (Re lambda = 0 up to rounding)
+    double residual = 0;
+};
+
+struct PervasiveReport {
+    std::vector<std::string> checked;   // the damping sets tested
+    std::vector<DampingLoss> losses;
+};
+
+// sigma_min([P(lambda)^T / |P|; D / |D|]) for an eigenvalue lambda of the pencil.
+double pervasion_residual(const QuadraticPencil& p, const Eigen::MatrixXd& D, std::complex<double> lambda);
+
+// Checks each damping component alone and the total damping over the speeds.
+PervasiveReport pervasive_damping(const GyroscopicSystem& sys, const std::vector<double>& speeds,
+                                  const PervasiveOptions& opt = {});
+
+}  // namespace gyrokit

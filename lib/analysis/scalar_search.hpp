@@ -1,0 +1,18 @@
+// One-dimensional searches shared by the analyses: a root of a sign-changing
+// function (GSL Brent) and the minimum of a unimodal function (golden section,
+// which also converges to the kink of a V-shaped minimum).
+#pragma once
+
+#include <functional>
+
+namespace gyrokit {
+
+// Root of f in [a, b] with f(a) f(b) <= 0, to relative tolerance `rel_tol`.
+// Throws SolverError if GSL does not converge.
+double find_root(const std::function<double(double)>& f, double a, double b, double rel_tol = 1e-13);
+
+// Minimizer of f on [a, b] by golden section, until the bracket is below
+// rel_tol * max(1, |x|).
+double find_minimum(const std::function<double(double)>& f, double a, double b, double rel_tol = 1e-14);
+
+}  // namespace gyrokit

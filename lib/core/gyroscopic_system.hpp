@@ -1,0 +1,59 @@
+// The linear gyroscopic system  M z'' + (D + w G) z' + (K + w N) z = w^2 Re(u e^{i w t})
+// with w the spin speed (rad/s). G and N are given per unit speed.
+#pragma once
+
+#include <Eigen/Dense>
+#include <complex>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace gyrokit {
+
+// One named source of damping (e.g. "d_G" cage damping); the total damping
+// matrix is the sum of all components. Kept apart so that pervasive damping
+// can be checked for each component alone.
+struct DampingComponent {
+    std::string name;
+    Eigen::MatrixXd D;
+};
+
+// The three coefficient matrices of the quadratic pencil at one speed:
+// P(lambda) = lambda^2 M + lambda C + K.
+struct QuadraticPencil {
+    Eigen::MatrixXd M, C, K;
+    Eigen::MatrixXcd evaluate(std::complex<double> lambda) const;
+};
+
+class GyroscopicSystem {
+public:
+    std::vector<std::string> dof_names;
+    Eigen::MatrixXd M;                        // mass, symmetric
+    Eigen::MatrixXd K;                        // stiffness
+    Eigen::MatrixXd G;                        // gyroscopic per unit speed, skew
+    Eigen::MatrixXd N;                        // circulatory per unit speed (empty: none)
+    std::vector<DampingComponent> damping;    // D = sum of components
+    Eigen::VectorXcd unbalance;               // force amplitude per w^2 (empty: none)
+    // DOF pairs (u, v) whose complex coordinate u + i v turns forward when the
+    // motion turns in the sense of the spin; used to classify whirl.
+    std::vector<std::pair<int, int>> whirl_pairs;
+
+    int size() const { return static_cast<int>(M.rows()); }
+    Eigen::MatrixXd damping_matrix() const;
+    bool has_damping() const;
+    bool has_circulatory() const { return N.size() > 0 && N.norm() > 0.0; }
+
+    // Pencil at spin speed w: C = D + w G, K(w) = K + w N.
+    QuadraticPencil at_speed(double w) const;
+    // Unbalance force amplitude at speed w (zero vector if there is none).
+    Eigen::VectorXcd unbalance_force(double w) const;
+
+    // The same system with only the named damping components (others removed).
+    GyroscopicSystem with_damping_only(const std::vector<std::string>& names) const;
+
+    // Checks dimensions, finiteness and the structural properties (M, D
+    // symmetric; G skew). Throws InputError naming `origin` on violation.
+    void validate(const std::string& origin) const;
+};
+
+}  // namespace gyrokit

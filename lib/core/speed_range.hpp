@@ -1,0 +1,28 @@
+// A uniform grid of spin speeds (rad/s) and output unit conversion.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+struct SpeedRange {
+    double from = 0.0, to = 0.0;
+    int count = 0;
+    // Parses "FROM:TO:N" (values in `unit`), e.g. "0:60:601". Throws InputError.
+    static SpeedRange parse(const std::string& text, const std::string& option, double unit_factor = 1.0);
+    // Throws InputError naming `origin` unless 0 <= from <= to, count >= 2 (or
+    // count == 1 with from == to), all finite.
+    void validate(const std::string& origin) const;
+    std::vector<double> points() const;
+};
+
+// Output units of speeds and frequencies: rad/s, Hz or rpm. `factor` converts
+// from rad/s: value_in_unit = factor * value_in_rad_per_s.
+struct SpeedUnit {
+    std::string name = "rad/s";
+    double factor = 1.0;
+    static SpeedUnit parse(const std::string& name);   // throws InputError
+};
+
+}  // namespace gyrokit

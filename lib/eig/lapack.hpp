@@ -1,0 +1,22 @@
+// Thin wrappers of the LAPACK generalized eigensolvers (QZ) used by gyrokit.
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace gyrokit {
+
+// Eigenvalues alpha(j)/beta(j) of A v = lambda B v, with right (and optionally
+// left: u^H A = lambda u^H B) eigenvectors as complex columns.
+struct GeneralizedEigen {
+    Eigen::VectorXcd alpha;
+    Eigen::VectorXd beta;       // real for dggev
+    Eigen::VectorXcd beta_c;    // complex for zggev
+    Eigen::MatrixXcd right, left;
+};
+
+// Real pencil (dggev). Throws SolverError if QZ fails.
+GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_left);
+// Complex pencil (zggev), right eigenvectors only.
+GeneralizedEigen lapack_zggev(Eigen::MatrixXcd A, Eigen::MatrixXcd B);
+
+}  // namespace gyrokit

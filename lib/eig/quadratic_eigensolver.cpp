@@ -1,0 +1,161 @@
+#include "eig/quadratic_eigensolver.hpp"
+
+#include "core/error.hpp"
+#include "eig/lapack.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+namespace gyrokit {
+
+using cd = std::complex<double>;
+
+EigenMethod parse_eigen_method(const std::string& name) {
+    if (name == "qz") return EigenMethod::ScaledQZ;
+    if (name == "state") return EigenMethod::StateMatrix;
+    throw InputError(fmt::format("eigen method '{}' is unknown; allowed: qz, state", name));
+}
+
+std::string to_string(EigenMethod m) { return m == EigenMethod::ScaledQZ ? "qz" : "state"; }
+
+double QuadraticSpectrum::max_backward_error() const {
+    double e = 0.0;
+    for (const auto& m : modes) e = std::max(e, m.backward_error);
+    return e;
+}
+
+double backward_error(const QuadraticPencil& p, cd lambda, const Eigen::VectorXcd& x) {
+    const double a = std::abs(lambda);
+    const double denom = (a * a * p.M.norm() + a * p.C.norm() + p.K.norm()) * x.norm();
+    if (denom == 0.0) return 0.0;
+    const Eigen::VectorXcd r = (lambda * lambda) * (p.M * x) + lambda * (p.C * x) + p.K * x;
+    return r.norm() / denom;
+}
+
+namespace {
+
+// Unit 2-norm, largest entry real and positive: reproducible output.
+Eigen::VectorXcd normalized(const Eigen::VectorXcd& v) {
+    Eigen::Index k = 0;
+    v.cwiseAbs().maxCoeff(&k);
+    if (std::abs(v(k)) == 0.0) return v;
+    const cd phase = std::conj(v(k)) / std::abs(v(k));
+    return v * phase / v.norm();
+}
+
+double natural_scale(const QuadraticPencil& p) {
+    const double nm = p.M.norm(), nk = p.K.norm();
+    return (nm > 0.0 && nk > 0.0) ? std::sqrt(nk / nm) : 1.0;
+}
+
+// Keeps the upper half plane and the real axis, classifies and sorts.
+void finish(QuadraticSpectrum& s, const std::vector<std::pair<int, int>>& pairs) {
+    std::vector<Mode> kept;
+    for (auto& m : s.modes) {
+        if (std::abs(m.lambda) <= s.real_tol) m.lambda = cd(m.lambda.real(), 0.0);
+        if (m.lambda.imag() < -s.real_tol) continue;
+        m.whirl = classify_whirl(m.lambda, m.right, pairs, s.real_tol);
+        kept.push_back(std::move(m));
+    }
+    std::sort(kept.begin(), kept.end(), [](const Mode& a, const Mode& b) {
+        if (a.lambda.imag() != b.lambda.imag()) return a.lambda.imag() < b.lambda.imag();
+        return a.lambda.real() < b.lambda.real();
+    });
+    s.modes = std::move(kept);
+}
+
+QuadraticSpectrum solve_qz(const QuadraticPencil& p, bool want_left) {
+    const int n = static_cast<int>(p.M.rows());
+    // Fan-Lin-Van Dooren: lambda = gamma mu, coefficients of norm about one.
+    const double nm = p.M.norm(), nc = p.C.norm(), nk = p.K.norm();
+    const double gamma = (nk > 0.0) ? std::sqrt(nk / nm) : (nc > 0.0 ? nc / nm : 1.0);
+    const double delta = 2.0 / (nk + nc * gamma + nm * gamma * gamma * (nk > 0.0 ? 0.0 : 1.0));
+    // First companion form A - mu B, eigenvector [mu x; x].
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n), B = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+    A.topLeftCorner(n, n) = -(gamma * delta) * p.C;
+    A.topRightCorner(n, n) = -delta * p.K;
+    A.bottomLeftCorner(n, n).setIdentity();
+    B.topLeftCorner(n, n) = (gamma * gamma * delta) * p.M;
+    B.bottomRightCorner(n, n).setIdentity();
+
+    GeneralizedEigen ge = lapack_dggev(A, B, want_left);
+
+    QuadraticSpectrum s;
+    s.scale = natural_scale(p);
+    s.real_tol = 1e-7 * s.scale;   // about sqrt(eps) times the scale: rigid-body pairs land here
+    const double eps = std::numeric_limits<double>::epsilon();
+    for (int j = 0; j < 2 * n; ++j) {
+        const cd alpha = ge.alpha(j);
+        const double beta = ge.beta(j);
+        if (std::abs(beta) <= 100.0 * eps * std::abs(alpha) || beta == 0.0) {
+            ++s.infinite_count;
+            continue;
+        }
+        Mode m;
+        m.lambda = gamma * alpha / beta;
+        if (m.lambda.imag() < -1e-7 * std::max(std::abs(m.lambda), s.scale)) continue;  // conjugate
+        // Either block of [mu x; x] gives x; keep the one with the smaller backward error.
+        const Eigen::VectorXcd top = ge.right.col(j).head(n), bottom = ge.right.col(j).tail(n);
+        const double et = backward_error(p, m.lambda, top), eb = backward_error(p, m.lambda, bottom);
+        const bool use_top = top.norm() > 0.0 && (bottom.norm() == 0.0 || et < eb);
+        m.right = normalized(use_top ? top : bottom);
+        m.backward_error = backward_error(p, m.lambda, m.right);
+        if (want_left) m.left = normalized(ge.left.col(j).head(n));
+        s.modes.push_back(std::move(m));
+    }
+    return s;
+}
+
+QuadraticSpectrum solve_state(const QuadraticPencil& p) {
+    const int n = static_cast<int>(p.M.rows());
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(p.M);
+    if (!lu.isInvertible())
+        throw SolverError("the state-matrix method needs an invertible M, and M is singular; "
+                          "use the QZ method (--method qz)");
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+    A.topRightCorner(n, n).setIdentity();
+    A.bottomLeftCorner(n, n) = -lu.solve(p.K);
+    A.bottomRightCorner(n, n) = -lu.solve(p.C);
+    Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
+    if (es.info() != Eigen::Success)
+        throw SolverError("the state-matrix eigensolver did not converge; use the QZ method (--method qz)");
+    QuadraticSpectrum s;
+    s.scale = natural_scale(p);
+    s.real_tol = 1e-7 * s.scale;
+    for (int j = 0; j < 2 * n; ++j) {
+        Mode m;
+        m.lambda = es.eigenvalues()(j);
+        if (m.lambda.imag() < -1e-7 * std::max(std::abs(m.lambda), s.scale)) continue;
+        m.right = normalized(es.eigenvectors().col(j).head(n));
+        m.backward_error = backward_error(p, m.lambda, m.right);
+        s.modes.push_back(std::move(m));
+    }
+    return s;
+}
+
+}  // namespace
+
+QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& opt,
+                                  const std::vector<std::pair<int, int>>& whirl_pairs) {
+    if (!p.M.allFinite() || !p.C.allFinite() || !p.K.allFinite())
+        throw InputError("the pencil has a NaN or infinite coefficient");
+    QuadraticSpectrum s;
+    if (opt.method == EigenMethod::ScaledQZ) {
+        s = solve_qz(p, opt.left_vectors);
+    } else {
+        if (opt.left_vectors)
+            throw InputError("left eigenvectors are computed by the QZ method only (--method qz)");
+        s = solve_state(p);
+    }
+    finish(s, whirl_pairs);
+    return s;
+}
+
+QuadraticSpectrum solve_at_speed(const GyroscopicSystem& sys, double w, const EigenOptions& opt) {
+    return solve_quadratic(sys.at_speed(w), opt, sys.whirl_pairs);
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,41 @@
+// Figures (Campbell diagrams, stability charts, responses) rendered by an
+// external gnuplot, so the library links no plotting code.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+struct Series {
+    std::vector<double> x, y;
+    std::string label;           // legend entry ("" = no legend entry)
+    std::string style = "lines"; // "lines", "dashed", "points", "linespoints"
+    std::string color;           // e.g. "#d62728"; "" = gnuplot default
+};
+
+struct Panel {
+    std::string xlabel, ylabel, title;
+    bool logy = false;
+    std::vector<Series> series;
+    std::optional<double> ymin, ymax, xmin, xmax;   // unset = autoscale
+};
+
+struct Figure {
+    std::string title;
+    std::vector<Panel> panels;   // stacked vertically (multiplot), first on top
+    int width = 900, height_per_panel = 380;
+};
+
+// Renders `fig` with gnuplot into `path`; the extension picks the terminal:
+// .svg -> svg, .png -> pngcairo. Text is drawn literally (no enhanced-text
+// markup). Series with empty x are skipped; NaN/inf points, and y <= 0 on a
+// log axis, are dropped and break the line there. Panels without data are
+// drawn as empty frames. The file at `path` is only replaced on success.
+// Throws InputError for an unsupported extension, an unknown style, x/y of
+// different lengths, no panels, a bad size or bad axis limits; Error if gnuplot
+// is missing, fails (its error message is included) or writes no file.
+void render_figure(const Figure& fig, const std::string& path);
+
+}  // namespace gyrokit

@@ -1,0 +1,31 @@
+// Analysis results as tables (stable column names, see docs/cli.md) and figures.
+// Speeds and frequencies are converted to the chosen unit; re and im stay in 1/s.
+#pragma once
+
+#include "analysis/campbell.hpp"
+#include "analysis/critical_speeds.hpp"
+#include "analysis/pervasive_damping.hpp"
+#include "analysis/unbalance_response.hpp"
+#include "core/speed_range.hpp"
+#include "io/plot.hpp"
+#include "io/table.hpp"
+
+namespace gyrokit {
+
+Table eig_table(const QuadraticSpectrum& s, double speed, const SpeedUnit& u);
+Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u);
+Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u);
+Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u);
+Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u);
+Table response_table(const GyroscopicSystem& sys, const ResponseCurve& c, const SpeedUnit& u);
+Table extrema_table(const GyroscopicSystem& sys, const std::vector<ResponseExtremum>& e, const SpeedUnit& u);
+
+// Frequencies against speed with the harmonic lines and critical speeds, forward
+// whirl solid red, backward dashed blue; damping ratio in a second panel.
+Figure campbell_figure(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& cs,
+                       const std::vector<int>& harmonics, const SpeedUnit& u, const std::string& title);
+// Amplitude (log) and phase per DOF against speed.
+Figure response_figure(const GyroscopicSystem& sys, const ResponseCurve& c, const SpeedUnit& u,
+                       const std::string& title);
+
+}  // namespace gyrokit

@@ -1,0 +1,228 @@
+#include "io/scene.hpp"
+
+#include "core/error.hpp"
+#include "io/matrix_market.hpp"
+#include "models/gyrostat.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <map>
+#include <set>
+#include <toml++/toml.h>
+
+namespace gyrokit {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Reads keys of one TOML table with the file and table named in every error.
+class Keys {
+public:
+    Keys(const std::string& file, std::string table, const toml::table& t) : file_(file), table_(std::move(table)), t_(t) {}
+
+    // Rejects keys outside `allowed`.
+    void only(const std::set<std::string>& allowed) const {
+        for (const auto& [k, v] : t_) {
+            const std::string key(k.str());
+            if (!allowed.count(key)) {
+                std::string list;
+                for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+                throw InputError(fmt::format("{}: [{}] unknown key '{}'; allowed: {}", file_, table_, key, list));
+            }
+        }
+    }
+    bool has(const std::string& key) const { return t_.contains(key); }
+
+    // A number with lower bound `min` (strict if `strict`).
+    double number(const std::string& key, std::optional<double> fallback, double min, bool strict,
+                  const char* unit) const {
+        const toml::node* n = t_.get(key);
+        if (!n) {
+            if (fallback) return *fallback;
+            throw InputError(fmt::format("{}: [{}] key '{}' is missing; required: a number {} {} ({})", file_,
+                                         table_, key, strict ? ">" : ">=", min, unit));
+        }
+        std::optional<double> v = n->value<double>();
+        if (!v || !(n->is_floating_point() || n->is_integer()))
+            throw InputError(fmt::format("{}: [{}] {} is not a number; allowed: a number {} {} ({})", file_, table_,
+                                         key, strict ? ">" : ">=", min, unit));
+        if (!std::isfinite(*v) || (strict ? *v <= min : *v < min))
+            throw InputError(fmt::format("{}: [{}] {} = {}: out of range; allowed: {} {} ({})", file_, table_, key,
+                                         *v, strict ? ">" : ">=", min, unit));
+        return *v;
+    }
+    double any_number(const std::string& key, const char* unit) const {
+        const toml::node* n = t_.get(key);
+        if (!n) throw InputError(fmt::format("{}: [{}] key '{}' is missing; required: a finite number ({})", file_,
+                                             table_, key, unit));
+        std::optional<double> v = n->value<double>();
+        if (!v || !std::isfinite(*v))
+            throw InputError(fmt::format("{}: [{}] {} must be a finite number ({})", file_, table_, key, unit));
+        return *v;
+    }
+    long long integer(const std::string& key, long long fallback, long long min, long long max) const {
+        const toml::node* n = t_.get(key);
+        if (!n) return fallback;
+        if (!n->is_integer())
+            throw InputError(fmt::format("{}: [{}] {} must be a whole number in [{}, {}]", file_, table_, key, min, max));
+        const long long v = *n->value<long long>();
+        if (v < min || v > max)
+            throw InputError(fmt::format("{}: [{}] {} = {}: out of range; allowed: [{}, {}]", file_, table_, key, v,
+                                         min, max));
+        return v;
+    }
+    std::string choice(const std::string& key, const std::string& fallback, const std::set<std::string>& allowed) const {
+        const toml::node* n = t_.get(key);
+        if (!n) return fallback;
+        std::optional<std::string> v = n->value<std::string>();
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        if (!v || (!allowed.empty() && !allowed.count(*v)))
+            throw InputError(fmt::format("{}: [{}] {} = {}: allowed: {}", file_, table_, key,
+                                         v ? "'" + *v + "'" : std::string("(not a string)"), list));
+        return *v;
+    }
+    const toml::table& table() const { return t_; }
+    std::string where(const std::string& key) const { return fmt::format("{}: [{}] {}", file_, table_, key); }
+
+private:
+    std::string file_, table_;
+    const toml::table& t_;
+};
+
+GyroscopicSystem gyrostat_from(const Keys& k) {
+    k.only({"type", "A_G", "B_G", "A_R", "C_R", "m", "s", "eps", "c_G", "c_T", "c_R", "d_G", "d_T", "d_R", "shaft",
+            "housing"});
+    GyrostatParameters p;
+    p.rigid_shaft = k.choice("shaft", "elastic", {"elastic", "rigid"}) == "rigid";
+    p.rigid_housing = k.choice("housing", "elastic", {"elastic", "rigid"}) == "rigid";
+    if (p.rigid_shaft && p.rigid_housing)
+        throw InputError(k.where("shaft") + " = 'rigid' with housing = 'rigid' leaves no degree of freedom; "
+                                            "allowed: at most one of them rigid");
+    const std::optional<double> unused = 0.0;   // keys a rigid element makes irrelevant
+    p.A_G = k.number("A_G", p.rigid_housing ? unused : std::nullopt, 0, true, "kg m^2");
+    p.B_G = k.number("B_G", p.rigid_housing ? unused : std::nullopt, 0, true, "kg m^2");
+    p.c_G = k.number("c_G", p.rigid_housing ? unused : std::nullopt, 0, true, "N m/rad");
+    p.A_R = k.number("A_R", std::nullopt, 0, true, "kg m^2");
+    p.C_R = k.number("C_R", std::nullopt, 0, true, "kg m^2");
+    p.m = k.number("m", std::nullopt, 0, true, "kg");
+    p.s = k.any_number("s", "m");
+    p.eps = k.number("eps", 0.0, 0, false, "m");
+    p.c_T = k.number("c_T", p.rigid_shaft ? unused : std::nullopt, 0, true, "N/m");
+    p.c_R = k.number("c_R", p.rigid_shaft ? unused : std::nullopt, 0, true, "N m/rad");
+    p.d_G = k.number("d_G", 0.0, 0, false, "N m s/rad");
+    p.d_T = k.number("d_T", 0.0, 0, false, "N s/m");
+    p.d_R = k.number("d_R", 0.0, 0, false, "N m s/rad");
+    return make_gyrostat(p);
+}
+
+GyroscopicSystem matrices_from(const Keys& k, const fs::path& dir) {
+    k.only({"type", "M", "K", "D", "G", "N", "unbalance", "dof_names", "whirl_pairs"});
+    const auto path_of = [&](const std::string& key) -> std::optional<std::string> {
+        if (!k.has(key)) return std::nullopt;
+        const std::string rel = k.choice(key, "", {});
+        return (dir / rel).string();
+    };
+    GyroscopicSystem sys;
+    const auto m = path_of("M"), kk = path_of("K");
+    if (!m) throw InputError(k.where("M") + " is missing; required: path of a Matrix Market file");
+    if (!kk) throw InputError(k.where("K") + " is missing; required: path of a Matrix Market file");
+    sys.M = read_matrix_market(*m);
+    sys.K = read_matrix_market(*kk);
+    if (auto d = path_of("D")) sys.damping.push_back({"D", read_matrix_market(*d)});
+    if (auto g = path_of("G")) sys.G = read_matrix_market(*g);
+    if (auto n = path_of("N")) sys.N = read_matrix_market(*n);
+    if (auto u = path_of("unbalance")) sys.unbalance = read_matrix_market_vector(*u);
+    const int n = static_cast<int>(sys.M.rows());
+    if (const toml::array* names = k.table().get_as<toml::array>("dof_names")) {
+        for (const auto& e : *names) {
+            auto s = e.value<std::string>();
+            if (!s) throw InputError(k.where("dof_names") + ": every entry must be a string");
+            sys.dof_names.push_back(*s);
+        }
+        if (static_cast<int>(sys.dof_names.size()) != n)
+            throw InputError(fmt::format("{} has {} names for {} DOFs; allowed: exactly one name per DOF",
+                                         k.where("dof_names"), sys.dof_names.size(), n));
+    } else {
+        if (k.has("dof_names")) throw InputError(k.where("dof_names") + " must be an array of strings");
+        for (int i = 0; i < n; ++i) sys.dof_names.push_back("q" + std::to_string(i));
+    }
+    if (const toml::array* pairs = k.table().get_as<toml::array>("whirl_pairs")) {
+        for (const auto& e : *pairs) {
+            const toml::array* pr = e.as_array();
+            if (!pr || pr->size() != 2 || !(*pr)[0].is_integer() || !(*pr)[1].is_integer())
+                throw InputError(k.where("whirl_pairs") + ": each entry must be a pair [u, v] of 0-based DOF indices");
+            const long long u = *(*pr)[0].value<long long>(), v = *(*pr)[1].value<long long>();
+            if (u < 0 || v < 0 || u >= n || v >= n || u == v)
+                throw InputError(fmt::format("{}: pair [{}, {}] out of range; allowed: two distinct indices in [0, {}]",
+                                             k.where("whirl_pairs"), u, v, n - 1));
+            sys.whirl_pairs.emplace_back(static_cast<int>(u), static_cast<int>(v));
+        }
+    } else {
+        if (k.has("whirl_pairs")) throw InputError(k.where("whirl_pairs") + " must be an array of pairs");
+        // Lateral DOFs usually come as (x, y) pairs.
+        if (n % 2 == 0)
+            for (int i = 0; i < n; i += 2) sys.whirl_pairs.emplace_back(i, i + 1);
+    }
+    return sys;
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& path) {
+    Scene sc;
+    sc.path = path;
+    toml::table root;
+    try {
+        root = toml::parse_file(path);
+    } catch (const toml::parse_error& e) {
+        const auto& b = e.source().begin;
+        if (!fs::exists(path)) throw InputError(fmt::format("{}: scene file not found", path));
+        throw InputError(fmt::format("{}: line {}, column {}: {}", path, b.line, b.column, e.description()));
+    }
+    Keys top(path, "top level", root);
+    top.only({"title", "model", "speeds", "analysis"});
+    sc.title = top.choice("title", "", {});
+    const toml::table* model = root.get_as<toml::table>("model");
+    if (!model) throw InputError(path + ": table [model] is missing; required: [model] with type = \"gyrostat\" or \"matrices\"");
+    Keys mk(path, "model", *model);
+    sc.model_type = mk.choice("type", "", {"gyrostat", "matrices"});
+    if (sc.model_type.empty()) throw InputError(mk.where("type") + " is missing; allowed: gyrostat, matrices");
+    sc.system = sc.model_type == "gyrostat" ? gyrostat_from(mk)
+                                            : matrices_from(mk, fs::path(path).parent_path());
+    sc.system.validate(path);
+
+    if (const toml::table* sp = root.get_as<toml::table>("speeds")) {
+        Keys k(path, "speeds", *sp);
+        k.only({"from", "to", "count"});
+        SpeedRange r;
+        r.from = k.number("from", std::nullopt, 0, false, "rad/s");
+        r.to = k.number("to", std::nullopt, 0, false, "rad/s");
+        r.count = static_cast<int>(k.integer("count", 201, 1, 10000000));
+        r.validate(path + ": [speeds]");
+        sc.speeds = r;
+    } else if (root.contains("speeds")) {
+        throw InputError(path + ": speeds must be a table [speeds] with from, to, count");
+    }
+    if (const toml::table* an = root.get_as<toml::table>("analysis")) {
+        Keys k(path, "analysis", *an);
+        k.only({"modes", "harmonics"});
+        sc.modes = static_cast<int>(k.integer("modes", 0, 0, 100000));
+        if (const toml::array* h = an->get_as<toml::array>("harmonics")) {
+            sc.harmonics.clear();
+            for (const auto& e : *h) {
+                if (!e.is_integer() || *e.value<long long>() < 1 || *e.value<long long>() > 1000)
+                    throw InputError(k.where("harmonics") + ": each entry must be a whole number in [1, 1000]");
+                sc.harmonics.push_back(static_cast<int>(*e.value<long long>()));
+            }
+            if (sc.harmonics.empty()) throw InputError(k.where("harmonics") + " is empty; allowed: e.g. [1] or [1, 2]");
+        } else if (an->contains("harmonics")) {
+            throw InputError(k.where("harmonics") + " must be an array such as [1, 2]");
+        }
+    }
+    return sc;
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,27 @@
+// Scene files (TOML): a model and the analysis settings. See docs/scene_format.md.
+#pragma once
+
+#include "core/gyroscopic_system.hpp"
+#include "core/speed_range.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+struct Scene {
+    std::string path;                  // the file it was read from
+    std::string title;
+    std::string model_type;            // "gyrostat" | "matrices"
+    GyroscopicSystem system;
+    std::optional<SpeedRange> speeds;  // [speeds] from, to, count
+    int modes = 0;                     // [analysis] modes (0 = all)
+    std::vector<int> harmonics{1};     // [analysis] harmonics
+};
+
+// Reads and validates a scene. Every error is an InputError of one line naming
+// the file, the key, the value and the allowed range.
+Scene load_scene(const std::string& path);
+
+}  // namespace gyrokit

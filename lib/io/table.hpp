@@ -1,0 +1,58 @@
+// Tabular results (mode lists, Campbell data, sweeps) written as aligned text
+// for people, CSV for spreadsheets, or JSON for scripts, from one Table.
+#pragma once
+
+#include <cstddef>
+#include <ostream>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace gyrokit {
+
+enum class TableFormat { Text, Csv, Json };
+
+// "table" | "csv" | "json"; anything else is an InputError naming the value
+// and the allowed values.
+TableFormat parse_table_format(const std::string& s);
+
+// A cell: a number (double), an integer, a string or a bool.
+using Cell = std::variant<double, long long, std::string, bool>;
+
+class Table {
+public:
+    // Throws gyrokit::Error on duplicate column names (they would collide as JSON keys).
+    explicit Table(std::vector<std::string> columns);
+
+    // Throws gyrokit::Error if the row's size differs from the column count.
+    void add_row(std::vector<Cell> row);
+
+    const std::vector<std::string>& columns() const { return columns_; }
+    std::size_t rows() const { return rows_.size(); }
+    const std::vector<Cell>& row(std::size_t i) const { return rows_.at(i); }
+
+    std::string title;   // optional; printed as a heading line in Text format only
+
+private:
+    std::vector<std::string> columns_;
+    std::vector<std::vector<Cell>> rows_;
+};
+
+// Writes the table.
+//  Text: optional title line, header, rule, aligned rows (all padded to one
+//        width); numbers %.6g and right-aligned, strings and bools left-aligned.
+//  Csv:  header then rows; numbers %.12g; RFC 4180 quoting only where needed;
+//        bools true/false.
+//  Json: an array of objects (keys = column names, in column order); doubles
+//        at full round-trip precision.
+// +-inf prints as inf/-inf (JSON: the strings "inf"/"-inf"). A NaN cell is a bug
+// upstream: it throws gyrokit::Error naming the column, and nothing is written.
+void write_table(std::ostream& os, const Table& t, TableFormat f);
+
+// Several tables in one output. Text: each with its title, a blank line between.
+// Csv: tables separated by one blank line. Json: one object mapping each title
+// (or "table<i>", i counted from 1, for an untitled table) to its array;
+// two tables with the same key throw gyrokit::Error.
+void write_tables(std::ostream& os, const std::vector<Table>& ts, TableFormat f);
+
+}  // namespace gyrokit
