@@ -67,8 +67,24 @@ void finish(QuadraticSpectrum& s, const std::vector<std::pair<int, int>>& pairs)
     s.modes = std::move(kept);
 }
 
-QuadraticSpectrum solve_qz(const QuadraticPencil& p, bool want_left) {
-    const int n = static_cast<int>(p.M.rows());
+// Diagonal congruence z = T w with t_i = 1/sqrt(W_ii), W = g^2|M| + g|C| + |K|:
+// undoes badly scaled units (metres next to micrometres) without changing the
+// eigenvalues; the structure (symmetry, skew-symmetry) is kept.
+Eigen::VectorXd dof_scaling(const QuadraticPencil& p) {
+    const double g = natural_scale(p);
+    Eigen::VectorXd t(p.M.rows());
+    for (Eigen::Index i = 0; i < t.size(); ++i) {
+        const double w = g * g * std::abs(p.M(i, i)) + g * std::abs(p.C(i, i)) + std::abs(p.K(i, i));
+        t(i) = (w > 0.0 && std::isfinite(w)) ? 1.0 / std::sqrt(w) : 1.0;
+    }
+    return t / t.maxCoeff();
+}
+
+QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left) {
+    const int n = static_cast<int>(original.M.rows());
+    const Eigen::VectorXd t = dof_scaling(original);
+    const QuadraticPencil p{t.asDiagonal() * original.M * t.asDiagonal(), t.asDiagonal() * original.C * t.asDiagonal(),
+                            t.asDiagonal() * original.K * t.asDiagonal()};
     // Fan-Lin-Van Dooren: lambda = gamma mu, coefficients of norm about one.
     const double nm = p.M.norm(), nc = p.C.norm(), nk = p.K.norm();
     const double gamma = (nk > 0.0) ? std::sqrt(nk / nm) : (nc > 0.0 ? nc / nm : 1.0);
@@ -84,7 +100,7 @@ QuadraticSpectrum solve_qz(const QuadraticPencil& p, bool want_left) {
     GeneralizedEigen ge = lapack_dggev(A, B, want_left);
 
     QuadraticSpectrum s;
-    s.scale = natural_scale(p);
+    s.scale = natural_scale(original);
     s.real_tol = 1e-7 * s.scale;   // about sqrt(eps) times the scale: rigid-body pairs land here
     const double eps = std::numeric_limits<double>::epsilon();
     for (int j = 0; j < 2 * n; ++j) {
@@ -98,12 +114,14 @@ QuadraticSpectrum solve_qz(const QuadraticPencil& p, bool want_left) {
         m.lambda = gamma * alpha / beta;
         if (m.lambda.imag() < -1e-7 * std::max(std::abs(m.lambda), s.scale)) continue;  // conjugate
         // Either block of [mu x; x] gives x; keep the one with the smaller backward error.
-        const Eigen::VectorXcd top = ge.right.col(j).head(n), bottom = ge.right.col(j).tail(n);
-        const double et = backward_error(p, m.lambda, top), eb = backward_error(p, m.lambda, bottom);
+        // Back to the original coordinates; backward errors refer to the original problem.
+        const Eigen::VectorXcd top = t.asDiagonal() * ge.right.col(j).head(n);
+        const Eigen::VectorXcd bottom = t.asDiagonal() * ge.right.col(j).tail(n);
+        const double et = backward_error(original, m.lambda, top), eb = backward_error(original, m.lambda, bottom);
         const bool use_top = top.norm() > 0.0 && (bottom.norm() == 0.0 || et < eb);
         m.right = normalized(use_top ? top : bottom);
-        m.backward_error = backward_error(p, m.lambda, m.right);
-        if (want_left) m.left = normalized(ge.left.col(j).head(n));
+        m.backward_error = backward_error(original, m.lambda, m.right);
+        if (want_left) m.left = normalized(t.asDiagonal() * ge.left.col(j).head(n));
         s.modes.push_back(std::move(m));
     }
     return s;

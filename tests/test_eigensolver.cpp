@@ -1,0 +1,142 @@
+// Dense quadratic eigensolver: backward errors at the extremes, the Hamiltonian
+// eigenvalue symmetry of undamped gyroscopic systems, left vectors, singular M.
+#include "core/error.hpp"
+#include "eig/quadratic_eigensolver.hpp"
+#include "test_helpers.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+using namespace gyrokit;
+
+namespace {
+
+// Every eigenpair of the scaled QZ path has a relative backward error near
+// machine precision (QZ is normwise backward stable on the scaled linearization).
+void require_backward_stable(const GyroscopicSystem& s, double w, int expect_modes) {
+    const auto sp = solve_at_speed(s, w);
+    INFO("speed " << w);
+    CHECK(static_cast<int>(sp.modes.size()) >= expect_modes);
+    for (const auto& m : sp.modes) {
+        CHECK(std::isfinite(m.lambda.real()));
+        CHECK(std::isfinite(m.lambda.imag()));
+        CHECK(m.backward_error <= 1e-12);
+    }
+}
+
+// Undamped: the extreme case at speeds from standstill to 1e5 rad/s.
+void sweep_extremes(GyrostatParameters p) {
+    const GyroscopicSystem s = make_gyrostat(p);
+    for (double w : {0.0, 1.0, 100.0, 1e4, 1e5}) require_backward_stable(s, w, 6);
+}
+
+GyroscopicSystem random_gyroscopic(std::mt19937& g, int n, bool definite) {
+    GyroscopicSystem s;
+    Eigen::MatrixXd A = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return test::uniform(g, -1, 1); });
+    s.M = A * A.transpose() + n * Eigen::MatrixXd::Identity(n, n);
+    Eigen::MatrixXd B = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return test::uniform(g, -1, 1); });
+    s.K = B + B.transpose();
+    if (definite) s.K += 3.0 * n * Eigen::MatrixXd::Identity(n, n);
+    Eigen::MatrixXd C = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return test::uniform(g, -1, 1); });
+    s.G = C - C.transpose();
+    for (int i = 0; i < n; ++i) s.dof_names.push_back("q" + std::to_string(i));
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("scaled QZ: backward error <= 1e-12 at the extremes", "[eig][extremes]") {
+    GyrostatParameters p = test::centrifuge();
+    SECTION("ordinary, damped") { sweep_extremes(p); }
+    p.d_G = p.d_T = p.d_R = 0.0;
+    SECTION("zero damping") { sweep_extremes(p); }
+    SECTION("stiff shaft 1e12") {
+        p.c_T = p.c_R = 1e12;
+        sweep_extremes(p);
+    }
+    SECTION("tiny rotor inertia") {
+        p.A_R = 1e-9;
+        p.C_R = 1.1e-9;
+        sweep_extremes(p);
+    }
+    SECTION("free cage (singular K, rigid-body modes)") {
+        p.c_G = 0.0;
+        sweep_extremes(p);
+    }
+    SECTION("everything at once") {
+        p.c_T = p.c_R = 1e12;
+        p.A_R = 1e-9;
+        p.C_R = 1.1e-9;
+        sweep_extremes(p);
+    }
+    SECTION("badly scaled units (DOFs in m, mm, um)") {
+        GyroscopicSystem s = make_gyrostat(test::centrifuge());
+        const Eigen::VectorXd t = (Eigen::VectorXd(6) << 1e3, 1e-3, 1e4, 1e-4, 1.0, 1e2).finished();
+        const GyroscopicSystem ref = s;
+        s.M = t.asDiagonal() * s.M * t.asDiagonal();
+        s.K = t.asDiagonal() * s.K * t.asDiagonal();
+        s.G = t.asDiagonal() * s.G * t.asDiagonal();
+        for (auto& c : s.damping) c.D = t.asDiagonal() * c.D * t.asDiagonal();
+        for (double w : {0.0, 30.0, 1e4}) {
+            require_backward_stable(s, w, 6);
+            // A congruence leaves the eigenvalues unchanged.
+            const auto a = solve_at_speed(s, w), b = solve_at_speed(ref, w);
+            REQUIRE(a.modes.size() == b.modes.size());
+            for (size_t i = 0; i < a.modes.size(); ++i)
+                CHECK(std::abs(a.modes[i].lambda - b.modes[i].lambda) <= 1e-8 * std::abs(b.modes[i].lambda));
+        }
+    }
+}
+
+TEST_CASE("undamped gyroscopic systems: eigenvalues in quadruples, on the axis when stable", "[eig]") {
+    std::mt19937 g(7);
+    for (int trial = 0; trial < 10; ++trial) {
+        const int n = 3 + trial;
+        // Indefinite K: eigenvalues lambda, -lambda, conj(lambda), -conj(lambda) (Hamiltonian symmetry).
+        const GyroscopicSystem s = random_gyroscopic(g, n, false);
+        const auto sp = solve_at_speed(s, 2.0);
+        for (const auto& m : sp.modes) {
+            CHECK(m.backward_error <= 1e-13);
+            const std::complex<double> mirror = -std::conj(m.lambda);
+            double d = INFINITY;
+            for (const auto& o : sp.modes) d = std::min(d, std::abs(o.lambda - mirror));
+            CHECK(d <= 1e-9 * std::max(1.0, std::abs(m.lambda)));
+        }
+        // Definite K: gyroscopically stable, purely imaginary.
+        const GyroscopicSystem t = random_gyroscopic(g, n, true);
+        for (const auto& m : solve_at_speed(t, 5.0).modes) CHECK(std::fabs(m.lambda.real()) <= 1e-11 * std::abs(m.lambda));
+    }
+}
+
+TEST_CASE("left eigenvectors satisfy y^H P(lambda) = 0", "[eig]") {
+    const GyroscopicSystem s = make_gyrostat(test::centrifuge());
+    const QuadraticPencil p = s.at_speed(20.0);
+    EigenOptions o;
+    o.left_vectors = true;
+    for (const auto& m : solve_quadratic(p, o, s.whirl_pairs).modes) {
+        const Eigen::MatrixXcd P = p.evaluate(m.lambda);
+        const double scale = std::norm(m.lambda) * p.M.norm() + std::abs(m.lambda) * p.C.norm() + p.K.norm();
+        CHECK((m.left.adjoint() * P).norm() <= 1e-12 * scale);
+        CHECK(m.left.norm() == Approx(1.0));
+    }
+}
+
+TEST_CASE("state-matrix path: agrees on ordinary cases, refuses singular M", "[eig]") {
+    const GyroscopicSystem s = make_gyrostat(test::centrifuge());
+    const auto a = solve_at_speed(s, 30.0), b = solve_at_speed(s, 30.0, {EigenMethod::StateMatrix, false});
+    REQUIRE(a.modes.size() == b.modes.size());
+    for (size_t i = 0; i < a.modes.size(); ++i) {
+        CHECK(std::abs(a.modes[i].lambda - b.modes[i].lambda) <= 1e-10 * std::abs(a.modes[i].lambda));
+        CHECK(b.modes[i].backward_error <= 1e-10);
+    }
+    // A massless DOF: M singular. QZ gives the finite eigenvalues and counts the infinite ones.
+    GyroscopicSystem t;
+    t.M = Eigen::Vector3d(1.0, 2.0, 0.0).asDiagonal();
+    t.K = (Eigen::Matrix3d() << 4, -1, -1, -1, 5, -2, -1, -2, 6).finished();
+    t.damping.push_back({"D", 0.1 * Eigen::Matrix3d::Identity()});
+    t.dof_names = {"a", "b", "c"};
+    const auto q = solve_at_speed(t, 0.0);
+    CHECK(q.infinite_count >= 1);
+    for (const auto& m : q.modes) CHECK(m.backward_error <= 1e-12);
+    CHECK_THROWS_AS(solve_at_speed(t, 0.0, {EigenMethod::StateMatrix, false}), SolverError);
+}

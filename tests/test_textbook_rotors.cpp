@@ -1,0 +1,127 @@
+// Textbook rotors with closed forms: the Jeffcott rotor (unbalance response,
+// stability threshold of rotating internal damping) and a rigid rotor on
+// isotropic tilt springs (Campbell diagram and critical speed).
+#include "analysis/campbell.hpp"
+#include "analysis/critical_speeds.hpp"
+#include "analysis/unbalance_response.hpp"
+#include "core/speed_range.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+using namespace gyrokit;
+
+namespace {
+
+const Eigen::Matrix2d J = (Eigen::Matrix2d() << 0, 1, -1, 0).finished();
+
+// Jeffcott rotor: m z'' + (c_e + c_i) z' + k z - i c_i w z = m eps w^2 e^{iwt}, z = x + iy.
+GyroscopicSystem jeffcott(double m, double k, double ce, double ci, double eps) {
+    GyroscopicSystem s;
+    s.M = m * Eigen::Matrix2d::Identity();
+    s.K = k * Eigen::Matrix2d::Identity();
+    s.damping.push_back({"c_e", ce * Eigen::Matrix2d::Identity()});
+    if (ci > 0) {
+        s.damping.push_back({"c_i", ci * Eigen::Matrix2d::Identity()});
+        s.N = ci * J;   // rotating damping is circulatory in the fixed frame
+    }
+    s.unbalance = Eigen::Vector2cd(m * eps, std::complex<double>(0, -m * eps));   // (cos wt, sin wt)
+    s.dof_names = {"x", "y"};
+    s.whirl_pairs = {{0, 1}};
+    return s;
+}
+
+// Rigid rotor tilting on isotropic springs: I_t a'' + I_p w J a' + k_t a = 0.
+GyroscopicSystem rigid_rotor(double It, double Ip, double kt) {
+    GyroscopicSystem s;
+    s.M = It * Eigen::Matrix2d::Identity();
+    s.K = kt * Eigen::Matrix2d::Identity();
+    s.G = Ip * J;
+    s.dof_names = {"tilt_x", "tilt_y"};
+    s.whirl_pairs = {{0, 1}};
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("Jeffcott rotor: unbalance response closed form", "[textbook][response]") {
+    const double m = 3.0, k = 1.2e4, c = 15.0, eps = 2e-4;
+    const GyroscopicSystem s = jeffcott(m, k, c, 0.0, eps);
+    for (double w : {5.0, 40.0, std::sqrt(k / m), 90.0, 400.0}) {
+        const Eigen::VectorXcd Z = unbalance_response(s, w);
+        const double amp = m * eps * w * w / std::abs(std::complex<double>(k - m * w * w, c * w));
+        CHECK(std::abs(Z(0)) == Approx(amp).epsilon(1e-13));
+        CHECK(std::abs(Z(1)) == Approx(amp).epsilon(1e-13));
+        // Circular forward orbit: y lags x by 90 degrees.
+        CHECK(std::abs(Z(1) - std::complex<double>(0, -1) * Z(0)) <= 1e-13 * amp);
+    }
+    // The peak is at w_n / sqrt(1 - 2 zeta^2) for displacement under rotating unbalance.
+    const ResponseCurve rc = unbalance_response(s, SpeedRange{10.0, 120.0, 111}.points());
+    const auto ex = response_extrema(s, rc);
+    const double zeta = c / (2 * std::sqrt(k * m)), wn = std::sqrt(k / m);
+    REQUIRE(!ex.empty());
+    CHECK(ex.front().peak);
+    CHECK(ex.front().speed == Approx(wn / std::sqrt(1 - 2 * zeta * zeta)).epsilon(1e-7));
+}
+
+TEST_CASE("Jeffcott rotor with internal damping: instability threshold w_n (1 + c_e/c_i)", "[textbook][stability]") {
+    const double m = 2.0, k = 5e3, ce = 4.0, ci = 10.0;
+    const GyroscopicSystem s = jeffcott(m, k, ce, ci, 0.0);
+    const double wn = std::sqrt(k / m), threshold = wn * (1 + ce / ci);
+    const CampbellDiagram cd = campbell(s, SpeedRange{0.0, 2 * threshold, 41}.points());
+    const auto ch = stability_changes(s, cd);
+    REQUIRE(ch.size() == 1);
+    CHECK(ch[0].becomes_unstable);
+    CHECK(ch[0].speed == Approx(threshold).epsilon(1e-10));
+    CHECK(ch[0].mode.whirl == Whirl::Forward);
+}
+
+TEST_CASE("rigid rotor: closed-form Campbell diagram and critical speed", "[textbook][campbell]") {
+    const double It = 0.5, Ip = 0.2, kt = 800.0;
+    const GyroscopicSystem s = rigid_rotor(It, Ip, kt);
+    const CampbellDiagram cd = campbell(s, SpeedRange{0.0, 200.0, 81}.points());
+    REQUIRE(cd.branches.size() == 2);
+    for (const Branch& b : cd.branches)
+        for (const auto& p : b.points) {
+            const double L = Ip * p.speed, r = std::sqrt(L * L + 4 * It * kt);
+            // Backward branch (r - L)/(2 It), forward (r + L)/(2 It).
+            const double expect = b.id == 1 ? (r - L) / (2 * It) : (r + L) / (2 * It);
+            CHECK(p.mode.frequency() == Approx(expect).epsilon(1e-12));
+            if (p.speed > 0) CHECK(p.mode.whirl == (b.id == 1 ? Whirl::Backward : Whirl::Forward));
+        }
+    // Forward crossing with 1x: (It - Ip) w^2 = kt; backward: (It + Ip) w^2 = kt.
+    const auto cs = critical_speeds(s, cd, {1});
+    const auto direct = critical_speeds_direct(s, 1, 0.0, 200.0);
+    REQUIRE(cs.size() == 2);
+    REQUIRE(direct.size() == 2);
+    CHECK(cs[0].speed == Approx(std::sqrt(kt / (It + Ip))).epsilon(1e-12));
+    CHECK(cs[0].mode.whirl == Whirl::Backward);
+    CHECK(cs[1].speed == Approx(std::sqrt(kt / (It - Ip))).epsilon(1e-12));
+    CHECK(cs[1].mode.whirl == Whirl::Forward);
+    for (size_t i = 0; i < 2; ++i) CHECK(direct[i].speed == Approx(cs[i].speed).epsilon(1e-12));
+    // Second harmonic: (4 It -+ 2 Ip) w^2 = kt.
+    const auto h2 = critical_speeds(s, cd, {2});
+    REQUIRE(h2.size() == 2);
+    CHECK(h2[0].speed == Approx(std::sqrt(kt / (4 * It + 2 * Ip))).epsilon(1e-12));
+    CHECK(h2[1].speed == Approx(std::sqrt(kt / (4 * It - 2 * Ip))).epsilon(1e-12));
+}
+
+TEST_CASE("Campbell tracking follows crossing branches without swapping", "[campbell]") {
+    // Translation (constant frequency) and tilt (gyroscopic) in one system, uncoupled:
+    // the backward tilt branch crosses the translation branches.
+    GyroscopicSystem s;
+    s.M = Eigen::Vector4d(1.0, 1.0, 0.5, 0.5).asDiagonal();
+    s.K = Eigen::Vector4d(900.0, 900.0, 800.0, 800.0).asDiagonal();
+    s.G = Eigen::Matrix4d::Zero();
+    s.G.bottomRightCorner<2, 2>() = 0.4 * J;
+    s.dof_names = {"x", "y", "ax", "ay"};
+    s.whirl_pairs = {{0, 1}, {2, 3}};
+    const CampbellDiagram cd = campbell(s, SpeedRange{0.0, 300.0, 31}.points());
+    int constant = 0;
+    for (const Branch& b : cd.branches) {
+        bool flat = true;
+        for (const auto& p : b.points) flat = flat && std::fabs(p.mode.frequency() - 30.0) < 1e-9;
+        constant += flat;
+    }
+    CHECK(constant == 2);   // both translation branches stay at sqrt(900) = 30 rad/s
+}
