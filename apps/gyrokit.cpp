@@ -42,6 +42,14 @@ struct Context {
     std::vector<double> speeds;
 };
 
+// Checked before any work, so that a bad name costs nothing and prints nothing.
+void check_plot_path(const std::string& path) {
+    if (path.empty()) return;
+    const std::string ext = std::filesystem::path(path).extension().string();
+    if (ext != ".svg" && ext != ".png")
+        throw InputError(fmt::format("--plot '{}': unsupported extension '{}'; allowed: .svg, .png", path, ext));
+}
+
 Context open(const Common& o, bool need_speeds) {
     Context c;
     c.format = parse_table_format(o.format);
@@ -163,6 +171,7 @@ int main(int argc, char** argv) {
     }
 
     try {
+        check_plot_path(plot);
         std::ostream& out = std::cout;
         if (eig->parsed()) {
             Context c = open(o, false);

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Installs the Debian packages gyrokit builds, tests and plots with.
+set -euo pipefail
+export DEBIAN_FRONTEND=noninteractive
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends \
+    g++ make cmake \
+    libeigen3-dev liblapack-dev liblapacke-dev libblas-dev libarpack2-dev libgsl-dev \
+    libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfmt-dev \
+    catch2 gnuplot-nox > /dev/null

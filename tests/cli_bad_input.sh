@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# Bad input to the gyrokit CLI: exit status 2, exactly one line on stderr that
+# names the offending key or value, nothing on stdout.
+set -u
+cli=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+fail=0
+
+good_model='type = "gyrostat"
+A_G = 2.0
+B_G = 2.0
+A_R = 0.09
+C_R = 0.1
+m = 8.0
+s = 0.25
+eps = 1e-3
+c_G = 300.0
+c_T = 2000.0
+c_R = 70.0'
+
+scene() {   # scene NAME MODEL-LINES [EXTRA]
+    printf '[model]\n%s\n%s\n' "$2" "${3:-}" > "$dir/$1.toml"
+}
+
+expect() {   # expect "needle" args...
+    local needle=$1; shift
+    "$cli" "$@" > "$dir/out" 2> "$dir/err"
+    local rc=$?
+    local lines
+    lines=$(wc -l < "$dir/err")
+    if [ "$rc" -ne 2 ] || [ "$lines" -ne 1 ] || [ -s "$dir/out" ] || ! grep -qF -- "$needle" "$dir/err"; then
+        echo "FAIL: gyrokit $* -> exit $rc, $lines stderr lines, expected exit 2 and '$needle'"
+        sed 's/^/    /' "$dir/err"
+        fail=1
+    fi
+}
+
+scene ok "$good_model" '[speeds]
+from = 0.0
+to = 40.0
+count = 41'
+scene missing "$(printf '%s\n' "$good_model" | grep -v '^c_T')"
+scene negative "$(printf '%s\n' "$good_model" | sed 's/^m = 8.0/m = -1.0/')"
+scene unknown "$good_model
+c_X = 1.0"
+scene badtype "$good_model
+d_G = \"a lot\""
+scene bothrigid "$good_model
+shaft = \"rigid\"
+housing = \"rigid\""
+scene range "$good_model" '[speeds]
+from = 50.0
+to = 10.0
+count = 11'
+printf 'this is [not toml\n' > "$dir/syntax.toml"
+
+printf '%%%%MatrixMarket matrix array real general\n2 3\n1\n0\n0\n1\n0\n0\n' > "$dir/M23.mtx"
+printf '%%%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1.0\n2 2 1.0\n' > "$dir/M2.mtx"
+printf '%%%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 1.0\n2 2 1.0\n3 3 1.0\n' > "$dir/K3.mtx"
+printf '%%%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 nan\n2 2 1.0\n' > "$dir/Knan.mtx"
+printf '[model]\ntype = "matrices"\nM = "M23.mtx"\nK = "M2.mtx"\n' > "$dir/nonsquare.toml"
+printf '[model]\ntype = "matrices"\nM = "M2.mtx"\nK = "K3.mtx"\n' > "$dir/mismatch.toml"
+printf '[model]\ntype = "matrices"\nM = "M2.mtx"\nK = "Knan.mtx"\n' > "$dir/nan.toml"
+printf '[model]\ntype = "matrices"\nM = "M2.mtx"\nK = "missing.mtx"\n' > "$dir/nofile.toml"
+printf '[model]\ntype = "matrices"\nM = "M2.mtx"\nK = "M2.mtx"\n[speeds]\nfrom = 0.0\nto = 2.0\ncount = 5\n' > "$dir/nounbalance.toml"
+
+expect "c_T" eig "$dir/missing.toml" --speed 1
+expect "m = -1" eig "$dir/negative.toml" --speed 1
+expect "unknown key 'c_X'" eig "$dir/unknown.toml" --speed 1
+expect "d_G is not a number" eig "$dir/badtype.toml" --speed 1
+expect "no degree of freedom" eig "$dir/bothrigid.toml" --speed 1
+expect "FROM = 50" campbell "$dir/range.toml"
+expect "syntax.toml: line 1" eig "$dir/syntax.toml" --speed 1
+expect "2x3" eig "$dir/nonsquare.toml" --speed 1
+expect "matrix K is 3x3, expected 2x2" eig "$dir/mismatch.toml" --speed 1
+expect "not a finite number" eig "$dir/nan.toml" --speed 1
+expect "missing.mtx" eig "$dir/nofile.toml" --speed 1
+expect "no unbalance" response "$dir/nounbalance.toml"
+expect "scene file not found" eig "$dir/absent.toml" --speed 1
+expect "FROM = 10 is greater than TO = 5" campbell "$dir/ok.toml" --speeds 10:5:11
+expect "expected FROM:TO:N" campbell "$dir/ok.toml" --speeds 0:10
+expect "--speed '-3'" eig "$dir/ok.toml" --speed -3
+expect "table format 'xml'" eig "$dir/ok.toml" --speed 1 --format xml
+expect "--units" eig "$dir/ok.toml" --speed 1 --units furlong
+expect "eigen method 'lu'" eig "$dir/ok.toml" --speed 1 --method lu
+expect "harmonics" critical "$dir/ok.toml" --harmonics 0
+expect "--plot" campbell "$dir/ok.toml" --plot "$dir/x.pdf"
+expect "--tolerance" pervasive "$dir/ok.toml" --tolerance 2
+scene damped "$good_model
+d_G = 1.0"
+expect "needs an undamped system" critical "$dir/damped.toml" --speeds 0:40:41 --critical-method direct
+expect "scene" eig
+exit $fail
