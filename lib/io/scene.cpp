@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "io/matrix_market.hpp"
+#include "io/toml_keys.hpp"
 #include "models/gyrostat.hpp"
 
 #include <cmath>
@@ -17,82 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Reads keys of one TOML table with the file and table named in every error.
-class Keys {
-public:
-    Keys(const std::string& file, std::string table, const toml::table& t) : file_(file), table_(std::move(table)), t_(t) {}
-
-    // Rejects keys outside `allowed`.
-    void only(const std::set<std::string>& allowed) const {
-        for (const auto& [k, v] : t_) {
-            const std::string key(k.str());
-            if (!allowed.count(key)) {
-                std::string list;
-                for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-                throw InputError(fmt::format("{}: [{}] unknown key '{}'; allowed: {}", file_, table_, key, list));
-            }
-        }
-    }
-    bool has(const std::string& key) const { return t_.contains(key); }
-
-    // A number with lower bound `min` (strict if `strict`).
-    double number(const std::string& key, std::optional<double> fallback, double min, bool strict,
-                  const char* unit) const {
-        const toml::node* n = t_.get(key);
-        if (!n) {
-            if (fallback) return *fallback;
-            throw InputError(fmt::format("{}: [{}] key '{}' is missing; required: a number {} {} ({})", file_,
-                                         table_, key, strict ? ">" : ">=", min, unit));
-        }
-        std::optional<double> v = n->value<double>();
-        if (!v || !(n->is_floating_point() || n->is_integer()))
-            throw InputError(fmt::format("{}: [{}] {} is not a number; allowed: a number {} {} ({})", file_, table_,
-                                         key, strict ? ">" : ">=", min, unit));
-        if (!std::isfinite(*v) || (strict ? *v <= min : *v < min))
-            throw InputError(fmt::format("{}: [{}] {} = {}: out of range; allowed: {} {} ({})", file_, table_, key,
-                                         *v, strict ? ">" : ">=", min, unit));
-        return *v;
-    }
-    double any_number(const std::string& key, const char* unit) const {
-        const toml::node* n = t_.get(key);
-        if (!n) throw InputError(fmt::format("{}: [{}] key '{}' is missing; required: a finite number ({})", file_,
-                                             table_, key, unit));
-        std::optional<double> v = n->value<double>();
-        if (!v || !std::isfinite(*v))
-            throw InputError(fmt::format("{}: [{}] {} must be a finite number ({})", file_, table_, key, unit));
-        return *v;
-    }
-    long long integer(const std::string& key, long long fallback, long long min, long long max) const {
-        const toml::node* n = t_.get(key);
-        if (!n) return fallback;
-        if (!n->is_integer())
-            throw InputError(fmt::format("{}: [{}] {} must be a whole number in [{}, {}]", file_, table_, key, min, max));
-        const long long v = *n->value<long long>();
-        if (v < min || v > max)
-            throw InputError(fmt::format("{}: [{}] {} = {}: out of range; allowed: [{}, {}]", file_, table_, key, v,
-                                         min, max));
-        return v;
-    }
-    std::string choice(const std::string& key, const std::string& fallback, const std::set<std::string>& allowed) const {
-        const toml::node* n = t_.get(key);
-        if (!n) return fallback;
-        std::optional<std::string> v = n->value<std::string>();
-        std::string list;
-        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        if (!v || (!allowed.empty() && !allowed.count(*v)))
-            throw InputError(fmt::format("{}: [{}] {} = {}: allowed: {}", file_, table_, key,
-                                         v ? "'" + *v + "'" : std::string("(not a string)"), list));
-        return *v;
-    }
-    const toml::table& table() const { return t_; }
-    std::string where(const std::string& key) const { return fmt::format("{}: [{}] {}", file_, table_, key); }
-
-private:
-    std::string file_, table_;
-    const toml::table& t_;
-};
-
-GyroscopicSystem gyrostat_from(const Keys& k) {
+GyroscopicSystem gyrostat_from(const TomlKeys& k) {
     k.only({"type", "A_G", "B_G", "A_R", "C_R", "m", "s", "eps", "c_G", "c_T", "c_R", "d_G", "d_T", "d_R", "shaft",
             "housing"});
     GyrostatParameters p;
@@ -118,7 +44,7 @@ GyroscopicSystem gyrostat_from(const Keys& k) {
     return make_gyrostat(p);
 }
 
-GyroscopicSystem matrices_from(const Keys& k, const fs::path& dir) {
+GyroscopicSystem matrices_from(const TomlKeys& k, const fs::path& dir) {
     k.only({"type", "M", "K", "D", "G", "N", "unbalance", "dof_names", "whirl_pairs"});
     const auto path_of = [&](const std::string& key) -> std::optional<std::string> {
         if (!k.has(key)) return std::nullopt;
@@ -182,12 +108,12 @@ Scene load_scene(const std::string& path) {
         if (!fs::exists(path)) throw InputError(fmt::format("{}: scene file not found", path));
         throw InputError(fmt::format("{}: line {}, column {}: {}", path, b.line, b.column, e.description()));
     }
-    Keys top(path, "top level", root);
+    TomlKeys top(path, "top level", root);
     top.only({"title", "model", "speeds", "analysis"});
     sc.title = top.choice("title", "", {});
     const toml::table* model = root.get_as<toml::table>("model");
     if (!model) throw InputError(path + ": table [model] is missing; required: [model] with type = \"gyrostat\" or \"matrices\"");
-    Keys mk(path, "model", *model);
+    TomlKeys mk(path, "model", *model);
     sc.model_type = mk.choice("type", "", {"gyrostat", "matrices"});
     if (sc.model_type.empty()) throw InputError(mk.where("type") + " is missing; allowed: gyrostat, matrices");
     sc.system = sc.model_type == "gyrostat" ? gyrostat_from(mk)
@@ -195,7 +121,7 @@ Scene load_scene(const std::string& path) {
     sc.system.validate(path);
 
     if (const toml::table* sp = root.get_as<toml::table>("speeds")) {
-        Keys k(path, "speeds", *sp);
+        TomlKeys k(path, "speeds", *sp);
         k.only({"from", "to", "count"});
         SpeedRange r;
         r.from = k.number("from", std::nullopt, 0, false, "rad/s");
@@ -207,7 +133,7 @@ Scene load_scene(const std::string& path) {
         throw InputError(path + ": speeds must be a table [speeds] with from, to, count");
     }
     if (const toml::table* an = root.get_as<toml::table>("analysis")) {
-        Keys k(path, "analysis", *an);
+        TomlKeys k(path, "analysis", *an);
         k.only({"modes", "harmonics"});
         sc.modes = static_cast<int>(k.integer("modes", 0, 0, 100000));
         if (const toml::array* h = an->get_as<toml::array>("harmonics")) {

@@ -1,0 +1,53 @@
+// Shared pieces of the gyrokit subcommands: common options, scene context,
+// parsing of speeds and harmonics, plotting.
+#pragma once
+
+#include "core/speed_range.hpp"
+#include "eig/quadratic_eigensolver.hpp"
+#include "io/plot.hpp"
+#include "io/scene.hpp"
+#include "io/table.hpp"
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace gyrokit::cli {
+
+// A subcommand: its CLI11 node and what runs when it was chosen.
+struct Command {
+    CLI::App* app;
+    std::function<void(std::ostream&)> run;
+};
+
+// Options every scene command shares.
+struct Common {
+    std::string scene, format = "table", units = "rad/s", speeds, method = "qz", plot;
+};
+
+void add_common(CLI::App* c, Common& o, bool with_speeds);
+
+struct Context {
+    Scene scene;
+    TableFormat format;
+    SpeedUnit unit;
+    EigenOptions eig;
+    std::vector<double> speeds;
+};
+
+// Validates the options (before any work) and loads the scene.
+Context open_scene(const Common& o, bool need_speeds);
+TableFormat parse_format(const Common& o);
+
+double parse_speed(const std::string& text, const std::string& option, const SpeedUnit& u);
+std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>& fallback);
+// Throws InputError unless the extension is .svg or .png (empty: no plot).
+void check_plot_path(const std::string& path);
+void plot_if(const std::string& path, const Figure& f);
+
+// The commands of the rotor analyses: eig, campbell, critical, stability, pervasive, response, export.
+std::vector<Command> add_rotor_commands(CLI::App& app);
+
+}  // namespace gyrokit::cli

@@ -1,0 +1,148 @@
+// eig, campbell, critical, stability, pervasive, response, export.
+#include "analysis/campbell.hpp"
+#include "analysis/critical_speeds.hpp"
+#include "analysis/pervasive_damping.hpp"
+#include "analysis/unbalance_response.hpp"
+#include "cli/common.hpp"
+#include "core/error.hpp"
+#include "io/export.hpp"
+#include "io/reports.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <iostream>
+#include <memory>
+
+namespace gyrokit::cli {
+
+namespace {
+
+// Option values of the rotor commands; one instance lives as long as the app.
+struct Options {
+    Common common;
+    std::string speed, dir, harmonics, critical_method = "branches";
+    int modes = -1;
+    double tolerance = 1e-8;
+    bool extrema = false;
+};
+
+CampbellOptions campbell_options(const Context& c, int modes) {
+    CampbellOptions co;
+    co.eig = c.eig;
+    co.modes = modes >= 0 ? modes : c.scene.modes;
+    return co;
+}
+
+void note_ambiguity(const CampbellDiagram& cd) {
+    if (cd.ambiguous_steps > 0)
+        std::cerr << "note: " << cd.ambiguous_steps
+                  << " speed steps stayed ambiguous at the refinement limit; use a finer --speeds grid\n";
+}
+
+}  // namespace
+
+std::vector<Command> add_rotor_commands(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    std::vector<Command> cmds;
+
+    auto* eig = app.add_subcommand("eig", "all eigenvalues at one speed");
+    add_common(eig, o->common, false);
+    eig->add_option("--speed", o->speed, "spin speed (in --units)")->required();
+    cmds.push_back({eig, [o](std::ostream& out) {
+        const Context c = open_scene(o->common, false);
+        const double w = parse_speed(o->speed, "--speed", c.unit);
+        write_table(out, eig_table(solve_at_speed(c.scene.system, w, c.eig), w, c.unit), c.format);
+    }});
+
+    auto* camp = app.add_subcommand("campbell", "modes tracked over speed (Campbell diagram)");
+    add_common(camp, o->common, true);
+    camp->add_option("--modes", o->modes, "number of modes to track: the K lowest by frequency (0 = all)");
+    camp->add_option("--plot", o->common.plot, "draw the diagram into FILE.svg or FILE.png");
+    camp->add_option("--harmonics", o->harmonics, "harmonic lines drawn, e.g. 1,2 (default: the scene's, else 1)");
+    cmds.push_back({camp, [o](std::ostream& out) {
+        const Context c = open_scene(o->common, true);
+        const auto h = parse_harmonics(o->harmonics, c.scene.harmonics);
+        const CampbellDiagram cd = campbell(c.scene.system, c.speeds, campbell_options(c, o->modes));
+        write_table(out, campbell_table(cd, c.unit), c.format);
+        if (!o->common.plot.empty())
+            plot_if(o->common.plot, campbell_figure(cd, critical_speeds(c.scene.system, cd, h, c.eig), h, c.unit,
+                                                    c.scene.title));
+        note_ambiguity(cd);
+    }});
+
+    auto* crit = app.add_subcommand("critical", "critical speeds: crossings with the k x speed lines");
+    add_common(crit, o->common, true);
+    crit->add_option("--harmonics", o->harmonics, "harmonics k, e.g. 1,2 (default: the scene's, else 1)");
+    crit->add_option("--modes", o->modes, "number of modes considered (0 = all)");
+    crit->add_option("--critical-method", o->critical_method,
+                     "branches (root finding on tracked modes) or direct (linear eigenproblem; undamped only)")
+        ->capture_default_str();
+    cmds.push_back({crit, [o](std::ostream& out) {
+        if (o->critical_method != "branches" && o->critical_method != "direct")
+            throw InputError("--critical-method '" + o->critical_method + "': allowed: branches, direct");
+        const Context c = open_scene(o->common, true);
+        const auto h = parse_harmonics(o->harmonics, c.scene.harmonics);
+        std::vector<CriticalSpeed> cs;
+        if (o->critical_method == "direct") {
+            for (int k : h) {
+                auto d = critical_speeds_direct(c.scene.system, k, c.speeds.front(), c.speeds.back());
+                cs.insert(cs.end(), d.begin(), d.end());
+            }
+            std::sort(cs.begin(), cs.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
+        } else {
+            const CampbellDiagram cd = campbell(c.scene.system, c.speeds, campbell_options(c, o->modes));
+            cs = critical_speeds(c.scene.system, cd, h, c.eig);
+            note_ambiguity(cd);
+        }
+        write_table(out, critical_table(cs, c.unit), c.format);
+    }});
+
+    auto* stab = app.add_subcommand("stability", "speeds where a mode becomes unstable or stable again");
+    add_common(stab, o->common, true);
+    cmds.push_back({stab, [o](std::ostream& out) {
+        const Context c = open_scene(o->common, true);
+        const CampbellDiagram cd = campbell(c.scene.system, c.speeds, campbell_options(c, 0));
+        write_table(out, stability_table(stability_changes(c.scene.system, cd, c.eig), c.unit), c.format);
+    }});
+
+    auto* perv = app.add_subcommand("pervasive", "Hautus pervasive-damping check for each damping component");
+    add_common(perv, o->common, true);
+    perv->add_option("--tolerance", o->tolerance, "residual below which damping counts as not pervading")
+        ->capture_default_str();
+    cmds.push_back({perv, [o](std::ostream& out) {
+        if (!(o->tolerance > 0.0 && o->tolerance < 1.0))
+            throw InputError(fmt::format("--tolerance {}: allowed: 0 < tolerance < 1", o->tolerance));
+        const Context c = open_scene(o->common, true);
+        write_table(out, pervasive_table(pervasive_damping(c.scene.system, c.speeds, {o->tolerance}), c.unit),
+                    c.format);
+    }});
+
+    auto* resp = app.add_subcommand("response", "unbalance response: amplitude and phase per DOF");
+    add_common(resp, o->common, true);
+    resp->add_option("--plot", o->common.plot, "draw amplitude and phase into FILE.svg or FILE.png");
+    resp->add_flag("--extrema", o->extrema, "print the peaks and antiresonances instead of the curve");
+    cmds.push_back({resp, [o](std::ostream& out) {
+        const Context c = open_scene(o->common, true);
+        const ResponseCurve rc = unbalance_response(c.scene.system, c.speeds);
+        if (o->extrema)
+            write_table(out, extrema_table(c.scene.system, response_extrema(c.scene.system, rc), c.unit), c.format);
+        else
+            write_table(out, response_table(c.scene.system, rc, c.unit), c.format);
+        plot_if(o->common.plot, response_figure(c.scene.system, rc, c.unit, c.scene.title));
+    }});
+
+    auto* exp = app.add_subcommand("export", "M, D, G, K, N and the state matrices as Matrix Market");
+    add_common(exp, o->common, false);
+    exp->add_option("--speed", o->speed, "spin speed for the assembled matrices (in --units)")->required();
+    exp->add_option("--dir", o->dir, "output directory (created if missing)")->required();
+    cmds.push_back({exp, [o](std::ostream&) {
+        const Context c = open_scene(o->common, false);
+        const double w = parse_speed(o->speed, "--speed", c.unit);
+        export_matrices(c.scene.system, w, o->dir);
+        std::cerr << "wrote the matrices at " << c.unit.factor * w << " " << c.unit.name << " into " << o->dir
+                  << "\n";
+    }});
+    return cmds;
+}
+
+}  // namespace gyrokit::cli
