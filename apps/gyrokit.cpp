@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
                  "of gyroscopic systems"};
     app.require_subcommand(1);
     std::vector<cli::Command> commands = cli::add_rotor_commands(app);
+    // Further command groups register here, one line each.
 
     try {
         app.parse(argc, argv);
