@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace gyrokit {
 
@@ -97,6 +98,14 @@ std::vector<CriticalSpeed> critical_speeds_direct(const GyroscopicSystem& sys, i
         c.mode.right = ge.right.col(j).normalized();
         c.mode.backward_error = backward_error(sys.at_speed(w), c.mode.lambda, c.mode.right);
         c.mode.whirl = classify_whirl(c.mode.lambda, c.mode.right, sys.whirl_pairs, 0.0);
+        // Mode number: its rank by frequency among the modes at that speed.
+        const QuadraticSpectrum sp = solve_at_speed(sys, w);
+        double nearest = std::numeric_limits<double>::infinity();
+        for (size_t i = 0; i < sp.modes.size(); ++i)
+            if (std::abs(sp.modes[i].lambda - c.mode.lambda) < nearest) {
+                nearest = std::abs(sp.modes[i].lambda - c.mode.lambda);
+                c.branch = static_cast<int>(i) + 1;
+            }
         out.push_back(std::move(c));
     }
     std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });

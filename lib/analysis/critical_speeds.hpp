@@ -12,7 +12,7 @@ namespace gyrokit {
 struct CriticalSpeed {
     double speed = 0;      // rad/s
     int harmonic = 1;      // k of the line Im(lambda) = k w
-    int branch = 0;        // Campbell branch id (0 for the direct method)
+    int branch = 0;        // Campbell branch id; direct method: rank by frequency at that speed
     Mode mode;             // the mode at the critical speed
 };
 

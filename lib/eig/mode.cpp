@@ -17,7 +17,7 @@ std::string to_string(Whirl w) {
 
 double Mode::damping_ratio() const {
     const double a = std::abs(lambda);
-    return a == 0.0 ? 0.0 : -lambda.real() / a;
+    return a == 0.0 ? 0.0 : 0.0 - lambda.real() / a;   // 0.0 - x: no negative zero in the output
 }
 
 double Mode::log_decrement() const {
