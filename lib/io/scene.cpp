@@ -95,19 +95,34 @@ GyroscopicSystem matrices_from(const TomlKeys& k, const fs::path& dir) {
     return sys;
 }
 
-}  // namespace
-
-Scene load_scene(const std::string& path) {
-    Scene sc;
-    sc.path = path;
-    toml::table root;
+toml::table parse_scene_file(const std::string& path) {
     try {
-        root = toml::parse_file(path);
+        return toml::parse_file(path);
     } catch (const toml::parse_error& e) {
         const auto& b = e.source().begin;
         if (!fs::exists(path)) throw InputError(fmt::format("{}: scene file not found", path));
         throw InputError(fmt::format("{}: line {}, column {}: {}", path, b.line, b.column, e.description()));
     }
+}
+
+void apply_overrides(toml::table& root, const std::string& path, const std::map<std::string, double>& overrides) {
+    for (const auto& [name, value] : overrides) {
+        const size_t dot = name.find('.');
+        toml::table* t = dot == std::string::npos ? nullptr : root.get_as<toml::table>(name.substr(0, dot));
+        if (!t)
+            throw InputError(fmt::format("{}: parameter '{}' does not name TABLE.KEY of the scene; e.g. model.c_G",
+                                         path, name));
+        t->insert_or_assign(name.substr(dot + 1), value);
+    }
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& path, const std::map<std::string, double>& overrides) {
+    Scene sc;
+    sc.path = path;
+    toml::table root = parse_scene_file(path);
+    apply_overrides(root, path, overrides);
     TomlKeys top(path, "top level", root);
     top.only({"title", "model", "speeds", "analysis"});
     sc.title = top.choice("title", "", {});

@@ -4,6 +4,7 @@
 #include "core/gyroscopic_system.hpp"
 #include "core/speed_range.hpp"
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,7 +22,9 @@ struct Scene {
 };
 
 // Reads and validates a scene. Every error is an InputError of one line naming
-// the file, the key, the value and the allowed range.
-Scene load_scene(const std::string& path);
+// the file, the key, the value and the allowed range. `overrides` replace
+// numeric keys before validation, named TABLE.KEY (e.g. "model.c_G"): how a
+// design study varies a base scene.
+Scene load_scene(const std::string& path, const std::map<std::string, double>& overrides = {});
 
 }  // namespace gyrokit
