@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
+#include <unistd.h>
 
 namespace gyrokit::cli {
 
@@ -80,6 +81,16 @@ void plot_if(const std::string& path, const Figure& f) {
     if (path.empty()) return;
     render_figure(f, path);
     std::cerr << "wrote " << path << "\n";
+}
+
+std::function<void(size_t, size_t)> progress_bar(const std::string& what) {
+    if (!isatty(STDERR_FILENO)) return {};
+    return [what](size_t done, size_t total) {
+        const int width = 40, filled = static_cast<int>(width * done / std::max<size_t>(total, 1));
+        std::cerr << "\r" << what << " [" << std::string(static_cast<size_t>(filled), '#')
+                  << std::string(static_cast<size_t>(width - filled), ' ') << "] " << done << "/" << total
+                  << (done == total ? "\n" : "") << std::flush;
+    };
 }
 
 }  // namespace gyrokit::cli

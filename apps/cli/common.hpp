@@ -46,6 +46,8 @@ std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>
 // Throws InputError unless the extension is .svg or .png (empty: no plot).
 void check_plot_path(const std::string& path);
 void plot_if(const std::string& path, const Figure& f);
+// A progress bar on stderr when stderr is a terminal; otherwise nothing.
+std::function<void(size_t, size_t)> progress_bar(const std::string& what);
 
 // The commands of the rotor analyses: eig, campbell, critical, stability, pervasive, response, export.
 std::vector<Command> add_rotor_commands(CLI::App& app);

@@ -30,6 +30,7 @@ CampbellOptions campbell_options(const Context& c, int modes) {
     CampbellOptions co;
     co.eig = c.eig;
     co.modes = modes >= 0 ? modes : c.scene.modes;
+    co.progress = progress_bar("speeds");
     return co;
 }
 

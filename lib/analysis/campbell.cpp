@@ -134,7 +134,10 @@ CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>&
     Tracker t{sys, opt, out, {}};
     QuadraticSpectrum s0 = solve_at_speed(sys, speeds.front(), opt.eig);
     t.append(speeds.front(), std::move(s0), {});
-    for (size_t k = 1; k < speeds.size(); ++k) t.step(speeds[k], solve_at_speed(sys, speeds[k], opt.eig), 0);
+    for (size_t k = 1; k < speeds.size(); ++k) {
+        t.step(speeds[k], solve_at_speed(sys, speeds[k], opt.eig), 0);
+        if (opt.progress) opt.progress(k + 1, speeds.size());
+    }
 
     // Number the branches by frequency at their first point; keep the K lowest
     // among those present at the first speed.

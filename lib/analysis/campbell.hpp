@@ -7,6 +7,7 @@
 #include "core/gyroscopic_system.hpp"
 #include "eig/quadratic_eigensolver.hpp"
 
+#include <functional>
 #include <vector>
 
 namespace gyrokit {
@@ -16,6 +17,8 @@ struct CampbellOptions {
     int modes = 0;            // keep the K lowest branches by frequency at the first speed; 0 = all
     int max_refine = 8;       // bisection levels allowed between two grid speeds
     double mac_min = 0.9;     // a match with a lower MAC is ambiguous
+    // Called after each grid speed with (done, total); e.g. a progress bar.
+    std::function<void(size_t, size_t)> progress;
 };
 
 struct BranchPoint {
