@@ -21,7 +21,7 @@ double Mode::damping_ratio() const {
 }
 
 double Mode::log_decrement() const {
-    if (lambda.imag() > 0.0) return -2.0 * M_PI * lambda.real() / lambda.imag();
+    if (lambda.imag() > 0.0) return 0.0 - 2.0 * M_PI * lambda.real() / lambda.imag();   // no negative zero
     if (lambda.real() == 0.0) return 0.0;
     return lambda.real() < 0.0 ? std::numeric_limits<double>::infinity()
                                : -std::numeric_limits<double>::infinity();

@@ -75,6 +75,8 @@ public:
         std::optional<std::string> v = n->value<std::string>();
         std::string list;
         for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        if (!v && allowed.empty())
+            throw InputError(fmt::format("{}: [{}] {} must be a string", file_, table_, key));
         if (!v || (!allowed.empty() && !allowed.count(*v)))
             throw InputError(fmt::format("{}: [{}] {} = {}: allowed: {}", file_, table_, key,
                                          v ? "'" + *v + "'" : std::string("(not a string)"), list));
