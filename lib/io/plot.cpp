@@ -138,8 +138,8 @@ std::string make_script(const Figure& fig, const std::string& terminal, const fs
 
     script += "set multiplot layout " + std::to_string(fig.panels.size()) + ",1";
     script += (fig.title.empty() ? "" : " title " + gp_quote(fig.title)) + "\n";
-    // %g keeps log ticks short (1e-05, not 0.0000100); an opaque key keeps curves under it readable.
-    script += "set grid\nset format y '%g'\nset key opaque\n";
+    // %g keeps log ticks short (1e-05, not 0.0000100); the key sits above the panel so it hides no curve.
+    script += "set grid\nset format y '%g'\nset key outside top center horizontal\nset lmargin 12\n";
     for (std::size_t k = 0; k < fig.panels.size(); ++k) {
         const Panel& p = fig.panels[k];
         script += "unset logscale\nset autoscale\n";   // settings carry over between panels
