@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     std::vector<cli::Command> commands = cli::add_rotor_commands(app);
     // Further command groups register here, one line each.
+    for (auto& c : cli::add_balancer_commands(app)) commands.push_back(std::move(c));
 
     try {
         app.parse(argc, argv);

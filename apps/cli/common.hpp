@@ -52,4 +52,7 @@ std::function<void(size_t, size_t)> progress_bar(const std::string& what);
 // The commands of the rotor analyses: eig, campbell, critical, stability, pervasive, response, export.
 std::vector<Command> add_rotor_commands(CLI::App& app);
 
+// The auto-balancer command: balancer (synchronous states, --simulate).
+std::vector<Command> add_balancer_commands(CLI::App& app);
+
 }  // namespace gyrokit::cli

@@ -1,0 +1,23 @@
+// Scene files of the auto-balancer ([model] type = "autobalancer", optional
+// [simulation]). Every key is range-checked and unknown keys are rejected; an
+// error is one InputError line naming the file, the table, the key, the value
+// and the allowed range.
+#pragma once
+
+#include "balancing/autobalancer.hpp"
+#include "balancing/simulation.hpp"
+
+#include <string>
+
+namespace gyrokit {
+
+struct BalancerScene {
+    std::string file, title;
+    AutobalancerParameters params;
+    bool has_simulation = false;   // a [simulation] table was given
+    SimulationSettings simulation;  // phases converted to rad
+};
+
+BalancerScene load_balancer_scene(const std::string& path);
+
+}  // namespace gyrokit
