@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
     std::vector<cli::Command> commands = cli::add_rotor_commands(app);
     // Further command groups register here, one line each.
     for (auto& c : cli::add_balancer_commands(app)) commands.push_back(std::move(c));
+    for (auto& c : cli::add_fluid_commands(app)) commands.push_back(std::move(c));
 
     try {
         app.parse(argc, argv);

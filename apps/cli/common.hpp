@@ -55,4 +55,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app);
 // The auto-balancer command: balancer (synchronous states, --simulate).
 std::vector<Command> add_balancer_commands(CLI::App& app);
 
+// The liquid-filled rotor command: fluid.
+std::vector<Command> add_fluid_commands(CLI::App& app);
+
 }  // namespace gyrokit::cli

@@ -81,6 +81,7 @@ std::vector<CriticalSpeed> critical_speeds_direct(const GyroscopicSystem& sys, i
     Eigen::MatrixXcd A = sys.K.cast<std::complex<double>>();
     Eigen::MatrixXcd B = (k * k) * sys.M.cast<std::complex<double>>();
     if (sys.G.size() > 0) B -= (I * k) * sys.G.cast<std::complex<double>>();
+    if (sys.K2.size() > 0) B -= sys.K2.cast<std::complex<double>>();   // K + w^2 K2 stays linear in w^2
     const GeneralizedEigen ge = lapack_zggev(A, B);
     std::vector<CriticalSpeed> out;
     const double eps = std::numeric_limits<double>::epsilon();

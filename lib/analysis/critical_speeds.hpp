@@ -23,7 +23,7 @@ std::vector<CriticalSpeed> critical_speeds(const GyroscopicSystem& sys, const Ca
 
 // For undamped systems without circulatory terms, lambda = i k w is an
 // eigenvalue exactly at a critical speed, so w^2 solves the linear Hermitian
-// pencil K x = w^2 (k^2 M - i k G) x. Throws InputError for damped systems.
+// pencil K x = w^2 (k^2 M - i k G - K2) x. Throws InputError for damped systems.
 std::vector<CriticalSpeed> critical_speeds_direct(const GyroscopicSystem& sys, int harmonic, double from,
                                                   double to);
 

@@ -15,6 +15,7 @@ double pervasion_residual(const QuadraticPencil& p, const Eigen::MatrixXd& D, st
     const double np = std::norm(lambda) * p.M.norm() + std::abs(lambda) * p.C.norm() + p.K.norm();
     Eigen::MatrixXcd S(2 * n, n);
     S.topRows(n) = p.evaluate(lambda).transpose() / np;
+    if (D.norm() == 0.0) return 0.0;   // no damping at this speed reaches anything
     S.bottomRows(n) = D.cast<std::complex<double>>() / D.norm();
     return Eigen::BDCSVD<Eigen::MatrixXcd>(S).singularValues()(n - 1);
 }
@@ -25,7 +26,6 @@ namespace {
 // isolated minima are refined by golden section on the continued branch.
 void check_set(const std::string& name, const GyroscopicSystem& s, const std::vector<double>& speeds,
                const PervasiveOptions& opt, std::vector<DampingLoss>& out) {
-    const Eigen::MatrixXd D = s.damping_matrix();
     const CampbellDiagram cd = campbell(s, speeds);
     for (const Branch& b : cd.branches) {
         const size_t np = b.points.size();
@@ -35,7 +35,8 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
             const Mode& m = b.points[k].mode;
             const QuadraticPencil p = s.at_speed(b.points[k].speed);
             tiny = 1e-7 * std::sqrt(p.K.norm() / p.M.norm());
-            if (std::abs(m.lambda) > tiny) r[k] = pervasion_residual(p, D, m.lambda);   // rigid-body modes skipped
+            if (std::abs(m.lambda) > tiny)   // rigid-body modes skipped
+                r[k] = pervasion_residual(p, s.damping_matrix(b.points[k].speed), m.lambda);
         }
         const auto lost = [&](size_t k) { return k < np && r[k] <= opt.tolerance; };
         const auto emit = [&](double w, const Mode& m, double res) {
@@ -54,7 +55,7 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
             const auto f = [&](double w) {
                 const size_t i = (w < b.points[k].speed && k > 0) ? k - 1 : std::min(k, np - 2);
                 best = continue_branch(b, i, w, solve_at_speed(s, w));
-                return pervasion_residual(s.at_speed(w), D, best.lambda);
+                return pervasion_residual(s.at_speed(w), s.damping_matrix(w), best.lambda);
             };
             const double w = a < c ? find_minimum(f, a, c) : b.points[k].speed;
             const double res = f(w);

@@ -11,22 +11,23 @@ Eigen::MatrixXcd QuadraticPencil::evaluate(std::complex<double> lambda) const {
            K.cast<std::complex<double>>();
 }
 
-Eigen::MatrixXd GyroscopicSystem::damping_matrix() const {
+Eigen::MatrixXd GyroscopicSystem::damping_matrix(double w) const {
     Eigen::MatrixXd D = Eigen::MatrixXd::Zero(size(), size());
-    for (const auto& c : damping) D += c.D;
+    for (const auto& c : damping) D += c.at(w);
     return D;
 }
 
 bool GyroscopicSystem::has_damping() const {
     for (const auto& c : damping)
-        if (c.D.norm() > 0.0) return true;
+        if (c.of_speed || c.D.norm() > 0.0) return true;
     return false;
 }
 
 QuadraticPencil GyroscopicSystem::at_speed(double w) const {
-    QuadraticPencil p{M, damping_matrix(), K};
+    QuadraticPencil p{M, damping_matrix(w), K};
     if (G.size() > 0) p.C += w * G;
     if (N.size() > 0) p.K += w * N;
+    if (K2.size() > 0) p.K += (w * w) * K2;
     return p;
 }
 
@@ -73,6 +74,7 @@ void GyroscopicSystem::validate(const std::string& origin) const {
     check_matrix(K, n, origin, "K", false);
     check_matrix(G, n, origin, "G", true);
     check_matrix(N, n, origin, "N", true);
+    check_matrix(K2, n, origin, "K2", true);
     for (const auto& c : damping) check_matrix(c.D, n, origin, c.name.c_str(), false);
     constexpr double tol = 1e-12;  // structural checks are exact up to rounding of the input
     if (asymmetry(M, 1.0) > tol)

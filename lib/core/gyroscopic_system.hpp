@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <complex>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +17,10 @@ namespace gyrokit {
 struct DampingComponent {
     std::string name;
     Eigen::MatrixXd D;
+    // Optional: the matrix at speed w when it depends on speed (e.g. Stokes-layer
+    // damping of a liquid ~ sqrt(w)); empty means the constant D.
+    std::function<Eigen::MatrixXd(double)> of_speed;
+    Eigen::MatrixXd at(double w) const { return of_speed ? of_speed(w) : D; }
 };
 
 // The three coefficient matrices of the quadratic pencil at one speed:
@@ -32,6 +37,7 @@ public:
     Eigen::MatrixXd K;                        // stiffness
     Eigen::MatrixXd G;                        // gyroscopic per unit speed, skew
     Eigen::MatrixXd N;                        // circulatory per unit speed (empty: none)
+    Eigen::MatrixXd K2;                       // stiffness per speed squared (empty: none), e.g. sloshing
     std::vector<DampingComponent> damping;    // D = sum of components
     Eigen::VectorXcd unbalance;               // force amplitude per w^2 (empty: none)
     // DOF pairs (u, v) whose complex coordinate u + i v turns forward when the
@@ -39,11 +45,13 @@ public:
     std::vector<std::pair<int, int>> whirl_pairs;
 
     int size() const { return static_cast<int>(M.rows()); }
-    Eigen::MatrixXd damping_matrix() const;
+    // Total damping at speed w (speed matters only for speed-dependent components).
+    Eigen::MatrixXd damping_matrix(double w = 0.0) const;
     bool has_damping() const;
     bool has_circulatory() const { return N.size() > 0 && N.norm() > 0.0; }
+    bool has_speed_squared_stiffness() const { return K2.size() > 0 && K2.norm() > 0.0; }
 
-    // Pencil at spin speed w: C = D + w G, K(w) = K + w N.
+    // Pencil at spin speed w: C = D(w) + w G, K(w) = K + w N + w^2 K2.
     QuadraticPencil at_speed(double w) const;
     // Unbalance force amplitude at speed w (zero vector if there is none).
     Eigen::VectorXcd unbalance_force(double w) const;

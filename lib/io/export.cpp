@@ -22,11 +22,12 @@ void export_matrices(const GyroscopicSystem& sys, double w, const std::string& d
     put("K", sys.K, "stiffness matrix");
     put("G", sys.G.size() ? sys.G : Eigen::MatrixXd::Zero(n, n), "gyroscopic matrix per unit speed (rad/s)");
     if (sys.N.size()) put("N", sys.N, "circulatory matrix per unit speed (rad/s)");
-    put("D", sys.damping_matrix(), "total damping matrix");
-    for (const auto& c : sys.damping) put("D_" + c.name, c.D, "damping component " + c.name);
+    if (sys.K2.size()) put("K2", sys.K2, "stiffness per speed squared");
     const std::string at = fmt::format(" at speed {:.17g} rad/s", w);
+    put("D", sys.damping_matrix(w), "total damping matrix" + at);
+    for (const auto& c : sys.damping) put("D_" + c.name, c.at(w), "damping component " + c.name + at);
     put("C", p.C, "C = D + w G" + at);
-    put("Kw", p.K, "K + w N" + at);
+    put("Kw", p.K, "K + w N + w^2 K2" + at);
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n), B = Eigen::MatrixXd::Zero(2 * n, 2 * n);
     A.topLeftCorner(n, n) = -p.C;
     A.topRightCorner(n, n) = -p.K;

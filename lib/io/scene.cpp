@@ -1,6 +1,7 @@
 #include "io/scene.hpp"
 
 #include "core/error.hpp"
+#include "io/fluid_scene.hpp"
 #include "io/matrix_market.hpp"
 #include "io/toml_keys.hpp"
 #include "models/gyrostat.hpp"
@@ -127,12 +128,17 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
     top.only({"title", "model", "speeds", "analysis"});
     sc.title = top.choice("title", "", {});
     const toml::table* model = root.get_as<toml::table>("model");
-    if (!model) throw InputError(path + ": table [model] is missing; required: [model] with type = \"gyrostat\" or \"matrices\"");
+    if (!model) throw InputError(path + ": table [model] is missing; required: [model] with type = \"gyrostat\", \"matrices\" or \"fluid_rotor\"");
     TomlKeys mk(path, "model", *model);
-    sc.model_type = mk.choice("type", "", {"gyrostat", "matrices"});
-    if (sc.model_type.empty()) throw InputError(mk.where("type") + " is missing; allowed: gyrostat, matrices");
-    sc.system = sc.model_type == "gyrostat" ? gyrostat_from(mk)
-                                            : matrices_from(mk, fs::path(path).parent_path());
+    sc.model_type = mk.choice("type", "", {"gyrostat", "matrices", "fluid_rotor"});
+    if (sc.model_type.empty()) throw InputError(mk.where("type") + " is missing; allowed: fluid_rotor, gyrostat, matrices");
+    if (sc.model_type == "fluid_rotor") {
+        sc.fluid = fluid_rotor_from(mk);
+        sc.system = make_fluid_rotor(build_fluid_rotor(*sc.fluid));
+    } else {
+        sc.system = sc.model_type == "gyrostat" ? gyrostat_from(mk)
+                                                : matrices_from(mk, fs::path(path).parent_path());
+    }
     sc.system.validate(path);
 
     if (const toml::table* sp = root.get_as<toml::table>("speeds")) {

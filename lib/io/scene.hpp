@@ -3,6 +3,7 @@
 
 #include "core/gyroscopic_system.hpp"
 #include "core/speed_range.hpp"
+#include "models/fluid_rotor.hpp"
 
 #include <map>
 #include <optional>
@@ -14,11 +15,12 @@ namespace gyrokit {
 struct Scene {
     std::string path;                  // the file it was read from
     std::string title;
-    std::string model_type;            // "gyrostat" | "matrices"
+    std::string model_type;            // "gyrostat" | "matrices" | "fluid_rotor"
     GyroscopicSystem system;
     std::optional<SpeedRange> speeds;  // [speeds] from, to, count
     int modes = 0;                     // [analysis] modes (0 = all)
     std::vector<int> harmonics{1};     // [analysis] harmonics
+    std::optional<FluidRotorParameters> fluid;   // set for [model] type = "fluid_rotor"
 };
 
 // Reads and validates a scene. Every error is an InputError of one line naming

@@ -34,7 +34,7 @@ void check_no_nan(const Table& t) {
 std::string format_cell(const Cell& c, int digits) {
     if (auto d = std::get_if<double>(&c)) {
         if (std::isinf(*d)) return *d > 0 ? "inf" : "-inf";
-        return fmt::format("{:.{}g}", *d, digits);
+        return fmt::format("{:.{}g}", *d + 0.0, digits);   // + 0.0: a negative zero prints as 0
     }
     if (auto i = std::get_if<long long>(&c)) return std::to_string(*i);
     if (auto b = std::get_if<bool>(&c)) return *b ? "true" : "false";
@@ -106,7 +106,7 @@ std::string render_csv(const Table& t) {
 Json cell_json(const Cell& c) {
     if (auto d = std::get_if<double>(&c)) {
         if (std::isinf(*d)) return *d > 0 ? "inf" : "-inf";   // JSON has no infinity literal
-        return *d;
+        return *d + 0.0;
     }
     if (auto i = std::get_if<long long>(&c)) return *i;
     if (auto b = std::get_if<bool>(&c)) return *b;
