@@ -3,9 +3,7 @@
 # names the offending key or value, nothing on stdout.
 set -u
 cli=$1
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
-fail=0
+source "$(dirname "$0")/cli_lib.sh"
 
 good_model='type = "gyrostat"
 A_G = 2.0
@@ -23,18 +21,6 @@ scene() {   # scene NAME MODEL-LINES [EXTRA]
     printf '[model]\n%s\n%s\n' "$2" "${3:-}" > "$dir/$1.toml"
 }
 
-expect() {   # expect "needle" args...
-    local needle=$1; shift
-    "$cli" "$@" > "$dir/out" 2> "$dir/err"
-    local rc=$?
-    local lines
-    lines=$(wc -l < "$dir/err")
-    if [ "$rc" -ne 2 ] || [ "$lines" -ne 1 ] || [ -s "$dir/out" ] || ! grep -qF -- "$needle" "$dir/err"; then
-        echo "FAIL: gyrokit $* -> exit $rc, $lines stderr lines, expected exit 2 and '$needle'"
-        sed 's/^/    /' "$dir/err"
-        fail=1
-    fi
-}
 
 scene ok "$good_model" '[speeds]
 from = 0.0

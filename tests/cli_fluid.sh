@@ -5,22 +5,8 @@
 set -u
 cli=$1
 data=$2
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
-fail=0
+source "$(dirname "$0")/cli_lib.sh"
 
-expect() {   # expect "needle" args...
-    local needle=$1; shift
-    "$cli" "$@" > "$dir/out" 2> "$dir/err"
-    local rc=$?
-    local lines
-    lines=$(wc -l < "$dir/err")
-    if [ "$rc" -ne 2 ] || [ "$lines" -ne 1 ] || [ -s "$dir/out" ] || ! grep -qF -- "$needle" "$dir/err"; then
-        echo "FAIL: gyrokit $* -> exit $rc, $lines stderr lines, expected exit 2 and '$needle'"
-        sed 's/^/    /' "$dir/err"
-        fail=1
-    fi
-}
 
 good='[model]
 type = "fluid_rotor"
