@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
     // Further command groups register here, one line each.
     for (auto& c : cli::add_balancer_commands(app)) commands.push_back(std::move(c));
     for (auto& c : cli::add_fluid_commands(app)) commands.push_back(std::move(c));
+    for (auto& c : cli::add_screen_commands(app)) commands.push_back(std::move(c));
 
     try {
         app.parse(argc, argv);

@@ -58,4 +58,7 @@ std::vector<Command> add_balancer_commands(CLI::App& app);
 // The liquid-filled rotor command: fluid.
 std::vector<Command> add_fluid_commands(CLI::App& app);
 
+// The design study: screen (sweep file, --jobs, --shard, --resume, --merge).
+std::vector<Command> add_screen_commands(CLI::App& app);
+
 }  // namespace gyrokit::cli

@@ -1,0 +1,123 @@
+#!/usr/bin/env bash
+# gyrokit screen: bad sweep files give one line and exit status 2; shards merge
+# to the unsharded table; a killed run resumes to the same file.
+set -u
+cli=$1
+data=$(cd "$2" && pwd)
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+fail=0
+
+expect() {   # expect "needle" args...
+    local needle=$1; shift
+    "$cli" "$@" > "$dir/out" 2> "$dir/err"
+    local rc=$?
+    local lines
+    lines=$(wc -l < "$dir/err")
+    if [ "$rc" -ne 2 ] || [ "$lines" -ne 1 ] || [ -s "$dir/out" ] || ! grep -qF -- "$needle" "$dir/err"; then
+        echo "FAIL: gyrokit $* -> exit $rc, $lines stderr lines, expected exit 2 and '$needle'"
+        sed 's/^/    /' "$dir/err"
+        fail=1
+    fi
+}
+
+sweep() {   # sweep NAME PARAMETER-LINES [EXTRA]
+    cat > "$dir/$1.toml" <<END
+scene = "$data/centrifuge.toml"
+$2
+[operating]
+from = 25.0
+to = 35.0
+count = 11
+[criteria.pervasive]
+damping = ["total"]
+${3:-}
+END
+}
+
+good='[[parameter]]
+name = "model.c_R"
+values = [50.0, 60.0, 74.1333, 90.0, 100.0]
+[[parameter]]
+name = "model.d_G"
+from = 1.0
+to = 4.0
+count = 4'
+
+sweep ok "$good"
+sweep unknown '[[parameter]]
+name = "model.c_X"
+values = [1.0]'
+sweep empty '[[parameter]]
+name = "model.c_R"
+from = 70.0
+to = 60.0
+count = 3'
+sweep emptyvalues '[[parameter]]
+name = "model.c_R"
+values = []'
+sweep notmodel '[[parameter]]
+name = "speeds.to"
+values = [1.0]'
+sweep balancer "$good" '[criteria.balancer]
+limit_speed_ratio = 1.2'
+sweep dofs "$good" '[criteria.response]
+max_amplitude = 1e-3
+dofs = ["z"]'
+sweep lhsvalues '[sampling]
+method = "lhs"
+samples = 10
+[[parameter]]
+name = "model.c_R"
+values = [1.0]'
+printf 'scene = "%s/centrifuge.toml"\n[operating]\nfrom = 1.0\nto = 2.0\n' "$data" > "$dir/nocrit.toml"
+sed 's/eps = 1.0e-3/eps = 0.0/' "$data/centrifuge.toml" > "$dir/nounbalance_scene.toml"
+printf 'scene = "nounbalance_scene.toml"\n[operating]\nfrom = 1.0\nto = 2.0\n[criteria.response]\nmax_amplitude = 1.0\n' > "$dir/nounbalance.toml"
+
+expect "unknown key 'c_X'" screen "$dir/unknown.toml"
+expect "empty range" screen "$dir/empty.toml"
+expect "is empty" screen "$dir/emptyvalues.toml"
+expect "numeric key of the scene's [model] table" screen "$dir/notmodel.toml"
+expect "no balancer model in scene" screen "$dir/balancer.toml"
+expect "'z' is not a DOF" screen "$dir/dofs.toml"
+expect "needs from and to" screen "$dir/lhsvalues.toml"
+expect "no criteria" screen "$dir/nocrit.toml"
+expect "needs an unbalance" screen "$dir/nounbalance.toml"
+expect "sweep file not found" screen "$dir/missing.toml"
+expect "--shard '3/3'" screen "$dir/ok.toml" --shard 3/3
+expect "--jobs -1" screen "$dir/ok.toml" --jobs -1
+expect "allowed values: table, csv, json" screen "$dir/ok.toml" --format xml
+expect "unsupported extension" screen "$dir/ok.toml" --plot "$dir/x.pdf"
+printf 'design,foo\n' > "$dir/foreign.csv"
+expect "header does not match" screen "$dir/ok.toml" --resume "$dir/foreign.csv"
+
+# Unsharded, sharded and merged, resumed after a kill: the same file.
+"$cli" screen "$dir/ok.toml" --jobs 1 --out "$dir/all.csv" 2> /dev/null || { echo "FAIL: unsharded run"; fail=1; }
+[ "$(wc -l < "$dir/all.csv")" -eq 21 ] || { echo "FAIL: expected 20 rows"; fail=1; }
+for k in 0 1 2; do
+    "$cli" screen "$dir/ok.toml" --shard "$k/3" --jobs 2 --out "$dir/s$k.csv" 2> /dev/null || { echo "FAIL: shard $k"; fail=1; }
+done
+"$cli" screen "$dir/ok.toml" --merge "$dir/s0.csv" "$dir/s1.csv" "$dir/s2.csv" --out "$dir/merged.csv" 2> /dev/null
+cmp -s "$dir/all.csv" "$dir/merged.csv" || { echo "FAIL: merged shards differ from the unsharded run"; fail=1; }
+# The same by plain concatenation, as a job array would do it.
+{ head -n 1 "$dir/s0.csv"; tail -q -n +2 "$dir/s0.csv" "$dir/s1.csv" "$dir/s2.csv" | sort -t, -k1,1n; } > "$dir/cat.csv"
+cmp -s "$dir/all.csv" "$dir/cat.csv" || { echo "FAIL: concatenated shards differ from the unsharded run"; fail=1; }
+
+"$cli" screen "$dir/ok.toml" --jobs 1 --resume "$dir/resumed.csv" 2> /dev/null &
+pid=$!
+for _ in $(seq 1 400); do
+    [ -f "$dir/resumed.csv" ] && [ "$(wc -l < "$dir/resumed.csv")" -ge 4 ] && break
+    sleep 0.01
+done
+kill -KILL "$pid" 2> /dev/null
+wait "$pid" 2> /dev/null
+printf '17,90,3' >> "$dir/resumed.csv"   # a row cut short
+"$cli" screen "$dir/ok.toml" --jobs 2 --resume "$dir/resumed.csv" 2> /dev/null || { echo "FAIL: resume"; fail=1; }
+cmp -s "$dir/all.csv" "$dir/resumed.csv" || { echo "FAIL: resumed file differs from the uninterrupted run"; fail=1; }
+
+# JSON on stdout: no NaN, one object per design.
+"$cli" screen "$dir/ok.toml" --format json > "$dir/out.json" 2> /dev/null || { echo "FAIL: json run"; fail=1; }
+if grep -qi 'nan' "$dir/out.json"; then echo "FAIL: NaN in JSON"; fail=1; fi
+[ "$(grep -c '"design"' "$dir/out.json")" -eq 20 ] || { echo "FAIL: JSON rows"; fail=1; }
+
+exit $fail
