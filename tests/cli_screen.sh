@@ -4,22 +4,8 @@
 set -u
 cli=$1
 data=$(cd "$2" && pwd)
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
-fail=0
+source "$(dirname "$0")/cli_lib.sh"
 
-expect() {   # expect "needle" args...
-    local needle=$1; shift
-    "$cli" "$@" > "$dir/out" 2> "$dir/err"
-    local rc=$?
-    local lines
-    lines=$(wc -l < "$dir/err")
-    if [ "$rc" -ne 2 ] || [ "$lines" -ne 1 ] || [ -s "$dir/out" ] || ! grep -qF -- "$needle" "$dir/err"; then
-        echo "FAIL: gyrokit $* -> exit $rc, $lines stderr lines, expected exit 2 and '$needle'"
-        sed 's/^/    /' "$dir/err"
-        fail=1
-    fi
-}
 
 sweep() {   # sweep NAME PARAMETER-LINES [EXTRA]
     cat > "$dir/$1.toml" <<END
