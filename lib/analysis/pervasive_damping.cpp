@@ -50,6 +50,11 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
             }
             const bool left_min = k == 0 || r[k] <= r[k - 1], right_min = k + 1 == np || r[k] < r[k + 1];
             if (!left_min || !right_min || !std::isfinite(r[k])) continue;
+            // A zero of |g(w)| with g analytic is a V: sampled at spacing h, the point
+            // nearest the kink is at most half its far neighbour. Shallow bowls (ratio
+            // near one) are no loss and are not refined, which keeps sweeps cheap.
+            const double far = std::max(k > 0 ? r[k - 1] : 0.0, k + 1 < np ? r[k + 1] : 0.0);
+            if (r[k] > 0.9 * far) continue;
             const double a = b.points[k == 0 ? 0 : k - 1].speed, c = b.points[std::min(k + 1, np - 1)].speed;
             Mode best = b.points[k].mode;
             const auto f = [&](double w) {
