@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     for (auto& c : cli::add_balancer_commands(app)) commands.push_back(std::move(c));
     for (auto& c : cli::add_fluid_commands(app)) commands.push_back(std::move(c));
     for (auto& c : cli::add_screen_commands(app)) commands.push_back(std::move(c));
+    for (auto& c : cli::add_sommerfeld_commands(app)) commands.push_back(std::move(c));
 
     try {
         app.parse(argc, argv);

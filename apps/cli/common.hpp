@@ -61,4 +61,7 @@ std::vector<Command> add_fluid_commands(CLI::App& app);
 // The design study: screen (sweep file, --jobs, --shard, --resume, --merge).
 std::vector<Command> add_screen_commands(CLI::App& app);
 
+// The Sommerfeld effect: sommerfeld (stationary speed curves, limit speeds, folds; --runup).
+std::vector<Command> add_sommerfeld_commands(CLI::App& app);
+
 }  // namespace gyrokit::cli

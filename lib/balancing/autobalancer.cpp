@@ -104,7 +104,15 @@ std::vector<double> AutobalancerModel::initial_state(const std::vector<double>& 
     return s;
 }
 
+void AutobalancerModel::set_nominal_profile(NominalSpeedProfile profile) {
+    if (!motor()) throw InputError("autobalancer: a nominal-speed profile needs the motor drive (L0, beta0)");
+    if (!profile.speed || !profile.angle)
+        throw InputError("autobalancer: a nominal-speed profile needs both its speed and its angle");
+    profile_ = std::move(profile);
+}
+
 double AutobalancerModel::rotor_angle(double t, const double* s) const {
+    if (has_profile()) return profile_.angle(t) + s[4];
     return omega_ref_ * t + (motor() ? s[4] : 0.0);
 }
 
@@ -140,7 +148,8 @@ bool AutobalancerModel::rhs(double t, const double* s, double* dsdt, const char*
         Mq(i0, i0) = p_.J00();
         Mq(0, i0) = Mq(i0, 0) = -U0 * s0;
         Mq(1, i0) = Mq(i0, 1) = U0 * c0;
-        Q(i0) = p_.L0 - p_.beta0 * w0;
+        const double L0 = has_profile() ? p_.beta0 * profile_.speed(t) : p_.L0;
+        Q(i0) = L0 - p_.beta0 * w0;
     }
     for (int i = 0; i < nr; ++i) {
         const Roller& r = p_.rollers[static_cast<std::size_t>(i)];
@@ -172,7 +181,7 @@ bool AutobalancerModel::rhs(double t, const double* s, double* dsdt, const char*
     double phi0dd = 0.0;
     if (mot) {
         phi0dd = qdd(i0);
-        dsdt[4] = w0 - omega_ref_;
+        dsdt[4] = w0 - (has_profile() ? profile_.speed(t) : omega_ref_);
         dsdt[5] = phi0dd;
     }
     for (int i = 0; i < nr; ++i) {

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,14 @@ struct AutobalancerParameters {
     void validate() const;
 };
 
+// A time-varying nominal speed of the motor drive (run-ups): the drive torque is
+// L0(t) = beta0 speed(t); `angle` is the integral of `speed` from 0, so that the
+// rotor angle stays a bounded lag behind it in the state.
+struct NominalSpeedProfile {
+    std::function<double(double)> speed;   // rad/s
+    std::function<double(double)> angle;   // rad
+};
+
 // The equations of motion (18) for one parameter set.
 //
 // State layout (n = number of rollers):
@@ -84,6 +93,11 @@ public:
     // `alpha` (rad) and at rest relative to the rotor, rotor at its reference speed.
     std::vector<double> initial_state(const std::vector<double>& alpha, double x = 0.0, double y = 0.0) const;
 
+    // Motor drive only: replace the constant nominal speed L0 / beta0 by a profile.
+    // The state's theta0 is then phi0 - profile.angle(t). InputError without a motor.
+    void set_nominal_profile(NominalSpeedProfile profile);
+    bool has_profile() const { return static_cast<bool>(profile_.speed); }
+
     double rotor_angle(double t, const double* s) const;   // phi0, rad
     double rotor_speed(const double* s) const;             // phi0', rad/s
 
@@ -95,6 +109,7 @@ private:
     AutobalancerParameters p_;
     int first_roller_;
     double omega_ref_;
+    NominalSpeedProfile profile_;
 };
 
 }  // namespace gyrokit

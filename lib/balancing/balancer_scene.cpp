@@ -32,8 +32,9 @@ BalancerScene load_balancer_scene(const std::string& path) {
     sc.file = path;
     for (const auto& [k, v] : root) {
         const std::string key(k.str());
-        if (key != "title" && key != "model" && key != "simulation")
-            throw InputError(fmt::format("{}: unknown top-level key '{}'; allowed: title, model, simulation", path, key));
+        if (key != "title" && key != "model" && key != "simulation" && key != "runup")
+            throw InputError(fmt::format("{}: unknown top-level key '{}'; allowed: title, model, simulation, runup",
+                                         path, key));
     }
     if (const toml::node* t = root.get("title")) {
         if (!t->is_string()) throw InputError(fmt::format("{}: title must be a string", path));
@@ -43,7 +44,7 @@ BalancerScene load_balancer_scene(const std::string& path) {
     if (!model) throw InputError(fmt::format("{}: missing table [model]", path));
     const TomlKeys k(path, "model", *model);
     k.only({"type", "m", "J", "m0", "eps0", "k_x", "k_y", "omega_x", "omega_y", "c_x", "c_y", "m1", "eps1", "R1", "r1",
-            "mu1", "beta1", "m2", "eps2", "R2", "r2", "mu2", "beta2", "speed", "L0", "beta0"});
+            "mu1", "beta1", "m2", "eps2", "R2", "r2", "mu2", "beta2", "speed", "L0", "beta0", "k", "omega", "c"});
     if (!k.has("type")) throw InputError(fmt::format("{}: [model] key 'type' is missing; required: \"autobalancer\"", path));
     k.choice("type", "", {"autobalancer"});
 
@@ -52,8 +53,15 @@ BalancerScene load_balancer_scene(const std::string& path) {
     p.J = k.number("J", 0.0, 0.0, false, "kg m^2");
     p.m0 = k.number("m0", std::nullopt, 0.0, false, "kg");
     p.eps0 = k.number("eps0", std::nullopt, 0.0, false, "m");
-    p.c_x = k.number("c_x", 0.0, 0.0, false, "N s/m");
-    p.c_y = k.number("c_y", 0.0, 0.0, false, "N s/m");
+    // Isotropic bearings: c for both axes.
+    if (k.has("c") && (k.has("c_x") || k.has("c_y")))
+        throw InputError(fmt::format("{}: [model] give either c (isotropic) or c_x and c_y, not both", path));
+    if (k.has("c")) {
+        p.c_x = p.c_y = k.number("c", std::nullopt, 0.0, false, "N s/m");
+    } else {
+        p.c_x = k.number("c_x", 0.0, 0.0, false, "N s/m");
+        p.c_y = k.number("c_y", 0.0, 0.0, false, "N s/m");
+    }
     for (int i = 1; i <= 2; ++i) {
         const std::string n = std::to_string(i);
         const bool any = k.has("m" + n) || k.has("eps" + n) || k.has("R" + n) || k.has("r" + n) || k.has("mu" + n) ||
@@ -81,7 +89,18 @@ BalancerScene load_balancer_scene(const std::string& path) {
         p.rollers.push_back(r);
     }
     const double M = p.M();
+    const bool iso = k.has("k") || k.has("omega");
+    if (iso && (k.has("k_x") || k.has("k_y") || k.has("omega_x") || k.has("omega_y")))
+        throw InputError(fmt::format("{}: [model] give either k or omega (isotropic) or the per-axis k_x, k_y / "
+                                     "omega_x, omega_y, not both", path));
+    if (iso) {
+        if (k.has("k") == k.has("omega"))
+            throw InputError(fmt::format("{}: [model] give exactly one of k (N/m) and omega (rad/s)", path));
+        p.k_x = p.k_y = k.has("k") ? k.number("k", std::nullopt, 0.0, true, "N/m")
+                                   : M * std::pow(k.number("omega", std::nullopt, 0.0, true, "rad/s"), 2);
+    }
     for (const char* ax : {"x", "y"}) {
+        if (iso) break;
         const std::string kk = std::string("k_") + ax, ww = std::string("omega_") + ax;
         if (k.has(kk) == k.has(ww))
             throw InputError(fmt::format("{}: [model] give exactly one of {} (N/m) and {} (rad/s)", path, kk, ww));
@@ -136,6 +155,37 @@ BalancerScene load_balancer_scene(const std::string& path) {
         if (st.duration < 2.0 * rev)
             throw InputError(fmt::format("{}: [simulation] duration = {}: out of range; allowed: >= two revolutions "
                                          "({:.6g} s)", path, st.duration, 2.0 * rev));
+    }
+    if (const toml::table* ru = root.get_as<toml::table>("runup")) {
+        const TomlKeys s(path, "runup", *ru);
+        s.only({"max_speed", "rise", "hold", "fall", "alpha1", "alpha2", "method", "abs_tol", "rel_tol", "max_steps"});
+        if (p.drive != Drive::Motor)
+            throw InputError(fmt::format("{}: [runup] needs the motor drive: give L0 and beta0 in [model] instead of "
+                                         "speed", path));
+        RunupSettings& st = sc.runup;
+        sc.has_runup = true;
+        st.max_speed = s.number("max_speed", std::nullopt, 0.0, true, "rad/s");
+        st.rise = s.number("rise", std::nullopt, 0.0, true, "s");
+        st.hold = s.number("hold", std::nullopt, 0.0, true, "s");
+        st.fall = s.number("fall", 0.0, 0.0, false, "s");
+        for (std::size_t i = 1; i <= 2; ++i) {
+            const std::string key = "alpha" + std::to_string(i);
+            if (i <= p.rollers.size())
+                st.alpha.push_back(s.has(key) ? s.any_number(key, "deg") * kPi / 180.0 : 0.0);
+            else if (s.has(key))
+                throw InputError(fmt::format("{}: [runup] {} given, but the model has {} roller(s)", path, key,
+                                             p.rollers.size()));
+        }
+        std::set<std::string> names(ode_method_names().begin(), ode_method_names().end());
+        st.ode.method = parse_ode_method(s.choice("method", "rk8pd", names));
+        st.ode.abs_tol = s.number("abs_tol", 1e-9, 0.0, true, "absolute tolerance");
+        st.ode.rel_tol = s.number("rel_tol", 1e-9, 0.0, true, "relative tolerance");
+        st.ode.max_steps = static_cast<unsigned long>(s.integer("max_steps", 100000000, 1000, 1000000000000LL));
+        try {
+            st.validate();
+        } catch (const InputError& e) {
+            throw InputError(fmt::format("{}: [runup] {}", path, e.what()));
+        }
     }
     return sc;
 }

@@ -1,10 +1,12 @@
 // Scene files of the auto-balancer ([model] type = "autobalancer", optional
-// [simulation]). Every key is range-checked and unknown keys are rejected; an
+// [simulation] and [runup]). Isotropic bearings may be given as k (or omega)
+// and c instead of the per-axis keys. Every key is range-checked and unknown keys are rejected; an
 // error is one InputError line naming the file, the table, the key, the value
 // and the allowed range.
 #pragma once
 
 #include "balancing/autobalancer.hpp"
+#include "balancing/runup.hpp"
 #include "balancing/simulation.hpp"
 
 #include <string>
@@ -16,6 +18,8 @@ struct BalancerScene {
     AutobalancerParameters params;
     bool has_simulation = false;   // a [simulation] table was given
     SimulationSettings simulation;  // phases converted to rad
+    bool has_runup = false;         // a [runup] table was given
+    RunupSettings runup;            // phases converted to rad
 };
 
 BalancerScene load_balancer_scene(const std::string& path);
