@@ -35,10 +35,11 @@ const Mode& continue_branch(const Branch& branch, size_t i, double w, const Quad
 namespace {
 
 struct Tracker {
-    const GyroscopicSystem& sys;
+    SpectrumSolver& solve;
     const CampbellOptions& opt;
     CampbellDiagram& out;
     std::vector<int> active;   // branch index per mode of the last spectrum
+    bool window = false;       // spectra hold a window of modes, not all
 
     // Assignment of the modes of `prev` to those of `next`; ambiguous if any
     // match is weak or a rival is nearly as good.
@@ -50,10 +51,11 @@ struct Tracker {
                 cost(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
                     match_cost(prev[i], predicted[i], next[j]);
         std::vector<int> a = solve_assignment(cost);
-        ambiguous = prev.size() != next.size();
+        ambiguous = !window && prev.size() != next.size();
         for (size_t i = 0; i < prev.size() && !ambiguous; ++i) {
             const int j = a[i];
             if (j < 0 || degenerate(prev, i)) continue;   // a double eigenvalue: either match is right
+            if (window && opt.modes > 0 && static_cast<int>(i) >= opt.modes) continue;   // the window's edge
             if (mac(prev[i].right, next[static_cast<size_t>(j)].right) < opt.mac_min) ambiguous = true;
             for (size_t k = 0; k < next.size(); ++k)
                 if (static_cast<int>(k) != j && cost(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) <
@@ -117,7 +119,7 @@ struct Tracker {
             const double w0 = out.speeds.back();
             const double wm = 0.5 * (w0 + w1);
             ++out.inserted_speeds;
-            step(wm, solve_at_speed(sys, wm, opt.eig), depth + 1);
+            step(wm, solve(wm), depth + 1);
             step(w1, std::move(s1), depth + 1);
             return;
         }
@@ -129,15 +131,19 @@ struct Tracker {
 }  // namespace
 
 CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>& speeds, const CampbellOptions& opt) {
+    return campbell(dense_solver(sys, opt.eig), speeds, opt);
+}
+
+CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& speeds, const CampbellOptions& opt) {
     CampbellDiagram out;
     if (speeds.empty()) return out;
-    Tracker t{sys, opt, out, {}};
-    QuadraticSpectrum s0 = solve_at_speed(sys, speeds.front(), opt.eig);
-    t.append(speeds.front(), std::move(s0), {});
-    for (size_t k = 1; k < speeds.size(); ++k) {
-        t.step(speeds[k], solve_at_speed(sys, speeds[k], opt.eig), 0);
-        if (opt.progress) opt.progress(k + 1, speeds.size());
-    }
+    // Grid speeds in parallel; tracking and refinement (few solves) in order.
+    std::vector<QuadraticSpectrum> grid = solve_speeds(make, speeds, opt.threads, opt.progress);
+    SpectrumSolver refine = make();
+    Tracker t{refine, opt, out, {}};
+    t.window = grid.front().partial;
+    t.append(speeds.front(), std::move(grid.front()), {});
+    for (size_t k = 1; k < speeds.size(); ++k) t.step(speeds[k], std::move(grid[k]), 0);
 
     // Number the branches by frequency at their first point; keep the K lowest
     // among those present at the first speed.

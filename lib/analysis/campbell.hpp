@@ -4,6 +4,7 @@
 // is bisected.
 #pragma once
 
+#include "analysis/spectrum_solver.hpp"
 #include "core/gyroscopic_system.hpp"
 #include "eig/quadratic_eigensolver.hpp"
 
@@ -17,6 +18,7 @@ struct CampbellOptions {
     int modes = 0;            // keep the K lowest branches by frequency at the first speed; 0 = all
     int max_refine = 8;       // bisection levels allowed between two grid speeds
     double mac_min = 0.9;     // a match with a lower MAC is ambiguous
+    int threads = 1;          // grid speeds solved in parallel on this many threads
     // Called after each grid speed with (done, total); e.g. a progress bar.
     std::function<void(size_t, size_t)> progress;
 };
@@ -40,7 +42,14 @@ struct CampbellDiagram {
     double max_backward_error = 0;
 };
 
+// Dense: every mode of the system, solved with opt.eig.
 CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>& speeds,
+                         const CampbellOptions& opt = {});
+
+// Any solver (e.g. sparse_solver: a window of modes near a target). Modes that
+// enter or leave a window start or end branches; only the lowest opt.modes
+// decide whether a step is ambiguous.
+CampbellDiagram campbell(const SolverFactory& solver, const std::vector<double>& speeds,
                          const CampbellOptions& opt = {});
 
 // Matching cost between two modes (0 = identical shape and eigenvalue).

@@ -14,19 +14,16 @@ namespace {
 
 // Refines a sign change of g(mode, w) between points i and i+1 of a branch.
 template <class G>
-std::pair<double, Mode> refine_on_branch(const GyroscopicSystem& sys, const Branch& b, size_t i, const G& g,
-                                         const EigenOptions& eig) {
-    const auto mode_at = [&](double w) {
-        return continue_branch(b, i, w, solve_at_speed(sys, w, eig));
-    };
+std::pair<double, Mode> refine_on_branch(SpectrumSolver& solve, const Branch& b, size_t i, const G& g) {
+    const auto mode_at = [&](double w) { return continue_branch(b, i, w, solve(w)); };
     const double w = find_root([&](double x) { return g(mode_at(x), x); }, b.points[i].speed,
                                b.points[i + 1].speed);
     return {w, mode_at(w)};
 }
 
 template <class G, class Emit>
-void scan_branches(const GyroscopicSystem& sys, const CampbellDiagram& cd, const G& g, const Emit& emit,
-                   const EigenOptions& eig) {
+void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const G& g, const Emit& emit) {
+    SpectrumSolver solve = make();
     for (const Branch& b : cd.branches) {
         for (size_t i = 0; i + 1 < b.points.size(); ++i) {
             const Mode& m0 = b.points[i].mode;
@@ -35,7 +32,7 @@ void scan_branches(const GyroscopicSystem& sys, const CampbellDiagram& cd, const
             const double g0 = g(m0, b.points[i].speed), g1 = g(m1, b.points[i + 1].speed);
             if (g0 == 0.0 && i > 0) continue;   // counted as the end of the previous interval
             if ((g0 > 0) == (g1 > 0) && g0 != 0.0 && g1 != 0.0) continue;
-            auto [w, m] = refine_on_branch(sys, b, i, g, eig);
+            auto [w, m] = refine_on_branch(solve, b, i, g);
             emit(b, w, std::move(m), g0, g1);
         }
     }
@@ -45,13 +42,18 @@ void scan_branches(const GyroscopicSystem& sys, const CampbellDiagram& cd, const
 
 std::vector<CriticalSpeed> critical_speeds(const GyroscopicSystem& sys, const CampbellDiagram& cd,
                                            const std::vector<int>& harmonics, const EigenOptions& eig) {
+    return critical_speeds(dense_solver(sys, eig), cd, harmonics);
+}
+
+std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const CampbellDiagram& cd,
+                                           const std::vector<int>& harmonics) {
     std::vector<CriticalSpeed> out;
     for (int k : harmonics) {
         if (k < 1) throw InputError("harmonic " + std::to_string(k) + " is not allowed; allowed: k >= 1");
         const auto g = [k](const Mode& m, double w) { return m.lambda.imag() - k * w; };
-        scan_branches(sys, cd, g, [&](const Branch& b, double w, Mode m, double, double) {
+        scan_branches(solver, cd, g, [&](const Branch& b, double w, Mode m, double, double) {
             out.push_back({w, k, b.id, std::move(m)});
-        }, eig);
+        });
     }
     std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
     return out;
@@ -59,11 +61,15 @@ std::vector<CriticalSpeed> critical_speeds(const GyroscopicSystem& sys, const Ca
 
 std::vector<StabilityChange> stability_changes(const GyroscopicSystem& sys, const CampbellDiagram& cd,
                                                const EigenOptions& eig) {
+    return stability_changes(dense_solver(sys, eig), cd);
+}
+
+std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd) {
     std::vector<StabilityChange> out;
     const auto g = [](const Mode& m, double) { return m.lambda.real(); };
-    scan_branches(sys, cd, g, [&](const Branch& b, double w, Mode m, double g0, double g1) {
+    scan_branches(solver, cd, g, [&](const Branch& b, double w, Mode m, double g0, double g1) {
         out.push_back({w, b.id, g1 > g0, std::move(m)});
-    }, eig);
+    });
     std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
     return out;
 }
@@ -75,6 +81,9 @@ std::vector<CriticalSpeed> critical_speeds_direct(const GyroscopicSystem& sys, i
                          "(use the branch method)");
     if (sys.has_circulatory())
         throw InputError("the direct critical-speed method needs a system without circulatory matrix N");
+    if (!sys.bearings.empty())
+        throw InputError("the direct critical-speed method needs speed-independent matrices; this model has "
+                         "bearing tables (use the branch method)");
     if (harmonic < 1) throw InputError("harmonic must be >= 1");
     const double k = harmonic;
     const std::complex<double> I(0.0, 1.0);

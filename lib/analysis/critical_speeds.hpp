@@ -20,6 +20,9 @@ struct CriticalSpeed {
 // refined with GSL Brent on f(w) = Im lambda(w) - k w.
 std::vector<CriticalSpeed> critical_speeds(const GyroscopicSystem& sys, const CampbellDiagram& cd,
                                            const std::vector<int>& harmonics, const EigenOptions& eig = {});
+// The same with any solver (the one the diagram was made with).
+std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const CampbellDiagram& cd,
+                                           const std::vector<int>& harmonics);
 
 // For undamped systems without circulatory terms, lambda = i k w is an
 // eigenvalue exactly at a critical speed, so w^2 solves the linear Hermitian
@@ -37,5 +40,6 @@ struct StabilityChange {
 // Speeds where a branch's real part changes sign.
 std::vector<StabilityChange> stability_changes(const GyroscopicSystem& sys, const CampbellDiagram& cd,
                                                const EigenOptions& eig = {});
+std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd);
 
 }  // namespace gyrokit

@@ -75,8 +75,9 @@ PervasiveReport pervasive_damping(const GyroscopicSystem& sys, const std::vector
                                   const PervasiveOptions& opt) {
     PervasiveReport rep;
     std::vector<std::pair<std::string, GyroscopicSystem>> sets;
-    for (const auto& c : sys.damping) sets.emplace_back(c.name, sys.with_damping_only({c.name}));
-    if (!sys.damping.empty()) sets.emplace_back("total", sys);
+    const std::vector<std::string> names = sys.damping_names();
+    for (const auto& n : names) sets.emplace_back(n, sys.with_damping_only({n}));
+    if (!names.empty()) sets.emplace_back("total", sys);
     for (const auto& [name, s] : sets) {
         rep.checked.push_back(name);
         check_set(name, s, speeds, opt, rep.losses);

@@ -2,9 +2,17 @@
 
 #include "core/error.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 namespace gyrokit {
+
+void add_block(Eigen::MatrixXd& A, int i, int j, const Eigen::Matrix2d& B) {
+    A(i, i) += B(0, 0);
+    A(i, j) += B(0, 1);
+    A(j, i) += B(1, 0);
+    A(j, j) += B(1, 1);
+}
 
 Eigen::MatrixXcd QuadraticPencil::evaluate(std::complex<double> lambda) const {
     return (lambda * lambda) * M.cast<std::complex<double>>() + lambda * C.cast<std::complex<double>>() +
@@ -14,12 +22,24 @@ Eigen::MatrixXcd QuadraticPencil::evaluate(std::complex<double> lambda) const {
 Eigen::MatrixXd GyroscopicSystem::damping_matrix(double w) const {
     Eigen::MatrixXd D = Eigen::MatrixXd::Zero(size(), size());
     for (const auto& c : damping) D += c.at(w);
+    for (const auto& b : bearings)
+        if (b.damping_enabled) add_block(D, b.dof_x, b.dof_y, b.at(w).C);
     return D;
+}
+
+std::vector<std::string> GyroscopicSystem::damping_names() const {
+    std::vector<std::string> names;
+    for (const auto& c : damping) names.push_back(c.name);
+    for (const auto& b : bearings)
+        if (b.has_damping()) names.push_back(b.name);
+    return names;
 }
 
 bool GyroscopicSystem::has_damping() const {
     for (const auto& c : damping)
         if (c.of_speed || c.D.norm() > 0.0) return true;
+    for (const auto& b : bearings)
+        if (b.damping_enabled && b.has_damping()) return true;
     return false;
 }
 
@@ -28,6 +48,7 @@ QuadraticPencil GyroscopicSystem::at_speed(double w) const {
     if (G.size() > 0) p.C += w * G;
     if (N.size() > 0) p.K += w * N;
     if (K2.size() > 0) p.K += (w * w) * K2;
+    for (const auto& b : bearings) add_block(p.K, b.dof_x, b.dof_y, b.at(w).K);
     return p;
 }
 
@@ -39,9 +60,10 @@ Eigen::VectorXcd GyroscopicSystem::unbalance_force(double w) const {
 GyroscopicSystem GyroscopicSystem::with_damping_only(const std::vector<std::string>& names) const {
     GyroscopicSystem s = *this;
     s.damping.clear();
+    const auto named = [&](const std::string& x) { return std::find(names.begin(), names.end(), x) != names.end(); };
     for (const auto& c : damping)
-        for (const auto& n : names)
-            if (c.name == n) s.damping.push_back(c);
+        if (named(c.name)) s.damping.push_back(c);
+    for (auto& b : s.bearings) b.damping_enabled = b.damping_enabled && named(b.name);
     return s;
 }
 
@@ -95,6 +117,7 @@ void GyroscopicSystem::validate(const std::string& origin) const {
         throw InputError(fmt::format("{}: unbalance has a NaN or infinite entry", origin));
     if (static_cast<int>(dof_names.size()) != n)
         throw InputError(fmt::format("{}: {} DOF names for {} DOFs", origin, dof_names.size(), n));
+    for (const auto& b : bearings) b.validate(n);
     for (const auto& [u, v] : whirl_pairs)
         if (u < 0 || v < 0 || u >= n || v >= n || u == v)
             throw InputError(fmt::format("{}: whirl pair ({}, {}) is out of range; allowed: two distinct "

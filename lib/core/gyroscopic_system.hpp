@@ -2,6 +2,8 @@
 // with w the spin speed (rad/s). G and N are given per unit speed.
 #pragma once
 
+#include "core/bearing_table.hpp"
+
 #include <Eigen/Dense>
 #include <complex>
 #include <functional>
@@ -10,6 +12,9 @@
 #include <vector>
 
 namespace gyrokit {
+
+// A += B on the rows and columns (i, j): a 2x2 element acting on one DOF pair.
+void add_block(Eigen::MatrixXd& A, int i, int j, const Eigen::Matrix2d& B);
 
 // One named source of damping (e.g. "d_G" cage damping); the total damping
 // matrix is the sum of all components. Kept apart so that pervasive damping
@@ -39,6 +44,9 @@ public:
     Eigen::MatrixXd N;                        // circulatory per unit speed (empty: none)
     Eigen::MatrixXd K2;                       // stiffness per speed squared (empty: none), e.g. sloshing
     std::vector<DampingComponent> damping;    // D = sum of components
+    // Speed-dependent bearings: their stiffness adds to K, their damping to D;
+    // each one's damping counts as a damping component named after the table.
+    std::vector<BearingTable> bearings;
     Eigen::VectorXcd unbalance;               // force amplitude per w^2 (empty: none)
     // DOF pairs (u, v) whose complex coordinate u + i v turns forward when the
     // motion turns in the sense of the spin; used to classify whirl.
@@ -47,11 +55,13 @@ public:
     int size() const { return static_cast<int>(M.rows()); }
     // Total damping at speed w (speed matters only for speed-dependent components).
     Eigen::MatrixXd damping_matrix(double w = 0.0) const;
+    // Names of the damping components: `damping`, then bearing tables with damping.
+    std::vector<std::string> damping_names() const;
     bool has_damping() const;
     bool has_circulatory() const { return N.size() > 0 && N.norm() > 0.0; }
     bool has_speed_squared_stiffness() const { return K2.size() > 0 && K2.norm() > 0.0; }
 
-    // Pencil at spin speed w: C = D(w) + w G, K(w) = K + w N + w^2 K2.
+    // Pencil at spin speed w: C = D(w) + w G, K(w) = K + w N + w^2 K2 (+ bearings).
     QuadraticPencil at_speed(double w) const;
     // Unbalance force amplitude at speed w (zero vector if there is none).
     Eigen::VectorXcd unbalance_force(double w) const;

@@ -29,6 +29,7 @@ struct QuadraticSpectrum {
     int infinite_count = 0;       // infinite eigenvalues (singular M)
     double scale = 1.0;           // sqrt(|K|/|M|): the problem's natural frequency scale
     double real_tol = 0.0;        // |Im lambda| below this counts as real
+    bool partial = false;         // only a window of modes (near a shift), not all
     double max_backward_error() const;
 };
 

@@ -54,6 +54,10 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
     a_int iparam[11] = {1, 0, opt.max_iterations, 1, 0, 0, 1, 0, 0, 0, 0};   // exact shifts, mode 1 on OP
     a_int ipntr[14] = {};
     a_int ido = 0, info = 0;
+    if (opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0) {
+        Eigen::Map<Eigen::VectorXcd>(resid.data(), N) = opt.start;
+        info = 1;   // ARPACK starts from resid
+    }
     Eigen::VectorXcd v1(n), v2(n), w2(n);
     while (true) {
         arpack::naupd(ido, arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,

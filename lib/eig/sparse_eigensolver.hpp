@@ -6,6 +6,7 @@
 // Eigenvalues of the operator theta give lambda = sigma + 1/theta.
 #pragma once
 
+#include "core/sparse_system.hpp"
 #include "eig/mode.hpp"
 
 #include <Eigen/Sparse>
@@ -14,16 +15,13 @@
 
 namespace gyrokit {
 
-struct SparsePencil {
-    Eigen::SparseMatrix<double> M, C, K;
-};
-
 struct SparseEigenOptions {
     int modes = 6;                          // eigenvalues with Im >= 0 wanted (conjugates not counted)
     std::complex<double> shift{0.0, 0.0};   // sigma: the search centre (i nu for modes near frequency nu)
     int lanczos_vectors = 0;                // ARPACK ncv; 0 = max(2 nev + 1, 30), capped at 2n
     int max_iterations = 3000;
     double tolerance = 0.0;                 // ARPACK relative Ritz tolerance; 0 = machine precision
+    Eigen::VectorXcd start;                 // start vector of length 2n (e.g. the last speed's modes); empty: random
 };
 
 struct SparseSpectrum {

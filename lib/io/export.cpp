@@ -26,8 +26,16 @@ void export_matrices(const GyroscopicSystem& sys, double w, const std::string& d
     const std::string at = fmt::format(" at speed {:.17g} rad/s", w);
     put("D", sys.damping_matrix(w), "total damping matrix" + at);
     for (const auto& c : sys.damping) put("D_" + c.name, c.at(w), "damping component " + c.name + at);
+    for (size_t i = 0; i < sys.bearings.size(); ++i) {
+        const auto& b = sys.bearings[i];
+        Eigen::MatrixXd Kb = Eigen::MatrixXd::Zero(n, n), Cb = Kb;
+        add_block(Kb, b.dof_x, b.dof_y, b.at(w).K);
+        add_block(Cb, b.dof_x, b.dof_y, b.at(w).C);
+        put(fmt::format("K_bearing{}", i + 1), Kb, "stiffness of bearing table " + b.name + at);
+        put(fmt::format("D_bearing{}", i + 1), Cb, "damping of bearing table " + b.name + at);
+    }
     put("C", p.C, "C = D + w G" + at);
-    put("Kw", p.K, "K + w N + w^2 K2" + at);
+    put("Kw", p.K, "K + w N + w^2 K2 + bearing stiffness" + at);
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n), B = Eigen::MatrixXd::Zero(2 * n, 2 * n);
     A.topLeftCorner(n, n) = -p.C;
     A.topRightCorner(n, n) = -p.K;

@@ -13,8 +13,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string_view>
 #include <type_traits>
+#include <unordered_map>
 #include <vector>
 
 namespace gyrokit {
@@ -180,9 +182,15 @@ Header read_banner(LineReader& r, const std::string& path, bool complex_allowed)
 }
 
 // Reads any supported file into a dense Matrix (MatrixXd or MatrixXcd).
-template <typename Matrix>
-Matrix read(const std::string& path, bool vector) {
-    using Scalar = typename Matrix::Scalar;
+// The entries of a file, symmetric and skew halves mirrored.
+template <class Scalar>
+struct Entries {
+    long long rows = 0, cols = 0;
+    std::vector<Eigen::Triplet<Scalar, long long>> values;
+};
+
+template <class Scalar>
+Entries<Scalar> read(const std::string& path, bool vector, bool dense) {
     constexpr bool kComplex = !std::is_same_v<Scalar, double>;
 
     LineReader r(path);
@@ -196,7 +204,7 @@ Matrix read(const std::string& path, bool vector) {
     const long long rows = r.integer(t[0], "rows"), cols = r.integer(t[1], "columns");
     if (rows < 1) r.fail("rows {} is not positive; allowed 1 or more", rows);
     if (cols < 1) r.fail("columns {} is not positive; allowed 1 or more", cols);
-    if (rows > kMaxCells / cols)
+    if ((dense || !h.coordinate) && rows > kMaxCells / cols)
         r.fail("size {}x{} is too large for a dense matrix; allowed at most {} entries", rows, cols, kMaxCells);
     if (h.symmetry != Symmetry::general && rows != cols)
         r.fail("a {} matrix must be square, got {}x{}; allowed rows equal to columns", name(h.symmetry), rows, cols);
@@ -220,9 +228,12 @@ Matrix read(const std::string& path, bool vector) {
                              h.symmetry == Symmetry::general ? "" : " (lower triangle, column by column)");
     }
 
-    Matrix A = Matrix::Zero(rows, cols);
+    Entries<Scalar> A;
+    A.rows = rows;
+    A.cols = cols;
+    A.values.reserve(static_cast<std::size_t>(std::min(expected, 1LL << 24)) * (h.symmetry == Symmetry::general ? 1 : 2));
     // Coordinate files: the line that set each cell, to report duplicates with both lines.
-    std::vector<std::size_t> set_on_line(h.coordinate ? static_cast<std::size_t>(rows * cols) : 0, 0);
+    std::unordered_map<long long, std::size_t> set_on_line;
     // Array files: the next (0-based) position, column-major; skew starts below the diagonal.
     long long i = h.symmetry == Symmetry::skew ? 1 : 0, j = 0;
 
@@ -244,7 +255,7 @@ Matrix read(const std::string& path, bool vector) {
             j = col - 1;
             // (i, j) and (j, i) are one stored entry unless the matrix is general.
             const bool mirror = h.symmetry != Symmetry::general && i < j;
-            std::size_t& seen = set_on_line[static_cast<std::size_t>((mirror ? i : j) * rows + (mirror ? j : i))];
+            std::size_t& seen = set_on_line[(mirror ? i : j) * rows + (mirror ? j : i)];
             if (seen != 0)
                 r.fail("entry ({}, {}) repeats the entry on line {}; each entry may appear once{}", row, col, seen,
                        h.symmetry == Symmetry::general ? "" : " ((i, j) and (j, i) count as the same entry)");
@@ -258,9 +269,9 @@ Matrix read(const std::string& path, bool vector) {
         if constexpr (kComplex) {
             if (h.complex) v.imag(r.value(t[first + 1], false));
         }
-        A(i, j) = v;
-        if (h.symmetry == Symmetry::symmetric) A(j, i) = v;
-        if (h.symmetry == Symmetry::skew) A(j, i) = -v;
+        A.values.emplace_back(i, j, v);
+        if (h.symmetry == Symmetry::symmetric && i != j) A.values.emplace_back(j, i, v);
+        if (h.symmetry == Symmetry::skew) A.values.emplace_back(j, i, -v);
 
         if (!h.coordinate && ++i == rows) {  // next array position
             ++j;
@@ -271,14 +282,38 @@ Matrix read(const std::string& path, bool vector) {
     return A;
 }
 
+template <class Scalar>
+Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> to_dense(const Entries<Scalar>& e) {
+    Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> A =
+        Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>::Zero(e.rows, e.cols);
+    for (const auto& t : e.values) A(t.row(), t.col()) = t.value();
+    return A;
+}
+
 }  // namespace
 
-Eigen::MatrixXd read_matrix_market(const std::string& path) { return read<Eigen::MatrixXd>(path, false); }
+Eigen::MatrixXd read_matrix_market(const std::string& path) { return to_dense(read<double>(path, false, true)); }
+
+Eigen::SparseMatrix<double> read_matrix_market_sparse(const std::string& path) {
+    const Entries<double> e = read<double>(path, false, false);
+    if (e.rows > std::numeric_limits<int>::max() || e.cols > std::numeric_limits<int>::max())
+        throw InputError(fmt::format("{}: size {}x{} is too large; allowed at most {} rows and columns", path, e.rows,
+                                     e.cols, std::numeric_limits<int>::max()));
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(e.values.size());
+    for (const auto& v : e.values)
+        if (v.value() != 0.0) t.emplace_back(static_cast<int>(v.row()), static_cast<int>(v.col()), v.value());
+    Eigen::SparseMatrix<double> A(static_cast<int>(e.rows), static_cast<int>(e.cols));
+    A.setFromTriplets(t.begin(), t.end());
+    A.makeCompressed();
+    return A;
+}
 
 Eigen::VectorXcd read_matrix_market_vector(const std::string& path) {
-    const Eigen::MatrixXcd A = read<Eigen::MatrixXcd>(path, true);
+    const Eigen::MatrixXcd A = to_dense(read<std::complex<double>>(path, true, true));
     return Eigen::Map<const Eigen::VectorXcd>(A.data(), A.size());  // n x 1 and 1 x n alike
 }
+
 
 void write_matrix_market(const std::string& path, const Eigen::MatrixXd& A, const std::string& comment) {
     // Refuse what read_matrix_market would reject, so every written file reads back.

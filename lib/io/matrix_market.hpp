@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 #include <string>
 
 namespace gyrokit {
@@ -11,6 +12,10 @@ namespace gyrokit {
 // Reads a real matrix (dense result) from a Matrix Market file: "matrix coordinate|array",
 // field "real|integer", symmetry "general|symmetric|skew-symmetric". Throws InputError.
 Eigen::MatrixXd read_matrix_market(const std::string& path);
+
+// The same reader with a sparse result: coordinate files of any size (array
+// files as for the dense reader); explicit zeros are dropped.
+Eigen::SparseMatrix<double> read_matrix_market_sparse(const std::string& path);
 
 // Reads a vector (n x 1 matrix, or 1 x n) that may be real, integer or complex
 // (field "complex": two numbers per entry). Throws InputError.

@@ -1,6 +1,8 @@
 #include "io/scene.hpp"
 
 #include "core/error.hpp"
+#include "io/bearing_csv.hpp"
+#include "io/fe_scene.hpp"
 #include "io/fluid_scene.hpp"
 #include "io/matrix_market.hpp"
 #include "io/toml_keys.hpp"
@@ -45,22 +47,24 @@ GyroscopicSystem gyrostat_from(const TomlKeys& k) {
     return make_gyrostat(p);
 }
 
-GyroscopicSystem matrices_from(const TomlKeys& k, const fs::path& dir) {
-    k.only({"type", "M", "K", "D", "G", "N", "unbalance", "dof_names", "whirl_pairs"});
+// A matrix model, read in sparse form. A circulatory N exists only in the dense
+// form, so it is returned separately.
+SparseGyroscopicSystem matrices_from(const TomlKeys& k, const fs::path& dir, Eigen::MatrixXd& N) {
+    k.only({"type", "M", "K", "D", "G", "N", "unbalance", "dof_names", "whirl_pairs", "bearings"});
     const auto path_of = [&](const std::string& key) -> std::optional<std::string> {
         if (!k.has(key)) return std::nullopt;
         const std::string rel = k.choice(key, "", {});
         return (dir / rel).string();
     };
-    GyroscopicSystem sys;
+    SparseGyroscopicSystem sys;
     const auto m = path_of("M"), kk = path_of("K");
     if (!m) throw InputError(k.where("M") + " is missing; required: path of a Matrix Market file");
     if (!kk) throw InputError(k.where("K") + " is missing; required: path of a Matrix Market file");
-    sys.M = read_matrix_market(*m);
-    sys.K = read_matrix_market(*kk);
-    if (auto d = path_of("D")) sys.damping.push_back({"D", read_matrix_market(*d)});
-    if (auto g = path_of("G")) sys.G = read_matrix_market(*g);
-    if (auto n = path_of("N")) sys.N = read_matrix_market(*n);
+    sys.M = read_matrix_market_sparse(*m);
+    sys.K = read_matrix_market_sparse(*kk);
+    if (auto d = path_of("D")) sys.D = read_matrix_market_sparse(*d);
+    if (auto g = path_of("G")) sys.G = read_matrix_market_sparse(*g);
+    if (auto n = path_of("N")) N = read_matrix_market(*n);
     if (auto u = path_of("unbalance")) sys.unbalance = read_matrix_market_vector(*u);
     const int n = static_cast<int>(sys.M.rows());
     if (const toml::array* names = k.table().get_as<toml::array>("dof_names")) {
@@ -92,6 +96,15 @@ GyroscopicSystem matrices_from(const TomlKeys& k, const fs::path& dir) {
         // Lateral DOFs usually come as (x, y) pairs.
         if (n % 2 == 0)
             for (int i = 0; i < n; i += 2) sys.whirl_pairs.emplace_back(i, i + 1);
+    }
+    if (k.has("bearings")) {
+        const toml::array* files = k.table().get_as<toml::array>("bearings");
+        if (!files) throw InputError(k.where("bearings") + " must be an array of CSV file paths");
+        for (const auto& e : *files) {
+            auto f = e.value<std::string>();
+            if (!f) throw InputError(k.where("bearings") + ": every entry must be a string (a CSV file path)");
+            sys.bearings.push_back(read_bearing_csv((dir / *f).string(), n));
+        }
     }
     return sys;
 }
@@ -128,18 +141,31 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
     top.only({"title", "model", "speeds", "analysis"});
     sc.title = top.choice("title", "", {});
     const toml::table* model = root.get_as<toml::table>("model");
-    if (!model) throw InputError(path + ": table [model] is missing; required: [model] with type = \"gyrostat\", \"matrices\" or \"fluid_rotor\"");
+    if (!model) throw InputError(path + ": table [model] is missing; required: [model] with type = \"gyrostat\", \"matrices\", \"fluid_rotor\" or \"fe_rotor\"");
     TomlKeys mk(path, "model", *model);
-    sc.model_type = mk.choice("type", "", {"gyrostat", "matrices", "fluid_rotor"});
-    if (sc.model_type.empty()) throw InputError(mk.where("type") + " is missing; allowed: fluid_rotor, gyrostat, matrices");
+    sc.model_type = mk.choice("type", "", {"gyrostat", "matrices", "fluid_rotor", "fe_rotor"});
+    if (sc.model_type.empty()) throw InputError(mk.where("type") + " is missing; allowed: fe_rotor, fluid_rotor, gyrostat, matrices");
+    const fs::path dir = fs::path(path).parent_path();
     if (sc.model_type == "fluid_rotor") {
         sc.fluid = fluid_rotor_from(mk);
         sc.system = make_fluid_rotor(build_fluid_rotor(*sc.fluid));
+    } else if (sc.model_type == "gyrostat") {
+        sc.system = gyrostat_from(mk);
     } else {
-        sc.system = sc.model_type == "gyrostat" ? gyrostat_from(mk)
-                                                : matrices_from(mk, fs::path(path).parent_path());
+        Eigen::MatrixXd N;
+        sc.sparse = sc.model_type == "fe_rotor" ? fe_rotor_from(mk, dir.string()) : matrices_from(mk, dir, N);
+        sc.sparse->validate(path);
+        if (N.size() > 0 && sc.sparse->size() > kDenseLimit)
+            throw InputError(fmt::format("{}: N (circulatory) is supported up to {} DOFs (dense models only); this "
+                                         "model has {}",
+                                         mk.where("N"), kDenseLimit, sc.sparse->size()));
+        if (sc.sparse->size() <= kDenseLimit) {
+            sc.system = sc.sparse->to_dense();
+            sc.system.N = N;
+            if (N.size() > 0) sc.sparse.reset();   // the sparse form cannot hold N
+        }
     }
-    sc.system.validate(path);
+    if (sc.has_dense()) sc.system.validate(path);
 
     if (const toml::table* sp = root.get_as<toml::table>("speeds")) {
         TomlKeys k(path, "speeds", *sp);
@@ -155,8 +181,10 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
     }
     if (const toml::table* an = root.get_as<toml::table>("analysis")) {
         TomlKeys k(path, "analysis", *an);
-        k.only({"modes", "harmonics"});
+        k.only({"modes", "harmonics", "solver", "target"});
         sc.modes = static_cast<int>(k.integer("modes", 0, 0, 100000));
+        sc.solver = k.choice("solver", "auto", {"auto", "dense", "sparse"});
+        if (k.has("target")) sc.target = k.number("target", std::nullopt, 0, false, "rad/s");
         if (const toml::array* h = an->get_as<toml::array>("harmonics")) {
             sc.harmonics.clear();
             for (const auto& e : *h) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "core/gyroscopic_system.hpp"
+#include "core/sparse_system.hpp"
 #include "core/speed_range.hpp"
 #include "models/fluid_rotor.hpp"
 
@@ -12,15 +13,27 @@
 
 namespace gyrokit {
 
+// Models up to this many DOFs are also held densely (for the dense solver and
+// the analyses only it offers); larger ones only in sparse form.
+constexpr int kDenseLimit = 3000;
+
 struct Scene {
     std::string path;                  // the file it was read from
     std::string title;
-    std::string model_type;            // "gyrostat" | "matrices" | "fluid_rotor"
-    GyroscopicSystem system;
+    std::string model_type;            // "gyrostat" | "matrices" | "fluid_rotor" | "fe_rotor"
+    GyroscopicSystem system;           // the dense model; empty (size 0) when only `sparse` exists
+    // The sparse model of "matrices" and "fe_rotor" scenes (other models: none;
+    // the sparse solver then works on their pencils converted per speed).
+    std::optional<SparseGyroscopicSystem> sparse;
+    std::string solver = "auto";       // [analysis] solver: auto | dense | sparse
+    std::optional<double> target;      // [analysis] target: frequency (rad/s) the sparse search centres on
     std::optional<SpeedRange> speeds;  // [speeds] from, to, count
     int modes = 0;                     // [analysis] modes (0 = all)
     std::vector<int> harmonics{1};     // [analysis] harmonics
     std::optional<FluidRotorParameters> fluid;   // set for [model] type = "fluid_rotor"
+
+    int dofs() const { return sparse ? sparse->size() : system.size(); }
+    bool has_dense() const { return system.size() > 0; }
 };
 
 // Reads and validates a scene. Every error is an InputError of one line naming

@@ -83,6 +83,7 @@ public:
         return *v;
     }
     const toml::table& table() const { return t_; }
+    const std::string& file() const { return file_; }
     std::string where(const std::string& key) const { return fmt::format("{}: [{}] {}", file_, table_, key); }
 
 private:

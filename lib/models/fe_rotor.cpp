@@ -266,25 +266,26 @@ SparsePencil FeRotorMatrices::at_speed(double w) const {
     return p;
 }
 
-GyroscopicSystem FeRotorMatrices::to_dense() const {
-    GyroscopicSystem s;
+SparseGyroscopicSystem FeRotorMatrices::to_system() const {
+    SparseGyroscopicSystem s;
     s.dof_names = dof_names;
-    s.M = Eigen::MatrixXd(M);
-    s.K = Eigen::MatrixXd(K);
-    s.G = Eigen::MatrixXd(G);
-    if (D.nonZeros() > 0) {
-        DampingComponent c;
-        c.name = "bearings";
-        c.D = Eigen::MatrixXd(D);
-        const double scale = c.D.cwiseAbs().maxCoeff();
-        if ((c.D - c.D.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
-            throw InputError("fe rotor: bearings: cross-coupled damping cxy != cyx makes D unsymmetric, which a "
-                             "GyroscopicSystem cannot hold; allowed: cxy = cyx (use the sparse matrices otherwise)");
-        s.damping.push_back(std::move(c));
-    }
+    s.M = M;
+    s.K = K;
+    s.G = G;
+    s.D = D;
+    s.damping_name = "bearings";
     if (unbalance.size() > 0 && unbalance.cwiseAbs().maxCoeff() > 0) s.unbalance = unbalance;
     s.whirl_pairs = whirl_pairs;
     return s;
+}
+
+GyroscopicSystem FeRotorMatrices::to_dense() const {
+    const Eigen::MatrixXd Dd(D);
+    const double scale = Dd.cwiseAbs().maxCoeff();
+    if ((Dd - Dd.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
+        throw InputError("fe rotor: bearings: cross-coupled damping cxy != cyx makes D unsymmetric, which a "
+                         "GyroscopicSystem cannot hold; allowed: cxy = cyx (use the sparse matrices otherwise)");
+    return to_system().to_dense();
 }
 
 FeRotor fe_uniform_shaft(double length, int count, double outer_diameter, double inner_diameter,

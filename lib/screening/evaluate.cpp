@@ -109,7 +109,8 @@ void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& 
             one = sys;
             // Constant damping: one component holding the total, so that the
             // Hautus test is not also run for every component.
-            const bool constant = std::none_of(sys.damping.begin(), sys.damping.end(),
+            const bool constant = sys.bearings.empty() &&
+                                  std::none_of(sys.damping.begin(), sys.damping.end(),
                                                [](const DampingComponent& d) { return bool(d.of_speed); });
             if (constant) {
                 DampingComponent total;
@@ -118,8 +119,8 @@ void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& 
                 one.damping = {total};
             }
         } else {
-            const bool present = std::any_of(sys.damping.begin(), sys.damping.end(),
-                                              [&](const DampingComponent& d) { return d.name == name; });
+            const std::vector<std::string> names = sys.damping_names();
+            const bool present = std::find(names.begin(), names.end(), name) != names.end();
             if (!present) {
                 if (s.op_from < first) first = s.op_from, lost_set = name + " (zero in this design)";
                 continue;

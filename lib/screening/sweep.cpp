@@ -225,14 +225,14 @@ void finalize_sweep(Sweep& s) {
                                              s.scene));
     }
     if (c.pervasive) {
-        if (base.system.damping.empty() && s.parameters.empty())
+        if (base.system.damping_names().empty() && s.parameters.empty())
             throw InputError(fmt::format("{}: [criteria.pervasive] needs damping, but scene {} has none", s.path,
                                          s.scene));
         for (const auto& d : c.pervasive->damping) {
             if (d == "total") continue;
             // A component may be zero in the base scene but switched on by a parameter.
-            const bool known = std::any_of(base.system.damping.begin(), base.system.damping.end(),
-                                           [&](const DampingComponent& x) { return x.name == d; }) ||
+            const std::vector<std::string> names = base.system.damping_names();
+            const bool known = std::find(names.begin(), names.end(), d) != names.end() ||
                                std::any_of(s.parameters.begin(), s.parameters.end(),
                                            [&](const SweepParameter& p) { return p.name == "model." + d; });
             if (!known)

@@ -1,0 +1,46 @@
+// Which eigensolver computes a model's spectrum at a speed: the dense scaled
+// QZ (all modes) or ARPACK shift-invert (a few modes near a target), behind one
+// interface so that Campbell tracking, critical speeds and stability run on
+// either. Solvers may keep state between calls (the sparse one starts ARPACK
+// from the last speed's eigenvectors), so every thread makes its own from a
+// factory.
+#pragma once
+
+#include "core/gyroscopic_system.hpp"
+#include "core/sparse_system.hpp"
+#include "eig/quadratic_eigensolver.hpp"
+#include "eig/sparse_eigensolver.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+using SpectrumSolver = std::function<QuadraticSpectrum(double w)>;
+using SolverFactory = std::function<SpectrumSolver()>;
+
+// All modes of the dense system by scaled QZ (or the state matrix, per `eig`).
+SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig = {});
+
+// `opt.modes` modes nearest the shift by ARPACK shift-invert on the pencils
+// `pencil(w)`. With `reuse`, each call after the first starts the Arnoldi
+// iteration from the previous speed's eigenvectors (fewer restarts when the
+// speed step is small).
+SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vector<std::pair<int, int>> whirl_pairs,
+                            const SparseEigenOptions& opt, bool reuse = true);
+SolverFactory sparse_solver(const SparseGyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse = true);
+// The dense model's pencils converted to sparse form per speed.
+SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse = true);
+
+// The spectra at all speeds, on `threads` threads (contiguous blocks of speeds,
+// so that reuse works within a block); `progress(done, total)` is called from
+// the workers, one call at a time.
+std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std::vector<double>& speeds,
+                                            int threads = 1,
+                                            const std::function<void(size_t, size_t)>& progress = {});
+
+// The ARPACK result as a spectrum of the dense interface.
+QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p);
+
+}  // namespace gyrokit

@@ -1,0 +1,44 @@
+// A bearing (or seal) whose stiffness and damping change with spin speed,
+// given as a table of coefficients against speed and acting between one DOF
+// pair (x, y) and the ground:
+//   force = -[kxx kxy; kyx kyy] (x, y) - [cxx cxy; cyx cyy] (x', y').
+// Between table speeds every coefficient is interpolated linearly; outside the
+// table the end row is held (constant extrapolation), and `covers` tells the
+// caller so that it can report it.
+#pragma once
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+struct BearingCoefficients {
+    Eigen::Matrix2d K = Eigen::Matrix2d::Zero();   // N/m
+    Eigen::Matrix2d C = Eigen::Matrix2d::Zero();   // N s/m
+};
+
+struct BearingTable {
+    std::string name;             // e.g. the CSV file it came from; names it in messages
+    int dof_x = 0, dof_y = 0;     // 0-based DOF indices of the model
+    std::vector<double> speeds;   // rad/s, strictly increasing, at least two
+    std::vector<BearingCoefficients> rows;   // one per speed
+    // false: only the stiffness acts (how a pervasive-damping check takes the
+    // other damping components alone).
+    bool damping_enabled = true;
+
+    // Coefficients at speed w (linear interpolation, end rows held outside).
+    BearingCoefficients at(double w) const;
+    // True if w lies inside [speeds.front(), speeds.back()].
+    bool covers(double w) const;
+    bool has_damping() const;
+
+    // Throws InputError naming the table, the item, the value and the allowed range.
+    void validate(int dofs) const;
+};
+
+// One line per table that the speed range leaves: "bearing table NAME covers A..B rad/s;
+// speeds outside hold the end values (from X to Y requested)". Empty if all are covered.
+std::vector<std::string> extrapolation_notes(const std::vector<BearingTable>& tables, double from, double to);
+
+}  // namespace gyrokit
