@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
+#include <thread>
 #include <unistd.h>
 
 namespace gyrokit::cli {
@@ -20,7 +21,53 @@ void add_common(CLI::App* c, Common& o, bool with_speeds) {
     if (with_speeds) c->add_option("--speeds", o.speeds, "speed range FROM:TO:N (overrides the scene's [speeds])");
 }
 
+void add_solver_options(CLI::App* c, Common& o) {
+    c->add_option("--solver", o.solver, "eigensolver: dense (all modes, scaled QZ), sparse (ARPACK shift-invert, a "
+                                        "few modes near --target) or auto (sparse above " +
+                                            std::to_string(kAutoSparseDofs) + " DOFs); default: the scene's, else auto");
+    c->add_option("--target", o.target, "frequency (in --units) the sparse search centres on; default 0: the lowest modes");
+    c->add_option("--lanczos", o.lanczos, "Lanczos (Arnoldi) vectors of the sparse solver; 0 = automatic");
+    c->add_option("--jobs", o.jobs, "threads for the speeds of a sweep; 0 = all cores");
+}
+
 TableFormat parse_format(const Common& o) { return parse_table_format(o.format); }
+
+bool use_sparse(const Context& c) {
+    return c.solver == "sparse" || !c.scene.has_dense() || (c.solver == "auto" && c.scene.dofs() > kAutoSparseDofs);
+}
+
+SolverPlan plan_solver(const Context& c, int modes) {
+    const Scene& sc = c.scene;
+    SolverPlan p;
+    const int n = sc.dofs();
+    p.sparse = use_sparse(c);
+    if (!p.sparse) {   // every mode; a target does not matter
+        p.modes = modes;
+        p.make = dense_solver(sc.system, c.eig);
+        return p;
+    }
+    if (c.solver == "dense" && !sc.has_dense())
+        throw InputError(fmt::format("{}: --solver dense: the model has {} DOFs, above the dense limit of {}; "
+                                     "allowed: --solver sparse or auto",
+                                     sc.path, n, kDenseLimit));
+    SparseEigenOptions so;
+    so.modes = modes > 0 ? modes : 6;
+    if (modes <= 0)
+        std::cerr << "note: the sparse solver computes " << so.modes
+                  << " modes near the target; set --modes K for another number\n";
+    so.shift = {0.0, c.target.value_or(0.0)};
+    so.lanczos_vectors = c.lanczos;
+    p.modes = so.modes;
+    p.make = sc.sparse ? sparse_solver(*sc.sparse, so) : sparse_solver(sc.system, so);
+    return p;
+}
+
+void require_dense(const Context& c, const std::string& command) {
+    if (!c.scene.has_dense())
+        throw InputError(fmt::format("{}: gyrokit {} needs the dense model, which exists up to {} DOFs; this model "
+                                     "has {}",
+                                     c.scene.path, command, kDenseLimit, c.scene.dofs()));
+}
 
 Context open_scene(const Common& o, bool need_speeds) {
     Context c;
@@ -28,7 +75,16 @@ Context open_scene(const Common& o, bool need_speeds) {
     c.unit = SpeedUnit::parse(o.units);
     c.eig.method = parse_eigen_method(o.method);
     check_plot_path(o.plot);
+    if (o.lanczos < 0) throw InputError(fmt::format("--lanczos {}: allowed: 0 (automatic) or a count", o.lanczos));
+    if (o.jobs < 0) throw InputError(fmt::format("--jobs {}: allowed: 0 (all cores) or a count", o.jobs));
+    if (!o.solver.empty() && o.solver != "auto" && o.solver != "dense" && o.solver != "sparse")
+        throw InputError("--solver '" + o.solver + "': allowed: auto, dense, sparse");
+    c.lanczos = o.lanczos;
+    c.jobs = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     c.scene = load_scene(o.scene);
+    c.solver = o.solver.empty() ? c.scene.solver : o.solver;
+    if (!o.target.empty()) c.target = parse_speed(o.target, "--target", c.unit);
+    else c.target = c.scene.target;
     if (!o.speeds.empty()) {
         c.speeds = SpeedRange::parse(o.speeds, "--speeds", c.unit.factor).points();
     } else if (c.scene.speeds) {

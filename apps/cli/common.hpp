@@ -2,6 +2,7 @@
 // parsing of speeds and harmonics, plotting.
 #pragma once
 
+#include "analysis/spectrum_solver.hpp"
 #include "core/speed_range.hpp"
 #include "eig/quadratic_eigensolver.hpp"
 #include "io/plot.hpp"
@@ -10,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -25,9 +27,14 @@ struct Command {
 // Options every scene command shares.
 struct Common {
     std::string scene, format = "table", units = "rad/s", speeds, method = "qz", plot;
+    // Solver choice (eig, campbell, critical, stability, response).
+    std::string solver, target;
+    int lanczos = 0, jobs = 0;
 };
 
 void add_common(CLI::App* c, Common& o, bool with_speeds);
+// --solver, --target, --lanczos, --jobs.
+void add_solver_options(CLI::App* c, Common& o);
 
 struct Context {
     Scene scene;
@@ -35,7 +42,25 @@ struct Context {
     SpeedUnit unit;
     EigenOptions eig;
     std::vector<double> speeds;
+    std::string solver;          // "dense" | "sparse" | "auto" (from --solver, else the scene)
+    std::optional<double> target;   // rad/s
+    int lanczos = 0, jobs = 1;
 };
+
+// The solver a command runs with: resolved from --solver/--target and the
+// model's size; `modes` is the number of modes wanted (0: all, dense only).
+struct SolverPlan {
+    bool sparse = false;
+    int modes = 0;            // for the sparse solver: the window size
+    SolverFactory make;
+};
+// auto: sparse above kAutoSparseDofs DOFs (or when the model is sparse-only), else dense.
+constexpr int kAutoSparseDofs = 400;
+SolverPlan plan_solver(const Context& c, int modes);
+// Whether the plan is sparse (the rule of plan_solver, without building a solver).
+bool use_sparse(const Context& c);
+// Throws InputError naming `command` when the model has no dense form.
+void require_dense(const Context& c, const std::string& command);
 
 // Validates the options (before any work) and loads the scene.
 Context open_scene(const Common& o, bool need_speeds);

@@ -20,18 +20,44 @@ namespace {
 // Option values of the rotor commands; one instance lives as long as the app.
 struct Options {
     Common common;
-    std::string speed, dir, harmonics, critical_method = "branches";
+    std::string speed, dir, harmonics, critical_method = "branches", dofs;
     int modes = -1;
     double tolerance = 1e-8;
     bool extrema = false;
 };
 
-CampbellOptions campbell_options(const Context& c, int modes) {
+int wanted_modes(const Context& c, int modes) { return modes >= 0 ? modes : c.scene.modes; }
+
+CampbellOptions campbell_options(const Context& c, const SolverPlan& plan) {
     CampbellOptions co;
     co.eig = c.eig;
-    co.modes = modes >= 0 ? modes : c.scene.modes;
+    co.modes = plan.modes;
+    co.threads = c.jobs;
     co.progress = progress_bar("speeds");
     return co;
+}
+
+void note_extrapolation(const Context& c) {
+    if (c.speeds.empty()) return;
+    const auto& b = c.scene.sparse ? c.scene.sparse->bearings : c.scene.system.bearings;
+    for (const auto& n : extrapolation_notes(b, c.speeds.front(), c.speeds.back())) std::cerr << "note: " << n << "\n";
+}
+
+// DOF indices from a list of names (empty: all).
+std::vector<int> parse_dofs(const std::string& text, const std::vector<std::string>& names) {
+    std::vector<int> out;
+    size_t start = 0;
+    while (!text.empty() && start <= text.size()) {
+        const size_t end = std::min(text.find(',', start), text.size());
+        const std::string name = text.substr(start, end - start);
+        const auto it = std::find(names.begin(), names.end(), name);
+        if (it == names.end())
+            throw InputError(fmt::format("--dofs: '{}' is not a DOF of the model; allowed: names such as {}", name,
+                                         names.empty() ? std::string("-") : names.front()));
+        out.push_back(static_cast<int>(it - names.begin()));
+        start = end + 1;
+    }
+    return out;
 }
 
 void note_ambiguity(const CampbellDiagram& cd) {
@@ -48,31 +74,38 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
 
     auto* eig = app.add_subcommand("eig", "all eigenvalues at one speed");
     add_common(eig, o->common, false);
+    add_solver_options(eig, o->common);
     eig->add_option("--speed", o->speed, "spin speed (in --units)")->required();
+    eig->add_option("--modes", o->modes, "sparse solver: number of modes near --target (default: the scene's, else 6)");
     cmds.push_back({eig, [o](std::ostream& out) {
         const Context c = open_scene(o->common, false);
         const double w = parse_speed(o->speed, "--speed", c.unit);
-        write_table(out, eig_table(solve_at_speed(c.scene.system, w, c.eig), w, c.unit), c.format);
+        const SolverPlan plan = plan_solver(c, wanted_modes(c, o->modes));
+        write_table(out, eig_table(plan.make()(w), w, c.unit), c.format);
     }});
 
     auto* camp = app.add_subcommand("campbell", "modes tracked over speed (Campbell diagram)");
     add_common(camp, o->common, true);
-    camp->add_option("--modes", o->modes, "number of modes to track: the K lowest by frequency (0 = all)");
+    add_solver_options(camp, o->common);
+    camp->add_option("--modes", o->modes, "number of modes to track: the K lowest by frequency (0 = all; sparse: "
+                                          "the K nearest --target, default 6)");
     camp->add_option("--plot", o->common.plot, "draw the diagram into FILE.svg or FILE.png");
     camp->add_option("--harmonics", o->harmonics, "harmonic lines drawn, e.g. 1,2 (default: the scene's, else 1)");
     cmds.push_back({camp, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
         const auto h = parse_harmonics(o->harmonics, c.scene.harmonics);
-        const CampbellDiagram cd = campbell(c.scene.system, c.speeds, campbell_options(c, o->modes));
+        const SolverPlan plan = plan_solver(c, wanted_modes(c, o->modes));
+        note_extrapolation(c);
+        const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
         write_table(out, campbell_table(cd, c.unit), c.format);
         if (!o->common.plot.empty())
-            plot_if(o->common.plot, campbell_figure(cd, critical_speeds(c.scene.system, cd, h, c.eig), h, c.unit,
-                                                    c.scene.title));
+            plot_if(o->common.plot, campbell_figure(cd, critical_speeds(plan.make, cd, h), h, c.unit, c.scene.title));
         note_ambiguity(cd);
     }});
 
     auto* crit = app.add_subcommand("critical", "critical speeds: crossings with the k x speed lines");
     add_common(crit, o->common, true);
+    add_solver_options(crit, o->common);
     crit->add_option("--harmonics", o->harmonics, "harmonics k, e.g. 1,2 (default: the scene's, else 1)");
     crit->add_option("--modes", o->modes, "number of modes considered (0 = all)");
     crit->add_option("--critical-method", o->critical_method,
@@ -85,14 +118,17 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         const auto h = parse_harmonics(o->harmonics, c.scene.harmonics);
         std::vector<CriticalSpeed> cs;
         if (o->critical_method == "direct") {
+            require_dense(c, "critical --critical-method direct");
             for (int k : h) {
                 auto d = critical_speeds_direct(c.scene.system, k, c.speeds.front(), c.speeds.back());
                 cs.insert(cs.end(), d.begin(), d.end());
             }
             std::sort(cs.begin(), cs.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
         } else {
-            const CampbellDiagram cd = campbell(c.scene.system, c.speeds, campbell_options(c, o->modes));
-            cs = critical_speeds(c.scene.system, cd, h, c.eig);
+            const SolverPlan plan = plan_solver(c, wanted_modes(c, o->modes));
+            note_extrapolation(c);
+            const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
+            cs = critical_speeds(plan.make, cd, h);
             note_ambiguity(cd);
         }
         write_table(out, critical_table(cs, c.unit), c.format);
@@ -100,10 +136,14 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
 
     auto* stab = app.add_subcommand("stability", "speeds where a mode becomes unstable or stable again");
     add_common(stab, o->common, true);
+    add_solver_options(stab, o->common);
+    stab->add_option("--modes", o->modes, "number of modes considered (0 = all; sparse: default 6)");
     cmds.push_back({stab, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
-        const CampbellDiagram cd = campbell(c.scene.system, c.speeds, campbell_options(c, 0));
-        write_table(out, stability_table(stability_changes(c.scene.system, cd, c.eig), c.unit), c.format);
+        const SolverPlan plan = plan_solver(c, std::max(0, o->modes));
+        note_extrapolation(c);
+        const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
+        write_table(out, stability_table(stability_changes(plan.make, cd), c.unit), c.format);
     }});
 
     auto* perv = app.add_subcommand("pervasive", "Hautus pervasive-damping check for each damping component");
@@ -114,22 +154,32 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         if (!(o->tolerance > 0.0 && o->tolerance < 1.0))
             throw InputError(fmt::format("--tolerance {}: allowed: 0 < tolerance < 1", o->tolerance));
         const Context c = open_scene(o->common, true);
+        require_dense(c, "pervasive");
         write_table(out, pervasive_table(pervasive_damping(c.scene.system, c.speeds, {o->tolerance}), c.unit),
                     c.format);
     }});
 
     auto* resp = app.add_subcommand("response", "unbalance response: amplitude and phase per DOF");
     add_common(resp, o->common, true);
+    add_solver_options(resp, o->common);
     resp->add_option("--plot", o->common.plot, "draw amplitude and phase into FILE.svg or FILE.png");
+    resp->add_option("--dofs", o->dofs, "DOFs reported, by name, e.g. x3,y3 (default: all)");
     resp->add_flag("--extrema", o->extrema, "print the peaks and antiresonances instead of the curve");
     cmds.push_back({resp, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
-        const ResponseCurve rc = unbalance_response(c.scene.system, c.speeds);
+        const Scene& sc = c.scene;
+        // The sparse LU of the dynamic stiffness where the plan is sparse and a sparse model exists.
+        const bool sparse = use_sparse(c) && sc.sparse;
+        const std::vector<std::string>& names = sparse ? sc.sparse->dof_names : sc.system.dof_names;
+        const ResponseSolver solve = sparse ? ResponseSolver([&](double w) { return unbalance_response(*sc.sparse, w); })
+                                            : ResponseSolver([&](double w) { return unbalance_response(sc.system, w); });
+        note_extrapolation(c);
+        const ResponseCurve rc = unbalance_response(solve, sc.dofs(), c.speeds, parse_dofs(o->dofs, names));
         if (o->extrema)
-            write_table(out, extrema_table(c.scene.system, response_extrema(c.scene.system, rc), c.unit), c.format);
+            write_table(out, extrema_table(names, response_extrema(solve, rc), c.unit), c.format);
         else
-            write_table(out, response_table(c.scene.system, rc, c.unit), c.format);
-        plot_if(o->common.plot, response_figure(c.scene.system, rc, c.unit, c.scene.title));
+            write_table(out, response_table(names, rc, c.unit), c.format);
+        plot_if(o->common.plot, response_figure(names, rc, c.unit, sc.title));
     }});
 
     auto* exp = app.add_subcommand("export", "M, D, G, K, N and the state matrices as Matrix Market");
@@ -138,6 +188,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     exp->add_option("--dir", o->dir, "output directory (created if missing)")->required();
     cmds.push_back({exp, [o](std::ostream&) {
         const Context c = open_scene(o->common, false);
+        require_dense(c, "export");
         const double w = parse_speed(o->speed, "--speed", c.unit);
         export_matrices(c.scene.system, w, o->dir);
         std::cerr << "wrote the matrices at " << c.unit.factor * w << " " << c.unit.name << " into " << o->dir

@@ -124,6 +124,9 @@ struct Tracker {
             return;
         }
         if (ambiguous) ++out.ambiguous_steps;
+        if (ambiguous && window)   // a mode that left the window ends its branch; its successor starts one
+            for (size_t i = 0; i < a.size(); ++i)
+                if (a[i] >= 0 && mac(prev[i].right, s1.modes[static_cast<size_t>(a[i])].right) < opt.mac_min) a[i] = -1;
         append(w1, std::move(s1), a);
     }
 };
@@ -158,7 +161,15 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
         }
         return false;
     });
-    if (opt.modes > 0 && static_cast<int>(br.size()) > opt.modes) br.resize(static_cast<size_t>(opt.modes));
+    if (opt.modes > 0 && !t.window && static_cast<int>(br.size()) > opt.modes) br.resize(static_cast<size_t>(opt.modes));
+    if (t.window) {   // the window's branches: those of the first speed, then the ones that entered later
+        const auto first = std::stable_partition(br.begin(), br.end(), [&](const Branch& b) {
+            return b.points.front().speed == speeds.front();
+        });
+        std::stable_sort(first, br.end(), [](const Branch& a, const Branch& b) {
+            return a.points.front().speed < b.points.front().speed;
+        });
+    }
     for (size_t i = 0; i < br.size(); ++i) br[i].id = static_cast<int>(i + 1);
     return out;
 }

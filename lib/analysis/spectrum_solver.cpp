@@ -10,10 +10,16 @@
 #include <mutex>
 #include <thread>
 
+#include <cstdio>
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 namespace gyrokit {
 
 SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig) {
-    return [&sys, eig]() -> SpectrumSolver { return [&sys, eig](double w) { return solve_at_speed(sys, w, eig); }; };
+    return {[&sys, eig]() -> SpectrumSolver { return [&sys, eig](double w) { return solve_at_speed(sys, w, eig); }; },
+            true};
 }
 
 QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p) {
@@ -28,7 +34,9 @@ QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p) {
 
 SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vector<std::pair<int, int>> whirl_pairs,
                             const SparseEigenOptions& opt, bool reuse) {
-    return [pencil, whirl_pairs, opt, reuse]() -> SpectrumSolver {
+    SolverFactory f;
+    f.thread_safe = false;
+    f.make = [pencil, whirl_pairs, opt, reuse]() -> SpectrumSolver {
         // The state vectors [lambda x; x] of the last speed's modes, summed: a
         // start vector rich in the wanted invariant subspace.
         auto start = std::make_shared<Eigen::VectorXcd>();
@@ -38,17 +46,26 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
             if (reuse) o.start = *start;
             SparseSpectrum s = solve_quadratic_sparse(p, o, whirl_pairs);
             if (reuse && !s.modes.empty()) {
+                // Real and imaginary parts of [lambda x; x] span each mode and its
+                // conjugate (ARPACK wants both); a small random part keeps the
+                // Krylov space from closing on them before it holds all it needs.
                 const Eigen::Index n = p.M.rows();
                 Eigen::VectorXcd v = Eigen::VectorXcd::Zero(2 * n);
                 for (const Mode& m : s.modes) {
-                    v.head(n) += m.lambda * m.right / std::max(1.0, std::abs(m.lambda));
-                    v.tail(n) += m.right / std::max(1.0, std::abs(m.lambda));
+                    Eigen::VectorXcd z(2 * n);
+                    z.head(n) = m.lambda / std::max(1.0, std::abs(m.lambda)) * m.right;
+                    z.tail(n) = m.right / std::max(1.0, std::abs(m.lambda));
+                    z /= z.norm();
+                    v += z.real().cast<std::complex<double>>() + z.imag().cast<std::complex<double>>();
                 }
-                *start = v;
+                v /= v.norm();
+                Eigen::VectorXcd r = Eigen::VectorXcd::Random(2 * n);
+                *start = v + 0.01 * r / r.norm();
             }
             return to_spectrum(std::move(s), p);
         };
     };
+    return f;
 }
 
 SolverFactory sparse_solver(const SparseGyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse) {
@@ -58,6 +75,139 @@ SolverFactory sparse_solver(const SparseGyroscopicSystem& sys, const SparseEigen
 SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse) {
     return sparse_solver([&sys](double w) { return to_sparse(sys.at_speed(w)); }, sys.whirl_pairs, opt, reuse);
 }
+
+namespace {
+
+// Spectra through a file: the worker process writes, the parent reads.
+template <class T>
+void put(std::FILE* f, const T& v) {
+    if (std::fwrite(&v, sizeof(T), 1, f) != 1) throw Error("cannot write a worker's result file");
+}
+template <class T>
+T get(std::FILE* f) {
+    T v{};
+    if (std::fread(&v, sizeof(T), 1, f) != 1) throw Error("a worker's result file ended early");
+    return v;
+}
+
+void put_vector(std::FILE* f, const Eigen::VectorXcd& v) {
+    put<long long>(f, v.size());
+    if (v.size() && std::fwrite(v.data(), sizeof(std::complex<double>), static_cast<size_t>(v.size()), f) !=
+                        static_cast<size_t>(v.size()))
+        throw Error("cannot write a worker's result file");
+}
+Eigen::VectorXcd get_vector(std::FILE* f) {
+    Eigen::VectorXcd v(get<long long>(f));
+    if (v.size() && std::fread(v.data(), sizeof(std::complex<double>), static_cast<size_t>(v.size()), f) !=
+                        static_cast<size_t>(v.size()))
+        throw Error("a worker's result file ended early");
+    return v;
+}
+
+void put_spectrum(std::FILE* f, const QuadraticSpectrum& s) {
+    put<long long>(f, static_cast<long long>(s.modes.size()));
+    for (const Mode& m : s.modes) {
+        put(f, m.lambda);
+        put(f, m.backward_error);
+        put(f, static_cast<int>(m.whirl));
+        put_vector(f, m.right);
+        put_vector(f, m.left);
+    }
+    put(f, s.infinite_count);
+    put(f, s.scale);
+    put(f, s.real_tol);
+    put(f, s.partial);
+}
+QuadraticSpectrum get_spectrum(std::FILE* f) {
+    QuadraticSpectrum s;
+    s.modes.resize(static_cast<size_t>(get<long long>(f)));
+    for (Mode& m : s.modes) {
+        m.lambda = get<std::complex<double>>(f);
+        m.backward_error = get<double>(f);
+        m.whirl = static_cast<Whirl>(get<int>(f));
+        m.right = get_vector(f);
+        m.left = get_vector(f);
+    }
+    s.infinite_count = get<int>(f);
+    s.scale = get<double>(f);
+    s.real_tol = get<double>(f);
+    s.partial = get<bool>(f);
+    return s;
+}
+
+// Blocks of speeds in forked workers. A worker writes 1 + its spectra, or 0 +
+// the error kind (1 input, 2 solver, 3 other) + message, to its file.
+std::vector<QuadraticSpectrum> solve_in_processes(const SolverFactory& make, const std::vector<double>& speeds,
+                                                  size_t workers,
+                                                  const std::function<void(size_t, size_t)>& progress) {
+    const size_t n = speeds.size();
+    // A counter all workers share, for the progress bar.
+    void* shared = mmap(nullptr, sizeof(std::atomic<size_t>), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (shared == MAP_FAILED) throw Error("cannot map memory for the worker processes");
+    auto* done = new (shared) std::atomic<size_t>(0);
+    std::vector<std::FILE*> files;
+    std::vector<pid_t> pids;
+    std::fflush(nullptr);
+    for (size_t k = 0; k < workers; ++k) {
+        std::FILE* f = std::tmpfile();
+        if (!f) throw Error("cannot create a temporary file for a worker process");
+        const pid_t pid = fork();
+        if (pid < 0) throw Error("cannot start a worker process (fork failed)");
+        if (pid == 0) {
+            int status = 0;
+            try {
+                SpectrumSolver solve = make();
+                std::vector<QuadraticSpectrum> part;
+                for (size_t i = k * n / workers; i < (k + 1) * n / workers; ++i) {
+                    part.push_back(solve(speeds[i]));
+                    const size_t d = ++*done;
+                    if (progress) progress(d, n);
+                }
+                put<char>(f, 1);
+                for (const auto& s : part) put_spectrum(f, s);
+            } catch (const std::exception& e) {
+                const int kind = dynamic_cast<const InputError*>(&e) ? 1 : dynamic_cast<const SolverError*>(&e) ? 2 : 3;
+                const std::string what = e.what();
+                put<char>(f, 0);
+                put(f, kind);
+                put<long long>(f, static_cast<long long>(what.size()));
+                std::fwrite(what.data(), 1, what.size(), f);
+                status = 1;
+            }
+            std::fflush(f);
+            _exit(status);
+        }
+        files.push_back(f);
+        pids.push_back(pid);
+    }
+    for (pid_t pid : pids) waitpid(pid, nullptr, 0);
+    munmap(shared, sizeof(std::atomic<size_t>));
+    std::vector<QuadraticSpectrum> out(n);
+    std::exception_ptr failure;
+    for (size_t k = 0; k < workers; ++k) {
+        std::FILE* f = files[k];
+        try {
+            std::rewind(f);
+            if (get<char>(f) == 1) {
+                for (size_t i = k * n / workers; i < (k + 1) * n / workers; ++i) out[i] = get_spectrum(f);
+            } else {
+                const int kind = get<int>(f);
+                std::string what(static_cast<size_t>(get<long long>(f)), ' ');
+                if (std::fread(what.data(), 1, what.size(), f) != what.size()) throw Error("a worker's result file ended early");
+                if (kind == 1) throw InputError(what);
+                if (kind == 2) throw SolverError(what);
+                throw Error(what);
+            }
+        } catch (...) {
+            if (!failure) failure = std::current_exception();
+        }
+        std::fclose(f);
+    }
+    if (failure) std::rethrow_exception(failure);
+    return out;
+}
+
+}  // namespace
 
 std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std::vector<double>& speeds, int threads,
                                             const std::function<void(size_t, size_t)>& progress) {
@@ -87,6 +237,7 @@ std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std
             if (!failure) failure = std::current_exception();
         }
     };
+    if (t > 1 && !make.thread_safe) return solve_in_processes(make, speeds, t, progress);
     if (t == 1) {
         work(0, n);
     } else {

@@ -18,7 +18,15 @@
 namespace gyrokit {
 
 using SpectrumSolver = std::function<QuadraticSpectrum(double w)>;
-using SolverFactory = std::function<SpectrumSolver()>;
+
+struct SolverFactory {
+    std::function<SpectrumSolver()> make;
+    // ARPACK keeps its iteration state in Fortran SAVE variables, so two
+    // ARPACK runs must not share a process: such solvers run in parallel in
+    // worker processes instead of threads.
+    bool thread_safe = true;
+    SpectrumSolver operator()() const { return make(); }
+};
 
 // All modes of the dense system by scaled QZ (or the state matrix, per `eig`).
 SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig = {});
@@ -33,9 +41,10 @@ SolverFactory sparse_solver(const SparseGyroscopicSystem& sys, const SparseEigen
 // The dense model's pencils converted to sparse form per speed.
 SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse = true);
 
-// The spectra at all speeds, on `threads` threads (contiguous blocks of speeds,
-// so that reuse works within a block); `progress(done, total)` is called from
-// the workers, one call at a time.
+// The spectra at all speeds, on `threads` workers (contiguous blocks of speeds,
+// so that reuse works within a block): threads, or forked processes that hand
+// back their spectra through temporary files when the solver is not thread
+// safe. `progress(done, total)` is called from the workers, one call at a time.
 std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std::vector<double>& speeds,
                                             int threads = 1,
                                             const std::function<void(size_t, size_t)>& progress = {});

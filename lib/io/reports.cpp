@@ -77,23 +77,24 @@ Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u) {
     return t;
 }
 
-Table response_table(const GyroscopicSystem& sys, const ResponseCurve& c, const SpeedUnit& u) {
+Table response_table(const std::vector<std::string>& names, const ResponseCurve& c, const SpeedUnit& u) {
     Table t({"speed", "dof", "amplitude", "phase"});
     t.title = "unbalance response z = Re(Z e^{i w t}); amplitude |Z| in the DOF's unit, phase arg Z in degrees";
     for (size_t i = 0; i < c.speeds.size(); ++i)
-        for (int k = 0; k < sys.size(); ++k) {
-            const auto z = c.Z(static_cast<Eigen::Index>(i), k);
-            t.add_row({u.factor * c.speeds[i], sys.dof_names[static_cast<size_t>(k)], std::abs(z),
+        for (size_t k = 0; k < c.dofs.size(); ++k) {
+            const auto z = c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k));
+            t.add_row({u.factor * c.speeds[i], names[static_cast<size_t>(c.dofs[k])], std::abs(z),
                        std::abs(z) == 0.0 ? 0.0 : std::arg(z) * 180.0 / M_PI});
         }
     return t;
 }
 
-Table extrema_table(const GyroscopicSystem& sys, const std::vector<ResponseExtremum>& e, const SpeedUnit& u) {
+Table extrema_table(const std::vector<std::string>& names, const std::vector<ResponseExtremum>& e,
+                    const SpeedUnit& u) {
     Table t({"dof", "kind", "speed", "amplitude"});
     t.title = "response peaks and antiresonances";
     for (const auto& x : e)
-        t.add_row({sys.dof_names[static_cast<size_t>(x.dof)], std::string(x.peak ? "peak" : "antiresonance"),
+        t.add_row({names[static_cast<size_t>(x.dof)], std::string(x.peak ? "peak" : "antiresonance"),
                    u.factor * x.speed, x.amplitude});
     return t;
 }
@@ -150,17 +151,17 @@ Figure campbell_figure(const CampbellDiagram& cd, const std::vector<CriticalSpee
     return f;
 }
 
-Figure response_figure(const GyroscopicSystem& sys, const ResponseCurve& c, const SpeedUnit& u,
+Figure response_figure(const std::vector<std::string>& names, const ResponseCurve& c, const SpeedUnit& u,
                        const std::string& title) {
     Figure f;
     f.title = title.empty() ? "Unbalance response" : title;
     Panel amp{speed_label(u), "amplitude |Z|", "", true, {}, {}, {}, {}, {}};
     Panel ph{speed_label(u), "phase [deg]", "", false, {}, -180.0, 180.0, {}, {}};
-    for (int k = 0; k < sys.size(); ++k) {
+    for (size_t k = 0; k < c.dofs.size(); ++k) {
         Series a, p;
-        a.label = sys.dof_names[static_cast<size_t>(k)];
+        a.label = names[static_cast<size_t>(c.dofs[k])];
         for (size_t i = 0; i < c.speeds.size(); ++i) {
-            const auto z = c.Z(static_cast<Eigen::Index>(i), k);
+            const auto z = c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k));
             a.x.push_back(u.factor * c.speeds[i]);
             a.y.push_back(std::abs(z));
             p.x.push_back(a.x.back());

@@ -17,15 +17,16 @@ Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u);
 Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u);
 Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u);
 Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u);
-Table response_table(const GyroscopicSystem& sys, const ResponseCurve& c, const SpeedUnit& u);
-Table extrema_table(const GyroscopicSystem& sys, const std::vector<ResponseExtremum>& e, const SpeedUnit& u);
+Table response_table(const std::vector<std::string>& dof_names, const ResponseCurve& c, const SpeedUnit& u);
+Table extrema_table(const std::vector<std::string>& dof_names, const std::vector<ResponseExtremum>& e,
+                    const SpeedUnit& u);
 
 // Frequencies against speed with the harmonic lines and critical speeds, forward
 // whirl solid red, backward dashed blue; damping ratio in a second panel.
 Figure campbell_figure(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& cs,
                        const std::vector<int>& harmonics, const SpeedUnit& u, const std::string& title);
 // Amplitude (log) and phase per DOF against speed.
-Figure response_figure(const GyroscopicSystem& sys, const ResponseCurve& c, const SpeedUnit& u,
+Figure response_figure(const std::vector<std::string>& dof_names, const ResponseCurve& c, const SpeedUnit& u,
                        const std::string& title);
 
 }  // namespace gyrokit

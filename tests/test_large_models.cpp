@@ -1,0 +1,228 @@
+// Large-model path: bearing tables (interpolation, input errors), sparse matrix
+// scenes and finite-element scenes, the sparse solver behind Campbell tracking
+// (agreement with dense QZ, worker processes, start-vector reuse).
+#include "analysis/campbell.hpp"
+#include "analysis/critical_speeds.hpp"
+#include "analysis/spectrum_solver.hpp"
+#include "analysis/unbalance_response.hpp"
+#include "core/error.hpp"
+#include "io/bearing_csv.hpp"
+#include "io/matrix_market.hpp"
+#include "io/scene.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+
+using namespace gyrokit;
+
+namespace {
+
+std::string data(const std::string& name) { return std::string(GYROKIT_DATA_DIR) + "/" + name; }
+
+std::string write_temp(const std::string& name, const std::string& text) {
+    const std::string path = "/tmp/gyrokit_test_" + name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+const char* kHeader = "speed,dof_x,dof_y,kxx,kxy,kyx,kyy,cxx,cxy,cyx,cyy\n";
+
+// The input error message of f(), or "" if it does not throw one.
+template <class F>
+std::string input_error(const F& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// Relative difference of each eigenvalue of `a` to the nearest in `b`.
+double max_nearest(const std::vector<Mode>& a, const std::vector<Mode>& b) {
+    double worst = 0.0;
+    for (const Mode& m : a) {
+        double best = INFINITY;
+        for (const Mode& n : b) best = std::min(best, std::abs(m.lambda - n.lambda) / std::abs(n.lambda));
+        worst = std::max(worst, best);
+    }
+    return worst;
+}
+
+}  // namespace
+
+TEST_CASE("bearing table: linear interpolation, end rows held, extrapolation reported", "[bearings]") {
+    // An extra first column (ignored) and a comment line.
+    const std::string path = write_temp("b1.csv", std::string("# comment\n") + "label," + kHeader +
+                                                      "a,100,2,3,1e7,1e5,-1e5,2e7,100,1,1,200\n"
+                                                      "b,300,2,3,3e7,3e5,-3e5,4e7,300,3,3,400\n");
+    const BearingTable t = read_bearing_csv(path, 10);
+    CHECK(t.dof_x == 2);
+    CHECK(t.dof_y == 3);
+    REQUIRE(t.speeds == std::vector<double>{100, 300});
+    const BearingCoefficients mid = t.at(150.0);   // a quarter of the way
+    CHECK(mid.K(0, 0) == Approx(1.5e7).epsilon(1e-15));
+    CHECK(mid.K(0, 1) == Approx(1.5e5).epsilon(1e-15));
+    CHECK(mid.K(1, 0) == Approx(-1.5e5).epsilon(1e-15));
+    CHECK(mid.C(1, 1) == Approx(250.0).epsilon(1e-15));
+    CHECK(t.at(100.0).K(1, 1) == 2e7);            // exact at table speeds
+    CHECK(t.at(0.0).K(0, 0) == 1e7);              // held below
+    CHECK(t.at(1e4).K(0, 0) == 3e7);              // held above
+    CHECK(t.covers(200.0));
+    CHECK_FALSE(t.covers(50.0));
+    CHECK(extrapolation_notes({t}, 100.0, 300.0).empty());
+    REQUIRE(extrapolation_notes({t}, 0.0, 500.0).size() == 1);
+    CHECK(extrapolation_notes({t}, 0.0, 500.0)[0].find("covers 100 to 300 rad/s") != std::string::npos);
+}
+
+TEST_CASE("bearing table: bad tables give one clear error", "[bearings]") {
+    const auto err = [](const std::string& name, const std::string& body, int dofs = 10) {
+        return input_error([&] { read_bearing_csv(write_temp(name, body), dofs); });
+    };
+    CHECK(err("one.csv", std::string(kHeader) + "100,0,1,1,0,0,1,0,0,0,0\n").find("at least 2 rows") !=
+          std::string::npos);
+    CHECK(err("unsorted.csv", std::string(kHeader) + "200,0,1,1,0,0,1,0,0,0,0\n100,0,1,1,0,0,1,0,0,0,0\n")
+              .find("strictly increasing") != std::string::npos);
+    CHECK(err("range.csv", std::string(kHeader) + "100,0,12,1,0,0,1,0,0,0,0\n200,0,12,1,0,0,1,0,0,0,0\n")
+              .find("dof_y = 12 is out of range; allowed: a whole number from 0 to 9") != std::string::npos);
+    CHECK(err("column.csv", "speed,dof_x,dof_y,kxx\n1,0,1,2\n").find("no column 'kxy'") != std::string::npos);
+    CHECK(err("nan.csv", std::string(kHeader) + "100,0,1,abc,0,0,1,0,0,0,0\n").find("kxx = 'abc'") !=
+          std::string::npos);
+    CHECK(err("pair.csv", std::string(kHeader) + "100,0,1,1,0,0,1,0,0,0,0\n200,2,3,1,0,0,1,0,0,0,0\n")
+              .find("one DOF pair per table") != std::string::npos);
+    CHECK(input_error([] { read_bearing_csv("/nonexistent/b.csv", 4); }).find("not found") != std::string::npos);
+}
+
+TEST_CASE("sparse Matrix Market reader equals the dense one", "[bearings][matrix_market]") {
+    const std::vector<std::string> files = {
+        "%%MatrixMarket matrix coordinate real symmetric\n3 3 4\n1 1 2.5\n2 1 -1\n3 3 4\n3 2 0.5\n",
+        "%%MatrixMarket matrix coordinate real skew-symmetric\n3 3 2\n2 1 1.5\n3 1 -2\n",
+        "%%MatrixMarket matrix coordinate real general\n2 3 3\n1 3 7\n2 1 -3\n2 2 0\n",
+        "%%MatrixMarket matrix array real general\n2 2\n1\n2\n3\n4\n"};
+    for (size_t i = 0; i < files.size(); ++i) {
+        const std::string path = write_temp("mm" + std::to_string(i) + ".mtx", files[i]);
+        const Eigen::MatrixXd A = read_matrix_market(path);
+        const Eigen::MatrixXd B(read_matrix_market_sparse(path));
+        REQUIRE(A.rows() == B.rows());
+        REQUIRE(A.cols() == B.cols());
+        CHECK((A - B).cwiseAbs().maxCoeff() == 0.0);
+    }
+    CHECK(input_error([&] {
+              read_matrix_market_sparse(write_temp("mmdup.mtx", "%%MatrixMarket matrix coordinate real general\n"
+                                                                "2 2 2\n1 1 1\n1 1 2\n"));
+          }).find("repeats the entry on line") != std::string::npos);
+}
+
+TEST_CASE("speed-dependent bearings enter K and C of dense and sparse systems alike", "[bearings]") {
+    const Scene sc = load_scene(data("fe_rotor.toml"));
+    REQUIRE(sc.sparse);
+    REQUIRE(sc.has_dense());
+    REQUIRE(sc.sparse->bearings.size() == 2);
+    for (double w : {0.0, 333.0, 1250.0, 5000.0}) {
+        const QuadraticPencil d = sc.system.at_speed(w);
+        const SparsePencil s = sc.sparse->at_speed(w);
+        CHECK((d.K - Eigen::MatrixXd(s.K)).cwiseAbs().maxCoeff() <= 1e-15 * d.K.cwiseAbs().maxCoeff());
+        CHECK((d.C - Eigen::MatrixXd(s.C)).cwiseAbs().maxCoeff() <= 1e-15 * d.C.cwiseAbs().maxCoeff());
+        // The bearing at node 0 (DOFs x0, y0 = 0, 1) adds its interpolated coefficients.
+        const BearingCoefficients b = sc.sparse->bearings[0].at(w);
+        const SparseGyroscopicSystem bare = [&] {
+            SparseGyroscopicSystem x = *sc.sparse;
+            x.bearings.clear();
+            return x;
+        }();
+        const Eigen::MatrixXd dK = d.K - Eigen::MatrixXd(bare.at_speed(w).K);
+        CHECK((dK.block(0, 0, 2, 2) - b.K).cwiseAbs().maxCoeff() <= 1e-8 * b.K.cwiseAbs().maxCoeff());
+    }
+}
+
+TEST_CASE("sparse Campbell diagram agrees with dense QZ on the finite-element rotor", "[sparse][campbell]") {
+    const Scene sc = load_scene(data("fe_rotor.toml"));
+    const std::vector<double> speeds = SpeedRange{0.0, 3000.0, 16}.points();
+    CampbellOptions co;
+    co.modes = 4;
+    const CampbellDiagram dense = campbell(dense_solver(sc.system), speeds, co);
+    SparseEigenOptions so;
+    so.modes = 6;   // a window a little wider than the tracked modes
+    const CampbellDiagram sparse1 = campbell(sparse_solver(*sc.sparse, so), speeds, co);
+    co.threads = 2;   // worker processes
+    const CampbellDiagram sparse2 = campbell(sparse_solver(*sc.sparse, so), speeds, co);
+
+    // Every point of the four lowest branches: sparse equals dense to 1e-10
+    // (well-separated eigenvalues, backward errors ~1e-14).
+    for (int b = 0; b < 4; ++b) {
+        const Branch& bd = dense.branches[static_cast<size_t>(b)];
+        const Branch& bs = sparse1.branches[static_cast<size_t>(b)];
+        std::map<double, std::complex<double>> at;
+        for (const auto& p : bd.points) at[p.speed] = p.mode.lambda;
+        int compared = 0;
+        for (const auto& p : bs.points) {
+            if (!at.count(p.speed)) continue;
+            CHECK(std::abs(p.mode.lambda - at[p.speed]) <= 1e-10 * std::abs(at[p.speed]));
+            CHECK(p.mode.backward_error < 1e-12);
+            ++compared;
+        }
+        CHECK(compared >= 16);
+    }
+    // The worker processes return the same diagram.
+    REQUIRE(sparse1.branches.size() == sparse2.branches.size());
+    for (size_t b = 0; b < sparse1.branches.size(); ++b) {
+        REQUIRE(sparse1.branches[b].points.size() == sparse2.branches[b].points.size());
+        for (size_t k = 0; k < sparse1.branches[b].points.size(); ++k)
+            CHECK(std::abs(sparse1.branches[b].points[k].mode.lambda - sparse2.branches[b].points[k].mode.lambda) <=
+                  1e-10 * std::abs(sparse1.branches[b].points[k].mode.lambda));
+    }
+    // Critical speeds from the sparse branches equal the dense ones.
+    const auto cd = critical_speeds(dense_solver(sc.system), dense, {1});
+    const auto cs = critical_speeds(sparse_solver(*sc.sparse, so), sparse1, {1});
+    REQUIRE(cd.size() >= 2);
+    for (size_t i = 0; i < 2; ++i) CHECK(cs.at(i).speed == Approx(cd[i].speed).epsilon(1e-9));
+}
+
+TEST_CASE("start-vector reuse gives the same modes", "[sparse]") {
+    const Scene sc = load_scene(data("fe_rotor.toml"));
+    SparseEigenOptions so;
+    so.modes = 6;
+    SpectrumSolver fresh = sparse_solver(*sc.sparse, so, false)();
+    SpectrumSolver reused = sparse_solver(*sc.sparse, so, true)();
+    for (double w : {1000.0, 1010.0, 1020.0}) {
+        const QuadraticSpectrum a = fresh(w), b = reused(w);
+        REQUIRE(a.modes.size() == b.modes.size());
+        // Both runs converge to machine precision (backward errors up to ~1e-12
+        // for the highest of these modes); the eigenvalues agree to what those
+        // backward errors allow for well-separated modes.
+        double eta = 0.0;
+        for (const Mode& m : a.modes) eta = std::max(eta, m.backward_error);
+        for (const Mode& m : b.modes) eta = std::max(eta, m.backward_error);
+        CHECK(eta < 1e-11);
+        CHECK(max_nearest(a.modes, b.modes) < 100 * std::max(eta, 1e-14));
+    }
+}
+
+TEST_CASE("sparse unbalance response equals the dense one", "[sparse][response]") {
+    const Scene sc = load_scene(data("fe_rotor.toml"));
+    for (double w : {50.0, 700.0, 2500.0}) {
+        const Eigen::VectorXcd a = unbalance_response(sc.system, w), b = unbalance_response(*sc.sparse, w);
+        CHECK((a - b).norm() <= 1e-10 * a.norm());
+    }
+}
+
+TEST_CASE("fe_rotor and matrices scenes: bad input names the key", "[bearings][scene]") {
+    const auto scene = [](const std::string& name, const std::string& body) {
+        return input_error([&] { load_scene(write_temp(name, body)); });
+    };
+    const std::string base = "[model]\ntype = \"fe_rotor\"\nE = 2e11\ndensity = 7800\n[[model.shaft]]\nlength = 1.0\n"
+                             "elements = 4\nouter_diameter = 0.05\n";
+    CHECK(scene("fe1.toml", base + "[[model.disk]]\nz = 0.3\nmass = 1\n").find("is not a node of the mesh") !=
+          std::string::npos);
+    CHECK(scene("fe2.toml", base + "[[model.bearing]]\nz = 0.0\nk = -1\n").find("k = -1: out of range") !=
+          std::string::npos);
+    CHECK(scene("fe3.toml", "[model]\ntype = \"fe_rotor\"\n[[model.shaft]]\nlength = 1.0\nouter_diameter = 0.05\n")
+              .find("E' is missing") != std::string::npos);
+    CHECK(scene("fe4.toml", base + "[[model.shaft]]\nlength = 1\nouter_diameter = 0.05\ninner_diameter = 0.06\n")
+              .find("is not below outer_diameter") != std::string::npos);
+    CHECK(scene("fe5.toml", base + "[[model.bearing]]\nz = 0\ntable = \"missing.csv\"\n").find("not found") !=
+          std::string::npos);
+}
