@@ -77,6 +77,10 @@ GyroscopicSystem SparseGyroscopicSystem::to_dense() const {
     return s;
 }
 
+bool SparseGyroscopicSystem::dense_representable() const {
+    return D.size() == 0 || relative_asymmetry(D, 1.0) <= 1e-12;
+}
+
 void SparseGyroscopicSystem::validate(const std::string& origin) const {
     const int n = size();
     if (n <= 0) throw InputError(fmt::format("{}: the system has no degrees of freedom", origin));

@@ -44,6 +44,9 @@ public:
     // The same model as a dense GyroscopicSystem; D becomes the damping component
     // `damping_name` (it must then be symmetric, as GyroscopicSystem requires).
     GyroscopicSystem to_dense() const;
+    // False when D is unsymmetric (cross-coupled bearing damping cxy != cyx),
+    // which only the sparse form holds.
+    bool dense_representable() const;
 
     // Dimensions, finiteness, symmetry of M, skew G, bearing tables. Throws InputError naming `origin`.
     void validate(const std::string& origin) const;

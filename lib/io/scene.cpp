@@ -159,7 +159,10 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
             throw InputError(fmt::format("{}: N (circulatory) is supported up to {} DOFs (dense models only); this "
                                          "model has {}",
                                          mk.where("N"), kDenseLimit, sc.sparse->size()));
-        if (sc.sparse->size() <= kDenseLimit) {
+        if (N.size() > 0 && !sc.sparse->dense_representable())
+            throw InputError(mk.where("D") + " is not symmetric; with N the model is held densely, which needs a "
+                                             "symmetric D (put its skew part into G or N)");
+        if (sc.sparse->size() <= kDenseLimit && sc.sparse->dense_representable()) {
             sc.system = sc.sparse->to_dense();
             sc.system.N = N;
             if (N.size() > 0) sc.sparse.reset();   // the sparse form cannot hold N
