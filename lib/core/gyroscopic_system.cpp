@@ -111,6 +111,12 @@ void GyroscopicSystem::validate(const std::string& origin) const {
         throw InputError(fmt::format("{}: G is not skew-symmetric (relative deviation {:.3g})", origin,
                                      asymmetry(G, -1.0)));
     if (M.cwiseAbs().maxCoeff() == 0.0) throw InputError(fmt::format("{}: M is zero", origin));
+    validate_attachments(origin, n, unbalance, dof_names, bearings, whirl_pairs);
+}
+
+void validate_attachments(const std::string& origin, int n, const Eigen::VectorXcd& unbalance,
+                          const std::vector<std::string>& dof_names, const std::vector<BearingTable>& bearings,
+                          const std::vector<std::pair<int, int>>& whirl_pairs) {
     if (unbalance.size() != 0 && unbalance.size() != n)
         throw InputError(fmt::format("{}: unbalance has {} entries, expected {}", origin, unbalance.size(), n));
     if (unbalance.size() != 0 && !unbalance.allFinite())

@@ -74,4 +74,10 @@ public:
     void validate(const std::string& origin) const;
 };
 
+// The checks both system forms share: unbalance size and finiteness, one name
+// per DOF, bearing tables, whirl pairs in range. Throws InputError naming `origin`.
+void validate_attachments(const std::string& origin, int n, const Eigen::VectorXcd& unbalance,
+                          const std::vector<std::string>& dof_names, const std::vector<BearingTable>& bearings,
+                          const std::vector<std::pair<int, int>>& whirl_pairs);
+
 }  // namespace gyrokit

@@ -108,18 +108,7 @@ void SparseGyroscopicSystem::validate(const std::string& origin) const {
     if (G.size() > 0 && relative_asymmetry(G, -1.0) > tol)
         throw InputError(fmt::format("{}: G is not skew-symmetric (relative deviation {:.3g})", origin,
                                      relative_asymmetry(G, -1.0)));
-    for (const auto& b : bearings) b.validate(n);
-    if (unbalance.size() != 0 && unbalance.size() != n)
-        throw InputError(fmt::format("{}: unbalance has {} entries, expected {}", origin, unbalance.size(), n));
-    if (unbalance.size() != 0 && !unbalance.allFinite())
-        throw InputError(fmt::format("{}: unbalance has a NaN or infinite entry", origin));
-    if (static_cast<int>(dof_names.size()) != n)
-        throw InputError(fmt::format("{}: {} DOF names for {} DOFs", origin, dof_names.size(), n));
-    for (const auto& [u, v] : whirl_pairs)
-        if (u < 0 || v < 0 || u >= n || v >= n || u == v)
-            throw InputError(fmt::format("{}: whirl pair ({}, {}) is out of range; allowed: two distinct DOF "
-                                         "indices in [0, {}]",
-                                         origin, u, v, n - 1));
+    validate_attachments(origin, n, unbalance, dof_names, bearings, whirl_pairs);
 }
 
 }  // namespace gyrokit
