@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The large-model options of eig/campbell/critical/stability/response (--solver,
 # --target, --modes, --lanczos, --dofs) on the finite-element scene with
-# speed-dependent bearing tables, and their bad input: exit status 2 and one line.
+# speed-dependent bearing tables, and their bad input: exit status 2 and one line;
+# the Campbell diagram of the published example data/friswell_5_9_1.toml.
 set -u
 cli=$1
 data=$2
@@ -36,6 +37,19 @@ grep -q '^1[0-9][0-9]\.' "$dir/out" || { echo "FAIL: sparse critical speeds"; ca
 # Bearing tables cover 0..4000 rad/s: a wider range is reported, not refused.
 run campbell "$data/fe_rotor.toml" --solver sparse --speeds 0:5000:3 --format csv
 grep -q "held constant" "$dir/err" || { echo "FAIL: extrapolation not reported"; fail=1; }
+
+# The published example (Friswell et al., Example 5.9.1): the Campbell diagram of the
+# scene at 4000 rev/min gives the six published frequencies (rad/s, 8 decimals) within
+# 1e-9 relative, lower of each pair backward, upper forward.
+run campbell "$data/friswell_5_9_1.toml" --format csv
+awk -F, 'BEGIN { split("85.389467 87.7958637 251.78460413 294.71333087 600.17936195 827.07536193", p, " ") }
+         NR > 1 && $1 > 418.879 { n++; r = ($5 - p[$2]) / p[$2]; if (r < 0) r = -r
+                                  w = ($2 % 2 == 1) ? "backward" : "forward"
+                                  if (r > 1e-9 || $6 != w) { print "FAIL: friswell_5_9_1 mode " $2 ": " $5 " " $6; bad = 1 } }
+         END { if (n != 6) { print "FAIL: friswell_5_9_1: " n " modes at 4000 rev/min"; bad = 1 } exit bad }' \
+    "$dir/out" || fail=1
+run campbell "$data/friswell_5_9_1.toml" --units rpm --plot "$dir/friswell.svg"
+grep -q "<svg" "$dir/friswell.svg" || { echo "FAIL: friswell_5_9_1 Campbell plot"; fail=1; }
 
 # Bad options.
 expect "--solver 'fast': allowed: auto, dense, sparse" campbell "$data/fe_rotor.toml" --solver fast
