@@ -40,6 +40,12 @@ struct Tracker {
     CampbellDiagram& out;
     std::vector<int> active;   // branch index per mode of the last spectrum
     bool window = false;       // spectra hold a window of modes, not all
+    // Branches whose matches decide ambiguity. A dense spectrum holds every mode,
+    // but only the K lowest branches at the first speed are reported: a veering
+    // among the high modes must not cost bisections (on a model of a thousand
+    // DOFs it would cost hundreds of full solves).
+    std::vector<char> watched;
+    char watch_new = 1;        // whether branches that start later are watched
 
     // Assignment of the modes of `prev` to those of `next`; ambiguous if any
     // match is weak or a rival is nearly as good.
@@ -55,6 +61,7 @@ struct Tracker {
         for (size_t i = 0; i < prev.size() && !ambiguous; ++i) {
             const int j = a[i];
             if (j < 0 || degenerate(prev, i)) continue;   // a double eigenvalue: either match is right
+            if (!watched[static_cast<size_t>(active[i])]) continue;
             if (window && opt.modes > 0 && static_cast<int>(i) >= opt.modes) continue;   // the window's edge
             if (mac(prev[i].right, next[static_cast<size_t>(j)].right) < opt.mac_min) ambiguous = true;
             for (size_t k = 0; k < next.size(); ++k)
@@ -95,6 +102,7 @@ struct Tracker {
             if (next_active[j] < 0) {   // a mode without predecessor starts a new branch
                 next_active[j] = static_cast<int>(out.branches.size());
                 out.branches.push_back({});
+                watched.push_back(watch_new);
             }
             out.max_backward_error = std::max(out.max_backward_error, s.modes[j].backward_error);
             out.branches[static_cast<size_t>(next_active[j])].points.push_back({w, std::move(s.modes[j])});
@@ -143,9 +151,18 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
     // Grid speeds in parallel; tracking and refinement (few solves) in order.
     std::vector<QuadraticSpectrum> grid = solve_speeds(make, speeds, opt.threads, opt.progress);
     SpectrumSolver refine = make();
-    Tracker t{refine, opt, out, {}};
-    t.window = grid.front().partial;
+    Tracker t{refine, opt, out, {}, grid.front().partial, {}, 1};
     t.append(speeds.front(), std::move(grid.front()), {});
+    if (opt.modes > 0 && !t.window) {   // watch the K lowest at the first speed, two more for ties at the edge
+        std::vector<size_t> order(t.watched.size());
+        for (size_t b = 0; b < order.size(); ++b) order[b] = b;
+        std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+            return out.branches[a].points.front().mode.lambda.imag() < out.branches[b].points.front().mode.lambda.imag();
+        });
+        std::fill(t.watched.begin(), t.watched.end(), 0);
+        t.watch_new = 0;   // a branch that starts later is never among the K reported
+        for (size_t r = 0; r < std::min(order.size(), static_cast<size_t>(opt.modes) + 2); ++r) t.watched[order[r]] = 1;
+    }
     for (size_t k = 1; k < speeds.size(); ++k) t.step(speeds[k], std::move(grid[k]), 0);
 
     // Number the branches by frequency at their first point; keep the K lowest
