@@ -2,6 +2,7 @@
 // the M^-1 state matrix, on the same pencils and prints their accuracy beside
 // the time, so that the price of the default (QZ) can be read off directly.
 // Exit status: 0 success, 2 bad input, 1 anything else.
+#include "bench_common.hpp"
 #include "core/error.hpp"
 #include "eig/quadratic_eigensolver.hpp"
 #include "io/scene.hpp"
@@ -17,11 +18,8 @@
 #include <limits>
 #include <toml++/toml.h>
 
-#ifndef GYROKIT_DATA_DIR
-#define GYROKIT_DATA_DIR "data"
-#endif
-
 using namespace gyrokit;
+using gyrokit::bench::linspace;
 
 namespace {
 
@@ -30,13 +28,6 @@ struct Case {
     GyroscopicSystem sys;
     std::vector<double> speeds;
 };
-
-std::vector<double> linspace(double from, double to, int count) {
-    if (count == 1) return {from};
-    std::vector<double> v(count);
-    for (int i = 0; i < count; ++i) v[i] = from + (to - from) * i / (count - 1);
-    return v;
-}
 
 std::string describe(const std::vector<double>& w) {
     if (w.size() == 1) return fmt::format("{:g}", w.front());
@@ -143,27 +134,10 @@ double max_backward_error(const Run& r) {
     return e;
 }
 
-// Largest |lambda - nearest lambda_ref| / |lambda_ref|, matched both ways so
-// that an eigenvalue missing on either side shows up as well.
+// Largest relative eigenvalue difference over all speeds (bench_common.hpp).
 double max_rel_diff(const std::vector<QuadraticSpectrum>& a, const std::vector<QuadraticSpectrum>& ref) {
-    // Each eigenvalue of `from` against its nearest in `to`; sizes are taken from the reference side.
-    const auto one_way = [](const QuadraticSpectrum& from, const QuadraticSpectrum& to, bool from_is_ref,
-                            double scale) {
-        double worst = 0.0;
-        for (const auto& m : from.modes) {
-            double best = std::numeric_limits<double>::infinity();
-            std::complex<double> nearest;
-            for (const auto& t : to.modes)
-                if (std::abs(m.lambda - t.lambda) < best) best = std::abs(m.lambda - t.lambda), nearest = t.lambda;
-            if (std::isinf(best)) return best;
-            const double size = std::abs(from_is_ref ? m.lambda : nearest);
-            worst = std::max(worst, best / (size > 0.0 ? size : scale));
-        }
-        return worst;
-    };
     double worst = 0.0;
-    for (size_t i = 0; i < a.size(); ++i)
-        worst = std::max({worst, one_way(a[i], ref[i], false, ref[i].scale), one_way(ref[i], a[i], true, ref[i].scale)});
+    for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, bench::max_rel_diff(a[i], ref[i]));
     return worst;
 }
 
@@ -218,7 +192,7 @@ int main(int argc, char** argv) {
     app.add_option("--format", format, "output format: table, csv or json")->capture_default_str();
     CLI11_PARSE(app, argc, argv);
 
-    try {
+    return bench::guarded_main([&] {
         const TableFormat fmt_out = parse_table_format(format);
         for (int n : sizes)
             if (n < 8 || n % 4 != 0)
@@ -252,12 +226,5 @@ int main(int argc, char** argv) {
         t.title = "Dense eigensolvers: scaled QZ vs M^-1 state matrix";
         for (const auto& c : cases) add_case(t, c, min_time);
         write_table(std::cout, t, fmt_out);
-    } catch (const InputError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 2;
-    } catch (const std::exception& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 1;
-    }
-    return 0;
+    });
 }

@@ -2,6 +2,7 @@
 // centrifuge gyrostat (6 DOFs) and a generated multi-disk rotor (4 DOFs per
 // disk), with 1..J worker threads. Prints a table.
 // Exit status: 0 success, 2 bad input, 1 anything else.
+#include "bench_common.hpp"
 #include "core/error.hpp"
 #include "io/table.hpp"
 #include "screening/screening.hpp"
@@ -137,7 +138,7 @@ int main(int argc, char** argv) {
     app.add_option("--disks", disks, "disks of the generated rotor (4 DOFs each)")->capture_default_str();
     app.add_option("--max-jobs", max_jobs, "largest number of worker threads")->capture_default_str();
     CLI11_PARSE(app, argc, argv);
-    try {
+    return bench::guarded_main([&] {
         if (designs < 1 || rotor_designs < 1 || disks < 3 || max_jobs < 1)
             throw InputError("--designs, --rotor-designs >= 1, --disks >= 3, --max-jobs >= 1");
         std::vector<Study> studies{{"centrifuge gyrostat", centrifuge_study(designs)},
@@ -173,12 +174,5 @@ int main(int argc, char** argv) {
         }
         write_table(std::cout, t, TableFormat::Text);
         for (const auto& n : notes) std::cout << n << "\n";
-    } catch (const InputError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 2;
-    } catch (const std::exception& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 1;
-    }
-    return 0;
+    });
 }

@@ -4,9 +4,8 @@
 // passing the resonance. Accuracy against a reference run (rk8pd, tolerance 1e-12):
 // the held rotor speed, and the time at which the rotor (no rollers) or the
 // rollers pass half-way between omega_krit and the maximal nominal speed.
-#include "balancing/balancer_scene.hpp"
-#include "balancing/runup.hpp"
 #include "balancing/sommerfeld.hpp"
+#include "bench_common.hpp"
 #include "core/error.hpp"
 #include "io/table.hpp"
 
@@ -15,6 +14,7 @@
 #include <string>
 
 using namespace gyrokit;
+using namespace gyrokit::bench;
 
 namespace {
 
@@ -38,12 +38,9 @@ int main(int argc, char** argv) {
              "passage_error_s", "outcome"});
     t.title = "Sommerfeld run-up: error vs reference (rk8pd, tol 1e-12)";
     for (const std::string name : {"rotor", "two_rollers_unbalance"}) {
-        const BalancerScene sc = load_balancer_scene(std::string(GYROKIT_DATA_DIR) + "/sommerfeld_" + name + ".toml");
+        const BalancerScene sc = load_data_balancer_scene("sommerfeld_" + name + ".toml");
         const double wk = sommerfeld_system(sc.params).omega_krit;
-        RunupSettings ref = sc.runup;
-        ref.fall = 0.0;
-        ref.history_points = 20000;
-        ref.ode.abs_tol = ref.ode.rel_tol = 1e-12;
+        const RunupSettings ref = sommerfeld_reference_settings(sc);
         const RunupResult r0 = simulate_runup(sc.params, ref);
         const double level = 0.5 * (wk + ref.max_speed), tp0 = passage_time(r0, level);
         auto row = [&](OdeMethod m, double tol) {
