@@ -79,7 +79,7 @@ GyroscopicSystem make_multi_disk_rotor(int disks) {
             }
     }
     for (int dof : {0, 1, n - 4, n - 3}) sys.K(dof, dof) += k_bearing;
-    sys.damping.push_back({"proportional", alpha * sys.M + beta * sys.K});
+    sys.damping.push_back({"proportional", alpha * sys.M + beta * sys.K, {}});
     sys.validate(fmt::format("rotor with {} disks", disks));
     return sys;
 }

@@ -55,7 +55,7 @@ struct SolverPlan {
     SolverFactory make;
 };
 // auto: sparse above kAutoSparseDofs DOFs (or when the model is sparse-only), else dense.
-constexpr int kAutoSparseDofs = 400;
+constexpr int kAutoSparseDofs = 200;
 SolverPlan plan_solver(const Context& c, int modes);
 // Whether the plan is sparse (the rule of plan_solver, without building a solver).
 bool use_sparse(const Context& c);
