@@ -1,9 +1,11 @@
-// Sparse quadratic eigensolver: ARPACK (complex Arnoldi) in shift-invert mode
+// Sparse quadratic eigensolver: ARPACK (Arnoldi) in shift-invert mode
 // on the first companion pencil A - lambda B, A = [-C -K; I 0], B = [M 0; 0 I].
 // The operator (A - sigma B)^{-1} B needs only a sparse LU of the n x n matrix
 // P(sigma) = sigma^2 M + sigma C + K, factorized once per call:
 //   w2 = -P(sigma)^{-1} (M v1 + (C + sigma M) v2),  w1 = v2 + sigma w2.
 // Eigenvalues of the operator theta give lambda = sigma + 1/theta.
+// A real shift keeps the operator real: real Arnoldi (dnaupd) on a real LU,
+// conjugate pairs found together; a complex shift uses complex Arnoldi (znaupd).
 #pragma once
 
 #include "core/sparse_system.hpp"
