@@ -10,7 +10,3 @@ $sudo apt-get install -y -qq --no-install-recommends \
     libeigen3-dev liblapack-dev liblapacke-dev libblas-dev libarpack2-dev libgsl-dev \
     libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfmt-dev \
     catch2 gnuplot-nox > /dev/null
-# Single-threaded OpenBLAS as the libblas.so.3/liblapack.so.3 alternative: the
-# Arnoldi orthogonalization (zgemv) and QZ run faster than on the reference BLAS,
-# and one thread per process leaves the cores to gyrokit's own workers.
-$sudo apt-get install -y -qq --no-install-recommends libopenblas0-serial > /dev/null

@@ -181,6 +181,28 @@ TEST_CASE("sparse Campbell diagram agrees with dense QZ on the finite-element ro
     for (size_t i = 0; i < 2; ++i) CHECK(cs.at(i).speed == Approx(cd[i].speed).epsilon(1e-9));
 }
 
+TEST_CASE("dense Campbell on two threads equals one thread, bit for bit", "[campbell]") {
+    // QZ is deterministic, so speeds solved concurrently must give exactly the
+    // serial diagram; a BLAS/LAPACK that is not safe for concurrent calls (as a
+    // serial OpenBLAS build without locking) breaks this silently. Repeated,
+    // since a race shows only now and then.
+    const Scene sc = load_scene(data("fe_rotor.toml"));
+    const std::vector<double> speeds = SpeedRange{0.0, 2000.0, 11}.points();
+    CampbellOptions co;
+    co.modes = 4;
+    const CampbellDiagram serial = campbell(dense_solver(sc.system), speeds, co);
+    co.threads = 2;
+    for (int run = 0; run < 5; ++run) {
+        const CampbellDiagram parallel = campbell(dense_solver(sc.system), speeds, co);
+        REQUIRE(parallel.branches.size() == serial.branches.size());
+        for (size_t b = 0; b < serial.branches.size(); ++b) {
+            REQUIRE(parallel.branches[b].points.size() == serial.branches[b].points.size());
+            for (size_t k = 0; k < serial.branches[b].points.size(); ++k)
+                REQUIRE(parallel.branches[b].points[k].mode.lambda == serial.branches[b].points[k].mode.lambda);
+        }
+    }
+}
+
 TEST_CASE("dense Campbell with K modes: same branches as with all modes, no bisection for high modes",
           "[campbell]") {
     // The 100-DOF rotor: with all 100 modes tracked, veerings among the high
