@@ -13,13 +13,35 @@ namespace gyrokit {
 using cd = std::complex<double>;
 using SpC = Eigen::SparseMatrix<cd>;
 
-double backward_error(const SparsePencil& p, cd lambda, const Eigen::VectorXcd& x) {
+namespace {
+
+// Frobenius norms of M, C, K: the scale of the backward error, computed once per solve.
+struct PencilNorms {
+    double M, C, K;
+    explicit PencilNorms(const SparsePencil& p) : M(p.M.norm()), C(p.C.norm()), K(p.K.norm()) {}
+};
+
+// Real sparse matrix times complex vector, without a complex copy of the matrix.
+Eigen::VectorXcd times(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x) {
+    const Eigen::VectorXd re = A * x.real(), im = A * x.imag();
+    Eigen::VectorXcd y(re.size());
+    y.real() = re;
+    y.imag() = im;
+    return y;
+}
+
+double backward_error(const SparsePencil& p, const PencilNorms& nrm, cd lambda, const Eigen::VectorXcd& x) {
     const double a = std::abs(lambda);
-    const double denom = (a * a * p.M.norm() + a * p.C.norm() + p.K.norm()) * x.norm();
+    const double denom = (a * a * nrm.M + a * nrm.C + nrm.K) * x.norm();
     if (denom == 0.0) return 0.0;
-    const Eigen::VectorXcd r = (lambda * lambda) * (p.M.cast<cd>() * x) + lambda * (p.C.cast<cd>() * x) +
-                               p.K.cast<cd>() * x;
+    const Eigen::VectorXcd r = (lambda * lambda) * times(p.M, x) + lambda * times(p.C, x) + times(p.K, x);
     return r.norm() / denom;
+}
+
+}  // namespace
+
+double backward_error(const SparsePencil& p, cd lambda, const Eigen::VectorXcd& x) {
+    return backward_error(p, PencilNorms(p), lambda, x);
 }
 
 namespace {
@@ -200,7 +222,8 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
     SparseSpectrum out;
     out.iterations = iterations;
     out.converged = static_cast<int>(ritz.size());
-    const double scale = std::sqrt(p.K.norm() / p.M.norm());
+    const PencilNorms norms(p);
+    const double scale = std::sqrt(norms.K / norms.M);
     const double real_tol = 1e-7 * (std::isfinite(scale) && scale > 0 ? scale : 1.0);
     for (const Ritz& r : ritz) {
         if (std::abs(r.theta) == 0.0) continue;
@@ -209,9 +232,10 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
         if (m.lambda.imag() < -real_tol) continue;   // the conjugate of a kept mode
         if (std::abs(m.lambda.imag()) <= real_tol) m.lambda = cd(m.lambda.real(), 0.0);
         const Eigen::VectorXcd top = r.z.head(n), bottom = r.z.tail(n);
-        const bool use_top = backward_error(p, m.lambda, top) < backward_error(p, m.lambda, bottom);
-        m.right = (use_top ? top : bottom).normalized();
-        m.backward_error = backward_error(p, m.lambda, m.right);
+        // The backward error does not depend on the vector's scale: the better half's is the mode's.
+        const double et = backward_error(p, norms, m.lambda, top), eb = backward_error(p, norms, m.lambda, bottom);
+        m.right = (et < eb ? top : bottom).normalized();
+        m.backward_error = std::min(et, eb);
         m.whirl = classify_whirl(m.lambda, m.right, whirl_pairs, real_tol);
         out.modes.push_back(std::move(m));
     }
