@@ -10,3 +10,8 @@ $sudo apt-get install -y -qq --no-install-recommends \
     libeigen3-dev liblapack-dev liblapacke-dev libblas-dev libarpack2-dev libgsl-dev \
     libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfmt-dev \
     catch2 gnuplot-nox > /dev/null
+# BLIS (serial build) as the libblas.so.3 alternative: vectorized kernels for the
+# matrix-vector products of ARPACK's Arnoldi iteration, and safe to call from
+# several threads at once (gyrokit solves speeds in parallel). Reference LAPACK
+# runs on top of it. A serial OpenBLAS build is not safe for concurrent calls.
+$sudo apt-get install -y -qq --no-install-recommends libblis4-serial > /dev/null
