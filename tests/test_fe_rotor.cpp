@@ -487,3 +487,62 @@ TEST_CASE("fe rotor: the scene data/friswell_5_9_1.toml reproduces Example 5.9.1
     for (int i = 0; i < 6; ++i)
         CHECK(std::abs(sp.modes[static_cast<size_t>(i)].frequency() - published[i]) <= 1e-9 * published[i]);
 }
+
+TEST_CASE("fe rotor: double eigenvalues at standstill split into one forward and one backward circular mode",
+          "[fe_rotor][whirl]") {
+    // Isotropic supports at rest: every frequency is double and any basis of its
+    // plane is a pair of eigenvectors, so the solver's own basis whirls at random.
+    // Both solvers must return the circular forward and backward combinations.
+    FeRotor r = pinned_pinned(1.2, 24, 0.05, 0.0);
+    r.disks.push_back({8, 15.0, 0.1, 0.18, 0.0, 0.0});
+    const FeRotorMatrices m = r.assemble();
+    const SparsePencil p = m.at_speed(0.0);
+    const QuadraticSpectrum dense =
+        solve_quadratic(QuadraticPencil{Eigen::MatrixXd(p.M), Eigen::MatrixXd(p.C), Eigen::MatrixXd(p.K)}, {},
+                        m.whirl_pairs);
+    SparseEigenOptions o;
+    o.modes = 8;
+    const SparseSpectrum sparse = solve_quadratic_sparse(p, o, m.whirl_pairs);
+    for (const std::vector<Mode>* modes : {&dense.modes, &sparse.modes}) {
+        const std::size_t count = std::min<std::size_t>(8, modes->size());
+        for (std::size_t i = 0; i + 1 < count; i += 2) {
+            const Mode &a = (*modes)[i], &b = (*modes)[i + 1];
+            INFO((modes == &dense.modes ? "dense" : "sparse") << " modes " << i << ", " << i + 1 << ": "
+                                                               << a.lambda << " " << b.lambda << ", backward errors "
+                                                               << a.backward_error << " " << b.backward_error);
+            REQUIRE(std::abs(a.lambda - b.lambda) <= 1e-8 * std::abs(a.lambda));   // double
+            CHECK(a.whirl == Whirl::Backward);   // listed by frequency: backward below forward
+            CHECK(b.whirl == Whirl::Forward);
+            for (const Mode* md : {&a, &b}) {
+                // Still eigenvectors: QZ to rounding, ARPACK to its tolerance.
+                CHECK(md->backward_error < (modes == &dense.modes ? 1e-15 : 1e-11));
+                // Circular orbit at every node: |x| = |y|, a quarter period apart.
+                const double top = md->right.cwiseAbs().maxCoeff();
+                for (const auto& [u, v] : m.whirl_pairs) {
+                    CHECK(std::abs(std::abs(md->right(u)) - std::abs(md->right(v))) <= 1e-6 * top);
+                    CHECK(std::abs(std::abs(std::arg(md->right(u) * std::conj(md->right(v)))) - pi / 2) *
+                              std::abs(md->right(u)) <= 1e-5 * top);
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("fe rotor: a pair split by a small anisotropy keeps its planar modes", "[fe_rotor][whirl]") {
+    // Bearings with kyy = kxx (1 + 1e-7): the frequencies split by 1e-9 to 1e-8
+    // relative, the modes are planar (x alone, y alone); a circular combination
+    // would not be an eigenvector, so the pair is left as the solver found it.
+    FeRotor r = fe_uniform_shaft(1.2, 24, 0.05, 0.0, E, nu, rho);
+    const double k = 5e7;
+    r.bearings.push_back({0, k, 0.0, 0.0, k * (1 + 1e-7), 0.0, 0.0, 0.0, 0.0});
+    r.bearings.push_back({24, k, 0.0, 0.0, k * (1 + 1e-7), 0.0, 0.0, 0.0, 0.0});
+    const FeRotorMatrices m = r.assemble();
+    const QuadraticSpectrum s = solve_at_speed(m.to_dense(), 0.0);
+    for (std::size_t i = 0; i < 6; ++i) {
+        const Mode& md = s.modes[i];
+        CHECK(md.backward_error < 1e-13);
+        double turn = 0.0;   // zero for a planar mode, +-1/2 for a circular one
+        for (const auto& [u, v] : m.whirl_pairs) turn += (md.right(u) * std::conj(md.right(v))).imag();
+        CHECK(std::abs(turn) <= 1e-6);
+    }
+}

@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <complex>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,6 +34,19 @@ struct Mode {
 // eigenvalue counts as real (|Im lambda| <= real_tol).
 Whirl classify_whirl(std::complex<double> lambda, const Eigen::VectorXcd& x,
                      const std::vector<std::pair<int, int>>& pairs, double real_tol);
+
+// A double eigenvalue (a rotor on isotropic supports at standstill, say) has a
+// plane of eigenvectors, and the solver returns an arbitrary basis of it, whose
+// whirl rounding decides. Each two modes with eigenvalues equal to 1e-6 relative
+// are turned into the most forward and the most backward combination in their
+// plane (the extremes of the whirl sum over it: circular orbits for a rotor), and
+// their whirl classified again. The turn is kept only if it leaves both backward
+// errors at the level of the originals, i.e. if the eigenvalue is double to
+// working accuracy; a pair split by a real effect (anisotropy) keeps its vectors.
+// Left vectors are not touched (for a double eigenvalue any basis is valid).
+using BackwardError = std::function<double(std::complex<double>, const Eigen::VectorXcd&)>;
+void separate_double_whirl(std::vector<Mode>& modes, const std::vector<std::pair<int, int>>& pairs,
+                           double real_tol, const BackwardError& backward_error);
 
 // Modal assurance criterion |a^H b|^2 / (|a|^2 |b|^2), in [0, 1].
 double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);

@@ -52,7 +52,7 @@ double natural_scale(const QuadraticPencil& p) {
 }
 
 // Keeps the upper half plane and the real axis, classifies and sorts.
-void finish(QuadraticSpectrum& s, const std::vector<std::pair<int, int>>& pairs) {
+void finish(QuadraticSpectrum& s, const QuadraticPencil& p, const std::vector<std::pair<int, int>>& pairs) {
     std::vector<Mode> kept;
     for (auto& m : s.modes) {
         if (std::abs(m.lambda) <= s.real_tol) m.lambda = cd(m.lambda.real(), 0.0);
@@ -60,6 +60,8 @@ void finish(QuadraticSpectrum& s, const std::vector<std::pair<int, int>>& pairs)
         m.whirl = classify_whirl(m.lambda, m.right, pairs, s.real_tol);
         kept.push_back(std::move(m));
     }
+    separate_double_whirl(kept, pairs, s.real_tol,
+                          [&](cd lambda, const Eigen::VectorXcd& x) { return backward_error(p, lambda, x); });
     std::sort(kept.begin(), kept.end(), [](const Mode& a, const Mode& b) {
         if (a.lambda.imag() != b.lambda.imag()) return a.lambda.imag() < b.lambda.imag();
         return a.lambda.real() < b.lambda.real();
@@ -168,7 +170,7 @@ QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& 
             throw InputError("left eigenvectors are computed by the QZ method only (--method qz)");
         s = solve_state(p);
     }
-    finish(s, whirl_pairs);
+    finish(s, p, whirl_pairs);
     return s;
 }
 

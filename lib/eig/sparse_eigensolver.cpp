@@ -239,6 +239,8 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
         m.whirl = classify_whirl(m.lambda, m.right, whirl_pairs, real_tol);
         out.modes.push_back(std::move(m));
     }
+    separate_double_whirl(out.modes, whirl_pairs, real_tol,
+                          [&](cd lambda, const Eigen::VectorXcd& x) { return backward_error(p, norms, lambda, x); });
     // The wanted count nearest the shift, reported by frequency.
     std::sort(out.modes.begin(), out.modes.end(),
               [&](const Mode& a, const Mode& b) { return std::abs(a.lambda - s) < std::abs(b.lambda - s); });
