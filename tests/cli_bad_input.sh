@@ -73,6 +73,11 @@ expect "eigen method 'lu'" eig "$dir/ok.toml" --speed 1 --method lu
 expect "harmonics" critical "$dir/ok.toml" --harmonics 0
 expect "--plot" campbell "$dir/ok.toml" --plot "$dir/x.pdf"
 expect "--tolerance" pervasive "$dir/ok.toml" --tolerance 2
+expect "--target-order '-1'" campbell "$dir/ok.toml" --solver sparse --target-order -1
+expect "--target-order 'fast'" critical "$dir/ok.toml" --target-order fast
+scene badorder "$good_model" '[analysis]
+target_order = -0.5'
+expect "target_order" eig "$dir/badorder.toml" --speed 1
 scene damped "$good_model
 d_G = 1.0"
 expect "needs an undamped system" critical "$dir/damped.toml" --speeds 0:40:41 --critical-method direct

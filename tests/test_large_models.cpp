@@ -274,3 +274,34 @@ TEST_CASE("fe_rotor and matrices scenes: bad input names the key", "[bearings][s
     CHECK(scene("fe5.toml", base + "[[model.bearing]]\nz = 0\ntable = \"missing.csv\"\n").find("not found") !=
           std::string::npos);
 }
+
+TEST_CASE("sparse window following the 1x line finds every 1x critical speed with four modes", "[sparse][critical]") {
+    // The centre i(nu + k w) moves with the speed, so a window of four modes holds,
+    // at each speed, the modes near the excitation line: every crossing of 1x in
+    // 0..4000 rad/s must come out, as with the dense solver tracking all modes.
+    const Scene sc = load_scene(data("fe_rotor.toml"));
+    const std::vector<double> speeds = sc.speeds->points();
+    CampbellOptions low;
+    low.modes = 14;   // all branches below 4000 rad/s at every speed, and more
+    const CampbellDiagram dense = campbell(dense_solver(sc.system), speeds, low);
+    const auto cd = critical_speeds(dense_solver(sc.system), dense, {1});
+
+    SparseEigenOptions so;
+    so.modes = 4;
+    so.shift_order = 1.0;
+    CampbellOptions co;
+    co.modes = 4;
+    const CampbellDiagram sparse = campbell(sparse_solver(*sc.sparse, so), speeds, co);
+    const auto cs = critical_speeds(sparse_solver(*sc.sparse, so), sparse, {1});
+
+    REQUIRE(cd.size() >= 8);   // more crossings than the window holds modes
+    REQUIRE(cs.size() == cd.size());
+    for (size_t i = 0; i < cd.size(); ++i) {
+        CHECK(cs[i].speed == Approx(cd[i].speed).epsilon(1e-9));
+        CHECK(cs[i].mode.whirl == cd[i].mode.whirl);
+    }
+    // Without the continuation the fixed window (centre 0) sees only the lowest four.
+    so.shift_order = 0.0;
+    const CampbellDiagram fixed = campbell(sparse_solver(*sc.sparse, so), speeds, co);
+    CHECK(critical_speeds(sparse_solver(*sc.sparse, so), fixed, {1}).size() < cd.size());
+}

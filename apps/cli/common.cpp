@@ -26,6 +26,9 @@ void add_solver_options(CLI::App* c, Common& o) {
                                         "few modes near --target) or auto (sparse above " +
                                             std::to_string(kAutoSparseDofs) + " DOFs); default: the scene's, else auto");
     c->add_option("--target", o.target, "frequency (in --units) the sparse search centres on; default 0: the lowest modes");
+    c->add_option("--target-order", o.target_order,
+                  "sparse: move the search centre with the speed, to --target + ORDER * speed (1: follow the 1x "
+                  "line); default: the scene's target_order, else 0");
     c->add_option("--lanczos", o.lanczos, "Lanczos (Arnoldi) vectors of the sparse solver; 0 = automatic");
     c->add_option("--jobs", o.jobs, "threads for the speeds of a sweep; 0 = all cores");
 }
@@ -56,6 +59,7 @@ SolverPlan plan_solver(const Context& c, int modes) {
         std::cerr << "note: the sparse solver computes " << so.modes
                   << " modes near the target; set --modes K for another number\n";
     so.shift = {0.0, c.target.value_or(0.0)};
+    so.shift_order = c.target_order;
     so.lanczos_vectors = c.lanczos;
     p.modes = so.modes;
     p.make = sc.sparse ? sparse_solver(*sc.sparse, so) : sparse_solver(sc.system, so);
@@ -85,6 +89,8 @@ Context open_scene(const Common& o, bool need_speeds) {
     c.solver = o.solver.empty() ? c.scene.solver : o.solver;
     if (!o.target.empty()) c.target = parse_speed(o.target, "--target", c.unit);
     else c.target = c.scene.target;
+    c.target_order = c.scene.target_order;
+    if (!o.target_order.empty()) c.target_order = parse_order(o.target_order, "--target-order");
     if (!o.speeds.empty()) {
         c.speeds = SpeedRange::parse(o.speeds, "--speeds", c.unit.factor).points();
     } else if (c.scene.speeds) {
@@ -95,14 +101,29 @@ Context open_scene(const Common& o, bool need_speeds) {
     return c;
 }
 
-double parse_speed(const std::string& text, const std::string& option, const SpeedUnit& u) {
+namespace {
+
+// A finite number >= 0 spelled out completely, or nothing.
+std::optional<double> nonnegative(const std::string& text) {
     try {
         size_t pos = 0;
         const double v = std::stod(text, &pos);
-        if (pos == text.size() && std::isfinite(v) && v >= 0.0) return v / u.factor;
+        if (pos == text.size() && std::isfinite(v) && v >= 0.0) return v;
     } catch (const std::exception&) {
     }
+    return std::nullopt;
+}
+
+}  // namespace
+
+double parse_speed(const std::string& text, const std::string& option, const SpeedUnit& u) {
+    if (const auto v = nonnegative(text)) return *v / u.factor;
     throw InputError(fmt::format("{} '{}': allowed: a finite number >= 0 ({})", option, text, u.name));
+}
+
+double parse_order(const std::string& text, const std::string& option) {
+    if (const auto v = nonnegative(text)) return *v;
+    throw InputError(fmt::format("{} '{}': allowed: a finite number >= 0 (a multiple of the speed)", option, text));
 }
 
 std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>& fallback) {

@@ -28,12 +28,12 @@ struct Command {
 struct Common {
     std::string scene, format = "table", units = "rad/s", speeds, method = "qz", plot;
     // Solver choice (eig, campbell, critical, stability, response).
-    std::string solver, target;
+    std::string solver, target, target_order;
     int lanczos = 0, jobs = 0;
 };
 
 void add_common(CLI::App* c, Common& o, bool with_speeds);
-// --solver, --target, --lanczos, --jobs.
+// --solver, --target, --target-order, --lanczos, --jobs.
 void add_solver_options(CLI::App* c, Common& o);
 
 struct Context {
@@ -44,6 +44,7 @@ struct Context {
     std::vector<double> speeds;
     std::string solver;          // "dense" | "sparse" | "auto" (from --solver, else the scene)
     std::optional<double> target;   // rad/s
+    double target_order = 0.0;      // the target moves as target + order * speed
     int lanczos = 0, jobs = 1;
 };
 
@@ -67,6 +68,8 @@ Context open_scene(const Common& o, bool need_speeds);
 TableFormat parse_format(const Common& o);
 
 double parse_speed(const std::string& text, const std::string& option, const SpeedUnit& u);
+// A dimensionless multiple of the speed (>= 0), e.g. --target-order.
+double parse_order(const std::string& text, const std::string& option);
 std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>& fallback);
 // Throws InputError unless the extension is .svg or .png (empty: no plot).
 void check_plot_path(const std::string& path);

@@ -43,6 +43,7 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
         return [pencil, whirl_pairs, opt, reuse, start](double w) {
             const SparsePencil p = pencil(w);
             SparseEigenOptions o = opt;
+            o.shift += std::complex<double>(0.0, opt.shift_order * w);   // continued along nu + k w
             if (reuse) o.start = *start;
             SparseSpectrum s = solve_quadratic_sparse(p, o, whirl_pairs);
             if (reuse && !s.modes.empty()) {

@@ -20,6 +20,10 @@ namespace gyrokit {
 struct SparseEigenOptions {
     int modes = 6;                          // eigenvalues with Im >= 0 wanted (conjugates not counted)
     std::complex<double> shift{0.0, 0.0};   // sigma: the search centre (i nu for modes near frequency nu)
+    // In a sweep (sparse_solver), the centre moves with the speed w:
+    // sigma(w) = shift + i * shift_order * w, so the window follows the line
+    // nu + k w of the Campbell diagram (k = 1: the modes near the 1x line).
+    double shift_order = 0.0;
     int lanczos_vectors = 0;                // ARPACK ncv; 0 = max(2 nev + 1, 30), capped at 2n
     int max_iterations = 3000;
     double tolerance = 0.0;                 // ARPACK relative Ritz tolerance; 0 = machine precision

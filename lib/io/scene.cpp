@@ -184,10 +184,11 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
     }
     if (const toml::table* an = root.get_as<toml::table>("analysis")) {
         TomlKeys k(path, "analysis", *an);
-        k.only({"modes", "harmonics", "solver", "target"});
+        k.only({"modes", "harmonics", "solver", "target", "target_order"});
         sc.modes = static_cast<int>(k.integer("modes", 0, 0, 100000));
         sc.solver = k.choice("solver", "auto", {"auto", "dense", "sparse"});
         if (k.has("target")) sc.target = k.number("target", std::nullopt, 0, false, "rad/s");
+        sc.target_order = k.number("target_order", 0.0, 0, false, "multiple of the speed");
         if (const toml::array* h = an->get_as<toml::array>("harmonics")) {
             sc.harmonics.clear();
             for (const auto& e : *h) {

@@ -27,6 +27,7 @@ struct Scene {
     std::optional<SparseGyroscopicSystem> sparse;
     std::string solver = "auto";       // [analysis] solver: auto | dense | sparse
     std::optional<double> target;      // [analysis] target: frequency (rad/s) the sparse search centres on
+    double target_order = 0.0;         // [analysis] target_order: the centre moves as target + order * speed
     std::optional<SpeedRange> speeds;  // [speeds] from, to, count
     int modes = 0;                     // [analysis] modes (0 = all)
     std::vector<int> harmonics{1};     // [analysis] harmonics
