@@ -140,3 +140,60 @@ TEST_CASE("state-matrix path: agrees on ordinary cases, refuses singular M", "[e
     for (const auto& m : q.modes) CHECK(m.backward_error <= 1e-12);
     CHECK_THROWS_AS(solve_at_speed(t, 0.0, {EigenMethod::StateMatrix, false}), SolverError);
 }
+
+TEST_CASE("double eigenvalue: the plane is turned into backward and forward circular modes, a split pair is kept",
+          "[whirl]") {
+    // x, y with M = I, C = 0, K = diag(k, k (1 + a)): eigenvalues i sqrt(k) and
+    // i sqrt(k (1 + a)) with the exact planar vectors e_x, e_y. a = 0: a double
+    // eigenvalue, the circular basis must be chosen. a = 1e-9 (split 5e-10 > 1e-10):
+    // a real split, the planar pair must stay. a = 1e-11 (split 5e-12): double by
+    // the gap, but the given vectors are exact and a circular combination would
+    // raise their residual from 0 to 5e-12: the planar pair must stay too.
+    const std::vector<std::pair<int, int>> pairs{{0, 1}};
+    const double k = 4.0;
+    for (const double a : {0.0, 1e-11, 1e-9}) {
+        const Eigen::Matrix2cd K = Eigen::Vector2cd(k, k * (1 + a)).asDiagonal();
+        PencilAction action;
+        action.apply = [&](const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx,
+                           Eigen::VectorXcd& Kx) {
+            Mx = x;
+            Cx = Eigen::VectorXcd::Zero(2);
+            Kx = K * x;
+        };
+        action.norm_M = std::sqrt(2.0);
+        action.norm_K = K.norm();
+        std::vector<Mode> modes(2);
+        modes[0].lambda = {0.0, std::sqrt(k)};
+        modes[0].right = Eigen::Vector2cd(1.0, 0.0);
+        modes[1].lambda = {0.0, std::sqrt(k * (1 + a))};
+        modes[1].right = Eigen::Vector2cd(0.0, 1.0);
+        separate_double_whirl(modes, pairs, 1e-7, action);
+        const auto turn = [](const Mode& m) { return (m.right(0) * std::conj(m.right(1))).imag(); };
+        INFO("a = " << a);
+        if (a == 0.0) {
+            CHECK(turn(modes[0]) == Approx(-0.5).margin(1e-15));   // backward circle, listed first
+            CHECK(turn(modes[1]) == Approx(0.5).margin(1e-15));
+            CHECK(modes[0].whirl == Whirl::Backward);
+            CHECK(modes[1].whirl == Whirl::Forward);
+            CHECK(modes[0].backward_error <= 1e-11);
+        } else {
+            CHECK(modes[0].right == Eigen::VectorXcd(Eigen::Vector2cd(1.0, 0.0)));
+            CHECK(modes[1].right == Eigen::VectorXcd(Eigen::Vector2cd(0.0, 1.0)));
+        }
+    }
+    // Three equal eigenvalues (a cluster, not a pair) are left alone.
+    PencilAction zero;
+    zero.apply = [](const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx, Eigen::VectorXcd& Kx) {
+        Mx = x;
+        Cx = Eigen::VectorXcd::Zero(x.size());
+        Kx = 4.0 * x;
+    };
+    std::vector<Mode> three(3);
+    for (int i = 0; i < 3; ++i) {
+        three[static_cast<size_t>(i)].lambda = {0.0, 2.0};
+        three[static_cast<size_t>(i)].right = Eigen::Vector2cd(i == 1 ? 0.0 : 1.0, i == 1 ? 1.0 : 0.0);
+    }
+    separate_double_whirl(three, pairs, 1e-7, zero);
+    CHECK(three[0].right == Eigen::VectorXcd(Eigen::Vector2cd(1.0, 0.0)));
+    CHECK(three[1].right == Eigen::VectorXcd(Eigen::Vector2cd(0.0, 1.0)));
+}

@@ -52,9 +52,32 @@ Eigen::VectorXcd whirl_form(const Eigen::VectorXcd& x, const std::vector<std::pa
     return y;
 }
 
-// Turns modes a and b (double eigenvalue) into their most backward and most
-// forward combination if both stay eigenvectors to working accuracy.
-void separate_pair(Mode& a, Mode& b, const std::vector<std::pair<int, int>>& pairs, const BackwardError& bwd) {
+// What the separation needs to know of an eigenpair: its residual on the
+// mode's own scale, its backward error, and its Rayleigh-quotient refinement.
+struct PairCheck {
+    double local = 0.0, normwise = 0.0;
+    std::complex<double> refined;
+};
+
+PairCheck check(const PencilAction& p, std::complex<double> l, const Eigen::VectorXcd& x) {
+    Eigen::VectorXcd Mx, Cx, Kx;
+    p.apply(x, Mx, Cx, Kx);
+    const Eigen::VectorXcd r = (l * l) * Mx + l * Cx + Kx;
+    const double a = std::abs(l), own = a * a * Mx.norm() + a * Cx.norm() + Kx.norm();
+    const double whole = (a * a * p.norm_M + a * p.norm_C + p.norm_K) * x.norm();
+    const std::complex<double> slope = x.dot((2.0 * l) * Mx + Cx);
+    PairCheck c;
+    c.local = own > 0.0 ? r.norm() / own : 0.0;
+    c.normwise = whole > 0.0 ? r.norm() / whole : 0.0;
+    c.refined = std::abs(slope) > 0.0 ? l - x.dot(r) / slope : l;
+    return c;
+}
+
+// Turns modes a and b (the lower one first) into their most backward and most
+// forward combination if they are a double eigenvalue to working accuracy.
+void separate_pair(Mode& a, Mode& b, const std::vector<std::pair<int, int>>& pairs, const PencilAction& pencil) {
+    const PairCheck ca = check(pencil, a.lambda, a.right), cb = check(pencil, b.lambda, b.right);
+    if (!(std::abs(ca.refined - cb.refined) <= 1e-10 * std::abs(ca.refined))) return;   // split
     Eigen::MatrixXcd V(a.right.size(), 2);
     V.col(0) = a.right;
     V.col(1) = b.right;
@@ -68,47 +91,62 @@ void separate_pair(Mode& a, Mode& b, const std::vector<std::pair<int, int>>& pai
     const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2cd> es(A, G);
     if (es.info() != Eigen::Success) return;
     const Eigen::Vector2d mu = es.eigenvalues();   // ascending: backward, forward
-    if (mu(1) - mu(0) <= 1e-8) return;             // no whirl content to separate
-    Eigen::VectorXcd backward = (V * es.eigenvectors().col(0)).normalized();
-    Eigen::VectorXcd forward = (V * es.eigenvectors().col(1)).normalized();
-    // Backward below forward, as the pair splits once the rotor turns (and as
-    // the modes are listed: by frequency, then by real part).
-    const bool a_forward = a.lambda.imag() != b.lambda.imag() ? a.lambda.imag() > b.lambda.imag()
-                                                               : a.lambda.real() > b.lambda.real();
-    Eigen::VectorXcd& xa = a_forward ? forward : backward;
-    Eigen::VectorXcd& xb = a_forward ? backward : forward;
-    const double ea = bwd(a.lambda, xa), eb = bwd(b.lambda, xb);
+    if (!(mu(1) - mu(0) > 1e-8)) return;           // no whirl content to separate
+    const Eigen::VectorXcd backward = unit_vector(V * es.eigenvectors().col(0));
+    const Eigen::VectorXcd forward = unit_vector(V * es.eigenvectors().col(1));
+    const PairCheck na = check(pencil, a.lambda, backward), nb = check(pencil, b.lambda, forward);
     const double eps = std::numeric_limits<double>::epsilon();
-    const double allowed = 10.0 * std::max({a.backward_error, b.backward_error, eps});
-    if (!(std::max(ea, eb) <= allowed)) return;
-    a.right = std::move(xa);
-    b.right = std::move(xb);
-    a.backward_error = ea;
-    b.backward_error = eb;
+    if (!(std::max(na.local, nb.local) <= 10.0 * std::max({ca.local, cb.local, eps}))) return;
+    a.right = backward;
+    b.right = forward;
+    a.backward_error = na.normwise;
+    b.backward_error = nb.normwise;
+}
+
+// Lists the lower first: by frequency, then by real part.
+bool lower(const Mode& a, const Mode& b) {
+    return a.lambda.imag() != b.lambda.imag() ? a.lambda.imag() < b.lambda.imag() : a.lambda.real() < b.lambda.real();
 }
 
 }  // namespace
 
+Eigen::VectorXcd unit_vector(const Eigen::VectorXcd& v) {
+    Eigen::Index k = 0;
+    if (v.size() == 0) return v;
+    v.cwiseAbs().maxCoeff(&k);
+    if (std::abs(v(k)) == 0.0) return v;
+    const std::complex<double> phase = std::conj(v(k)) / std::abs(v(k));
+    return v * phase / v.norm();
+}
+
 void separate_double_whirl(std::vector<Mode>& modes, const std::vector<std::pair<int, int>>& pairs,
-                           double real_tol, const BackwardError& backward_error) {
+                           double real_tol, const PencilAction& pencil) {
     if (pairs.empty()) return;
-    std::vector<bool> done(modes.size(), false);
-    for (std::size_t i = 0; i < modes.size(); ++i) {
-        if (done[i] || std::abs(modes[i].lambda.imag()) <= real_tol) continue;
-        std::size_t best = modes.size();
-        double gap = 1e-6 * std::abs(modes[i].lambda);
-        for (std::size_t j = i + 1; j < modes.size(); ++j) {
-            const double d = std::abs(modes[j].lambda - modes[i].lambda);
-            if (!done[j] && d <= gap) {
-                gap = d;
-                best = j;
+    const std::size_t n = modes.size();
+    const auto oscillating = [&](std::size_t i) { return std::abs(modes[i].lambda.imag()) > real_tol; };
+    const auto close = [&](std::size_t i, std::size_t j) {
+        return std::abs(modes[i].lambda - modes[j].lambda) <= 1e-6 * std::abs(modes[i].lambda);
+    };
+    const auto neighbours = [&](std::size_t i, std::size_t& last) {
+        std::size_t count = 0;
+        for (std::size_t j = 0; j < n; ++j)
+            if (j != i && oscillating(j) && close(i, j)) {
+                last = j;
+                ++count;
             }
-        }
-        if (best == modes.size()) continue;
-        done[i] = done[best] = true;
-        separate_pair(modes[i], modes[best], pairs, backward_error);
-        modes[i].whirl = classify_whirl(modes[i].lambda, modes[i].right, pairs, real_tol);
-        modes[best].whirl = classify_whirl(modes[best].lambda, modes[best].right, pairs, real_tol);
+        return count;
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!oscillating(i)) continue;
+        // Exactly one other oscillating mode that close, and i its only one: a double, not a cluster.
+        std::size_t partner = n, back = n;
+        if (neighbours(i, partner) != 1 || partner < i || neighbours(partner, back) != 1) continue;
+        // The lower first; on an exact tie the one listed first (i < partner).
+        Mode& a = lower(modes[partner], modes[i]) ? modes[partner] : modes[i];
+        Mode& b = &a == &modes[i] ? modes[partner] : modes[i];
+        separate_pair(a, b, pairs, pencil);
+        a.whirl = classify_whirl(a.lambda, a.right, pairs, real_tol);
+        b.whirl = classify_whirl(b.lambda, b.right, pairs, real_tol);
     }
 }
 

@@ -35,18 +35,31 @@ struct Mode {
 Whirl classify_whirl(std::complex<double> lambda, const Eigen::VectorXcd& x,
                      const std::vector<std::pair<int, int>>& pairs, double real_tol);
 
+// Unit 2-norm, largest entry real and positive: reproducible output.
+Eigen::VectorXcd unit_vector(const Eigen::VectorXcd& v);
+
+// The products M x, C x, K x of a pencil P(lambda) = lambda^2 M + lambda C + K
+// (dense or sparse) and the Frobenius norms of M, C, K.
+struct PencilAction {
+    std::function<void(const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx, Eigen::VectorXcd& Kx)>
+        apply;
+    double norm_M = 0.0, norm_C = 0.0, norm_K = 0.0;
+};
+
 // A double eigenvalue (a rotor on isotropic supports at standstill, say) has a
 // plane of eigenvectors, and the solver returns an arbitrary basis of it, whose
-// whirl rounding decides. Each two modes with eigenvalues equal to 1e-6 relative
-// are turned into the most forward and the most backward combination in their
-// plane (the extremes of the whirl sum over it: circular orbits for a rotor), and
-// their whirl classified again. The turn is kept only if it leaves both backward
-// errors at the level of the originals, i.e. if the eigenvalue is double to
-// working accuracy; a pair split by a real effect (anisotropy) keeps its vectors.
-// Left vectors are not touched (for a double eigenvalue any basis is valid).
-using BackwardError = std::function<double(std::complex<double>, const Eigen::VectorXcd&)>;
+// whirl rounding decides. Two oscillating modes count as a double eigenvalue if
+// they are each other's only neighbour within 1e-6 relative and their
+// eigenvalues, each refined by one Rayleigh-quotient step
+// lambda - x^H P(lambda) x / x^H P'(lambda) x, agree to 1e-10 relative. The pair
+// is then turned into the most backward and the most forward combination in its
+// plane (the extremes of the whirl sum over it: circular orbits for a rotor);
+// the lower eigenvalue gets the backward one. The turn is kept only if the
+// residuals |P x| / (|lambda|^2 |M x| + |lambda| |C x| + |K x|) stay within ten
+// times the originals' (or 10 eps). A pair split by more (anisotropy) keeps its
+// vectors. Left vectors are not touched.
 void separate_double_whirl(std::vector<Mode>& modes, const std::vector<std::pair<int, int>>& pairs,
-                           double real_tol, const BackwardError& backward_error);
+                           double real_tol, const PencilAction& pencil);
 
 // Modal assurance criterion |a^H b|^2 / (|a|^2 |b|^2), in [0, 1].
 double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);

@@ -37,15 +37,6 @@ double backward_error(const QuadraticPencil& p, cd lambda, const Eigen::VectorXc
 
 namespace {
 
-// Unit 2-norm, largest entry real and positive: reproducible output.
-Eigen::VectorXcd normalized(const Eigen::VectorXcd& v) {
-    Eigen::Index k = 0;
-    v.cwiseAbs().maxCoeff(&k);
-    if (std::abs(v(k)) == 0.0) return v;
-    const cd phase = std::conj(v(k)) / std::abs(v(k));
-    return v * phase / v.norm();
-}
-
 double natural_scale(const QuadraticPencil& p) {
     const double nm = p.M.norm(), nk = p.K.norm();
     return (nm > 0.0 && nk > 0.0) ? std::sqrt(nk / nm) : 1.0;
@@ -60,9 +51,17 @@ void finish(QuadraticSpectrum& s, const QuadraticPencil& p, const std::vector<st
         m.whirl = classify_whirl(m.lambda, m.right, pairs, s.real_tol);
         kept.push_back(std::move(m));
     }
-    separate_double_whirl(kept, pairs, s.real_tol,
-                          [&](cd lambda, const Eigen::VectorXcd& x) { return backward_error(p, lambda, x); });
-    std::sort(kept.begin(), kept.end(), [](const Mode& a, const Mode& b) {
+    PencilAction action;
+    action.apply = [&](const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx, Eigen::VectorXcd& Kx) {
+        Mx = p.M * x;
+        Cx = p.C * x;
+        Kx = p.K * x;
+    };
+    action.norm_M = p.M.norm();
+    action.norm_C = p.C.norm();
+    action.norm_K = p.K.norm();
+    separate_double_whirl(kept, pairs, s.real_tol, action);
+    std::stable_sort(kept.begin(), kept.end(), [](const Mode& a, const Mode& b) {
         if (a.lambda.imag() != b.lambda.imag()) return a.lambda.imag() < b.lambda.imag();
         return a.lambda.real() < b.lambda.real();
     });
@@ -121,9 +120,9 @@ QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left) {
         const Eigen::VectorXcd bottom = t.asDiagonal() * ge.right.col(j).tail(n);
         const double et = backward_error(original, m.lambda, top), eb = backward_error(original, m.lambda, bottom);
         const bool use_top = top.norm() > 0.0 && (bottom.norm() == 0.0 || et < eb);
-        m.right = normalized(use_top ? top : bottom);
+        m.right = unit_vector(use_top ? top : bottom);
         m.backward_error = backward_error(original, m.lambda, m.right);
-        if (want_left) m.left = normalized(t.asDiagonal() * ge.left.col(j).head(n));
+        if (want_left) m.left = unit_vector(t.asDiagonal() * ge.left.col(j).head(n));
         s.modes.push_back(std::move(m));
     }
     return s;
@@ -149,7 +148,7 @@ QuadraticSpectrum solve_state(const QuadraticPencil& p) {
         Mode m;
         m.lambda = es.eigenvalues()(j);
         if (m.lambda.imag() < -1e-7 * std::max(std::abs(m.lambda), s.scale)) continue;
-        m.right = normalized(es.eigenvectors().col(j).head(n));
+        m.right = unit_vector(es.eigenvectors().col(j).head(n));
         m.backward_error = backward_error(p, m.lambda, m.right);
         s.modes.push_back(std::move(m));
     }

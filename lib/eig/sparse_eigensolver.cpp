@@ -234,19 +234,28 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
         const Eigen::VectorXcd top = r.z.head(n), bottom = r.z.tail(n);
         // The backward error does not depend on the vector's scale: the better half's is the mode's.
         const double et = backward_error(p, norms, m.lambda, top), eb = backward_error(p, norms, m.lambda, bottom);
-        m.right = (et < eb ? top : bottom).normalized();
+        m.right = unit_vector(et < eb ? top : bottom);
         m.backward_error = std::min(et, eb);
         m.whirl = classify_whirl(m.lambda, m.right, whirl_pairs, real_tol);
         out.modes.push_back(std::move(m));
     }
-    separate_double_whirl(out.modes, whirl_pairs, real_tol,
-                          [&](cd lambda, const Eigen::VectorXcd& x) { return backward_error(p, norms, lambda, x); });
+    PencilAction action;
+    action.apply = [&](const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx, Eigen::VectorXcd& Kx) {
+        Mx = times(p.M, x);
+        Cx = times(p.C, x);
+        Kx = times(p.K, x);
+    };
+    action.norm_M = norms.M;
+    action.norm_C = norms.C;
+    action.norm_K = norms.K;
+    separate_double_whirl(out.modes, whirl_pairs, real_tol, action);
     // The wanted count nearest the shift, reported by frequency.
     std::sort(out.modes.begin(), out.modes.end(),
               [&](const Mode& a, const Mode& b) { return std::abs(a.lambda - s) < std::abs(b.lambda - s); });
     if (static_cast<int>(out.modes.size()) > opt.modes) out.modes.resize(static_cast<size_t>(opt.modes));
-    std::sort(out.modes.begin(), out.modes.end(),
-              [](const Mode& a, const Mode& b) { return a.lambda.imag() < b.lambda.imag(); });
+    std::stable_sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) {
+        return a.lambda.imag() != b.lambda.imag() ? a.lambda.imag() < b.lambda.imag() : a.lambda.real() < b.lambda.real();
+    });
     return out;
 }
 
