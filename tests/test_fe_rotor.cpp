@@ -80,6 +80,21 @@ FeRotor machine(int count, double kxy, double cxy) {
     return r;
 }
 
+// The model at standstill solved by dense QZ (all modes) and by ARPACK (the
+// `modes` lowest), both with the model's whirl pairs.
+struct AtRest {
+    QuadraticSpectrum dense;
+    SparseSpectrum sparse;
+    AtRest(const FeRotorMatrices& m, int modes) {
+        const SparsePencil p = m.at_speed(0.0);
+        dense = solve_quadratic(QuadraticPencil{Eigen::MatrixXd(p.M), Eigen::MatrixXd(p.C), Eigen::MatrixXd(p.K)}, {},
+                                m.whirl_pairs);
+        SparseEigenOptions o;
+        o.modes = modes;
+        sparse = solve_quadratic_sparse(p, o, m.whirl_pairs);
+    }
+};
+
 double asym(const Eigen::SparseMatrix<double>& A, double sign) {
     const Eigen::SparseMatrix<double> At = A.transpose();
     return Eigen::MatrixXd(A - sign * At).cwiseAbs().maxCoeff() / std::max(1e-300, Eigen::MatrixXd(A).cwiseAbs().maxCoeff());
@@ -496,18 +511,12 @@ TEST_CASE("fe rotor: double eigenvalues at standstill split into one forward and
     FeRotor r = pinned_pinned(1.2, 24, 0.05, 0.0);
     r.disks.push_back({8, 15.0, 0.1, 0.18, 0.0, 0.0});
     const FeRotorMatrices m = r.assemble();
-    const SparsePencil p = m.at_speed(0.0);
-    const QuadraticSpectrum dense =
-        solve_quadratic(QuadraticPencil{Eigen::MatrixXd(p.M), Eigen::MatrixXd(p.C), Eigen::MatrixXd(p.K)}, {},
-                        m.whirl_pairs);
-    SparseEigenOptions o;
-    o.modes = 8;
-    const SparseSpectrum sparse = solve_quadratic_sparse(p, o, m.whirl_pairs);
-    for (const std::vector<Mode>* modes : {&dense.modes, &sparse.modes}) {
+    const AtRest rest(m, 8);
+    for (const std::vector<Mode>* modes : {&rest.dense.modes, &rest.sparse.modes}) {
         const std::size_t count = std::min<std::size_t>(8, modes->size());
         for (std::size_t i = 0; i + 1 < count; i += 2) {
             const Mode &a = (*modes)[i], &b = (*modes)[i + 1];
-            INFO((modes == &dense.modes ? "dense" : "sparse") << " modes " << i << ", " << i + 1 << ": "
+            INFO((modes == &rest.dense.modes ? "dense" : "sparse") << " modes " << i << ", " << i + 1 << ": "
                                                                << a.lambda << " " << b.lambda << ", backward errors "
                                                                << a.backward_error << " " << b.backward_error);
             REQUIRE(std::abs(a.lambda - b.lambda) <= 1e-8 * std::abs(a.lambda));   // double
@@ -515,7 +524,7 @@ TEST_CASE("fe rotor: double eigenvalues at standstill split into one forward and
             CHECK(b.whirl == Whirl::Forward);
             for (const Mode* md : {&a, &b}) {
                 // Still eigenvectors: QZ to rounding, ARPACK to its tolerance.
-                CHECK(md->backward_error < (modes == &dense.modes ? 1e-15 : 1e-11));
+                CHECK(md->backward_error < (modes == &rest.dense.modes ? 1e-15 : 1e-11));
                 // Circular orbit at every node: |x| = |y|, a quarter period apart.
                 const double top = md->right.cwiseAbs().maxCoeff();
                 for (const auto& [u, v] : m.whirl_pairs) {
@@ -539,15 +548,9 @@ TEST_CASE("fe rotor: a pair split by a small anisotropy keeps its planar modes",
         r.bearings.push_back({0, k, 0.0, 0.0, k * (1 + a), 0.0, 0.0, 0.0, 0.0});
         r.bearings.push_back({24, k, 0.0, 0.0, k * (1 + a), 0.0, 0.0, 0.0, 0.0});
         const FeRotorMatrices m = r.assemble();
-        const SparsePencil p = m.at_speed(0.0);
-        const QuadraticSpectrum dense =
-            solve_quadratic(QuadraticPencil{Eigen::MatrixXd(p.M), Eigen::MatrixXd(p.C), Eigen::MatrixXd(p.K)}, {},
-                            m.whirl_pairs);
-        SparseEigenOptions o;
-        o.modes = 6;
-        const SparseSpectrum sparse = solve_quadratic_sparse(p, o, m.whirl_pairs);
-        for (const std::vector<Mode>* modes : {&dense.modes, &sparse.modes}) {
-            const bool is_dense = modes == &dense.modes;
+        const AtRest rest(m, 6);
+        for (const std::vector<Mode>* modes : {&rest.dense.modes, &rest.sparse.modes}) {
+            const bool is_dense = modes == &rest.dense.modes;
             INFO((is_dense ? "dense" : "sparse") << ", anisotropy " << a);
             REQUIRE(std::abs((*modes)[1].lambda - (*modes)[0].lambda) < 1e-6 * std::abs((*modes)[0].lambda));
             for (std::size_t i = 0; i < 6; ++i) {
