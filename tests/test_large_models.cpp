@@ -305,3 +305,36 @@ TEST_CASE("sparse window following the 1x line finds every 1x critical speed wit
     const CampbellDiagram fixed = campbell(sparse_solver(*sc.sparse, so), speeds, co);
     CHECK(critical_speeds(sparse_solver(*sc.sparse, so), fixed, {1}).size() < cd.size());
 }
+
+TEST_CASE("critical speeds refined on two workers equal the serial ones", "[critical][campbell]") {
+    // The root searches are independent: on two threads (dense QZ) they must give
+    // exactly the serial result, in worker processes (ARPACK) the same to 1e-10.
+    const Scene cf = load_scene(data("centrifuge.toml"));
+    const CampbellDiagram dense = campbell(dense_solver(cf.system), cf.speeds->points());
+    const auto d1 = critical_speeds(dense_solver(cf.system), dense, {1, 2}, 1);
+    const auto d2 = critical_speeds(dense_solver(cf.system), dense, {1, 2}, 2);
+    REQUIRE(d1.size() >= 5);
+    REQUIRE(d2.size() == d1.size());
+    for (size_t i = 0; i < d1.size(); ++i) {
+        CHECK(d2[i].speed == d1[i].speed);
+        CHECK(d2[i].branch == d1[i].branch);
+        CHECK(d2[i].mode.lambda == d1[i].mode.lambda);
+    }
+    const Scene sc = load_scene(data("fe_rotor.toml"));
+    const std::vector<double> speeds = SpeedRange{0.0, 3000.0, 16}.points();
+    CampbellOptions co;
+    co.modes = 6;
+    SparseEigenOptions so;
+    so.modes = 8;
+    const CampbellDiagram sparse = campbell(sparse_solver(*sc.sparse, so), speeds, co);
+    const auto s1 = critical_speeds(sparse_solver(*sc.sparse, so), sparse, {1}, 1);
+    const auto s2 = critical_speeds(sparse_solver(*sc.sparse, so), sparse, {1}, 2);
+    REQUIRE(s1.size() >= 5);
+    REQUIRE(s2.size() == s1.size());
+    for (size_t i = 0; i < s1.size(); ++i) CHECK(s2[i].speed == Approx(s1[i].speed).epsilon(1e-10));
+    // Stability changes use the same workers.
+    const auto u1 = stability_changes(dense_solver(cf.system), dense, 1);
+    const auto u2 = stability_changes(dense_solver(cf.system), dense, 2);
+    REQUIRE(u2.size() == u1.size());
+    for (size_t i = 0; i < u1.size(); ++i) CHECK(u2[i].speed == u1[i].speed);
+}

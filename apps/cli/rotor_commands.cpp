@@ -99,7 +99,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
         write_table(out, campbell_table(cd, c.unit), c.format);
         if (!o->common.plot.empty())
-            plot_if(o->common.plot, campbell_figure(cd, critical_speeds(plan.make, cd, h), h, c.unit, c.scene.title));
+            plot_if(o->common.plot, campbell_figure(cd, critical_speeds(plan.make, cd, h, c.jobs), h, c.unit, c.scene.title));
         note_ambiguity(cd);
     }});
 
@@ -128,7 +128,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
             const SolverPlan plan = plan_solver(c, wanted_modes(c, o->modes));
             note_extrapolation(c);
             const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
-            cs = critical_speeds(plan.make, cd, h);
+            cs = critical_speeds(plan.make, cd, h, c.jobs);
             note_ambiguity(cd);
         }
         write_table(out, critical_table(cs, c.unit), c.format);
@@ -143,7 +143,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         const SolverPlan plan = plan_solver(c, std::max(0, o->modes));
         note_extrapolation(c);
         const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
-        write_table(out, stability_table(stability_changes(plan.make, cd), c.unit), c.format);
+        write_table(out, stability_table(stability_changes(plan.make, cd, c.jobs), c.unit), c.format);
     }});
 
     auto* perv = app.add_subcommand("pervasive", "Hautus pervasive-damping check for each damping component");

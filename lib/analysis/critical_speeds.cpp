@@ -21,9 +21,16 @@ std::pair<double, Mode> refine_on_branch(SpectrumSolver& solve, const Branch& b,
     return {w, mode_at(w)};
 }
 
+// Every sign change of g along every oscillating branch, refined on `threads`
+// workers (each root search is independent), then emitted in branch order.
 template <class G, class Emit>
-void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const G& g, const Emit& emit) {
-    SpectrumSolver solve = make();
+void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const G& g, int threads, const Emit& emit) {
+    struct Interval {
+        const Branch* branch;
+        size_t i;
+        double g0, g1;
+    };
+    std::vector<Interval> found;
     for (const Branch& b : cd.branches) {
         for (size_t i = 0; i + 1 < b.points.size(); ++i) {
             const Mode& m0 = b.points[i].mode;
@@ -32,10 +39,19 @@ void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const G
             const double g0 = g(m0, b.points[i].speed), g1 = g(m1, b.points[i + 1].speed);
             if (g0 == 0.0 && i > 0) continue;   // counted as the end of the previous interval
             if ((g0 > 0) == (g1 > 0) && g0 != 0.0 && g1 != 0.0) continue;
-            auto [w, m] = refine_on_branch(solve, b, i, g);
-            emit(b, w, std::move(m), g0, g1);
+            found.push_back({&b, i, g0, g1});
         }
     }
+    const std::vector<QuadraticSpectrum> roots =
+        run_on_workers(make, found.size(), threads, [&](SpectrumSolver& solve, size_t k) {
+            auto [w, m] = refine_on_branch(solve, *found[k].branch, found[k].i, g);
+            QuadraticSpectrum s;
+            s.speed = w;
+            s.modes.push_back(std::move(m));
+            return s;
+        });
+    for (size_t k = 0; k < found.size(); ++k)
+        emit(*found[k].branch, roots[k].speed, roots[k].modes.at(0), found[k].g0, found[k].g1);
 }
 
 }  // namespace
@@ -46,12 +62,12 @@ std::vector<CriticalSpeed> critical_speeds(const GyroscopicSystem& sys, const Ca
 }
 
 std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const CampbellDiagram& cd,
-                                           const std::vector<int>& harmonics) {
+                                           const std::vector<int>& harmonics, int threads) {
     std::vector<CriticalSpeed> out;
     for (int k : harmonics) {
         if (k < 1) throw InputError("harmonic " + std::to_string(k) + " is not allowed; allowed: k >= 1");
         const auto g = [k](const Mode& m, double w) { return m.lambda.imag() - k * w; };
-        scan_branches(solver, cd, g, [&](const Branch& b, double w, Mode m, double, double) {
+        scan_branches(solver, cd, g, threads, [&](const Branch& b, double w, Mode m, double, double) {
             out.push_back({w, k, b.id, std::move(m)});
         });
     }
@@ -64,10 +80,10 @@ std::vector<StabilityChange> stability_changes(const GyroscopicSystem& sys, cons
     return stability_changes(dense_solver(sys, eig), cd);
 }
 
-std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd) {
+std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd, int threads) {
     std::vector<StabilityChange> out;
     const auto g = [](const Mode& m, double) { return m.lambda.real(); };
-    scan_branches(solver, cd, g, [&](const Branch& b, double w, Mode m, double g0, double g1) {
+    scan_branches(solver, cd, g, threads, [&](const Branch& b, double w, Mode m, double g0, double g1) {
         out.push_back({w, b.id, g1 > g0, std::move(m)});
     });
     std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });

@@ -20,9 +20,10 @@ struct CriticalSpeed {
 // refined with GSL Brent on f(w) = Im lambda(w) - k w.
 std::vector<CriticalSpeed> critical_speeds(const GyroscopicSystem& sys, const CampbellDiagram& cd,
                                            const std::vector<int>& harmonics, const EigenOptions& eig = {});
-// The same with any solver (the one the diagram was made with).
+// The same with any solver (the one the diagram was made with); the root
+// searches run on `threads` workers (run_on_workers).
 std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const CampbellDiagram& cd,
-                                           const std::vector<int>& harmonics);
+                                           const std::vector<int>& harmonics, int threads = 1);
 
 // For undamped systems without circulatory terms, lambda = i k w is an
 // eigenvalue exactly at a critical speed, so w^2 solves the linear Hermitian
@@ -40,6 +41,7 @@ struct StabilityChange {
 // Speeds where a branch's real part changes sign.
 std::vector<StabilityChange> stability_changes(const GyroscopicSystem& sys, const CampbellDiagram& cd,
                                                const EigenOptions& eig = {});
-std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd);
+std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd,
+                                               int threads = 1);
 
 }  // namespace gyrokit

@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 
 #include <cmath>
+#include <mutex>
 #include <fmt/format.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_roots.h>
@@ -23,7 +24,10 @@ double find_root(const std::function<double(double)>& f, double a, double b, dou
     if (fb == 0.0) return b;
     if ((fa > 0) == (fb > 0))
         throw SolverError(fmt::format("root search on [{}, {}] has no sign change", a, b));
-    gsl_set_error_handler_off();   // errors are reported through return codes below
+    // Errors are reported through return codes below; set once, since root
+    // searches may run on several threads.
+    static std::once_flag quiet;
+    std::call_once(quiet, [] { gsl_set_error_handler_off(); });
     gsl_function F{&trampoline, const_cast<std::function<double(double)>*>(&f)};
     gsl_root_fsolver* s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
     gsl_root_fsolver_set(s, &F, a, b);

@@ -118,6 +118,7 @@ void put_spectrum(std::FILE* f, const QuadraticSpectrum& s) {
     put(f, s.scale);
     put(f, s.real_tol);
     put(f, s.partial);
+    put(f, s.speed);
 }
 QuadraticSpectrum get_spectrum(std::FILE* f) {
     QuadraticSpectrum s;
@@ -133,15 +134,15 @@ QuadraticSpectrum get_spectrum(std::FILE* f) {
     s.scale = get<double>(f);
     s.real_tol = get<double>(f);
     s.partial = get<bool>(f);
+    s.speed = get<double>(f);
     return s;
 }
 
-// Blocks of speeds in forked workers. A worker writes 1 + its spectra, or 0 +
+// Blocks of tasks in forked workers. A worker writes 1 + its spectra, or 0 +
 // the error kind (1 input, 2 solver, 3 other) + message, to its file.
-std::vector<QuadraticSpectrum> solve_in_processes(const SolverFactory& make, const std::vector<double>& speeds,
-                                                  size_t workers,
-                                                  const std::function<void(size_t, size_t)>& progress) {
-    const size_t n = speeds.size();
+std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_t n, size_t workers,
+                                                const WorkerTask& task,
+                                                const std::function<void(size_t, size_t)>& progress) {
     // A counter all workers share, for the progress bar.
     void* shared = mmap(nullptr, sizeof(std::atomic<size_t>), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
     if (shared == MAP_FAILED) throw Error("cannot map memory for the worker processes");
@@ -160,7 +161,7 @@ std::vector<QuadraticSpectrum> solve_in_processes(const SolverFactory& make, con
                 SpectrumSolver solve = make();
                 std::vector<QuadraticSpectrum> part;
                 for (size_t i = k * n / workers; i < (k + 1) * n / workers; ++i) {
-                    part.push_back(solve(speeds[i]));
+                    part.push_back(task(solve, i));
                     const size_t d = ++*done;
                     if (progress) progress(d, n);
                 }
@@ -210,9 +211,8 @@ std::vector<QuadraticSpectrum> solve_in_processes(const SolverFactory& make, con
 
 }  // namespace
 
-std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std::vector<double>& speeds, int threads,
-                                            const std::function<void(size_t, size_t)>& progress) {
-    const size_t n = speeds.size();
+std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t n, int threads, const WorkerTask& task,
+                                              const std::function<void(size_t, size_t)>& progress) {
     std::vector<QuadraticSpectrum> out(n);
     const size_t t = std::clamp<size_t>(threads < 1 ? 1 : static_cast<size_t>(threads), 1, std::max<size_t>(n, 1));
     std::atomic<size_t> done{0};
@@ -226,7 +226,7 @@ std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std
                     std::lock_guard<std::mutex> lock(report);
                     if (failure) return;
                 }
-                out[i] = solve(speeds[i]);
+                out[i] = task(solve, i);
                 const size_t d = ++done;
                 if (progress) {
                     std::lock_guard<std::mutex> lock(report);
@@ -238,7 +238,7 @@ std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std
             if (!failure) failure = std::current_exception();
         }
     };
-    if (t > 1 && !make.thread_safe) return solve_in_processes(make, speeds, t, progress);
+    if (t > 1 && !make.thread_safe) return run_in_processes(make, n, t, task, progress);
     if (t == 1) {
         work(0, n);
     } else {
@@ -248,6 +248,18 @@ std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std
     }
     if (failure) std::rethrow_exception(failure);
     return out;
+}
+
+std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std::vector<double>& speeds, int threads,
+                                            const std::function<void(size_t, size_t)>& progress) {
+    return run_on_workers(
+        make, speeds.size(), threads,
+        [&](SpectrumSolver& solve, size_t i) {
+            QuadraticSpectrum s = solve(speeds[i]);
+            s.speed = speeds[i];
+            return s;
+        },
+        progress);
 }
 
 }  // namespace gyrokit

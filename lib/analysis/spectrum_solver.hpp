@@ -49,6 +49,14 @@ std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std
                                             int threads = 1,
                                             const std::function<void(size_t, size_t)>& progress = {});
 
+// The general form: task(solve, i) for i = 0 .. n-1, each worker with its own
+// solver from `make` and a contiguous block of i (threads, or forked processes
+// for a solver that is not thread safe); the results in the order of i. An
+// error in any task is rethrown with its type and message.
+using WorkerTask = std::function<QuadraticSpectrum(SpectrumSolver& solve, size_t i)>;
+std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t n, int threads, const WorkerTask& task,
+                                              const std::function<void(size_t, size_t)>& progress = {});
+
 // The ARPACK result as a spectrum of the dense interface.
 QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p);
 

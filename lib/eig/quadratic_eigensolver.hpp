@@ -30,6 +30,7 @@ struct QuadraticSpectrum {
     double scale = 1.0;           // sqrt(|K|/|M|): the problem's natural frequency scale
     double real_tol = 0.0;        // |Im lambda| below this counts as real
     bool partial = false;         // only a window of modes (near a shift), not all
+    double speed = 0.0;           // rad/s, where a sweep or a root search set it
     double max_backward_error() const;
 };
 
