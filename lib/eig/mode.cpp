@@ -110,6 +110,10 @@ bool lower(const Mode& a, const Mode& b) {
 
 }  // namespace
 
+double backward_error(const PencilAction& p, std::complex<double> lambda, const Eigen::VectorXcd& x) {
+    return check(p, lambda, x).normwise;
+}
+
 Eigen::VectorXcd unit_vector(const Eigen::VectorXcd& v) {
     Eigen::Index k = 0;
     if (v.size() == 0) return v;

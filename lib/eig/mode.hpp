@@ -46,6 +46,10 @@ struct PencilAction {
     double norm_M = 0.0, norm_C = 0.0, norm_K = 0.0;
 };
 
+// Relative backward error |P(lambda) x| / ((|lambda|^2 |M| + |lambda| |C| + |K|) |x|),
+// Frobenius norms: the one definition both solvers report.
+double backward_error(const PencilAction& p, std::complex<double> lambda, const Eigen::VectorXcd& x);
+
 // A double eigenvalue (a rotor on isotropic supports at standstill, say) has a
 // plane of eigenvectors, and the solver returns an arbitrary basis of it, whose
 // whirl rounding decides. Two oscillating modes count as a double eigenvalue if

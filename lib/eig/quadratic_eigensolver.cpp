@@ -27,12 +27,26 @@ double QuadraticSpectrum::max_backward_error() const {
     return e;
 }
 
+namespace {
+
+// The dense pencil's products and norms (p must outlive the action).
+PencilAction action_of(const QuadraticPencil& p) {
+    PencilAction a;
+    a.apply = [&p](const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx, Eigen::VectorXcd& Kx) {
+        Mx = p.M * x;
+        Cx = p.C * x;
+        Kx = p.K * x;
+    };
+    a.norm_M = p.M.norm();
+    a.norm_C = p.C.norm();
+    a.norm_K = p.K.norm();
+    return a;
+}
+
+}  // namespace
+
 double backward_error(const QuadraticPencil& p, cd lambda, const Eigen::VectorXcd& x) {
-    const double a = std::abs(lambda);
-    const double denom = (a * a * p.M.norm() + a * p.C.norm() + p.K.norm()) * x.norm();
-    if (denom == 0.0) return 0.0;
-    const Eigen::VectorXcd r = (lambda * lambda) * (p.M * x) + lambda * (p.C * x) + p.K * x;
-    return r.norm() / denom;
+    return backward_error(action_of(p), lambda, x);
 }
 
 namespace {
@@ -51,16 +65,7 @@ void finish(QuadraticSpectrum& s, const QuadraticPencil& p, const std::vector<st
         m.whirl = classify_whirl(m.lambda, m.right, pairs, s.real_tol);
         kept.push_back(std::move(m));
     }
-    PencilAction action;
-    action.apply = [&](const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx, Eigen::VectorXcd& Kx) {
-        Mx = p.M * x;
-        Cx = p.C * x;
-        Kx = p.K * x;
-    };
-    action.norm_M = p.M.norm();
-    action.norm_C = p.C.norm();
-    action.norm_K = p.K.norm();
-    separate_double_whirl(kept, pairs, s.real_tol, action);
+    separate_double_whirl(kept, pairs, s.real_tol, action_of(p));
     std::stable_sort(kept.begin(), kept.end(), [](const Mode& a, const Mode& b) {
         if (a.lambda.imag() != b.lambda.imag()) return a.lambda.imag() < b.lambda.imag();
         return a.lambda.real() < b.lambda.real();
@@ -84,6 +89,7 @@ Eigen::VectorXd dof_scaling(const QuadraticPencil& p) {
 QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left) {
     const int n = static_cast<int>(original.M.rows());
     const Eigen::VectorXd t = dof_scaling(original);
+    const PencilAction action = action_of(original);   // backward errors refer to the original problem
     const QuadraticPencil p{t.asDiagonal() * original.M * t.asDiagonal(), t.asDiagonal() * original.C * t.asDiagonal(),
                             t.asDiagonal() * original.K * t.asDiagonal()};
     // Fan-Lin-Van Dooren: lambda = gamma mu, coefficients of norm about one.
@@ -118,10 +124,10 @@ QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left) {
         // Back to the original coordinates; backward errors refer to the original problem.
         const Eigen::VectorXcd top = t.asDiagonal() * ge.right.col(j).head(n);
         const Eigen::VectorXcd bottom = t.asDiagonal() * ge.right.col(j).tail(n);
-        const double et = backward_error(original, m.lambda, top), eb = backward_error(original, m.lambda, bottom);
+        const double et = backward_error(action, m.lambda, top), eb = backward_error(action, m.lambda, bottom);
         const bool use_top = top.norm() > 0.0 && (bottom.norm() == 0.0 || et < eb);
         m.right = unit_vector(use_top ? top : bottom);
-        m.backward_error = backward_error(original, m.lambda, m.right);
+        m.backward_error = backward_error(action, m.lambda, m.right);
         if (want_left) m.left = unit_vector(t.asDiagonal() * ge.left.col(j).head(n));
         s.modes.push_back(std::move(m));
     }
@@ -130,6 +136,7 @@ QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left) {
 
 QuadraticSpectrum solve_state(const QuadraticPencil& p) {
     const int n = static_cast<int>(p.M.rows());
+    const PencilAction action = action_of(p);
     Eigen::FullPivLU<Eigen::MatrixXd> lu(p.M);
     if (!lu.isInvertible())
         throw SolverError("the state-matrix method needs an invertible M, and M is singular; "
@@ -149,7 +156,7 @@ QuadraticSpectrum solve_state(const QuadraticPencil& p) {
         m.lambda = es.eigenvalues()(j);
         if (m.lambda.imag() < -1e-7 * std::max(std::abs(m.lambda), s.scale)) continue;
         m.right = unit_vector(es.eigenvectors().col(j).head(n));
-        m.backward_error = backward_error(p, m.lambda, m.right);
+        m.backward_error = backward_error(action, m.lambda, m.right);
         s.modes.push_back(std::move(m));
     }
     return s;

@@ -15,12 +15,6 @@ using SpC = Eigen::SparseMatrix<cd>;
 
 namespace {
 
-// Frobenius norms of M, C, K: the scale of the backward error, computed once per solve.
-struct PencilNorms {
-    double M, C, K;
-    explicit PencilNorms(const SparsePencil& p) : M(p.M.norm()), C(p.C.norm()), K(p.K.norm()) {}
-};
-
 // Real sparse matrix times complex vector, without a complex copy of the matrix.
 Eigen::VectorXcd times(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x) {
     const Eigen::VectorXd re = A * x.real(), im = A * x.imag();
@@ -30,18 +24,24 @@ Eigen::VectorXcd times(const Eigen::SparseMatrix<double>& A, const Eigen::Vector
     return y;
 }
 
-double backward_error(const SparsePencil& p, const PencilNorms& nrm, cd lambda, const Eigen::VectorXcd& x) {
-    const double a = std::abs(lambda);
-    const double denom = (a * a * nrm.M + a * nrm.C + nrm.K) * x.norm();
-    if (denom == 0.0) return 0.0;
-    const Eigen::VectorXcd r = (lambda * lambda) * times(p.M, x) + lambda * times(p.C, x) + times(p.K, x);
-    return r.norm() / denom;
+// The sparse pencil's products and norms, the norms computed once (p must outlive the action).
+PencilAction action_of(const SparsePencil& p) {
+    PencilAction a;
+    a.apply = [&p](const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx, Eigen::VectorXcd& Kx) {
+        Mx = times(p.M, x);
+        Cx = times(p.C, x);
+        Kx = times(p.K, x);
+    };
+    a.norm_M = p.M.norm();
+    a.norm_C = p.C.norm();
+    a.norm_K = p.K.norm();
+    return a;
 }
 
 }  // namespace
 
 double backward_error(const SparsePencil& p, cd lambda, const Eigen::VectorXcd& x) {
-    return backward_error(p, PencilNorms(p), lambda, x);
+    return backward_error(action_of(p), lambda, x);
 }
 
 namespace {
@@ -222,8 +222,8 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
     SparseSpectrum out;
     out.iterations = iterations;
     out.converged = static_cast<int>(ritz.size());
-    const PencilNorms norms(p);
-    const double scale = std::sqrt(norms.K / norms.M);
+    const PencilAction action = action_of(p);
+    const double scale = std::sqrt(action.norm_K / action.norm_M);
     const double real_tol = 1e-7 * (std::isfinite(scale) && scale > 0 ? scale : 1.0);
     for (const Ritz& r : ritz) {
         if (std::abs(r.theta) == 0.0) continue;
@@ -233,21 +233,12 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
         if (std::abs(m.lambda.imag()) <= real_tol) m.lambda = cd(m.lambda.real(), 0.0);
         const Eigen::VectorXcd top = r.z.head(n), bottom = r.z.tail(n);
         // The backward error does not depend on the vector's scale: the better half's is the mode's.
-        const double et = backward_error(p, norms, m.lambda, top), eb = backward_error(p, norms, m.lambda, bottom);
+        const double et = backward_error(action, m.lambda, top), eb = backward_error(action, m.lambda, bottom);
         m.right = unit_vector(et < eb ? top : bottom);
         m.backward_error = std::min(et, eb);
         m.whirl = classify_whirl(m.lambda, m.right, whirl_pairs, real_tol);
         out.modes.push_back(std::move(m));
     }
-    PencilAction action;
-    action.apply = [&](const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx, Eigen::VectorXcd& Kx) {
-        Mx = times(p.M, x);
-        Cx = times(p.C, x);
-        Kx = times(p.K, x);
-    };
-    action.norm_M = norms.M;
-    action.norm_C = norms.C;
-    action.norm_K = norms.K;
     separate_double_whirl(out.modes, whirl_pairs, real_tol, action);
     // The wanted count nearest the shift, reported by frequency.
     std::sort(out.modes.begin(), out.modes.end(),
