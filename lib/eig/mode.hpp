@@ -46,6 +46,23 @@ struct PencilAction {
     double norm_M = 0.0, norm_C = 0.0, norm_K = 0.0;
 };
 
+// The action of M, C, K (dense or sparse, referenced: they must outlive it),
+// with `times(A, x)` the product A x.
+template <class Matrix, class Times>
+PencilAction pencil_action(const Matrix& M, const Matrix& C, const Matrix& K, Times times) {
+    PencilAction a;
+    a.apply = [&M, &C, &K, times](const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx,
+                                  Eigen::VectorXcd& Kx) {
+        Mx = times(M, x);
+        Cx = times(C, x);
+        Kx = times(K, x);
+    };
+    a.norm_M = M.norm();
+    a.norm_C = C.norm();
+    a.norm_K = K.norm();
+    return a;
+}
+
 // Relative backward error |P(lambda) x| / ((|lambda|^2 |M| + |lambda| |C| + |K|) |x|),
 // Frobenius norms: the one definition both solvers report.
 double backward_error(const PencilAction& p, std::complex<double> lambda, const Eigen::VectorXcd& x);

@@ -29,18 +29,9 @@ double QuadraticSpectrum::max_backward_error() const {
 
 namespace {
 
-// The dense pencil's products and norms (p must outlive the action).
 PencilAction action_of(const QuadraticPencil& p) {
-    PencilAction a;
-    a.apply = [&p](const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx, Eigen::VectorXcd& Kx) {
-        Mx = p.M * x;
-        Cx = p.C * x;
-        Kx = p.K * x;
-    };
-    a.norm_M = p.M.norm();
-    a.norm_C = p.C.norm();
-    a.norm_K = p.K.norm();
-    return a;
+    return pencil_action(p.M, p.C, p.K,
+                         [](const Eigen::MatrixXd& A, const Eigen::VectorXcd& x) -> Eigen::VectorXcd { return A * x; });
 }
 
 }  // namespace

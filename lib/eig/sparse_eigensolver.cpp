@@ -24,19 +24,7 @@ Eigen::VectorXcd times(const Eigen::SparseMatrix<double>& A, const Eigen::Vector
     return y;
 }
 
-// The sparse pencil's products and norms, the norms computed once (p must outlive the action).
-PencilAction action_of(const SparsePencil& p) {
-    PencilAction a;
-    a.apply = [&p](const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx, Eigen::VectorXcd& Kx) {
-        Mx = times(p.M, x);
-        Cx = times(p.C, x);
-        Kx = times(p.K, x);
-    };
-    a.norm_M = p.M.norm();
-    a.norm_C = p.C.norm();
-    a.norm_K = p.K.norm();
-    return a;
-}
+PencilAction action_of(const SparsePencil& p) { return pencil_action(p.M, p.C, p.K, times); }
 
 }  // namespace
 
