@@ -23,7 +23,7 @@ struct Options {
     std::string speed, dir, harmonics, critical_method = "branches", dofs;
     int modes = -1;
     double tolerance = 1e-8;
-    bool extrema = false;
+    bool extrema = false, rigid_body = false;
 };
 
 int wanted_modes(const Context& c, int modes) { return modes >= 0 ? modes : c.scene.modes; }
@@ -60,10 +60,34 @@ std::vector<int> parse_dofs(const std::string& text, const std::vector<std::stri
     return out;
 }
 
-void note_ambiguity(const CampbellDiagram& cd) {
+// What the tracked diagram says besides its rows: solver notes, rigid-body
+// eigenvalues left out, ambiguity, and every unstable range (a warning).
+void note_diagram(const CampbellDiagram& cd, const Context& c) {
+    for (const auto& n : cd.notes) std::cerr << "note: " << n << "\n";
+    if (cd.rigid_body > 0)
+        std::cerr << "note: " << cd.rigid_body << " rigid-body eigenvalues (lambda = 0: free motion of a singular K) "
+                  << "are not modes and are not tracked\n";
     if (cd.ambiguous_steps > 0)
         std::cerr << "note: " << cd.ambiguous_steps
                   << " speed steps stayed ambiguous at the refinement limit; use a finer --speeds grid\n";
+    for (const auto& w : instability_warnings(cd, c.unit)) std::cerr << "warning: " << w << "\n";
+}
+
+// The steady unbalance response is no state the rotor reaches where a mode is
+// unstable: the modes are tracked over the range (at most 101 speeds of it) and
+// every unstable range is a warning.
+void warn_unstable_response(const Context& c, int modes) {
+    std::vector<double> grid = c.speeds;
+    if (grid.size() > 101) {
+        grid.clear();
+        for (int k = 0; k <= 100; ++k) grid.push_back(c.speeds.front() + (c.speeds.back() - c.speeds.front()) * k / 100.0);
+    }
+    const SolverPlan plan = plan_solver(c, modes);
+    CampbellOptions co = campbell_options(c, plan);
+    co.progress = {};
+    const CampbellDiagram cd = campbell(plan.make, grid, co);
+    for (const auto& w : instability_warnings(cd, c.unit))
+        std::cerr << "warning: " << w << "; the unbalance response there is not a steady state\n";
 }
 
 }  // namespace
@@ -77,11 +101,16 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     add_solver_options(eig, o->common);
     eig->add_option("--speed", o->speed, "spin speed (in --units)")->required();
     eig->add_option("--modes", o->modes, "sparse solver: number of modes near --target (default: the scene's, else 6)");
+    eig->add_flag("--rigid-body", o->rigid_body, "list the rigid-body eigenvalues (lambda = 0) after the modes");
     cmds.push_back({eig, [o](std::ostream& out) {
         const Context c = open_scene(o->common, false);
         const double w = parse_speed(o->speed, "--speed", c.unit);
         const SolverPlan plan = plan_solver(c, wanted_modes(c, o->modes));
-        write_table(out, eig_table(plan.make()(w), w, c.unit), c.format);
+        const QuadraticSpectrum s = plan.make()(w);
+        for (const auto& n : s.notes) std::cerr << "note: " << n << "\n";
+        if (!o->rigid_body && !s.rigid_body.empty())
+            std::cerr << "note: " << rigid_body_note(s.rigid_body, c.scene.dof_names()) << " (--rigid-body lists them)\n";
+        write_table(out, eig_table(s, w, c.unit, o->rigid_body), c.format);
     }});
 
     auto* camp = app.add_subcommand("campbell", "modes tracked over speed (Campbell diagram)");
@@ -100,7 +129,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         write_table(out, campbell_table(cd, c.unit), c.format);
         if (!o->common.plot.empty())
             plot_if(o->common.plot, campbell_figure(cd, critical_speeds(plan.make, cd, h, c.jobs), h, c.unit, c.scene.title));
-        note_ambiguity(cd);
+        note_diagram(cd, c);
     }});
 
     auto* crit = app.add_subcommand("critical", "critical speeds: crossings with the k x speed lines");
@@ -129,7 +158,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
             note_extrapolation(c);
             const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
             cs = critical_speeds(plan.make, cd, h, c.jobs);
-            note_ambiguity(cd);
+            note_diagram(cd, c);
         }
         write_table(out, critical_table(cs, c.unit), c.format);
     }});
@@ -143,7 +172,13 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         const SolverPlan plan = plan_solver(c, std::max(0, o->modes));
         note_extrapolation(c);
         const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
-        write_table(out, stability_table(stability_changes(plan.make, cd, c.jobs), c.unit), c.format);
+        const auto changes = stability_changes(plan.make, cd, c.jobs);
+        write_table(out, stability_table(changes, c.unit), c.format);
+        for (const auto& n : cd.notes) std::cerr << "note: " << n << "\n";
+        if (changes.empty())
+            std::cerr << "note: no mode changes stability in the range; "
+                      << (unstable_ranges(cd).empty() ? "none is unstable (neutral modes: Re lambda within its error bound)"
+                                                      : "some are unstable throughout") << "\n";
     }});
 
     auto* perv = app.add_subcommand("pervasive", "Hautus pervasive-damping check for each damping component");
@@ -165,6 +200,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     resp->add_option("--plot", o->common.plot, "draw amplitude and phase into FILE.svg or FILE.png");
     resp->add_option("--dofs", o->dofs, "DOFs reported, by name, e.g. x3,y3 (default: all)");
     resp->add_flag("--extrema", o->extrema, "print the peaks and antiresonances instead of the curve");
+    resp->add_option("--modes", o->modes, "modes checked for stability over the range (0 = all; default: the scene's)");
     cmds.push_back({resp, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
         const Scene& sc = c.scene;
@@ -175,6 +211,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
                                             : ResponseSolver([&](double w) { return unbalance_response(sc.system, w); });
         note_extrapolation(c);
         const ResponseCurve rc = unbalance_response(solve, sc.dofs(), c.speeds, parse_dofs(o->dofs, names));
+        warn_unstable_response(c, wanted_modes(c, o->modes));
         if (o->extrema)
             write_table(out, extrema_table(names, response_extrema(solve, rc), c.unit), c.format);
         else

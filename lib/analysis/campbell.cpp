@@ -95,6 +95,9 @@ struct Tracker {
     }
 
     void append(double w, QuadraticSpectrum&& s, const std::vector<int>& assign) {
+        out.rigid_body = std::max(out.rigid_body, static_cast<int>(s.rigid_body.size()));
+        for (auto& note : s.notes)
+            if (std::find(out.notes.begin(), out.notes.end(), note) == out.notes.end()) out.notes.push_back(note);
         std::vector<int> next_active(s.modes.size(), -1);
         for (size_t i = 0; i < assign.size(); ++i)
             if (assign[i] >= 0) next_active[static_cast<size_t>(assign[i])] = active[i];

@@ -41,6 +41,8 @@ struct CampbellDiagram {
     int inserted_speeds = 0;        // speeds added by refinement
     int ambiguous_steps = 0;        // steps still ambiguous at the refinement limit
     double max_backward_error = 0;
+    int rigid_body = 0;             // most rigid-body eigenvalues at one speed (not tracked)
+    std::vector<std::string> notes; // the solvers' notes, each once
 };
 
 // Dense: every mode of the system, solved with opt.eig.

@@ -38,10 +38,24 @@ struct StabilityChange {
     Mode mode;
 };
 
-// Speeds where a branch's real part changes sign.
+// Speeds where a branch becomes unstable or stable again. A mode is unstable
+// only where Re lambda exceeds its error bound (Mode::stability); neutral modes
+// (undamped, conservative) never count. Where both ends are decided the root of
+// Re lambda is refined by Brent; next to a neutral end, the edge of the unstable
+// range by bisection (relative width 1e-12).
 std::vector<StabilityChange> stability_changes(const GyroscopicSystem& sys, const CampbellDiagram& cd,
                                                const EigenOptions& eig = {});
 std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd,
                                                int threads = 1);
+
+// Grid ranges of the diagram where a (non-real) branch is unstable: what the
+// Campbell diagram and the response warn about.
+struct UnstableRange {
+    int branch = 0;
+    double from = 0, to = 0;   // first and last unstable grid speed
+    double max_real = 0;       // largest Re lambda there
+    size_t last_index = 0;
+};
+std::vector<UnstableRange> unstable_ranges(const CampbellDiagram& cd);
 
 }  // namespace gyrokit

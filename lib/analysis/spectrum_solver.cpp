@@ -25,6 +25,8 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
 QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p) {
     QuadraticSpectrum q;
     q.modes = std::move(s.modes);
+    q.rigid_body = std::move(s.rigid_body);
+    q.notes = std::move(s.notes);
     const double scale = std::sqrt(p.K.norm() / p.M.norm());
     q.scale = std::isfinite(scale) && scale > 0 ? scale : 1.0;
     q.real_tol = 1e-7 * q.scale;
@@ -40,12 +42,16 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
         // The state vectors [lambda x; x] of the last speed's modes, summed: a
         // start vector rich in the wanted invariant subspace.
         auto start = std::make_shared<Eigen::VectorXcd>();
-        return [pencil, whirl_pairs, opt, reuse, start](double w) {
+        // Rigid-body eigenvalues seen in the window at the last speed: asked for at once.
+        auto rigid = std::make_shared<int>(0);
+        return [pencil, whirl_pairs, opt, reuse, start, rigid](double w) {
             const SparsePencil p = pencil(w);
             SparseEigenOptions o = opt;
             o.shift += std::complex<double>(0.0, opt.shift_order * w);   // continued along nu + k w
             if (reuse) o.start = *start;
+            if (*rigid > 0) o.reserve = std::max(o.reserve, *rigid + 2);
             SparseSpectrum s = solve_quadratic_sparse(p, o, whirl_pairs);
+            *rigid = static_cast<int>(s.rigid_body.size());
             if (reuse && !s.modes.empty()) {
                 // Real and imaginary parts of [lambda x; x] span each mode and its
                 // conjugate (ARPACK wants both); a small random part keeps the
@@ -105,15 +111,47 @@ Eigen::VectorXcd get_vector(std::FILE* f) {
     return v;
 }
 
-void put_spectrum(std::FILE* f, const QuadraticSpectrum& s) {
-    put<long long>(f, static_cast<long long>(s.modes.size()));
-    for (const Mode& m : s.modes) {
+void put_string(std::FILE* f, const std::string& text) {
+    put<long long>(f, static_cast<long long>(text.size()));
+    if (!text.empty() && std::fwrite(text.data(), 1, text.size(), f) != text.size())
+        throw Error("cannot write a worker's result file");
+}
+std::string get_string(std::FILE* f) {
+    std::string text(static_cast<size_t>(get<long long>(f)), ' ');
+    if (!text.empty() && std::fread(text.data(), 1, text.size(), f) != text.size())
+        throw Error("a worker's result file ended early");
+    return text;
+}
+
+void put_modes(std::FILE* f, const std::vector<Mode>& modes) {
+    put<long long>(f, static_cast<long long>(modes.size()));
+    for (const Mode& m : modes) {
         put(f, m.lambda);
         put(f, m.backward_error);
+        put(f, m.error_bound);
         put(f, static_cast<int>(m.whirl));
         put_vector(f, m.right);
         put_vector(f, m.left);
     }
+}
+std::vector<Mode> get_modes(std::FILE* f) {
+    std::vector<Mode> modes(static_cast<size_t>(get<long long>(f)));
+    for (Mode& m : modes) {
+        m.lambda = get<std::complex<double>>(f);
+        m.backward_error = get<double>(f);
+        m.error_bound = get<double>(f);
+        m.whirl = static_cast<Whirl>(get<int>(f));
+        m.right = get_vector(f);
+        m.left = get_vector(f);
+    }
+    return modes;
+}
+
+void put_spectrum(std::FILE* f, const QuadraticSpectrum& s) {
+    put_modes(f, s.modes);
+    put_modes(f, s.rigid_body);
+    put<long long>(f, static_cast<long long>(s.notes.size()));
+    for (const auto& note : s.notes) put_string(f, note);
     put(f, s.infinite_count);
     put(f, s.scale);
     put(f, s.real_tol);
@@ -122,14 +160,10 @@ void put_spectrum(std::FILE* f, const QuadraticSpectrum& s) {
 }
 QuadraticSpectrum get_spectrum(std::FILE* f) {
     QuadraticSpectrum s;
-    s.modes.resize(static_cast<size_t>(get<long long>(f)));
-    for (Mode& m : s.modes) {
-        m.lambda = get<std::complex<double>>(f);
-        m.backward_error = get<double>(f);
-        m.whirl = static_cast<Whirl>(get<int>(f));
-        m.right = get_vector(f);
-        m.left = get_vector(f);
-    }
+    s.modes = get_modes(f);
+    s.rigid_body = get_modes(f);
+    s.notes.resize(static_cast<size_t>(get<long long>(f)));
+    for (auto& note : s.notes) note = get_string(f);
     s.infinite_count = get<int>(f);
     s.scale = get<double>(f);
     s.real_tol = get<double>(f);
@@ -170,10 +204,12 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
             } catch (const std::exception& e) {
                 const int kind = dynamic_cast<const InputError*>(&e) ? 1 : dynamic_cast<const SolverError*>(&e) ? 2 : 3;
                 const std::string what = e.what();
-                put<char>(f, 0);
-                put(f, kind);
-                put<long long>(f, static_cast<long long>(what.size()));
-                std::fwrite(what.data(), 1, what.size(), f);
+                try {
+                    put<char>(f, 0);
+                    put(f, kind);
+                    put_string(f, what);
+                } catch (...) {   // the parent then reports the file as ended early
+                }
                 status = 1;
             }
             std::fflush(f);
@@ -194,8 +230,7 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
                 for (size_t i = k * n / workers; i < (k + 1) * n / workers; ++i) out[i] = get_spectrum(f);
             } else {
                 const int kind = get<int>(f);
-                std::string what(static_cast<size_t>(get<long long>(f)), ' ');
-                if (std::fread(what.data(), 1, what.size(), f) != what.size()) throw Error("a worker's result file ended early");
+                const std::string what = get_string(f);
                 if (kind == 1) throw InputError(what);
                 if (kind == 2) throw SolverError(what);
                 throw Error(what);

@@ -1,6 +1,7 @@
 #include "eig/mode.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,9 +13,34 @@ std::string to_string(Whirl w) {
         case Whirl::Forward: return "forward";
         case Whirl::Backward: return "backward";
         case Whirl::Real: return "real";
+        case Whirl::Planar: return "planar";
+        case Whirl::None: return "none";
         case Whirl::Undefined: break;
     }
     return "undefined";
+}
+
+std::string to_string(Stability s) {
+    switch (s) {
+        case Stability::Stable: return "stable";
+        case Stability::Unstable: return "unstable";
+        case Stability::Neutral: break;
+    }
+    return "neutral";
+}
+
+Stability Mode::stability() const {
+    if (lambda.real() > error_bound) return Stability::Unstable;
+    if (lambda.real() < -error_bound) return Stability::Stable;
+    return Stability::Neutral;
+}
+
+bool is_rigid_body(std::complex<double> lambda, const Eigen::VectorXcd& x, const PencilAction& pencil,
+                   double scale) {
+    if (!(std::abs(lambda) <= kRigidBodyTolerance * scale)) return false;
+    Eigen::VectorXcd Mx, Cx, Kx;
+    pencil.apply(x, Mx, Cx, Kx);
+    return Kx.norm() <= kRigidBodyTolerance * pencil.norm_K * x.norm();
 }
 
 double Mode::damping_ratio() const {
@@ -33,8 +59,16 @@ Whirl classify_whirl(std::complex<double> lambda, const Eigen::VectorXcd& x,
                      const std::vector<std::pair<int, int>>& pairs, double real_tol) {
     if (std::abs(lambda.imag()) <= real_tol) return Whirl::Real;
     if (pairs.empty()) return Whirl::Undefined;
-    double turn = 0.0;
-    for (const auto& [u, v] : pairs) turn += (x(u) * std::conj(x(v))).imag();
+    double turn = 0.0, largest_turn = 0.0, largest_pair = 0.0, largest_pair_dof = 0.0;
+    for (const auto& [u, v] : pairs) {
+        const double t = (x(u) * std::conj(x(v))).imag();
+        turn += t;
+        largest_turn = std::max(largest_turn, std::abs(t));
+        largest_pair = std::max(largest_pair, 0.5 * (std::norm(x(u)) + std::norm(x(v))));
+        largest_pair_dof = std::max({largest_pair_dof, std::abs(x(u)), std::abs(x(v))});
+    }
+    if (largest_pair_dof <= kWhirlTolerance * x.cwiseAbs().maxCoeff()) return Whirl::None;
+    if (largest_turn <= kWhirlTolerance * largest_pair) return Whirl::Planar;
     if (lambda.imag() < 0.0) turn = -turn;  // the conjugate pair turns the other way
     return turn >= 0.0 ? Whirl::Forward : Whirl::Backward;
 }
@@ -151,6 +185,41 @@ void separate_double_whirl(std::vector<Mode>& modes, const std::vector<std::pair
         separate_pair(a, b, pairs, pencil);
         a.whirl = classify_whirl(a.lambda, a.right, pairs, real_tol);
         b.whirl = classify_whirl(b.lambda, b.right, pairs, real_tol);
+    }
+}
+
+void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil) {
+    const double eps = std::numeric_limits<double>::epsilon();
+    const size_t n = modes.size();
+    for (size_t i = 0; i < n; ++i) {
+        Mode& m = modes[i];
+        if (m.left.size() != m.right.size()) {
+            m.error_bound = std::numeric_limits<double>::infinity();
+            continue;
+        }
+        std::vector<size_t> cluster;
+        for (size_t j = 0; j < n; ++j)
+            if (modes[j].left.size() == m.right.size() &&
+                std::abs(modes[j].lambda - m.lambda) <= 1e-6 * std::abs(m.lambda))
+                cluster.push_back(j);
+        const Eigen::Index k = static_cast<Eigen::Index>(cluster.size());
+        Eigen::MatrixXcd X(m.right.size(), k), Y(m.right.size(), k), dPX(m.right.size(), k);
+        Eigen::VectorXcd Mx, Cx, Kx;
+        for (Eigen::Index c = 0; c < k; ++c) {
+            const Mode& o = modes[cluster[static_cast<size_t>(c)]];
+            X.col(c) = o.right.normalized();
+            Y.col(c) = o.left.normalized();
+            pencil.apply(X.col(c), Mx, Cx, Kx);
+            dPX.col(c) = (2.0 * m.lambda) * Mx + Cx;
+        }
+        const Eigen::MatrixXcd S = Y.adjoint() * dPX;
+        const double smin = Eigen::JacobiSVD<Eigen::MatrixXcd>(S).singularValues()(k - 1);
+        const double a = std::abs(m.lambda);
+        const double scale = (a * a * pencil.norm_M + a * pencil.norm_C + pencil.norm_K) *
+                             Eigen::JacobiSVD<Eigen::MatrixXcd>(X).singularValues()(0) *
+                             Eigen::JacobiSVD<Eigen::MatrixXcd>(Y).singularValues()(0);
+        m.error_bound = smin > 0.0 ? 10.0 * std::max(m.backward_error, eps) * scale / smin
+                                   : std::numeric_limits<double>::infinity();
     }
 }
 

@@ -11,14 +11,26 @@
 
 namespace gyrokit {
 
-enum class Whirl { Forward, Backward, Real, Undefined };
+// Forward/Backward: the lateral motion turns with / against the spin. Planar:
+// lateral motion on straight lines (no turn). None: no lateral motion at all
+// (axial or torsional modes). Real: a non-oscillating mode. Undefined: the
+// model names no whirl pairs.
+enum class Whirl { Forward, Backward, Real, Undefined, Planar, None };
 std::string to_string(Whirl w);
+
+// Whether a mode decays, grows, or cannot be told apart from neutral: its real
+// part is compared with the error bound of the eigenvalue (docs/numerics.md).
+enum class Stability { Stable, Neutral, Unstable };
+std::string to_string(Stability s);
 
 struct Mode {
     std::complex<double> lambda;   // eigenvalue (1/s); Im lambda >= 0 for listed modes
     Eigen::VectorXcd right;        // P(lambda) x = 0, unit 2-norm
     Eigen::VectorXcd left;         // y^H P(lambda) = 0, unit 2-norm (empty unless asked for)
     double backward_error = 0.0;   // relative backward error of (lambda, right)
+    // Bound on |lambda - exact eigenvalue| (1/s): condition number times backward
+    // error, with a safety factor; infinity where the condition is unknown.
+    double error_bound = 0.0;
     Whirl whirl = Whirl::Undefined;
 
     double frequency() const { return lambda.imag(); }   // damped natural frequency, rad/s
@@ -26,12 +38,29 @@ struct Mode {
     double damping_ratio() const;
     // -2 pi Re(lambda)/Im(lambda); +-infinity for a non-oscillating mode.
     double log_decrement() const;
+    // Unstable only if Re lambda > error_bound, stable only if Re lambda < -error_bound.
+    Stability stability() const;
 };
+
+struct PencilAction;
+// Rigid-body eigenvalues (free motion of a singular K: free-free rotors, free
+// axial or torsional DOFs) are zero eigenvalues whose vector K does not see:
+// |lambda| <= kRigidBodyTolerance * scale and |K x| <= kRigidBodyTolerance |K| |x|,
+// scale = sqrt(|K|/|M|) the pencil's natural frequency (Frobenius norms). A zero
+// eigenvalue of a Jordan chain of length two (q = a + b t) is computed as
+// +-sqrt(eps) * scale (1.5e-8 scale). The test on K x keeps the slow precession
+// of a fast gyroscope (lambda -> 0 as the speed grows, but K x of the order of
+// |K| |x|) a mode.
+constexpr double kRigidBodyTolerance = 1e-6;
+bool is_rigid_body(std::complex<double> lambda, const Eigen::VectorXcd& x, const PencilAction& pencil, double scale);
 
 // Whirl of the motion Re(x e^{lambda t}) (Im lambda > 0): forward if the
 // complex coordinates u + i v of the pairs turn in the positive sense, summed
 // over the pairs: sum Im(x_u conj(x_v)) > 0. `real_tol` decides when an
-// eigenvalue counts as real (|Im lambda| <= real_tol).
+// eigenvalue counts as real (|Im lambda| <= real_tol). None if the pair DOFs
+// hold less than kWhirlTolerance of the largest amplitude; Planar if no pair
+// turns by more than kWhirlTolerance of the largest pair amplitude.
+constexpr double kWhirlTolerance = 1e-6;
 Whirl classify_whirl(std::complex<double> lambda, const Eigen::VectorXcd& x,
                      const std::vector<std::pair<int, int>>& pairs, double real_tol);
 
@@ -81,6 +110,14 @@ double backward_error(const PencilAction& p, std::complex<double> lambda, const 
 // vectors. Left vectors are not touched.
 void separate_double_whirl(std::vector<Mode>& modes, const std::vector<std::pair<int, int>>& pairs,
                            double real_tol, const PencilAction& pencil);
+
+// Error bounds of computed eigenvalues from their backward errors and condition
+// numbers: for mode i with right vector x and left vector y,
+//   bound = 10 max(eta, eps) (|l|^2 |M| + |l| |C| + |K|) |X| |Y| / s_min(Y^H P'(l) X),
+// where X, Y hold the vectors of every mode within 1e-6 relative of l (a double
+// eigenvalue's plane, whose computed bases need not pair up). Modes without a
+// left vector get an infinite bound.
+void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil);
 
 // Modal assurance criterion |a^H b|^2 / (|a|^2 |b|^2), in [0, 1].
 double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);

@@ -21,6 +21,13 @@ EigenMethod parse_eigen_method(const std::string& name) {
 
 std::string to_string(EigenMethod m) { return m == EigenMethod::ScaledQZ ? "qz" : "state"; }
 
+void split_rigid_body(std::vector<Mode>& modes, std::vector<Mode>& rigid_body, const PencilAction& pencil,
+                      double scale) {
+    std::vector<Mode> kept;
+    for (auto& m : modes) (is_rigid_body(m.lambda, m.right, pencil, scale) ? rigid_body : kept).push_back(std::move(m));
+    modes = std::move(kept);
+}
+
 double QuadraticSpectrum::max_backward_error() const {
     double e = 0.0;
     for (const auto& m : modes) e = std::max(e, m.backward_error);
@@ -47,8 +54,10 @@ double natural_scale(const QuadraticPencil& p) {
     return (nm > 0.0 && nk > 0.0) ? std::sqrt(nk / nm) : 1.0;
 }
 
-// Keeps the upper half plane and the real axis, classifies and sorts.
-void finish(QuadraticSpectrum& s, const QuadraticPencil& p, const std::vector<std::pair<int, int>>& pairs) {
+// Keeps the upper half plane and the real axis, sets the error bounds, puts
+// the rigid-body eigenvalues apart, classifies and sorts.
+void finish(QuadraticSpectrum& s, const QuadraticPencil& p, const std::vector<std::pair<int, int>>& pairs,
+            bool keep_left) {
     std::vector<Mode> kept;
     for (auto& m : s.modes) {
         if (std::abs(m.lambda) <= s.real_tol) m.lambda = cd(m.lambda.real(), 0.0);
@@ -56,7 +65,12 @@ void finish(QuadraticSpectrum& s, const QuadraticPencil& p, const std::vector<st
         m.whirl = classify_whirl(m.lambda, m.right, pairs, s.real_tol);
         kept.push_back(std::move(m));
     }
-    separate_double_whirl(kept, pairs, s.real_tol, action_of(p));
+    const PencilAction action = action_of(p);
+    set_error_bounds(kept, action);
+    if (!keep_left)
+        for (auto& m : kept) m.left.resize(0);
+    split_rigid_body(kept, s.rigid_body, action, s.scale);
+    separate_double_whirl(kept, pairs, s.real_tol, action);
     std::stable_sort(kept.begin(), kept.end(), [](const Mode& a, const Mode& b) {
         if (a.lambda.imag() != b.lambda.imag()) return a.lambda.imag() < b.lambda.imag();
         return a.lambda.real() < b.lambda.real();
@@ -139,6 +153,11 @@ QuadraticSpectrum solve_state(const QuadraticPencil& p) {
     Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
     if (es.info() != Eigen::Success)
         throw SolverError("the state-matrix eigensolver did not converge; use the QZ method (--method qz)");
+    // Left eigenvectors w^H A = lambda w^H are the rows of V^{-1}; the quadratic's
+    // is y = M^{-T} w2 (w2 the lower half), since y^H P(lambda) = 0 follows.
+    const Eigen::PartialPivLU<Eigen::MatrixXcd> vlu(es.eigenvectors());
+    const Eigen::MatrixXcd W = vlu.inverse().adjoint();
+    const Eigen::MatrixXcd Y = Eigen::FullPivLU<Eigen::MatrixXd>(p.M.transpose()).solve(Eigen::MatrixXd::Identity(n, n)).cast<cd>() * W.bottomRows(n);
     QuadraticSpectrum s;
     s.scale = natural_scale(p);
     s.real_tol = 1e-7 * s.scale;
@@ -147,6 +166,7 @@ QuadraticSpectrum solve_state(const QuadraticPencil& p) {
         m.lambda = es.eigenvalues()(j);
         if (m.lambda.imag() < -1e-7 * std::max(std::abs(m.lambda), s.scale)) continue;
         m.right = unit_vector(es.eigenvectors().col(j).head(n));
+        m.left = unit_vector(Y.col(j));
         m.backward_error = backward_error(action, m.lambda, m.right);
         s.modes.push_back(std::move(m));
     }
@@ -160,14 +180,9 @@ QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& 
     if (!p.M.allFinite() || !p.C.allFinite() || !p.K.allFinite())
         throw InputError("the pencil has a NaN or infinite coefficient");
     QuadraticSpectrum s;
-    if (opt.method == EigenMethod::ScaledQZ) {
-        s = solve_qz(p, opt.left_vectors);
-    } else {
-        if (opt.left_vectors)
-            throw InputError("left eigenvectors are computed by the QZ method only (--method qz)");
-        s = solve_state(p);
-    }
-    finish(s, p, whirl_pairs);
+    // Both methods compute left vectors: they give every eigenvalue its error bound.
+    s = opt.method == EigenMethod::ScaledQZ ? solve_qz(p, true) : solve_state(p);
+    finish(s, p, whirl_pairs, opt.left_vectors);
     return s;
 }
 

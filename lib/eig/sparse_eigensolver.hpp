@@ -13,6 +13,7 @@
 
 #include <Eigen/Sparse>
 #include <complex>
+#include <string>
 #include <vector>
 
 namespace gyrokit {
@@ -28,16 +29,32 @@ struct SparseEigenOptions {
     int max_iterations = 3000;
     double tolerance = 0.0;                 // ARPACK relative Ritz tolerance; 0 = machine precision
     Eigen::VectorXcd start;                 // start vector of length 2n (e.g. the last speed's modes); empty: random
+    // Every returned eigenpair is verified: its backward error must not exceed
+    // this after refinement (inverse iteration on P(lambda)), else SolverError.
+    double verify_tolerance = 1e-10;
+    int reserve = 0;                        // extra eigenvalues asked of ARPACK (rigid-body ones expected in the window)
 };
 
 struct SparseSpectrum {
-    std::vector<Mode> modes;   // the wanted modes nearest the shift, by frequency
-    int iterations = 0;        // Arnoldi restarts used
-    int converged = 0;         // Ritz values converged
+    std::vector<Mode> modes;        // the wanted modes nearest the shift, by frequency, verified
+    std::vector<Mode> rigid_body;   // rigid-body eigenvalues found in the window (not modes)
+    int iterations = 0;             // Arnoldi restarts used
+    int converged = 0;              // Ritz values converged
+    std::complex<double> shift;     // the shift used (moved off a singular P(sigma))
+    int refined = 0;                // eigenpairs whose backward error needed refinement
+    double max_raw_backward_error = 0;   // largest backward error before verification
+    std::vector<std::string> notes;
 };
 
-// Throws InputError if P(sigma) is singular (the shift is an eigenvalue) and
-// SolverError if ARPACK does not converge, saying what to change.
+// Eigenvalues near the shift sigma = opt.shift. If P(sigma) is singular or
+// nearly so (rigid-body modes at sigma = 0 with a singular K), the shift is
+// moved to sigma - 1e-5 g (then 1e-4 g, 1e-3 g; g = sqrt(|K|/|M|)) and a note
+// says so. Rigid-body eigenvalues in the window are returned apart and the
+// window widened so that `opt.modes` modes remain. Each eigenpair is refined
+// by inverse iteration on P(lambda) and verified (verify_tolerance), and gets
+// its left vector and error bound. Throws InputError if no shift works and
+// SolverError if ARPACK does not converge or a pair fails verification,
+// saying what to change.
 SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOptions& opt,
                                       const std::vector<std::pair<int, int>>& whirl_pairs = {});
 

@@ -1,6 +1,7 @@
 #include "io/reports.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace gyrokit {
 
@@ -17,17 +18,54 @@ std::string speed_label(const SpeedUnit& u) { return "speed [" + u.name + "]"; }
 
 }  // namespace
 
-Table eig_table(const QuadraticSpectrum& s, double speed, const SpeedUnit& u) {
+Table eig_table(const QuadraticSpectrum& s, double speed, const SpeedUnit& u, bool rigid_body) {
     Table t({"speed", "index", "re", "im", "frequency", "whirl", "damping_ratio", "log_dec", "backward_error"});
     t.title = "eigenvalues at " + std::to_string(u.factor * speed) + " " + u.name +
               (s.infinite_count ? " (" + std::to_string(s.infinite_count) + " infinite eigenvalues omitted)" : "");
-    for (size_t i = 0; i < s.modes.size(); ++i) {
-        std::vector<Cell> row{u.factor * speed, ll(static_cast<int>(i) + 1)};
-        for (auto& c : mode_cells(s.modes[i], u)) row.push_back(c);
-        row.push_back(s.modes[i].backward_error);
+    int index = 0;
+    const auto add = [&](const Mode& m, bool rigid) {
+        std::vector<Cell> row{u.factor * speed, ll(++index)};
+        for (auto& c : mode_cells(m, u)) row.push_back(c);
+        if (rigid) row[5] = std::string("rigid-body");
+        row.push_back(m.backward_error);
         t.add_row(std::move(row));
-    }
+    };
+    for (const Mode& m : s.modes) add(m, false);
+    if (rigid_body)
+        for (const Mode& m : s.rigid_body) add(m, true);
     return t;
+}
+
+std::string rigid_body_note(const std::vector<Mode>& rigid, const std::vector<std::string>& names) {
+    if (rigid.empty()) return "";
+    std::vector<char> moves(names.size(), 0);
+    for (const Mode& m : rigid) {
+        const double top = m.right.cwiseAbs().maxCoeff();
+        for (Eigen::Index i = 0; i < m.right.size() && static_cast<size_t>(i) < names.size(); ++i)
+            if (std::abs(m.right(i)) >= 0.1 * top) moves[static_cast<size_t>(i)] = 1;
+    }
+    std::string list;
+    int shown = 0, more = 0;
+    for (size_t i = 0; i < names.size(); ++i) {
+        if (!moves[i]) continue;
+        if (shown < 12) list += (shown++ ? " " : "") + names[i];
+        else ++more;
+    }
+    if (more) list += " and " + std::to_string(more) + " more";
+    return std::to_string(rigid.size()) + " rigid-body eigenvalue" + (rigid.size() == 1 ? "" : "s") +
+           " (lambda = 0: free motion of a singular K) " + (rigid.size() == 1 ? "is" : "are") +
+           " not " + (rigid.size() == 1 ? "a mode" : "modes") + " and not listed; moving " + (list.empty() ? std::string("-") : list);
+}
+
+std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const SpeedUnit& u) {
+    std::vector<std::string> out;
+    for (const UnstableRange& r : unstable_ranges(cd)) {
+        char line[256];
+        std::snprintf(line, sizeof line, "mode %d is unstable from %.6g to %.6g %s (Re lambda up to %.4g 1/s)",
+                      r.branch, u.factor * r.from, u.factor * r.to, u.name.c_str(), r.max_real);
+        out.emplace_back(line);
+    }
+    return out;
 }
 
 Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u) {

@@ -12,7 +12,13 @@
 
 namespace gyrokit {
 
-Table eig_table(const QuadraticSpectrum& s, double speed, const SpeedUnit& u);
+// With `rigid_body`, the rigid-body eigenvalues follow the modes, whirl "rigid-body".
+Table eig_table(const QuadraticSpectrum& s, double speed, const SpeedUnit& u, bool rigid_body = false);
+// One line on the rigid-body eigenvalues: how many and which DOFs they move
+// (those with at least a tenth of the largest amplitude); empty if none.
+std::string rigid_body_note(const std::vector<Mode>& rigid, const std::vector<std::string>& dof_names);
+// One warning line per unstable range of the diagram (empty: none).
+std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const SpeedUnit& u);
 Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u);
 Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u);
 Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u);

@@ -34,6 +34,7 @@ struct Scene {
     std::optional<FluidRotorParameters> fluid;   // set for [model] type = "fluid_rotor"
 
     int dofs() const { return sparse ? sparse->size() : system.size(); }
+    const std::vector<std::string>& dof_names() const { return sparse ? sparse->dof_names : system.dof_names; }
     bool has_dense() const { return system.size() > 0; }
 };
 
