@@ -26,6 +26,7 @@ namespace {
 // isolated minima are refined by golden section on the continued branch.
 void check_set(const std::string& name, const GyroscopicSystem& s, const std::vector<double>& speeds,
                const PervasiveOptions& opt, std::vector<DampingLoss>& out) {
+    const double eps = std::numeric_limits<double>::epsilon();
     const CampbellDiagram cd = campbell(s, speeds);
     for (const Branch& b : cd.branches) {
         const size_t np = b.points.size();
@@ -38,7 +39,9 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
             if (std::abs(m.lambda) > tiny)   // rigid-body modes skipped
                 r[k] = pervasion_residual(p, s.damping_matrix(b.points[k].speed), m.lambda);
         }
-        const auto lost = [&](size_t k) { return k < np && r[k] <= opt.tolerance; };
+        // A loss leaves a residual at the level of the eigenpair's own accuracy.
+        const auto limit = [&](const Mode& m) { return std::min(opt.tolerance, 1e3 * std::max(m.backward_error, eps)); };
+        const auto lost = [&](size_t k) { return k < np && r[k] <= limit(b.points[k].mode); };
         const auto emit = [&](double w, const Mode& m, double res) {
             out.push_back({name, w, b.id, m, res});
         };
@@ -64,7 +67,7 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
             };
             const double w = a < c ? find_minimum(f, a, c) : b.points[k].speed;
             const double res = f(w);
-            if (res <= opt.tolerance) emit(w, best, res);
+            if (res <= limit(best)) emit(w, best, res);
         }
     }
 }

@@ -15,7 +15,9 @@
 namespace gyrokit {
 
 struct PervasiveOptions {
-    double tolerance = 1e-8;   // residual below which the damping does not pervade
+    // Upper limit of the residual of a loss. Below it, a residual counts as a
+    // loss only at the level the eigenpair's accuracy explains: r <= 1e3 max(eta, eps).
+    double tolerance = 1e-8;
 };
 
 struct DampingLoss {
