@@ -183,15 +183,20 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
 
     auto* perv = app.add_subcommand("pervasive", "Hautus pervasive-damping check for each damping component");
     add_common(perv, o->common, true);
-    perv->add_option("--tolerance", o->tolerance, "residual below which damping counts as not pervading")
+    perv->add_option("--tolerance", o->tolerance, "largest residual of a loss (a loss must also be within 1e3 "
+                                                  "times the eigenpair's backward error)")
         ->capture_default_str();
+    perv->add_option("--modes", o->modes, "number of modes checked: the K lowest (0 = all; default: the scene's)");
     cmds.push_back({perv, [o](std::ostream& out) {
         if (!(o->tolerance > 0.0 && o->tolerance < 1.0))
             throw InputError(fmt::format("--tolerance {}: allowed: 0 < tolerance < 1", o->tolerance));
         const Context c = open_scene(o->common, true);
         require_dense(c, "pervasive");
-        write_table(out, pervasive_table(pervasive_damping(c.scene.system, c.speeds, {o->tolerance}), c.unit),
-                    c.format);
+        PervasiveOptions po;
+        po.tolerance = o->tolerance;
+        po.modes = wanted_modes(c, o->modes);
+        if (po.modes < 0) throw InputError(fmt::format("--modes {}: allowed: 0 (all) or a count", po.modes));
+        write_table(out, pervasive_table(pervasive_damping(c.scene.system, c.speeds, po), c.unit), c.format);
     }});
 
     auto* resp = app.add_subcommand("response", "unbalance response: amplitude and phase per DOF");

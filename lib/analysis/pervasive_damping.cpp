@@ -4,8 +4,10 @@
 #include "analysis/scalar_search.hpp"
 #include "eig/quadratic_eigensolver.hpp"
 
+#include <Eigen/QR>
 #include <Eigen/SVD>
 #include <cmath>
+#include <map>
 #include <limits>
 
 namespace gyrokit {
@@ -22,28 +24,64 @@ double pervasion_residual(const QuadraticPencil& p, const Eigen::MatrixXd& D, st
 
 namespace {
 
-// Losses of one damping set: per tracked branch, the residual along speed;
-// isolated minima are refined by golden section on the continued branch.
+// The left vectors of `m` and of every mode of `modes` within 1e-6 of its
+// eigenvalue (a double eigenvalue's left plane).
+Eigen::MatrixXcd left_plane(const Mode& m, const std::vector<const Mode*>& modes) {
+    std::vector<const Mode*> near{&m};
+    for (const Mode* o : modes)
+        if (o != &m && o->left.size() == m.left.size() && std::abs(o->lambda - m.lambda) <= 1e-6 * std::abs(m.lambda))
+            near.push_back(o);
+    Eigen::MatrixXcd Y(m.left.size(), static_cast<Eigen::Index>(near.size()));
+    for (size_t c = 0; c < near.size(); ++c) Y.col(static_cast<Eigen::Index>(c)) = near[c]->left;
+    return Y;
+}
+
+// Whether three samples (a, ra), (b, rb), (c, rc) with rb the smallest fit a V
+// that reaches zero between them: a line through the two samples on one side,
+// continued to zero and mirrored, predicts the third within half its value.
+// A bowl whose floor stays above zero fails both fits.
+bool reaches_zero(double a, double ra, double b, double rb, double c, double rc) {
+    const double right = (rc - rb) / (c - b);   // kink between a and b
+    if (right > 0.0) {
+        const double kink = b - rb / right;
+        if (kink >= a && std::abs(ra - right * (kink - a)) <= 0.5 * ra) return true;
+    }
+    const double left = (ra - rb) / (b - a);   // kink between b and c
+    if (left > 0.0) {
+        const double kink = b + rb / left;
+        if (kink <= c && std::abs(rc - left * (c - kink)) <= 0.5 * rc) return true;
+    }
+    return false;
+}
+
+// Losses of one damping set: per tracked branch, the residual along speed, on
+// the grid from the left eigenvectors (a 2n x k SVD per mode); minima shaped
+// like a V reaching zero are refined by golden section on the continued branch
+// with the full SVD. A loss leaves a residual at the level of the eigenpair's
+// own accuracy: r <= min(tolerance, 1e3 max(eta, eps)).
 void check_set(const std::string& name, const GyroscopicSystem& s, const std::vector<double>& speeds,
                const PervasiveOptions& opt, std::vector<DampingLoss>& out) {
     const double eps = std::numeric_limits<double>::epsilon();
-    const CampbellDiagram cd = campbell(s, speeds);
+    CampbellOptions co;
+    co.eig.left_vectors = true;
+    co.modes = opt.modes;
+    const CampbellDiagram cd = campbell(s, speeds, co);
+    std::map<double, std::vector<const Mode*>> at;   // the modes at each speed, for double eigenvalues
+    for (const Branch& b : cd.branches)
+        for (const BranchPoint& q : b.points) at[q.speed].push_back(&q.mode);
+    const auto limit = [&](const Mode& m) { return std::min(opt.tolerance, 1e3 * std::max(m.backward_error, eps)); };
     for (const Branch& b : cd.branches) {
         const size_t np = b.points.size();
-        std::vector<double> r(np, std::numeric_limits<double>::infinity());
-        double tiny = 0.0;
+        std::vector<double> r(np);
         for (size_t k = 0; k < np; ++k) {
-            const Mode& m = b.points[k].mode;
-            const QuadraticPencil p = s.at_speed(b.points[k].speed);
-            tiny = 1e-7 * std::sqrt(p.K.norm() / p.M.norm());
-            if (std::abs(m.lambda) > tiny)   // rigid-body modes skipped
-                r[k] = pervasion_residual(p, s.damping_matrix(b.points[k].speed), m.lambda);
+            const BranchPoint& q = b.points[k];
+            r[k] = pervasion_residual(s.at_speed(q.speed), s.damping_matrix(q.speed), q.mode.lambda,
+                                      left_plane(q.mode, at[q.speed]));
         }
-        // A loss leaves a residual at the level of the eigenpair's own accuracy.
-        const auto limit = [&](const Mode& m) { return std::min(opt.tolerance, 1e3 * std::max(m.backward_error, eps)); };
         const auto lost = [&](size_t k) { return k < np && r[k] <= limit(b.points[k].mode); };
-        const auto emit = [&](double w, const Mode& m, double res) {
-            out.push_back({name, w, b.id, m, res});
+        const auto emit = [&](double w, Mode m, double res) {
+            m.left.resize(0);
+            out.push_back({name, w, b.id, std::move(m), res});
         };
         for (size_t k = 0; k < np; ++k) {
             if (lost(k) && ((k > 0 && lost(k - 1)) || lost(k + 1))) {
@@ -54,10 +92,14 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
             const bool left_min = k == 0 || r[k] <= r[k - 1], right_min = k + 1 == np || r[k] < r[k + 1];
             if (!left_min || !right_min || !std::isfinite(r[k])) continue;
             // A zero of |g(w)| with g analytic is a V: sampled at spacing h, the point
-            // nearest the kink is at most half its far neighbour. Shallow bowls (ratio
-            // near one) are no loss and are not refined, which keeps sweeps cheap.
+            // nearest the kink is at most half its far neighbour, and the samples fit
+            // a V. Bowls are no loss and are not refined, which keeps sweeps cheap.
             const double far = std::max(k > 0 ? r[k - 1] : 0.0, k + 1 < np ? r[k + 1] : 0.0);
             if (r[k] > 0.9 * far) continue;
+            if (k > 0 && k + 1 < np && !lost(k) &&
+                !reaches_zero(b.points[k - 1].speed, r[k - 1], b.points[k].speed, r[k], b.points[k + 1].speed,
+                              r[k + 1]))
+                continue;
             const double a = b.points[k == 0 ? 0 : k - 1].speed, c = b.points[std::min(k + 1, np - 1)].speed;
             Mode best = b.points[k].mode;
             const auto f = [&](double w) {
@@ -73,6 +115,18 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
 }
 
 }  // namespace
+
+double pervasion_residual(const QuadraticPencil& p, const Eigen::MatrixXd& D, std::complex<double> lambda,
+                          const Eigen::MatrixXcd& Y) {
+    if (D.norm() == 0.0) return 0.0;
+    const double np = std::norm(lambda) * p.M.norm() + std::abs(lambda) * p.C.norm() + p.K.norm();
+    const Eigen::MatrixXcd Z = Eigen::HouseholderQR<Eigen::MatrixXcd>(Y.conjugate()).householderQ() *
+                               Eigen::MatrixXcd::Identity(Y.rows(), Y.cols());
+    Eigen::MatrixXcd S(2 * Y.rows(), Y.cols());
+    S.topRows(Y.rows()) = p.evaluate(lambda).transpose() * Z / np;
+    S.bottomRows(Y.rows()) = D.cast<std::complex<double>>() * Z / D.norm();
+    return Eigen::JacobiSVD<Eigen::MatrixXcd>(S).singularValues()(Y.cols() - 1);
+}
 
 PervasiveReport pervasive_damping(const GyroscopicSystem& sys, const std::vector<double>& speeds,
                                   const PervasiveOptions& opt) {

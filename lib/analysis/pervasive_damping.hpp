@@ -18,6 +18,7 @@ struct PervasiveOptions {
     // Upper limit of the residual of a loss. Below it, a residual counts as a
     // loss only at the level the eigenpair's accuracy explains: r <= 1e3 max(eta, eps).
     double tolerance = 1e-8;
+    int modes = 0;   // the K lowest branches at the first speed are checked; 0 = all
 };
 
 struct DampingLoss {
@@ -35,6 +36,10 @@ struct PervasiveReport {
 
 // sigma_min([P(lambda)^T / |P|; D / |D|]) for an eigenvalue lambda of the pencil.
 double pervasion_residual(const QuadraticPencil& p, const Eigen::MatrixXd& D, std::complex<double> lambda);
+// The same minimum over z = conj(Y) c, Y the left eigenvectors (n x k, y^H P = 0;
+// k = 2 for a double eigenvalue): a 2n x k SVD, for the grid scan.
+double pervasion_residual(const QuadraticPencil& p, const Eigen::MatrixXd& D, std::complex<double> lambda,
+                          const Eigen::MatrixXcd& Y);
 
 // Checks each damping component alone and the total damping over the speeds.
 PervasiveReport pervasive_damping(const GyroscopicSystem& sys, const std::vector<double>& speeds,
