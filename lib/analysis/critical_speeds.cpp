@@ -133,7 +133,7 @@ std::vector<UnstableRange> unstable_ranges(const CampbellDiagram& cd) {
     for (const Branch& b : cd.branches) {
         for (size_t i = 0; i < b.points.size(); ++i) {
             const Mode& m = b.points[i].mode;
-            if (m.whirl == Whirl::Real || m.stability() != Stability::Unstable) continue;
+            if (m.stability() != Stability::Unstable) continue;
             if (!out.empty() && out.back().branch == b.id && out.back().last_index + 1 == i) {
                 out.back().to = b.points[i].speed;
                 out.back().last_index = i;

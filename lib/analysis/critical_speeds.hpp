@@ -1,5 +1,5 @@
 // Critical speeds (a tracked branch crosses a harmonic line k w) and stability
-// thresholds (a branch's real part crosses zero), refined by root finding on
+// thresholds (a branch becomes unstable: Re lambda beyond its error bound), refined by root finding on
 // the branch rather than read off the grid.
 #pragma once
 
@@ -48,8 +48,9 @@ std::vector<StabilityChange> stability_changes(const GyroscopicSystem& sys, cons
 std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd,
                                                int threads = 1);
 
-// Grid ranges of the diagram where a (non-real) branch is unstable: what the
-// Campbell diagram and the response warn about.
+// Grid ranges of the diagram where a branch is unstable (oscillating, or a real
+// eigenvalue beyond its bound: divergence): what the Campbell diagram and the
+// response warn about.
 struct UnstableRange {
     int branch = 0;
     double from = 0, to = 0;   // first and last unstable grid speed

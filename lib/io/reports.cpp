@@ -97,7 +97,7 @@ Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u) {
 
 Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u) {
     Table t({"speed", "mode", "change", "frequency"});
-    t.title = "stability changes (a mode's real part crosses zero)";
+    t.title = "stability changes (a mode's real part passes its error bound)";
     for (const auto& c : sc)
         t.add_row({u.factor * c.speed, ll(c.branch), std::string(c.becomes_unstable ? "unstable" : "stable"),
                    u.factor * c.mode.frequency()});

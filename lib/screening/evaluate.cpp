@@ -65,15 +65,13 @@ void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& 
     const GyroscopicSystem& sys = sc.system;
     const CampbellDiagram cd = campbell(sys, SpeedRange{0.0, c.up_to, c.count}.points());
     const std::vector<StabilityChange> changes = stability_changes(sys, cd);
-    // Re(lambda) of an undamped mode is zero up to rounding; only a growth
-    // rate above this counts.
-    const double scale = std::sqrt(sys.K.norm() / std::max(sys.M.norm(), 1e-300));
     double onset = inf;
     const Branch* which = nullptr;
     for (const Branch& b : cd.branches) {
         for (std::size_t k = 0; k < b.points.size(); ++k) {
             const Mode& m = b.points[k].mode;
-            if (!(m.lambda.real() > 1e-9 * std::max(std::abs(m.lambda), scale))) continue;
+            // The library's rule: Re lambda beyond its error bound (rounding is neutral).
+            if (m.stability() != Stability::Unstable) continue;
             double w = b.points[k].speed;
             if (k > 0)
                 for (const auto& ch : changes)
