@@ -107,7 +107,12 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
                 best = continue_branch(b, i, w, solve_at_speed(s, w));
                 return pervasion_residual(s.at_speed(w), s.damping_matrix(w), best.lambda);
             };
-            const double w = a < c ? find_minimum(f, a, c) : b.points[k].speed;
+            // A V reaching zero keeps its smallest sample within slope x bracket width;
+            // a bowl stops shrinking: give up once the smallest value stands a hundred
+            // times above the grid slope times the bracket.
+            const double slope = std::max(k > 0 ? r[k - 1] : 0.0, k + 1 < np ? r[k + 1] : 0.0) / (c - a);
+            const auto bowl = [&](double width, double smallest) { return smallest > 100.0 * slope * width; };
+            const double w = a < c ? find_minimum(f, a, c, 1e-14, bowl) : b.points[k].speed;
             const double res = f(w);
             if (res <= limit(best)) emit(w, best, res);
         }

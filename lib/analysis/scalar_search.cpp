@@ -47,11 +47,13 @@ double find_root(const std::function<double(double)>& f, double a, double b, dou
     return x;
 }
 
-double find_minimum(const std::function<double(double)>& f, double a, double b, double rel_tol) {
+double find_minimum(const std::function<double(double)>& f, double a, double b, double rel_tol,
+                    const std::function<bool(double, double)>& give_up) {
     const double g = 0.5 * (std::sqrt(5.0) - 1.0);
     double c = b - g * (b - a), d = a + g * (b - a);
     double fc = f(c), fd = f(d);
     for (int it = 0; it < 400 && (b - a) > rel_tol * std::max(1.0, std::fabs(c)); ++it) {
+        if (give_up && give_up(b - a, std::min(fc, fd))) break;
         if (fc <= fd) {
             b = d; d = c; fd = fc;
             c = b - g * (b - a); fc = f(c);

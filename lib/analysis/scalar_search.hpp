@@ -12,7 +12,9 @@ namespace gyrokit {
 double find_root(const std::function<double(double)>& f, double a, double b, double rel_tol = 1e-13);
 
 // Minimizer of f on [a, b] by golden section, until the bracket is below
-// rel_tol * max(1, |x|).
-double find_minimum(const std::function<double(double)>& f, double a, double b, double rel_tol = 1e-14);
+// rel_tol * max(1, |x|), or until give_up(bracket width, smallest value) says
+// the search cannot reach what the caller looks for.
+double find_minimum(const std::function<double(double)>& f, double a, double b, double rel_tol = 1e-14,
+                    const std::function<bool(double, double)>& give_up = {});
 
 }  // namespace gyrokit
