@@ -82,4 +82,17 @@ scene damped "$good_model
 d_G = 1.0"
 expect "needs an undamped system" critical "$dir/damped.toml" --speeds 0:40:41 --critical-method direct
 expect "scene" eig
+
+# Speeds that repeat at double precision: one line, exit 2, no hang (each under a
+# 20 s limit: a hang exits 124 and fails).
+real_cli=$cli
+printf '#!/bin/sh\nexec timeout 20 "%s" "$@"\n' "$real_cli" > "$dir/gk_limited"
+chmod +x "$dir/gk_limited"
+cli=$dir/gk_limited
+for cmd in campbell critical stability response; do
+    expect "keeps the 3 speeds distinct" "$cmd" "$dir/ok.toml" --speeds 1:1.0000000000000002:3
+done
+printf 'scene = "%s"\n[operating]\nfrom = 0\nto = 0\n[criteria.stability]\n' "$dir/ok.toml" > "$dir/zero_sweep.toml"
+expect "[criteria.stability] up_to is missing" screen "$dir/zero_sweep.toml"
+cli=$real_cli
 exit $fail

@@ -1,9 +1,11 @@
 // Textbook rotors with closed forms: the Jeffcott rotor (unbalance response,
 // stability threshold of rotating internal damping) and a rigid rotor on
 // isotropic tilt springs (Campbell diagram and critical speed).
+#include "analysis/assignment.hpp"
 #include "analysis/campbell.hpp"
 #include "analysis/critical_speeds.hpp"
 #include "analysis/unbalance_response.hpp"
+#include "core/error.hpp"
 #include "core/speed_range.hpp"
 
 #include <catch2/catch.hpp>
@@ -124,4 +126,23 @@ TEST_CASE("Campbell tracking follows crossing branches without swapping", "[camp
         constant += flat;
     }
     CHECK(constant == 2);   // both translation branches stay at sqrt(900) = 30 rad/s
+}
+
+TEST_CASE("degenerate speed lists are refused, never a hang; matching refuses NaN costs", "[campbell][reliability]") {
+    GyroscopicSystem s;
+    s.M = Eigen::Matrix2d::Identity();
+    s.K = Eigen::Vector2d(900.0, 900.0).asDiagonal();
+    s.G = 0.4 * J;
+    s.whirl_pairs = {{0, 1}};
+    s.dof_names = {"x", "y"};
+    CHECK_THROWS_AS(campbell(s, {1.0, 1.0, 2.0}), InputError);            // repeated
+    CHECK_THROWS_AS(campbell(s, {2.0, 1.0}), InputError);                 // decreasing
+    CHECK_THROWS_AS(campbell(s, {0.0, std::nan("")}), InputError);        // NaN
+    CHECK_THROWS_AS(SpeedRange::parse("1:1.0000000000000002:3", "--speeds", 1.0), InputError);
+    // Adjacent doubles: the tracking cannot bisect between them and must stop.
+    const double a = 30.0, b = std::nextafter(30.0, 31.0);
+    CHECK_NOTHROW(campbell(s, {a, b}));
+    Eigen::MatrixXd cost = Eigen::MatrixXd::Ones(2, 2);
+    cost(0, 1) = std::nan("");
+    CHECK_THROWS_AS(solve_assignment(cost), SolverError);
 }

@@ -1,10 +1,15 @@
 #include "analysis/assignment.hpp"
 
+#include "core/error.hpp"
+
 #include <limits>
 
 namespace gyrokit {
 
 std::vector<int> solve_assignment(const Eigen::MatrixXd& cost) {
+    // A NaN or infinite cost would leave no augmenting path: the loop below would never end.
+    if (!cost.allFinite()) throw SolverError("mode matching met a NaN or infinite cost (repeated speeds or a NaN "
+                                             "eigenvalue); use distinct, increasing speeds");
     const int rows = static_cast<int>(cost.rows()), cols = static_cast<int>(cost.cols());
     const bool transposed = rows > cols;   // the method below needs n <= m
     const Eigen::MatrixXd a = transposed ? Eigen::MatrixXd(cost.transpose()) : cost;

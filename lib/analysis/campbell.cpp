@@ -3,6 +3,8 @@
 #include "analysis/assignment.hpp"
 #include "core/error.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -83,7 +85,7 @@ struct Tracker {
         std::vector<cd> p;
         for (size_t i = 0; i < modes.size(); ++i) {
             const auto& pts = out.branches[static_cast<size_t>(active[i])].points;
-            if (pts.size() >= 2) {
+            if (pts.size() >= 2 && pts.back().speed > pts[pts.size() - 2].speed) {
                 const auto& a = pts[pts.size() - 2];
                 const auto& b = pts.back();
                 p.push_back(b.mode.lambda + (b.mode.lambda - a.mode.lambda) * (w - b.speed) / (b.speed - a.speed));
@@ -126,9 +128,10 @@ struct Tracker {
         last_modes(prev);
         bool ambiguous = false;
         std::vector<int> a = match(prev, predictions(prev, w1), s1.modes, ambiguous);
-        if (ambiguous && depth < opt.max_refine) {
-            const double w0 = out.speeds.back();
-            const double wm = 0.5 * (w0 + w1);
+        const double w0 = out.speeds.back();
+        const double wm = 0.5 * (w0 + w1);
+        // No bisection below the resolution of the speeds (wm equal to an end).
+        if (ambiguous && depth < opt.max_refine && wm > w0 && wm < w1) {
             ++out.inserted_speeds;
             step(wm, solve(wm), depth + 1);
             step(w1, std::move(s1), depth + 1);
@@ -151,6 +154,15 @@ CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>&
 CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& speeds, const CampbellOptions& opt) {
     CampbellDiagram out;
     if (speeds.empty()) return out;
+    for (size_t k = 0; k < speeds.size(); ++k) {
+        if (!std::isfinite(speeds[k]) || speeds[k] < 0.0)
+            throw InputError(fmt::format("speed {} at position {} is not allowed; allowed: finite speeds >= 0",
+                                         speeds[k], k + 1));
+        if (k > 0 && !(speeds[k] > speeds[k - 1]))
+            throw InputError(fmt::format("speeds {} and {} at positions {} and {} do not increase; allowed: "
+                                         "distinct speeds in increasing order",
+                                         speeds[k - 1], speeds[k], k, k + 1));
+    }
     // Grid speeds in parallel; tracking and refinement (few solves) in order.
     std::vector<QuadraticSpectrum> grid = solve_speeds(make, speeds, opt.threads, opt.progress);
     SpectrumSolver refine = make();

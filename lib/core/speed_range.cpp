@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <sstream>
@@ -44,6 +45,11 @@ void SpeedRange::validate(const std::string& origin) const {
         throw InputError(fmt::format("{}: one point needs FROM = TO; allowed for FROM < TO: N >= 2", origin));
     if (count >= 2 && from == to)
         throw InputError(fmt::format("{}: FROM = TO = {} with N = {} points; allowed: FROM < TO", origin, from, count));
+    // Points closer than rounding would repeat: a sweep needs distinct speeds.
+    if (count >= 2 && !((to - from) / (count - 1) > 1e-12 * std::max(1.0, to)))
+        throw InputError(fmt::format("{}: the step (TO - FROM)/(N - 1) = {:.3g} is below 1e-12 of max(1, TO) = {:.6g}; "
+                                     "allowed: a step that keeps the {} speeds distinct",
+                                     origin, (to - from) / (count - 1), std::max(1.0, to), count));
 }
 
 std::vector<double> SpeedRange::points() const {

@@ -337,6 +337,10 @@ Sweep read_sweep(const std::string& path) {
             c.only({"up_to", "count"});
             StabilityCriterion sc;
             sc.up_to = c.number("up_to", s.op_to * f, 0, true, s.unit.name.c_str()) / f;
+            if (!(sc.up_to > 0.0))   // the default, [operating] to, may be 0
+                throw InputError(fmt::format("{}: [criteria.stability] up_to is missing and [operating] to = {} gives "
+                                             "no speed range; required: up_to > 0 ({})",
+                                             path, s.op_to * f, s.unit.name));
             sc.count = static_cast<int>(c.integer("count", 121, 3, 100000));
             s.criteria.stability = sc;
         }
