@@ -31,6 +31,10 @@ int main(int argc, char** argv) {
     try {
         for (const auto& c : commands)
             if (c.app->parsed()) c.run(std::cout);
+        // Nothing counts as written until it is flushed: a full disk or a closed
+        // pipe shows only here for output that fits the stream's buffer.
+        std::cout.flush();
+        if (!std::cout) throw Error("cannot write the output (disk full, or the reading end was closed)");
     } catch (const InputError& e) {
         std::cerr << "error: " << e.what() << "\n";
         return 2;

@@ -88,7 +88,8 @@ std::vector<Command> add_screen_commands(CLI::App& app) {
             if (!ro.out.empty()) {
                 std::ofstream f(ro.out, std::ios::binary | std::ios::trunc);
                 write_results(f, s, rows, TableFormat::Csv);
-                if (!f) throw Error(ro.out + ": write failed");
+                f.close();   // flushes: a full disk shows here, not before
+                if (!f) throw Error(ro.out + ": write failed (disk full?)");
             } else {
                 write_results(os, s, rows, fmt_out);
             }

@@ -190,6 +190,7 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
         out.open(opt.out, opt.resume ? std::ios::app | std::ios::binary : std::ios::trunc | std::ios::binary);
         if (!out) throw InputError(fmt::format("{}: cannot write the result file", opt.out));
         if (need_header) out << header_line(s) << '\n' << std::flush;
+        if (!out) throw Error(fmt::format("{}: write failed (disk full?)", opt.out));
     }
     std::vector<std::size_t> todo;
     for (std::size_t i : owned)
@@ -241,6 +242,10 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
         throw;
     }
     for (auto& t : threads) t.join();
+    if (out.is_open()) {
+        out.close();   // a failure to write the last buffered bytes shows here
+        if (!out) throw Error(fmt::format("{}: write failed (disk full?)", opt.out));
+    }
     res.rows.insert(res.rows.end(), std::make_move_iterator(fresh.begin()), std::make_move_iterator(fresh.end()));
     std::stable_sort(res.rows.begin(), res.rows.end(), [](const auto& a, const auto& b) { return a.index < b.index; });
     return res;
