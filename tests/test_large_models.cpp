@@ -12,6 +12,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -337,4 +338,27 @@ TEST_CASE("critical speeds refined on two workers equal the serial ones", "[crit
     const auto u2 = stability_changes(dense_solver(cf.system), dense, 2);
     REQUIRE(u2.size() == u1.size());
     for (size_t i = 0; i < u1.size(); ++i) CHECK(u2[i].speed == u1[i].speed);
+}
+
+TEST_CASE("a worker process that dies is reaped and reported with the speed it was solving", "[workers][reliability]") {
+    SolverFactory f;
+    f.thread_safe = false;   // forces worker processes
+    f.make = [] {
+        return SpectrumSolver([](double w) {
+            if (w == 3.0) std::raise(SIGKILL);
+            QuadraticSpectrum s;
+            s.speed = w;
+            return s;
+        });
+    };
+    const std::vector<double> speeds{1.0, 2.0, 3.0, 4.0};
+    try {
+        solve_speeds(f, speeds, 2);
+        FAIL("no error for a dead worker");
+    } catch (const Error& e) {
+        CHECK(std::string(e.what()).find("died (signal 9) while solving speed 3 rad/s") != std::string::npos);
+    }
+    // Without the crash the same workers give every speed.
+    f.make = [] { return SpectrumSolver([](double w) { QuadraticSpectrum s; s.speed = w; return s; }); };
+    CHECK(solve_speeds(f, speeds, 2).size() == 4);
 }

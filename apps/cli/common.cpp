@@ -84,7 +84,13 @@ Context open_scene(const Common& o, bool need_speeds) {
     if (!o.solver.empty() && o.solver != "auto" && o.solver != "dense" && o.solver != "sparse")
         throw InputError("--solver '" + o.solver + "': allowed: auto, dense, sparse");
     c.lanczos = o.lanczos;
-    c.jobs = o.jobs > 0 ? o.jobs : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    // More workers than cores only add processes, memory and temporary files.
+    const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    c.jobs = o.jobs > 0 ? o.jobs : cores;
+    if (c.jobs > cores) {
+        std::cerr << "note: --jobs " << c.jobs << " capped to the " << cores << " cores of this machine\n";
+        c.jobs = cores;
+    }
     c.scene = load_scene(o.scene);
     c.solver = o.solver.empty() ? c.scene.solver : o.solver;
     if (!o.target.empty()) c.target = parse_speed(o.target, "--target", c.unit);

@@ -10,12 +10,22 @@
 #include <mutex>
 #include <thread>
 
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
+#include <fmt/format.h>
 #include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 namespace gyrokit {
+
+WorkerDied::WorkerDied(long long task_index, int signal_number)
+    : Error(fmt::format("a worker process died (signal {}) while solving task {}", signal_number, task_index)),
+      task(task_index), signal(signal_number) {}
+
+std::vector<QuadraticSpectrum> solve_speeds_unchecked(const SolverFactory& make, const std::vector<double>& speeds,
+                                                      int threads, const std::function<void(size_t, size_t)>& progress);
 
 SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig) {
     return {[&sys, eig]() -> SpectrumSolver { return [&sys, eig](double w) { return solve_at_speed(sys, w, eig); }; },
@@ -181,20 +191,43 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
     void* shared = mmap(nullptr, sizeof(std::atomic<size_t>), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
     if (shared == MAP_FAILED) throw Error("cannot map memory for the worker processes");
     auto* done = new (shared) std::atomic<size_t>(0);
+    // Each worker's current task, for the report of a worker that dies.
+    void* current_map = mmap(nullptr, workers * sizeof(std::atomic<long long>), PROT_READ | PROT_WRITE,
+                             MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (current_map == MAP_FAILED) {
+        munmap(shared, sizeof(std::atomic<size_t>));
+        throw Error("cannot map memory for the worker processes");
+    }
+    auto* current = static_cast<std::atomic<long long>*>(current_map);
+    for (size_t k = 0; k < workers; ++k) new (current + k) std::atomic<long long>(-1);
     std::vector<std::FILE*> files;
     std::vector<pid_t> pids;
+    // A worker that cannot start stops and reaps the ones already running.
+    const auto abandon = [&](const std::string& why) {
+        for (pid_t pid : pids) kill(pid, SIGKILL);
+        for (pid_t pid : pids) waitpid(pid, nullptr, 0);
+        for (std::FILE* f : files) std::fclose(f);
+        munmap(shared, sizeof(std::atomic<size_t>));
+        munmap(current_map, workers * sizeof(std::atomic<long long>));
+        throw Error(why);
+    };
     std::fflush(nullptr);
     for (size_t k = 0; k < workers; ++k) {
         std::FILE* f = std::tmpfile();
-        if (!f) throw Error("cannot create a temporary file for a worker process");
+        if (!f) abandon(fmt::format("cannot create a temporary file for worker process {} of {}; use fewer jobs",
+                                    k + 1, workers));
         const pid_t pid = fork();
-        if (pid < 0) throw Error("cannot start a worker process (fork failed)");
+        if (pid < 0) {
+            std::fclose(f);
+            abandon(fmt::format("cannot start worker process {} of {} (fork failed); use fewer jobs", k + 1, workers));
+        }
         if (pid == 0) {
             int status = 0;
             try {
                 SpectrumSolver solve = make();
                 std::vector<QuadraticSpectrum> part;
                 for (size_t i = k * n / workers; i < (k + 1) * n / workers; ++i) {
+                    current[k] = static_cast<long long>(i);
                     part.push_back(task(solve, i));
                     const size_t d = ++*done;
                     if (progress) progress(d, n);
@@ -212,13 +245,29 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
                 }
                 status = 1;
             }
-            std::fflush(f);
+            if (std::fflush(f) != 0) status = 2;
             _exit(status);
         }
         files.push_back(f);
         pids.push_back(pid);
     }
-    for (pid_t pid : pids) waitpid(pid, nullptr, 0);
+    // Every worker is reaped; one killed by a signal is reported with its task.
+    std::exception_ptr crash;
+    for (size_t k = 0; k < workers; ++k) {
+        int status = 0;
+        while (waitpid(pids[k], &status, 0) < 0 && errno == EINTR) {
+        }
+        if (!crash && WIFSIGNALED(status))
+            crash = std::make_exception_ptr(WorkerDied(static_cast<long long>(current[k]), WTERMSIG(status)));
+        else if (!crash && WIFEXITED(status) && WEXITSTATUS(status) == 2)
+            crash = std::make_exception_ptr(Error("a worker process could not write its results (disk full?)"));
+    }
+    munmap(current_map, workers * sizeof(std::atomic<long long>));
+    if (crash) {
+        munmap(shared, sizeof(std::atomic<size_t>));
+        for (std::FILE* f : files) std::fclose(f);
+        std::rethrow_exception(crash);
+    }
     munmap(shared, sizeof(std::atomic<size_t>));
     std::vector<QuadraticSpectrum> out(n);
     std::exception_ptr failure;
@@ -287,6 +336,17 @@ std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t 
 
 std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std::vector<double>& speeds, int threads,
                                             const std::function<void(size_t, size_t)>& progress) {
+    try {
+        return solve_speeds_unchecked(make, speeds, threads, progress);
+    } catch (const WorkerDied& e) {
+        if (e.task < 0 || static_cast<size_t>(e.task) >= speeds.size()) throw;
+        throw Error(fmt::format("a worker process died (signal {}) while solving speed {} rad/s", e.signal,
+                                speeds[static_cast<size_t>(e.task)]));
+    }
+}
+
+std::vector<QuadraticSpectrum> solve_speeds_unchecked(const SolverFactory& make, const std::vector<double>& speeds,
+                                                      int threads, const std::function<void(size_t, size_t)>& progress) {
     return run_on_workers(
         make, speeds.size(), threads,
         [&](SpectrumSolver& solve, size_t i) {

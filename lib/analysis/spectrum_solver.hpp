@@ -6,6 +6,7 @@
 // factory.
 #pragma once
 
+#include "core/error.hpp"
 #include "core/gyroscopic_system.hpp"
 #include "core/sparse_system.hpp"
 #include "eig/quadratic_eigensolver.hpp"
@@ -56,6 +57,13 @@ std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std
 using WorkerTask = std::function<QuadraticSpectrum(SpectrumSolver& solve, size_t i)>;
 std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t n, int threads, const WorkerTask& task,
                                               const std::function<void(size_t, size_t)>& progress = {});
+
+// A worker process was killed by a signal (a crash) while solving task `task`.
+struct WorkerDied : Error {
+    WorkerDied(long long task_index, int signal_number);
+    long long task;
+    int signal;
+};
 
 // The ARPACK result as a spectrum of the dense interface.
 QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p);
