@@ -258,3 +258,19 @@ TEST_CASE("missing and unreadable files throw InputError naming the path", "[io]
     CHECK(msg.find(dir) != std::string::npos);
     CHECK(msg.find("is a directory") != std::string::npos);
 }
+
+TEST_CASE("hostile size lines are refused before any arithmetic on the sizes", "[io][matrix_market][reliability]") {
+    // rows * rows, rows * (rows + 1) / 2 and the cell key j * rows + i would overflow
+    // a 64-bit integer for sizes near 3e9 and above: refused on the size line.
+    for (const char* sym : {"general", "symmetric", "skew-symmetric"}) {
+        const std::string path = write_file(std::string("huge_") + sym + ".mtx",
+                                            std::string("%%MatrixMarket matrix coordinate real ") + sym +
+                                                "\n4000000000 4000000000 1\n2 1 1.0\n");
+        CHECK(input_error([&] { gyrokit::read_matrix_market_sparse(path); }).find("line 2: size 4000000000x4000000000 is too "
+                                                                         "large; allowed at most 2147483647") !=
+              std::string::npos);
+    }
+    const std::string path = write_file("huge_cols.mtx", "%%MatrixMarket matrix coordinate real general\n"
+                                                         "1 9223372036854775807 1\n1 1 1.0\n");
+    CHECK(input_error([&] { gyrokit::read_matrix_market_sparse(path); }).find("is too large") != std::string::npos);
+}

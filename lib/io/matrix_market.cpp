@@ -204,6 +204,11 @@ Entries<Scalar> read(const std::string& path, bool vector, bool dense) {
     const long long rows = r.integer(t[0], "rows"), cols = r.integer(t[1], "columns");
     if (rows < 1) r.fail("rows {} is not positive; allowed 1 or more", rows);
     if (cols < 1) r.fail("columns {} is not positive; allowed 1 or more", cols);
+    // Before any arithmetic on the sizes: with both at most INT_MAX (Eigen's index),
+    // rows * cols and the cell keys j * rows + i stay below 2^62.
+    constexpr long long kMaxSide = std::numeric_limits<int>::max();
+    if (rows > kMaxSide || cols > kMaxSide)
+        r.fail("size {}x{} is too large; allowed at most {} rows and columns", rows, cols, kMaxSide);
     if ((dense || !h.coordinate) && rows > kMaxCells / cols)
         r.fail("size {}x{} is too large for a dense matrix; allowed at most {} entries", rows, cols, kMaxCells);
     if (h.symmetry != Symmetry::general && rows != cols)
