@@ -74,13 +74,14 @@ void note_diagram(const CampbellDiagram& cd, const Context& c) {
 }
 
 // The steady unbalance response is no state the rotor reaches where a mode is
-// unstable: the modes are tracked over the range (at most 101 speeds of it) and
+// unstable: the modes are tracked over the range (at most 21 speeds of it, a
+// bounded cost next to the response itself; `campbell` checks every speed) and
 // every unstable range is a warning.
 void warn_unstable_response(const Context& c, int modes) {
     std::vector<double> grid = c.speeds;
-    if (grid.size() > 101) {
+    if (grid.size() > 21) {
         grid.clear();
-        for (int k = 0; k <= 100; ++k) grid.push_back(c.speeds.front() + (c.speeds.back() - c.speeds.front()) * k / 100.0);
+        for (int k = 0; k <= 20; ++k) grid.push_back(c.speeds.front() + (c.speeds.back() - c.speeds.front()) * k / 20.0);
     }
     const SolverPlan plan = plan_solver(c, modes);
     CampbellOptions co = campbell_options(c, plan);
