@@ -3,9 +3,32 @@
 #include "cli/common.hpp"
 #include "core/error.hpp"
 
+#include <algorithm>
 #include <iostream>
+#include <string>
+#include <vector>
 
 using namespace gyrokit;
+
+namespace {
+
+// Levenshtein distance: how many letters to insert, delete or change.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"gyrokit: Campbell diagrams, critical speeds, pervasive damping and unbalance response "
@@ -18,11 +41,35 @@ int main(int argc, char** argv) {
     for (auto& c : cli::add_screen_commands(app)) commands.push_back(std::move(c));
     for (auto& c : cli::add_sommerfeld_commands(app)) commands.push_back(std::move(c));
 
+    app.name("gyrokit");
+    app.set_version_flag("--version", std::string("gyrokit ") + GYROKIT_VERSION);
+    // No command: the list of commands, as --help shows it.
+    if (argc == 1) {
+        std::cout << app.help();
+        return 0;
+    }
+    // A mistyped command: name the nearest one.
+    if (argv[1][0] != '-') {
+        const std::string given = argv[1];
+        std::string nearest;
+        std::size_t best = std::string::npos;
+        for (const auto& c : commands) {
+            const std::size_t d = edit_distance(given, c.app->get_name());
+            if (d < best) best = d, nearest = c.app->get_name();
+        }
+        if (best != 0) {
+            std::cerr << "error: unknown command '" << given << "'"
+                      << (best <= 2 ? "; did you mean '" + nearest + "'?" : "") << " (see --help)\n";
+            return 2;
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         std::cerr << "error: " << e.what() << " (see --help)\n";

@@ -82,6 +82,13 @@ scene damped "$good_model
 d_G = 1.0"
 expect "needs an undamped system" critical "$dir/damped.toml" --speeds 0:40:41 --critical-method direct
 expect "scene" eig
+# A mistyped command names the nearest one; an unknown one only itself.
+expect "unknown command 'campbel'; did you mean 'campbell'?" campbel "$dir/ok.toml"
+expect "unknown command 'xyzzy' (see --help)" xyzzy
+# Conventions that succeed: --version, the command list without arguments, units in any case.
+"$cli" --version | grep -qx "gyrokit [0-9.]*" || { echo "FAIL: --version"; fail=1; }
+"$cli" | grep -q "campbell" || { echo "FAIL: gyrokit alone does not list the commands"; fail=1; }
+"$cli" eig "$dir/ok.toml" --speed 3 --units hz | head -1 | grep -q "3.000000 Hz" || { echo "FAIL: --units hz"; fail=1; }
 
 # Speeds that repeat at double precision: one line, exit 2, no hang (each under a
 # 20 s limit: a hang exits 124 and fails).

@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fmt/format.h>
 #include <sstream>
@@ -61,9 +62,12 @@ std::vector<double> SpeedRange::points() const {
 }
 
 SpeedUnit SpeedUnit::parse(const std::string& name) {
-    if (name == "rad/s") return {"rad/s", 1.0};
-    if (name == "Hz") return {"Hz", 1.0 / (2.0 * M_PI)};
-    if (name == "rpm") return {"rpm", 60.0 / (2.0 * M_PI)};
+    // Case does not matter: Hz, hz and HZ are one unit.
+    std::string lower = name;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    if (lower == "rad/s") return {"rad/s", 1.0};
+    if (lower == "hz") return {"Hz", 1.0 / (2.0 * M_PI)};
+    if (lower == "rpm") return {"rpm", 60.0 / (2.0 * M_PI)};
     throw InputError(fmt::format("--units '{}' is unknown; allowed: rad/s, Hz, rpm", name));
 }
 
