@@ -82,6 +82,8 @@ scene damped "$good_model
 d_G = 1.0"
 expect "needs an undamped system" critical "$dir/damped.toml" --speeds 0:40:41 --critical-method direct
 expect "scene" eig
+expect "--modes: Value -3 not in range 0 to 100000000" pervasive "$dir/ok.toml" --modes -3
+expect "--modes: Value -1 not in range 0 to 100000000" response "$dir/ok.toml" --modes -1
 # A mistyped command names the nearest one; an unknown one only itself.
 expect "unknown command 'campbel'; did you mean 'campbell'?" campbel "$dir/ok.toml"
 expect "unknown command 'xyzzy' (see --help)" xyzzy

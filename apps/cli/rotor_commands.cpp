@@ -187,7 +187,8 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     perv->add_option("--tolerance", o->tolerance, "largest residual of a loss (a loss must also be within 1e3 "
                                                   "times the eigenpair's backward error)")
         ->capture_default_str();
-    perv->add_option("--modes", o->modes, "number of modes checked: the K lowest (0 = all; default: the scene's)");
+    perv->add_option("--modes", o->modes, "number of modes checked: the K lowest (0 = all; default: the scene's)")
+        ->check(CLI::Range(0, 100000000));
     cmds.push_back({perv, [o](std::ostream& out) {
         if (!(o->tolerance > 0.0 && o->tolerance < 1.0))
             throw InputError(fmt::format("--tolerance {}: allowed: 0 < tolerance < 1", o->tolerance));
@@ -196,7 +197,6 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         PervasiveOptions po;
         po.tolerance = o->tolerance;
         po.modes = wanted_modes(c, o->modes);
-        if (po.modes < 0) throw InputError(fmt::format("--modes {}: allowed: 0 (all) or a count", po.modes));
         write_table(out, pervasive_table(pervasive_damping(c.scene.system, c.speeds, po), c.unit), c.format);
     }});
 
@@ -206,7 +206,8 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     resp->add_option("--plot", o->common.plot, "draw amplitude and phase into FILE.svg or FILE.png");
     resp->add_option("--dofs", o->dofs, "DOFs reported, by name, e.g. x3,y3 (default: all)");
     resp->add_flag("--extrema", o->extrema, "print the peaks and antiresonances instead of the curve");
-    resp->add_option("--modes", o->modes, "modes checked for stability over the range (0 = all; default: the scene's)");
+    resp->add_option("--modes", o->modes, "modes checked for stability over the range (0 = all; default: the scene's)")
+        ->check(CLI::Range(0, 100000000));
     cmds.push_back({resp, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
         const Scene& sc = c.scene;
