@@ -50,7 +50,7 @@ ld newton_correction(const QuadraticPencil& p, const Mode& m) {
 
 }  // namespace
 
-TEST_CASE("ROSS example: dense eigenvalues against the exporter and a long-double Newton check; rigid-body modes "
+TEST_CASE("ROSS example: dense eigenvalues against the exporter and a long-double Newton check, rigid-body modes "
           "put apart",
           "[ross]") {
     const Scene sc = ross();
@@ -114,8 +114,8 @@ TEST_CASE("ROSS example: the sparse solver moves its shift off the rigid-body mo
     }
 }
 
-TEST_CASE("ROSS example: six lowest branches over 0-1000 rad/s without ambiguity; critical speeds equal the "
-          "direct method to 1e-9; nothing unstable",
+TEST_CASE("ROSS example: six lowest branches over 0-1000 rad/s without ambiguity, critical speeds equal the "
+          "direct method to 1e-9, nothing unstable",
           "[ross][campbell]") {
     const Scene sc = ross();
     const GyroscopicSystem& sys = sc.system;

@@ -342,7 +342,7 @@ to = 35.0
     CHECK(read_sweep(p).design(5) == s.design(5));
 }
 
-TEST_CASE("shards merge to the unsharded table; jobs do not change the rows", "[screening][shard]") {
+TEST_CASE("shards merge to the unsharded table, jobs do not change the rows", "[screening][shard]") {
     TempDir d;
     const Sweep s = read_sweep(pervasive_sweep(d));
     RunOptions one;

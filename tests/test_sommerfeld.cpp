@@ -165,7 +165,7 @@ TEST_CASE("Stationary states solve (16) and (36)/(37), middle branch unstable", 
     CHECK(far[0].roller_speed / far[0].rotor_speed == Approx(1.0 / (1.0 + 2.0 * m * m * G / (M * M))).epsilon(2e-3));
 }
 
-TEST_CASE("Run-up profile: sinusoidal rise, hold, fall; the angle integrates the speed", "[sommerfeld]") {
+TEST_CASE("Run-up profile: sinusoidal rise, hold, fall, and the angle integrates the speed", "[sommerfeld]") {
     RunupSettings s;
     s.max_speed = 400.0;
     s.rise = 4.0;

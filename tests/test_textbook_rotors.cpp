@@ -128,7 +128,7 @@ TEST_CASE("Campbell tracking follows crossing branches without swapping", "[camp
     CHECK(constant == 2);   // both translation branches stay at sqrt(900) = 30 rad/s
 }
 
-TEST_CASE("degenerate speed lists are refused, never a hang; matching refuses NaN costs", "[campbell][reliability]") {
+TEST_CASE("degenerate speed lists are refused, never a hang, and matching refuses NaN costs", "[campbell][reliability]") {
     GyroscopicSystem s;
     s.M = Eigen::Matrix2d::Identity();
     s.K = Eigen::Vector2d(900.0, 900.0).asDiagonal();
