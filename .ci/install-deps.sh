@@ -6,7 +6,7 @@ sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
 $sudo apt-get update -qq
 $sudo apt-get install -y -qq --no-install-recommends \
-    g++ make cmake \
+    g++ make cmake pkgconf \
     libeigen3-dev liblapack-dev liblapacke-dev libblas-dev libarpack2-dev libgsl-dev \
     libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfmt-dev \
     catch2 gnuplot-nox > /dev/null

@@ -2,8 +2,8 @@
 // time, and the averaged slow-phase equations vs the full equations of motion,
 // on the scenes of Bilder 9 (compensating state) and 10 (damped offset).
 #include "bench_common.hpp"
-#include "core/error.hpp"
-#include "io/table.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/table.hpp>
 
 #include <cmath>
 #include <iostream>

@@ -4,13 +4,13 @@
 // program measures them the same way. Header-only.
 #pragma once
 
-#include "analysis/fluid_critical_speeds.hpp"
-#include "balancing/balancer_scene.hpp"
-#include "balancing/runup.hpp"
-#include "balancing/simulation.hpp"
-#include "balancing/synchronous_states.hpp"
-#include "core/error.hpp"
-#include "eig/quadratic_eigensolver.hpp"
+#include <gyrokit/analysis/fluid_critical_speeds.hpp>
+#include <gyrokit/balancing/balancer_scene.hpp>
+#include <gyrokit/balancing/runup.hpp>
+#include <gyrokit/balancing/simulation.hpp>
+#include <gyrokit/balancing/synchronous_states.hpp>
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/eig/quadratic_eigensolver.hpp>
 
 #include <algorithm>
 #include <chrono>

@@ -3,11 +3,11 @@
 // the time, so that the price of the default (QZ) can be read off directly.
 // Exit status: 0 success, 2 bad input, 1 anything else.
 #include "bench_common.hpp"
-#include "core/error.hpp"
-#include "eig/quadratic_eigensolver.hpp"
-#include "io/scene.hpp"
-#include "io/table.hpp"
-#include "models/gyrostat.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/eig/quadratic_eigensolver.hpp>
+#include <gyrokit/io/scene.hpp>
+#include <gyrokit/io/table.hpp>
+#include <gyrokit/models/gyrostat.hpp>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>

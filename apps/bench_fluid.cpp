@@ -2,7 +2,7 @@
 // against the critical-speed error and the time of one model build plus the
 // undamped critical speeds. Prints a table (docs/benchmarks.md).
 #include "bench_common.hpp"
-#include "io/table.hpp"
+#include <gyrokit/io/table.hpp>
 
 #include <iostream>
 #include <string>

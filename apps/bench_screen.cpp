@@ -3,9 +3,9 @@
 // disk), with 1..J worker threads. Prints a table.
 // Exit status: 0 success, 2 bad input, 1 anything else.
 #include "bench_common.hpp"
-#include "core/error.hpp"
-#include "io/table.hpp"
-#include "screening/screening.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/table.hpp>
+#include <gyrokit/screening/screening.hpp>
 
 #include <CLI/CLI.hpp>
 #include <chrono>

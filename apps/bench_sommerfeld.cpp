@@ -4,10 +4,10 @@
 // passing the resonance. Accuracy against a reference run (rk8pd, tolerance 1e-12):
 // the held rotor speed, and the time at which the rotor (no rollers) or the
 // rollers pass half-way between omega_krit and the maximal nominal speed.
-#include "balancing/sommerfeld.hpp"
+#include <gyrokit/balancing/sommerfeld.hpp>
 #include "bench_common.hpp"
-#include "core/error.hpp"
-#include "io/table.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/table.hpp>
 
 #include <cmath>
 #include <iostream>

@@ -5,15 +5,15 @@
 // gives the time per speed point of the dense and the sparse eigensolver
 // against model size, with the fitted growth exponents (docs/benchmarks.md).
 // Exit status: 0 success, 2 bad input, 1 anything else.
-#include "analysis/campbell.hpp"
-#include "analysis/critical_speeds.hpp"
-#include "analysis/spectrum_solver.hpp"
-#include "balancing/sommerfeld.hpp"
+#include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/balancing/sommerfeld.hpp>
 #include "bench_common.hpp"
-#include "core/error.hpp"
-#include "io/scene.hpp"
-#include "io/table.hpp"
-#include "models/fe_rotor.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/scene.hpp>
+#include <gyrokit/io/table.hpp>
+#include <gyrokit/models/fe_rotor.hpp>
 
 #include <CLI/CLI.hpp>
 #include <Eigen/SparseLU>

@@ -3,11 +3,11 @@
 // bearings): Campbell tracking against the bare eigensolves it needs at least,
 // and the sparse solver's backward errors before and after verification.
 // Prints two tables (docs/benchmarks.md).
-#include "analysis/campbell.hpp"
-#include "analysis/critical_speeds.hpp"
+#include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/critical_speeds.hpp>
 #include "bench_common.hpp"
-#include "io/scene.hpp"
-#include "io/table.hpp"
+#include <gyrokit/io/scene.hpp>
+#include <gyrokit/io/table.hpp>
 
 #include <iostream>
 #include <string>

@@ -1,7 +1,7 @@
 // gyrokit: command-line front end. Parses options, calls the library, prints.
 // Exit status: 0 success, 2 bad input, 3 solver failure, 1 anything else.
 #include "cli/common.hpp"
-#include "core/error.hpp"
+#include <gyrokit/core/error.hpp>
 
 #include <algorithm>
 #include <iostream>

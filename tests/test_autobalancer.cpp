@@ -1,10 +1,10 @@
 // Two-roller auto-balancer: the paper's Tabellen 1-3, the synchronous angles,
 // simulations of Bilder 7-10 and the damped slow-phase offsets.
-#include "balancing/autobalancer.hpp"
-#include "balancing/balancer_scene.hpp"
-#include "balancing/simulation.hpp"
-#include "balancing/synchronous_states.hpp"
-#include "core/error.hpp"
+#include <gyrokit/balancing/autobalancer.hpp>
+#include <gyrokit/balancing/balancer_scene.hpp>
+#include <gyrokit/balancing/simulation.hpp>
+#include <gyrokit/balancing/synchronous_states.hpp>
+#include <gyrokit/core/error.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Dense quadratic eigensolver: backward errors at the extremes, the Hamiltonian
 // eigenvalue symmetry of undamped gyroscopic systems, left vectors, singular M.
-#include "core/error.hpp"
-#include "eig/quadratic_eigensolver.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/eig/quadratic_eigensolver.hpp>
 #include "test_helpers.hpp"
 
 #include <catch2/catch.hpp>

@@ -2,13 +2,13 @@
 // frequencies (Euler-Bernoulli, Timoshenko, spinning Timoshenko), mesh
 // convergence, sparse vs dense solvers, a 100,000-DOF model, and the published
 // two-disk rotor of Friswell et al. (Examples 5.9.1 and 5.9.2).
-#include "analysis/campbell.hpp"
-#include "analysis/critical_speeds.hpp"
-#include "core/error.hpp"
-#include "eig/quadratic_eigensolver.hpp"
-#include "eig/sparse_eigensolver.hpp"
-#include "io/scene.hpp"
-#include "models/fe_rotor.hpp"
+#include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/eig/quadratic_eigensolver.hpp>
+#include <gyrokit/eig/sparse_eigensolver.hpp>
+#include <gyrokit/io/scene.hpp>
+#include <gyrokit/models/fe_rotor.hpp>
 
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>

@@ -3,15 +3,15 @@
 // integrals, finite-difference solutions of the radial and of the 2-D Neumann
 // problem, asymptotic limits), critical speeds against the roots of Delta(w) and
 // the coupled gyroscopic system, Tabelle 2 of the paper, extremes, bad input.
-#include "analysis/fluid_critical_speeds.hpp"
-#include "analysis/scalar_search.hpp"
-#include "core/error.hpp"
-#include "eig/quadratic_eigensolver.hpp"
-#include "io/scene.hpp"
-#include "models/fluid_rotor.hpp"
+#include <gyrokit/analysis/fluid_critical_speeds.hpp>
+#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/eig/quadratic_eigensolver.hpp>
+#include <gyrokit/io/scene.hpp>
+#include <gyrokit/models/fluid_rotor.hpp>
 
 #include <Eigen/Sparse>
-#include "analysis/critical_speeds.hpp"
+#include <gyrokit/analysis/critical_speeds.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,10 +1,10 @@
 // The gyrostat with elastic shaft: structure of the matrices, the closed forms
 // of the paper (corrected, see docs/gyrostat.md) and its limit cases.
-#include "analysis/campbell.hpp"
-#include "analysis/critical_speeds.hpp"
-#include "analysis/pervasive_damping.hpp"
-#include "analysis/unbalance_response.hpp"
-#include "core/speed_range.hpp"
+#include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/pervasive_damping.hpp>
+#include <gyrokit/analysis/unbalance_response.hpp>
+#include <gyrokit/core/speed_range.hpp>
 #include "test_helpers.hpp"
 
 #include <catch2/catch.hpp>

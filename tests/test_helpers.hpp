@@ -1,7 +1,7 @@
 // Shared fixtures of the tests: the centrifuge parameters and random gyrostats.
 #pragma once
 
-#include "models/gyrostat.hpp"
+#include <gyrokit/models/gyrostat.hpp>
 
 #include <random>
 

@@ -1,14 +1,14 @@
 // Large-model path: bearing tables (interpolation, input errors), sparse matrix
 // scenes and finite-element scenes, the sparse solver behind Campbell tracking
 // (agreement with dense QZ, worker processes, start-vector reuse).
-#include "analysis/campbell.hpp"
-#include "analysis/critical_speeds.hpp"
-#include "analysis/spectrum_solver.hpp"
-#include "analysis/unbalance_response.hpp"
-#include "core/error.hpp"
-#include "io/bearing_csv.hpp"
-#include "io/matrix_market.hpp"
-#include "io/scene.hpp"
+#include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/analysis/unbalance_response.hpp>
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/bearing_csv.hpp>
+#include <gyrokit/io/matrix_market.hpp>
+#include <gyrokit/io/scene.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>

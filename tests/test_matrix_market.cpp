@@ -1,8 +1,8 @@
 // Tests of the Matrix Market reader/writer: round trips, symmetry expansion,
 // array and complex input, and one strict one-line error per kind of bad file.
-#include "io/matrix_market.hpp"
+#include <gyrokit/io/matrix_market.hpp>
 
-#include "core/error.hpp"
+#include <gyrokit/core/error.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -8,8 +8,8 @@
 #include <limits>
 #include <optional>
 
-#include "core/error.hpp"
-#include "io/plot.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/plot.hpp>
 
 using namespace gyrokit;
 namespace fs = std::filesystem;

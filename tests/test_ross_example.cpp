@@ -1,13 +1,13 @@
 // A rotor exported from another package (data/ross_rotor_example: 42 DOFs, 6 per
 // node, free axial and torsional DOFs so K is singular, no damping): every
 // analysis against independent computations and the exporter's reference values.
-#include "analysis/campbell.hpp"
-#include "analysis/critical_speeds.hpp"
-#include "analysis/spectrum_solver.hpp"
-#include "core/error.hpp"
-#include "eig/quadratic_eigensolver.hpp"
-#include "eig/sparse_eigensolver.hpp"
-#include "io/scene.hpp"
+#include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/eig/quadratic_eigensolver.hpp>
+#include <gyrokit/eig/sparse_eigensolver.hpp>
+#include <gyrokit/io/scene.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -2,8 +2,8 @@
 // critical speeds, Jeffcott response and stability threshold), Latin
 // hypercube reproducibility, shards that merge to the unsharded table, and
 // resume after an interrupted run.
-#include "core/error.hpp"
-#include "screening/screening.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/screening/screening.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>

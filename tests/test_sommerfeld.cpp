@@ -2,11 +2,11 @@
 // (critical speeds and limit speed estimates that follow from the listed
 // parameters), exact folds of the stationary curves against an independent scan
 // of eqs. (16)/(25)/(36)/(42), and run-ups below and above the limit speed.
-#include "balancing/balancer_scene.hpp"
-#include "balancing/runup.hpp"
-#include "balancing/sommerfeld.hpp"
-#include "balancing/synchronous_states.hpp"
-#include "core/error.hpp"
+#include <gyrokit/balancing/balancer_scene.hpp>
+#include <gyrokit/balancing/runup.hpp>
+#include <gyrokit/balancing/sommerfeld.hpp>
+#include <gyrokit/balancing/synchronous_states.hpp>
+#include <gyrokit/core/error.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>

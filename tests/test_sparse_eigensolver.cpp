@@ -1,8 +1,8 @@
 // Sparse shift-invert (ARPACK) against the dense scaled QZ on a damped
 // gyroscopic chain of a few hundred DOFs.
-#include "core/error.hpp"
-#include "eig/quadratic_eigensolver.hpp"
-#include "eig/sparse_eigensolver.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/eig/quadratic_eigensolver.hpp>
+#include <gyrokit/eig/sparse_eigensolver.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/error.hpp"
-#include "io/table.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/table.hpp>
 
 using namespace gyrokit;
 

@@ -1,12 +1,12 @@
 // Textbook rotors with closed forms: the Jeffcott rotor (unbalance response,
 // stability threshold of rotating internal damping) and a rigid rotor on
 // isotropic tilt springs (Campbell diagram and critical speed).
-#include "analysis/assignment.hpp"
-#include "analysis/campbell.hpp"
-#include "analysis/critical_speeds.hpp"
-#include "analysis/unbalance_response.hpp"
-#include "core/error.hpp"
-#include "core/speed_range.hpp"
+#include <gyrokit/analysis/assignment.hpp>
+#include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/unbalance_response.hpp>
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/core/speed_range.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>

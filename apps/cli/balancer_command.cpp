@@ -1,10 +1,10 @@
 // balancer: synchronous states of the two-roller auto-balancer and their
 // stability per speed range, or (--simulate) a run of the equations of motion.
-#include "balancing/balancer_scene.hpp"
-#include "balancing/simulation.hpp"
-#include "balancing/synchronous_states.hpp"
+#include <gyrokit/balancing/balancer_scene.hpp>
+#include <gyrokit/balancing/simulation.hpp>
+#include <gyrokit/balancing/synchronous_states.hpp>
 #include "cli/common.hpp"
-#include "core/error.hpp"
+#include <gyrokit/core/error.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "cli/common.hpp"
 
-#include "core/error.hpp"
+#include <gyrokit/core/error.hpp>
 
 #include <cmath>
 #include <filesystem>

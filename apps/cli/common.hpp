@@ -2,12 +2,12 @@
 // parsing of speeds and harmonics, plotting.
 #pragma once
 
-#include "analysis/spectrum_solver.hpp"
-#include "core/speed_range.hpp"
-#include "eig/quadratic_eigensolver.hpp"
-#include "io/plot.hpp"
-#include "io/scene.hpp"
-#include "io/table.hpp"
+#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/core/speed_range.hpp>
+#include <gyrokit/eig/quadratic_eigensolver.hpp>
+#include <gyrokit/io/plot.hpp>
+#include <gyrokit/io/scene.hpp>
+#include <gyrokit/io/table.hpp>
 
 #include <CLI/CLI.hpp>
 #include <functional>

@@ -1,9 +1,9 @@
 // fluid: critical speeds of a liquid-filled rotor (liquid moving, undamped and
 // damped; liquid frozen as a solid), the sloshing coefficients, and with --fill a
 // sweep of the free-surface radius R0 (the paper's Bild 2).
-#include "analysis/fluid_critical_speeds.hpp"
+#include <gyrokit/analysis/fluid_critical_speeds.hpp>
 #include "cli/common.hpp"
-#include "core/error.hpp"
+#include <gyrokit/core/error.hpp>
 
 #include <cmath>
 #include <fmt/format.h>

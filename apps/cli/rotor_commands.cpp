@@ -1,12 +1,12 @@
 // eig, campbell, critical, stability, pervasive, response, export.
-#include "analysis/campbell.hpp"
-#include "analysis/critical_speeds.hpp"
-#include "analysis/pervasive_damping.hpp"
-#include "analysis/unbalance_response.hpp"
+#include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/pervasive_damping.hpp>
+#include <gyrokit/analysis/unbalance_response.hpp>
 #include "cli/common.hpp"
-#include "core/error.hpp"
-#include "io/export.hpp"
-#include "io/reports.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/export.hpp>
+#include <gyrokit/io/reports.hpp>
 
 #include <algorithm>
 #include <fmt/format.h>

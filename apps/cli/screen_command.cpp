@@ -1,7 +1,7 @@
 // screen: a design study over a sweep file (see docs/screening.md).
 #include "cli/common.hpp"
-#include "core/error.hpp"
-#include "screening/screening.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/screening/screening.hpp>
 
 #include <fmt/format.h>
 #include <fstream>

@@ -1,13 +1,13 @@
 // sommerfeld: stationary speed curves of the motor-driven rotor / auto-balancer
 // with their branches, stability, limit speed estimates and exact folds; or
 // (--runup) a run-up through the full equations of motion with a summary.
-#include "balancing/balancer_scene.hpp"
-#include "balancing/runup.hpp"
-#include "balancing/sommerfeld.hpp"
-#include "balancing/synchronous_states.hpp"
+#include <gyrokit/balancing/balancer_scene.hpp>
+#include <gyrokit/balancing/runup.hpp>
+#include <gyrokit/balancing/sommerfeld.hpp>
+#include <gyrokit/balancing/synchronous_states.hpp>
 #include "cli/common.hpp"
-#include "core/error.hpp"
-#include "core/speed_range.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/core/speed_range.hpp>
 
 #include <algorithm>
 #include <cmath>

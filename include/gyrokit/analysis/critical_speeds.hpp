@@ -1,0 +1,62 @@
+// Critical speeds (a tracked branch crosses a harmonic line k w) and stability
+// thresholds (a branch becomes unstable: Re lambda beyond its error bound), refined by root finding on
+// the branch rather than read off the grid.
+#pragma once
+
+#include <gyrokit/analysis/campbell.hpp>
+
+#include <vector>
+
+namespace gyrokit {
+
+struct CriticalSpeed {
+    double speed = 0;      // rad/s
+    int harmonic = 1;      // k of the line Im(lambda) = k w
+    int branch = 0;        // Campbell branch id; direct method: rank by frequency at that speed
+    Mode mode;             // the mode at the critical speed
+};
+
+// Crossings of every oscillating branch with the lines k w, k in `harmonics`,
+// refined with GSL Brent on f(w) = Im lambda(w) - k w.
+std::vector<CriticalSpeed> critical_speeds(const GyroscopicSystem& sys, const CampbellDiagram& cd,
+                                           const std::vector<int>& harmonics, const EigenOptions& eig = {});
+// The same with any solver (the one the diagram was made with); the root
+// searches run on `threads` workers (run_on_workers).
+std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const CampbellDiagram& cd,
+                                           const std::vector<int>& harmonics, int threads = 1);
+
+// For undamped systems without circulatory terms, lambda = i k w is an
+// eigenvalue exactly at a critical speed, so w^2 solves the linear Hermitian
+// pencil K x = w^2 (k^2 M - i k G - K2) x. Throws InputError for damped systems.
+std::vector<CriticalSpeed> critical_speeds_direct(const GyroscopicSystem& sys, int harmonic, double from,
+                                                  double to);
+
+struct StabilityChange {
+    double speed = 0;
+    int branch = 0;
+    bool becomes_unstable = true;   // with increasing speed
+    Mode mode;
+};
+
+// Speeds where a branch becomes unstable or stable again. A mode is unstable
+// only where Re lambda exceeds its error bound (Mode::stability); neutral modes
+// (undamped, conservative) never count. Where both ends are decided the root of
+// Re lambda is refined by Brent; next to a neutral end, the edge of the unstable
+// range by bisection (relative width 1e-12).
+std::vector<StabilityChange> stability_changes(const GyroscopicSystem& sys, const CampbellDiagram& cd,
+                                               const EigenOptions& eig = {});
+std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd,
+                                               int threads = 1);
+
+// Grid ranges of the diagram where a branch is unstable (oscillating, or a real
+// eigenvalue beyond its bound: divergence): what the Campbell diagram and the
+// response warn about.
+struct UnstableRange {
+    int branch = 0;
+    double from = 0, to = 0;   // first and last unstable grid speed
+    double max_real = 0;       // largest Re lambda there
+    size_t last_index = 0;
+};
+std::vector<UnstableRange> unstable_ranges(const CampbellDiagram& cd);
+
+}  // namespace gyrokit

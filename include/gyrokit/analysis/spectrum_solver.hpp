@@ -1,0 +1,71 @@
+// Which eigensolver computes a model's spectrum at a speed: the dense scaled
+// QZ (all modes) or ARPACK shift-invert (a few modes near a target), behind one
+// interface so that Campbell tracking, critical speeds and stability run on
+// either. Solvers may keep state between calls (the sparse one starts ARPACK
+// from the last speed's eigenvectors), so every thread makes its own from a
+// factory.
+#pragma once
+
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/core/gyroscopic_system.hpp>
+#include <gyrokit/core/sparse_system.hpp>
+#include <gyrokit/eig/quadratic_eigensolver.hpp>
+#include <gyrokit/eig/sparse_eigensolver.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+using SpectrumSolver = std::function<QuadraticSpectrum(double w)>;
+
+struct SolverFactory {
+    std::function<SpectrumSolver()> make;
+    // ARPACK keeps its iteration state in Fortran SAVE variables, so two
+    // ARPACK runs must not share a process: such solvers run in parallel in
+    // worker processes instead of threads.
+    bool thread_safe = true;
+    SpectrumSolver operator()() const { return make(); }
+};
+
+// All modes of the dense system by scaled QZ (or the state matrix, per `eig`).
+SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig = {});
+
+// `opt.modes` modes nearest the shift by ARPACK shift-invert on the pencils
+// `pencil(w)`. With `reuse`, each call after the first starts the Arnoldi
+// iteration from the previous speed's eigenvectors (fewer restarts when the
+// speed step is small).
+SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vector<std::pair<int, int>> whirl_pairs,
+                            const SparseEigenOptions& opt, bool reuse = true);
+SolverFactory sparse_solver(const SparseGyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse = true);
+// The dense model's pencils converted to sparse form per speed.
+SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse = true);
+
+// The spectra at all speeds, on `threads` workers (contiguous blocks of speeds,
+// so that reuse works within a block): threads, or forked processes that hand
+// back their spectra through temporary files when the solver is not thread
+// safe. `progress(done, total)` is called from the workers, one call at a time.
+std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std::vector<double>& speeds,
+                                            int threads = 1,
+                                            const std::function<void(size_t, size_t)>& progress = {});
+
+// The general form: task(solve, i) for i = 0 .. n-1, each worker with its own
+// solver from `make` and a contiguous block of i (threads, or forked processes
+// for a solver that is not thread safe); the results in the order of i. An
+// error in any task is rethrown with its type and message.
+using WorkerTask = std::function<QuadraticSpectrum(SpectrumSolver& solve, size_t i)>;
+std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t n, int threads, const WorkerTask& task,
+                                              const std::function<void(size_t, size_t)>& progress = {});
+
+// A worker process was killed by a signal (a crash) while solving task `task`.
+struct WorkerDied : Error {
+    WorkerDied(long long task_index, int signal_number);
+    long long task;
+    int signal;
+};
+
+// The ARPACK result as a spectrum of the dense interface.
+QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p);
+
+}  // namespace gyrokit

@@ -1,0 +1,45 @@
+// Steady unbalance response z(t) = Re(Z e^{i w t}) of
+// M z'' + (D + w G) z' + (K + w N) z = Re(w^2 u e^{i w t}).
+#pragma once
+
+#include <gyrokit/core/gyroscopic_system.hpp>
+#include <gyrokit/core/sparse_system.hpp>
+
+#include <functional>
+
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+// Complex amplitudes Z at speed w: [K + w N - w^2 M + i w (D + w G)] Z = w^2 u.
+// Throws SolverError where the dynamic stiffness is singular (an undamped resonance).
+Eigen::VectorXcd unbalance_response(const GyroscopicSystem& sys, double w);
+// The same for a sparse model: one sparse LU of the dynamic stiffness per speed.
+Eigen::VectorXcd unbalance_response(const SparseGyroscopicSystem& sys, double w);
+
+// Amplitudes of every DOF at a speed (one of the functions above, bound to a model).
+using ResponseSolver = std::function<Eigen::VectorXcd(double w)>;
+
+struct ResponseCurve {
+    std::vector<double> speeds;
+    std::vector<int> dofs;   // the model DOF of each column of Z
+    Eigen::MatrixXcd Z;      // speeds x dofs
+};
+// All DOFs (`dofs` empty) or the listed ones.
+ResponseCurve unbalance_response(const ResponseSolver& solve, int size, const std::vector<double>& speeds,
+                                 const std::vector<int>& dofs = {});
+ResponseCurve unbalance_response(const GyroscopicSystem& sys, const std::vector<double>& speeds);
+
+struct ResponseExtremum {
+    int dof = 0;           // model DOF index
+    bool peak = true;      // false: antiresonance (local minimum)
+    double speed = 0;
+    double amplitude = 0;
+};
+
+// Interior local maxima and minima of |Z_k| on the grid, refined by golden section.
+std::vector<ResponseExtremum> response_extrema(const ResponseSolver& solve, const ResponseCurve& curve);
+std::vector<ResponseExtremum> response_extrema(const GyroscopicSystem& sys, const ResponseCurve& curve);
+
+}  // namespace gyrokit

@@ -1,0 +1,58 @@
+// Dense solvers for the quadratic eigenproblem (lambda^2 M + lambda C + K) x = 0.
+//
+// ScaledQZ (default): Fan-Lin-Van Dooren scaling, first companion linearization,
+//   LAPACK dggev (QZ). Needs no inverse of M, so singular M (infinite
+//   eigenvalues) and badly scaled data are handled.
+// StateMatrix: the cheaper M^{-1}-based state matrix solved by Eigen; fails on
+//   singular M and loses accuracy on badly scaled problems (see docs/numerics.md).
+#pragma once
+
+#include <gyrokit/core/gyroscopic_system.hpp>
+#include <gyrokit/eig/mode.hpp>
+
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+enum class EigenMethod { ScaledQZ, StateMatrix };
+EigenMethod parse_eigen_method(const std::string& name);   // "qz" | "state"
+std::string to_string(EigenMethod m);
+
+struct EigenOptions {
+    EigenMethod method = EigenMethod::ScaledQZ;
+    bool left_vectors = false;   // keep the left vectors in the modes (always computed, for the error bounds)
+};
+
+struct QuadraticSpectrum {
+    std::vector<Mode> modes;      // finite eigenvalues with Im >= 0 (or real), by frequency; no rigid-body ones
+    // Rigid-body eigenvalues (is_rigid_body: lambda = 0 up to rounding, a singular
+    // K): listed apart, never modes. Each computed zero eigenvalue is one entry
+    // (a free DOF group without damping gives two: q = a + b t).
+    std::vector<Mode> rigid_body;
+    int infinite_count = 0;       // infinite eigenvalues (singular M)
+    double scale = 1.0;           // sqrt(|K|/|M|): the problem's natural frequency scale
+    double real_tol = 0.0;        // |Im lambda| below this counts as real
+    bool partial = false;         // only a window of modes (near a shift), not all
+    double speed = 0.0;           // rad/s, where a sweep or a root search set it
+    std::vector<std::string> notes;   // what the solver changed or could not vouch for (e.g. a moved shift)
+    double max_backward_error() const;
+};
+
+// Moves the rigid-body eigenvalues of `modes` (is_rigid_body) into `rigid_body`, order kept.
+void split_rigid_body(std::vector<Mode>& modes, std::vector<Mode>& rigid_body, const PencilAction& pencil,
+                      double scale);
+
+// All finite eigenpairs of the pencil, conjugates dropped (the upper half plane
+// and the real axis kept). Whirl is classified with `whirl_pairs`.
+QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& opt,
+                                  const std::vector<std::pair<int, int>>& whirl_pairs = {});
+
+// Convenience: the spectrum of a system at spin speed w.
+QuadraticSpectrum solve_at_speed(const GyroscopicSystem& sys, double w, const EigenOptions& opt = {});
+
+// Relative backward error of an approximate eigenpair (Tisseur 2000), with
+// Frobenius norms: |P(l) x| / ((|l|^2 |M| + |l| |C| + |K|) |x|).
+double backward_error(const QuadraticPencil& p, std::complex<double> lambda, const Eigen::VectorXcd& x);
+
+}  // namespace gyrokit

@@ -1,0 +1,64 @@
+// Sparse quadratic eigensolver: ARPACK (Arnoldi) in shift-invert mode
+// on the first companion pencil A - lambda B, A = [-C -K; I 0], B = [M 0; 0 I].
+// The operator (A - sigma B)^{-1} B needs only a sparse LU of the n x n matrix
+// P(sigma) = sigma^2 M + sigma C + K, factorized once per call:
+//   w2 = -P(sigma)^{-1} (M v1 + (C + sigma M) v2),  w1 = v2 + sigma w2.
+// Eigenvalues of the operator theta give lambda = sigma + 1/theta.
+// A real shift keeps the operator real: real Arnoldi (dnaupd) on a real LU,
+// conjugate pairs found together; a complex shift uses complex Arnoldi (znaupd).
+#pragma once
+
+#include <gyrokit/core/sparse_system.hpp>
+#include <gyrokit/eig/mode.hpp>
+
+#include <Eigen/Sparse>
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+struct SparseEigenOptions {
+    int modes = 6;                          // eigenvalues with Im >= 0 wanted (conjugates not counted)
+    std::complex<double> shift{0.0, 0.0};   // sigma: the search centre (i nu for modes near frequency nu)
+    // In a sweep (sparse_solver), the centre moves with the speed w:
+    // sigma(w) = shift + i * shift_order * w, so the window follows the line
+    // nu + k w of the Campbell diagram (k = 1: the modes near the 1x line).
+    double shift_order = 0.0;
+    int lanczos_vectors = 0;                // ARPACK ncv; 0 = max(2 nev + 1, 30), capped at 2n
+    int max_iterations = 3000;
+    double tolerance = 0.0;                 // ARPACK relative Ritz tolerance; 0 = machine precision
+    Eigen::VectorXcd start;                 // start vector of length 2n (e.g. the last speed's modes); empty: random
+    // Every returned eigenpair is verified: its backward error must not exceed
+    // this after refinement (inverse iteration on P(lambda)), else SolverError.
+    double verify_tolerance = 1e-10;
+    int reserve = 0;                        // extra eigenvalues asked of ARPACK (rigid-body ones expected in the window)
+};
+
+struct SparseSpectrum {
+    std::vector<Mode> modes;        // the wanted modes nearest the shift, by frequency, verified
+    std::vector<Mode> rigid_body;   // rigid-body eigenvalues found in the window (not modes)
+    int iterations = 0;             // Arnoldi restarts used
+    int converged = 0;              // Ritz values converged
+    std::complex<double> shift;     // the shift used (moved off a singular P(sigma))
+    int refined = 0;                // eigenpairs whose backward error needed refinement
+    double max_raw_backward_error = 0;   // largest backward error before verification
+    std::vector<std::string> notes;
+};
+
+// Eigenvalues near the shift sigma = opt.shift. If P(sigma) is singular or
+// nearly so (rigid-body modes at sigma = 0 with a singular K), the shift is
+// moved to sigma - 1e-5 g (then 1e-4 g, 1e-3 g; g = sqrt(|K|/|M|)) and a note
+// says so. Rigid-body eigenvalues in the window are returned apart and the
+// window widened so that `opt.modes` modes remain. Each eigenpair is refined
+// by inverse iteration on P(lambda) and verified (verify_tolerance), and gets
+// its left vector and error bound. Throws InputError if no shift works and
+// SolverError if ARPACK does not converge or a pair fails verification,
+// saying what to change.
+SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOptions& opt,
+                                      const std::vector<std::pair<int, int>>& whirl_pairs = {});
+
+// Relative backward error (Frobenius norms) of an eigenpair of the sparse pencil.
+double backward_error(const SparsePencil& p, std::complex<double> lambda, const Eigen::VectorXcd& x);
+
+}  // namespace gyrokit

@@ -1,0 +1,37 @@
+// Every public header of gyrokit: #include <gyrokit/gyrokit.hpp> and link gyrokit::gyrokit.
+#pragma once
+
+#include <gyrokit/analysis/assignment.hpp>
+#include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/fluid_critical_speeds.hpp>
+#include <gyrokit/analysis/pervasive_damping.hpp>
+#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/analysis/unbalance_response.hpp>
+#include <gyrokit/balancing/autobalancer.hpp>
+#include <gyrokit/balancing/balancer_scene.hpp>
+#include <gyrokit/balancing/runup.hpp>
+#include <gyrokit/balancing/simulation.hpp>
+#include <gyrokit/balancing/sommerfeld.hpp>
+#include <gyrokit/balancing/synchronous_states.hpp>
+#include <gyrokit/core/bearing_table.hpp>
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/core/gyroscopic_system.hpp>
+#include <gyrokit/core/sparse_system.hpp>
+#include <gyrokit/core/speed_range.hpp>
+#include <gyrokit/eig/mode.hpp>
+#include <gyrokit/eig/quadratic_eigensolver.hpp>
+#include <gyrokit/eig/sparse_eigensolver.hpp>
+#include <gyrokit/io/bearing_csv.hpp>
+#include <gyrokit/io/export.hpp>
+#include <gyrokit/io/matrix_market.hpp>
+#include <gyrokit/io/plot.hpp>
+#include <gyrokit/io/reports.hpp>
+#include <gyrokit/io/scene.hpp>
+#include <gyrokit/io/table.hpp>
+#include <gyrokit/models/fe_rotor.hpp>
+#include <gyrokit/models/fluid_rotor.hpp>
+#include <gyrokit/models/gyrostat.hpp>
+#include <gyrokit/screening/screening.hpp>
+#include <gyrokit/screening/sweep.hpp>

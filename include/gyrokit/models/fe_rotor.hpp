@@ -1,0 +1,133 @@
+// Finite-element rotor model: Timoshenko shaft elements (shear deformation,
+// rotary inertia, gyroscopic moments; hollow circular sections), rigid disks,
+// linear bearings and rigid supports, assembled into sparse M, K, G, D.
+//
+// Coordinates: the shaft axis is z, the spin w > 0 turns about +z (right hand).
+// Each node has four lateral DOFs [x, y, theta_x, theta_y]:
+//   x, y          displacements of the shaft centre line,
+//   theta_x       rotation of the cross-section about +x  (= -dy/dz for a slender beam),
+//   theta_y       rotation of the cross-section about +y  (= +dx/dz for a slender beam).
+// With this right-handed choice both (x, y) and (theta_x, theta_y) turn in the
+// positive sense for forward whirl, so every node contributes the whirl pairs
+// (x, y) and (theta_x, theta_y).
+//
+// Equations of motion: M q'' + (D + w G) q' + K q = w^2 Re(u e^{i w t}), G per
+// unit speed and skew, a rigid disk adds G(theta_x, theta_y) = +Ip,
+// G(theta_y, theta_x) = -Ip. Element matrices: Nelson & McVaugh (1976),
+// Nelson (1980), Friswell et al., "Dynamics of Rotating Machines", ch. 5;
+// see docs/fe_rotor.md for the equations as implemented.
+#pragma once
+
+#include <gyrokit/core/gyroscopic_system.hpp>
+#include <gyrokit/eig/sparse_eigensolver.hpp>
+
+#include <Eigen/Sparse>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace gyrokit {
+
+// One shaft element between node e and node e + 1 (elements form one chain).
+struct FeShaftElement {
+    double length = 0.0;            // m, > 0
+    double outer_diameter = 0.0;    // m, > 0
+    double inner_diameter = 0.0;    // m, in [0, outer_diameter)
+    double youngs_modulus = 0.0;    // E, Pa, > 0
+    double shear_modulus = 0.0;     // G, Pa, > 0; 0 = E / (2 (1 + poisson_ratio))
+    double poisson_ratio = 0.3;     // in (-1, 0.5]; used for G (if 0) and the shear coefficient
+    double density = 0.0;           // kg/m^3, > 0
+};
+
+// Rigid disk attached at a node.
+struct FeDisk {
+    int node = 0;
+    double mass = 0.0;              // kg, >= 0
+    double diametral_inertia = 0.0; // Id, kg m^2, >= 0
+    double polar_inertia = 0.0;     // Ip, kg m^2, >= 0
+    double unbalance = 0.0;         // m_e e, kg m, >= 0 (mass times eccentricity)
+    double unbalance_phase = 0.0;   // rad, angle of the unbalance at t = 0 from +x
+};
+
+// Linear bearing between a node and the ground, acting on (x, y):
+// force = -[kxx kxy; kyx kyy] (x, y) - [cxx cxy; cyx cyy] (x', y').
+struct FeBearing {
+    int node = 0;
+    double kxx = 0.0, kxy = 0.0, kyx = 0.0, kyy = 0.0;   // N/m
+    double cxx = 0.0, cxy = 0.0, cyx = 0.0, cyy = 0.0;   // N s/m
+};
+
+// Rigid support: the chosen DOFs of a node are held at zero and removed from
+// the assembled system (pinned: x and y; clamped: all four).
+struct FeSupport {
+    int node = 0;
+    bool x = true, y = true, theta_x = false, theta_y = false;
+};
+
+// The assembled matrices (constrained DOFs removed). Row/column order: node by
+// node, [x, y, theta_x, theta_y] each, constrained DOFs skipped.
+struct FeRotorMatrices {
+    Eigen::SparseMatrix<double> M;   // mass (translational + rotary + disks), symmetric positive definite
+    Eigen::SparseMatrix<double> K;   // stiffness (shaft + bearings); symmetric when kxy = kyx
+    Eigen::SparseMatrix<double> G;   // gyroscopic per unit speed, skew
+    Eigen::SparseMatrix<double> D;   // bearing damping; symmetric when cxy = cyx
+    Eigen::VectorXcd unbalance;      // force amplitude per w^2 (forward-turning disk unbalance)
+    std::vector<std::string> dof_names;            // "x3", "y3", "tx3", "ty3"
+    std::vector<std::pair<int, int>> whirl_pairs;  // (x, y) and (theta_x, theta_y) of each node, when both are free
+    std::vector<int> node_of_dof;                  // node of each assembled DOF
+    std::vector<double> node_z;                    // axial position of each node (m), z_0 = 0
+
+    int size() const { return static_cast<int>(M.rows()); }
+    // Sparse pencil at spin speed w: M, C = D + w G, K.
+    SparsePencil at_speed(double w) const;
+    // The model as a sparse gyroscopic system (bearing damping named "bearings").
+    SparseGyroscopicSystem to_system() const;
+    // The same model as a dense GyroscopicSystem (for small models). Bearing
+    // damping becomes the damping component "bearings"; throws InputError if it
+    // is not symmetric (cxy != cyx), which GyroscopicSystem cannot hold.
+    GyroscopicSystem to_dense() const;
+};
+
+class FeRotor {
+public:
+    std::vector<FeShaftElement> elements;   // element e joins node e and node e + 1
+    std::vector<FeDisk> disks;
+    std::vector<FeBearing> bearings;
+    std::vector<FeSupport> supports;
+    bool shear_deformation = true;   // false: Euler-Bernoulli / Rayleigh beam (Phi = 0)
+    bool rotary_inertia = true;      // false: no rotary inertia and no shaft gyroscopic moments
+
+    int node_count() const { return elements.empty() ? 0 : static_cast<int>(elements.size()) + 1; }
+
+    // Throws InputError naming the item (element/disk/bearing/support index), the
+    // key, the value and the allowed range.
+    void validate() const;
+    // Validates, then assembles in O(number of elements + disks + bearings).
+    FeRotorMatrices assemble() const;
+};
+
+// Section and element quantities, exposed for tests and documentation.
+struct FeSection {
+    double area = 0.0;              // A = pi (do^2 - di^2) / 4
+    double second_moment = 0.0;     // I = pi (do^4 - di^4) / 64
+    double shear_coefficient = 0.0; // kappa, Cowper (1966) for hollow circular sections
+    double shear_modulus = 0.0;     // G actually used
+};
+FeSection fe_section(const FeShaftElement& e);
+
+// Cowper's shear coefficient of a hollow circular section, m = di / do:
+// kappa = 6 (1 + nu) (1 + m^2)^2 / ((7 + 6 nu) (1 + m^2)^2 + (20 + 12 nu) m^2).
+double cowper_shear_coefficient(double poisson_ratio, double diameter_ratio);
+
+// Element matrices in the global element DOF order [x1 y1 tx1 ty1 x2 y2 tx2 ty2].
+struct FeElementMatrices {
+    Eigen::Matrix<double, 8, 8> M, K, G;
+};
+FeElementMatrices fe_shaft_element_matrices(const FeShaftElement& e, bool shear_deformation = true,
+                                            bool rotary_inertia = true);
+
+// A uniform shaft of `count` equal elements (convenience for studies and tests).
+FeRotor fe_uniform_shaft(double length, int count, double outer_diameter, double inner_diameter,
+                         double youngs_modulus, double poisson_ratio, double density);
+
+}  // namespace gyrokit

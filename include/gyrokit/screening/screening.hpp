@@ -1,0 +1,91 @@
+// Evaluation of the designs of a sweep against its criteria, and the run:
+// parallel workers, rows written in design-index order and flushed, resume of
+// an interrupted run, shards. See docs/screening.md.
+#pragma once
+
+#include <gyrokit/io/plot.hpp>
+#include <gyrokit/io/table.hpp>
+#include <gyrokit/screening/sweep.hpp>
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+enum class Verdict { Pass, Fail, Error };
+std::string to_string(Verdict v);
+
+// What one design gave. `quantities` follow quantity_columns(); unset = not
+// defined (e.g. no critical speed in the scanned range).
+struct DesignResult {
+    std::size_t index = 0;
+    std::vector<double> parameters;
+    std::vector<std::optional<double>> quantities;
+    Verdict verdict = Verdict::Pass;
+    std::vector<std::string> failed;   // names of the criteria not met
+    std::string reason;
+};
+
+// The computed columns of the sweep's criteria, e.g. critical_speed, separation_percent.
+std::vector<std::string> quantity_columns(const Sweep& s);
+// design, parameters, quantities, verdict, failed, reason.
+std::vector<std::string> result_columns(const Sweep& s);
+
+// Evaluates design i. Never throws for a failing design: an invalid parameter
+// combination or a failed analysis gives Verdict::Error with the message.
+DesignResult evaluate_design(const Sweep& s, std::size_t i);
+
+// A result row as written: one string per column (numbers %.12g, parameters
+// at round-trip precision, empty = undefined).
+struct ResultRow {
+    std::size_t index = 0;
+    std::vector<std::string> cells;
+};
+ResultRow format_row(const Sweep& s, const DesignResult& r);
+std::string csv_line(const std::vector<std::string>& cells);             // with '\n'
+std::vector<std::string> parse_csv_line(const std::string& line);        // throws Error on bad quoting
+
+struct RunOptions {
+    int jobs = 1;
+    Shard shard;
+    std::string out;          // CSV file written row by row ("" = none)
+    bool resume = false;      // keep the rows already in `out` and compute the rest
+    std::size_t limit = 0;    // compute at most this many designs in this run (0 = all)
+    // Called from the writing thread after each row: (rows done, rows of the shard).
+    std::function<void(std::size_t, std::size_t)> progress;
+};
+
+struct RunResult {
+    std::vector<std::string> columns;
+    std::vector<ResultRow> rows;    // design-index order
+    std::size_t resumed = 0;        // rows read back from `out`
+    std::size_t computed = 0;
+    std::size_t shard_designs = 0;  // designs owned by the shard
+};
+
+// Runs the designs of the shard on `jobs` threads. Rows are written to `out`
+// in design-index order as soon as all earlier rows are done, each flushed, so
+// an interrupted file is always a complete prefix plus at most one partial
+// line. With `resume`, the header must match the sweep, the rows must belong
+// to this sweep and shard, a partial last line is dropped and redone.
+RunResult run_screening(const Sweep& s, const RunOptions& opt);
+
+// Reads result files (shards or one run) of `s` and returns all rows sorted
+// by design index; throws InputError on a foreign header, duplicates, or
+// (with `complete`) missing designs.
+std::vector<ResultRow> merge_results(const Sweep& s, const std::vector<std::string>& files, bool complete);
+
+// Rows to a table: numbers as numbers; undefined cells as "" (CSV/text) or
+// null (JSON, written by write_results).
+void write_results(std::ostream& os, const Sweep& s, const std::vector<ResultRow>& rows, TableFormat f);
+
+// Verdict counts and the designs failing each criterion.
+Table summary_table(const Sweep& s, const std::vector<ResultRow>& rows);
+
+// Designs over two parameters, coloured by verdict (pass, fail, error).
+Figure safe_region_figure(const Sweep& s, const std::vector<ResultRow>& rows, const std::string& x,
+                          const std::string& y);
+
+}  // namespace gyrokit

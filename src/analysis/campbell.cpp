@@ -1,0 +1,209 @@
+#include <gyrokit/analysis/campbell.hpp>
+
+#include <gyrokit/analysis/assignment.hpp>
+#include <gyrokit/core/error.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gyrokit {
+
+using cd = std::complex<double>;
+
+double match_cost(const Mode& a, cd predicted, const Mode& b) {
+    const double scale = std::abs(predicted) + std::abs(b.lambda) + 1e-300;
+    return (1.0 - mac(a.right, b.right)) + std::abs(predicted - b.lambda) / scale;
+}
+
+const Mode& continue_branch(const Branch& branch, size_t i, double w, const QuadraticSpectrum& spectrum) {
+    if (spectrum.modes.empty()) throw SolverError("no finite eigenvalue to continue a branch");
+    const BranchPoint& p0 = branch.points[i];
+    const BranchPoint& p1 = branch.points[std::min(i + 1, branch.points.size() - 1)];
+    const double t = (p1.speed > p0.speed) ? (w - p0.speed) / (p1.speed - p0.speed) : 0.0;
+    const cd predicted = (1.0 - t) * p0.mode.lambda + t * p1.mode.lambda;
+    const Mode& near = t < 0.5 ? p0.mode : p1.mode;
+    size_t best = 0;
+    double best_cost = std::numeric_limits<double>::infinity();
+    for (size_t j = 0; j < spectrum.modes.size(); ++j) {
+        const double c = match_cost(near, predicted, spectrum.modes[j]);
+        if (c < best_cost) { best_cost = c; best = j; }
+    }
+    return spectrum.modes[best];
+}
+
+namespace {
+
+struct Tracker {
+    SpectrumSolver& solve;
+    const CampbellOptions& opt;
+    CampbellDiagram& out;
+    std::vector<int> active;   // branch index per mode of the last spectrum
+    bool window = false;       // spectra hold a window of modes, not all
+    // Branches whose matches decide ambiguity. A dense spectrum holds every mode,
+    // but only the K lowest branches at the first speed are reported: a veering
+    // among the high modes must not cost bisections (on a model of a thousand
+    // DOFs it would cost hundreds of full solves).
+    std::vector<char> watched;
+    char watch_new = 1;        // whether branches that start later are watched
+
+    // Assignment of the modes of `prev` to those of `next`; ambiguous if any
+    // match is weak or a rival is nearly as good.
+    std::vector<int> match(const std::vector<Mode>& prev, const std::vector<cd>& predicted,
+                           const std::vector<Mode>& next, bool& ambiguous) const {
+        Eigen::MatrixXd cost(prev.size(), next.size());
+        for (size_t i = 0; i < prev.size(); ++i)
+            for (size_t j = 0; j < next.size(); ++j)
+                cost(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+                    match_cost(prev[i], predicted[i], next[j]);
+        std::vector<int> a = solve_assignment(cost);
+        ambiguous = !window && prev.size() != next.size();
+        for (size_t i = 0; i < prev.size() && !ambiguous; ++i) {
+            const int j = a[i];
+            if (j < 0 || degenerate(prev, i)) continue;   // a double eigenvalue: either match is right
+            if (!watched[static_cast<size_t>(active[i])]) continue;
+            if (window && opt.modes > 0 && static_cast<int>(i) >= opt.modes) continue;   // the window's edge
+            if (mac(prev[i].right, next[static_cast<size_t>(j)].right) < opt.mac_min) ambiguous = true;
+            for (size_t k = 0; k < next.size(); ++k)
+                if (static_cast<int>(k) != j && cost(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) <
+                                                    cost(static_cast<Eigen::Index>(i), j) + 0.05)
+                    ambiguous = true;
+        }
+        return a;
+    }
+
+    static bool degenerate(const std::vector<Mode>& modes, size_t i) {
+        for (size_t k = 0; k < modes.size(); ++k)
+            if (k != i && std::abs(modes[k].lambda - modes[i].lambda) <= 1e-8 * std::abs(modes[i].lambda))
+                return true;
+        return false;
+    }
+
+    std::vector<cd> predictions(const std::vector<Mode>& modes, double w) const {
+        std::vector<cd> p;
+        for (size_t i = 0; i < modes.size(); ++i) {
+            const auto& pts = out.branches[static_cast<size_t>(active[i])].points;
+            if (pts.size() >= 2 && pts.back().speed > pts[pts.size() - 2].speed) {
+                const auto& a = pts[pts.size() - 2];
+                const auto& b = pts.back();
+                p.push_back(b.mode.lambda + (b.mode.lambda - a.mode.lambda) * (w - b.speed) / (b.speed - a.speed));
+            } else {
+                p.push_back(modes[i].lambda);
+            }
+        }
+        return p;
+    }
+
+    void append(double w, QuadraticSpectrum&& s, const std::vector<int>& assign) {
+        out.rigid_body = std::max(out.rigid_body, static_cast<int>(s.rigid_body.size()));
+        for (auto& note : s.notes)
+            if (std::find(out.notes.begin(), out.notes.end(), note) == out.notes.end()) out.notes.push_back(note);
+        std::vector<int> next_active(s.modes.size(), -1);
+        for (size_t i = 0; i < assign.size(); ++i)
+            if (assign[i] >= 0) next_active[static_cast<size_t>(assign[i])] = active[i];
+        for (size_t j = 0; j < s.modes.size(); ++j) {
+            if (next_active[j] < 0) {   // a mode without predecessor starts a new branch
+                next_active[j] = static_cast<int>(out.branches.size());
+                out.branches.push_back({});
+                watched.push_back(watch_new);
+            }
+            out.max_backward_error = std::max(out.max_backward_error, s.modes[j].backward_error);
+            out.branches[static_cast<size_t>(next_active[j])].points.push_back({w, std::move(s.modes[j])});
+        }
+        active = std::move(next_active);
+        out.speeds.push_back(w);
+    }
+
+    const std::vector<Mode>& last_modes(std::vector<Mode>& buf) const {
+        buf.clear();
+        for (int b : active) buf.push_back(out.branches[static_cast<size_t>(b)].points.back().mode);
+        return buf;
+    }
+
+    // Moves from the last appended speed to w1 (whose spectrum is s1), bisecting while ambiguous.
+    void step(double w1, QuadraticSpectrum s1, int depth) {
+        std::vector<Mode> prev;
+        last_modes(prev);
+        bool ambiguous = false;
+        std::vector<int> a = match(prev, predictions(prev, w1), s1.modes, ambiguous);
+        const double w0 = out.speeds.back();
+        const double wm = 0.5 * (w0 + w1);
+        // No bisection below the resolution of the speeds (wm equal to an end).
+        if (ambiguous && depth < opt.max_refine && wm > w0 && wm < w1) {
+            ++out.inserted_speeds;
+            step(wm, solve(wm), depth + 1);
+            step(w1, std::move(s1), depth + 1);
+            return;
+        }
+        if (ambiguous) ++out.ambiguous_steps;
+        if (ambiguous && window)   // a mode that left the window ends its branch; its successor starts one
+            for (size_t i = 0; i < a.size(); ++i)
+                if (a[i] >= 0 && mac(prev[i].right, s1.modes[static_cast<size_t>(a[i])].right) < opt.mac_min) a[i] = -1;
+        append(w1, std::move(s1), a);
+    }
+};
+
+}  // namespace
+
+CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>& speeds, const CampbellOptions& opt) {
+    return campbell(dense_solver(sys, opt.eig), speeds, opt);
+}
+
+CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& speeds, const CampbellOptions& opt) {
+    CampbellDiagram out;
+    if (speeds.empty()) return out;
+    for (size_t k = 0; k < speeds.size(); ++k) {
+        if (!std::isfinite(speeds[k]) || speeds[k] < 0.0)
+            throw InputError(fmt::format("speed {} at position {} is not allowed; allowed: finite speeds >= 0",
+                                         speeds[k], k + 1));
+        if (k > 0 && !(speeds[k] > speeds[k - 1]))
+            throw InputError(fmt::format("speeds {} and {} at positions {} and {} do not increase; allowed: "
+                                         "distinct speeds in increasing order",
+                                         speeds[k - 1], speeds[k], k, k + 1));
+    }
+    // Grid speeds in parallel; tracking and refinement (few solves) in order.
+    std::vector<QuadraticSpectrum> grid = solve_speeds(make, speeds, opt.threads, opt.progress);
+    SpectrumSolver refine = make();
+    Tracker t{refine, opt, out, {}, grid.front().partial, {}, 1};
+    t.append(speeds.front(), std::move(grid.front()), {});
+    if (opt.modes > 0 && !t.window) {   // watch the K lowest at the first speed, two more for ties at the edge
+        std::vector<size_t> order(t.watched.size());
+        for (size_t b = 0; b < order.size(); ++b) order[b] = b;
+        std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+            return out.branches[a].points.front().mode.lambda.imag() < out.branches[b].points.front().mode.lambda.imag();
+        });
+        std::fill(t.watched.begin(), t.watched.end(), 0);
+        t.watch_new = 0;   // a branch that starts later is never among the K reported
+        for (size_t r = 0; r < std::min(order.size(), static_cast<size_t>(opt.modes) + 2); ++r) t.watched[order[r]] = 1;
+    }
+    for (size_t k = 1; k < speeds.size(); ++k) t.step(speeds[k], std::move(grid[k]), 0);
+
+    // Number the branches by frequency at their first point; keep the K lowest
+    // among those present at the first speed.
+    std::vector<Branch>& br = out.branches;
+    std::stable_sort(br.begin(), br.end(), [&](const Branch& a, const Branch& b) {
+        const bool a0 = a.points.front().speed == speeds.front(), b0 = b.points.front().speed == speeds.front();
+        if (a0 != b0) return a0;
+        // Equal frequencies (a double eigenvalue at standstill): the order just after decides.
+        for (size_t k = 0; k < std::min({a.points.size(), b.points.size(), size_t(2)}); ++k) {
+            const double fa = a.points[k].mode.lambda.imag(), fb = b.points[k].mode.lambda.imag();
+            if (std::abs(fa - fb) > 1e-9 * std::max(std::abs(fa), std::abs(fb))) return fa < fb;
+        }
+        return false;
+    });
+    if (opt.modes > 0 && !t.window && static_cast<int>(br.size()) > opt.modes) br.resize(static_cast<size_t>(opt.modes));
+    if (t.window) {   // the window's branches: those of the first speed, then the ones that entered later
+        const auto first = std::stable_partition(br.begin(), br.end(), [&](const Branch& b) {
+            return b.points.front().speed == speeds.front();
+        });
+        std::stable_sort(first, br.end(), [](const Branch& a, const Branch& b) {
+            return a.points.front().speed < b.points.front().speed;
+        });
+    }
+    for (size_t i = 0; i < br.size(); ++i) br[i].id = static_cast<int>(i + 1);
+    return out;
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,197 @@
+#include <gyrokit/analysis/critical_speeds.hpp>
+
+#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/core/error.hpp>
+#include "eig/lapack.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gyrokit {
+
+namespace {
+
+// An interval [i, i + 1] of a branch holding a change, and how to refine it:
+// a root of g (sign change) or the edge of a predicate (bisection).
+struct Interval {
+    const Branch* branch;
+    size_t i;
+    double g0, g1;
+};
+
+// Every interval of every oscillating branch that `holds` accepts, refined on
+// `threads` workers (each search is independent) by `refine(solve, mode_at,
+// interval)`, then emitted in branch order.
+template <class Holds, class Refine, class Emit>
+void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const Holds& holds, const Refine& refine,
+                   int threads, const Emit& emit) {
+    std::vector<Interval> found;
+    for (const Branch& b : cd.branches) {
+        for (size_t i = 0; i + 1 < b.points.size(); ++i) {
+            const Mode& m0 = b.points[i].mode;
+            const Mode& m1 = b.points[i + 1].mode;
+            if (m0.whirl == Whirl::Real || m1.whirl == Whirl::Real) continue;
+            Interval iv{&b, i, 0.0, 0.0};
+            if (holds(m0, b.points[i].speed, m1, b.points[i + 1].speed, iv)) found.push_back(iv);
+        }
+    }
+    const std::vector<QuadraticSpectrum> roots =
+        run_on_workers(make, found.size(), threads, [&](SpectrumSolver& solve, size_t k) {
+            const Branch& b = *found[k].branch;
+            const size_t i = found[k].i;
+            const auto mode_at = [&](double w) { return continue_branch(b, i, w, solve(w)); };
+            QuadraticSpectrum s;
+            s.speed = refine(mode_at, found[k]);
+            s.modes.push_back(mode_at(s.speed));
+            return s;
+        });
+    for (size_t k = 0; k < found.size(); ++k)
+        emit(*found[k].branch, roots[k].speed, roots[k].modes.at(0), found[k].g0, found[k].g1);
+}
+
+// Last speed in [a, b] on the side of a where `unstable(w)` equals its value at
+// a, by bisection to a relative width of 1e-12: the edge of the unstable range
+// where one side is neutral and the real part is rounding there (no root of
+// Re lambda to converge to).
+template <class Pred>
+double bisect_edge(const Pred& unstable, double a, double b) {
+    const bool at_a = unstable(a);
+    for (int it = 0; it < 200 && b - a > 1e-12 * std::max(std::abs(a), std::abs(b)); ++it) {
+        const double m = 0.5 * (a + b);
+        (unstable(m) == at_a ? a : b) = m;
+    }
+    return 0.5 * (a + b);
+}
+
+}  // namespace
+
+std::vector<CriticalSpeed> critical_speeds(const GyroscopicSystem& sys, const CampbellDiagram& cd,
+                                           const std::vector<int>& harmonics, const EigenOptions& eig) {
+    return critical_speeds(dense_solver(sys, eig), cd, harmonics);
+}
+
+std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const CampbellDiagram& cd,
+                                           const std::vector<int>& harmonics, int threads) {
+    std::vector<CriticalSpeed> out;
+    for (int k : harmonics) {
+        if (k < 1) throw InputError("harmonic " + std::to_string(k) + " is not allowed; allowed: k >= 1");
+        const auto g = [k](const Mode& m, double w) { return m.lambda.imag() - k * w; };
+        const auto holds = [&](const Mode& m0, double w0, const Mode& m1, double w1, Interval& iv) {
+            iv.g0 = g(m0, w0);
+            iv.g1 = g(m1, w1);
+            if (iv.g0 == 0.0 && iv.i > 0) return false;   // counted as the end of the previous interval
+            return !((iv.g0 > 0) == (iv.g1 > 0) && iv.g0 != 0.0 && iv.g1 != 0.0);
+        };
+        const auto refine = [&](const auto& mode_at, const Interval& iv) {
+            const auto& p = iv.branch->points;
+            return find_root([&](double x) { return g(mode_at(x), x); }, p[iv.i].speed, p[iv.i + 1].speed);
+        };
+        scan_branches(solver, cd, holds, refine, threads, [&](const Branch& b, double w, Mode m, double, double) {
+            out.push_back({w, k, b.id, std::move(m)});
+        });
+    }
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
+    return out;
+}
+
+std::vector<StabilityChange> stability_changes(const GyroscopicSystem& sys, const CampbellDiagram& cd,
+                                               const EigenOptions& eig) {
+    return stability_changes(dense_solver(sys, eig), cd);
+}
+
+std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd, int threads) {
+    std::vector<StabilityChange> out;
+    const auto unstable = [](const Mode& m) { return m.stability() == Stability::Unstable; };
+    // A change: one end unstable, the other not (stable or neutral); g holds Re lambda.
+    const auto holds = [&](const Mode& m0, double, const Mode& m1, double, Interval& iv) {
+        iv.g0 = m0.lambda.real();
+        iv.g1 = m1.lambda.real();
+        return unstable(m0) != unstable(m1);
+    };
+    const auto refine = [&](const auto& mode_at, const Interval& iv) {
+        const auto& p = iv.branch->points;
+        const Mode& m0 = p[iv.i].mode;
+        const Mode& m1 = p[iv.i + 1].mode;
+        // Both ends decided (stable and unstable): the real part crosses zero, Brent finds it.
+        if (m0.stability() != Stability::Neutral && m1.stability() != Stability::Neutral)
+            return find_root([&](double x) { return mode_at(x).lambda.real(); }, p[iv.i].speed, p[iv.i + 1].speed);
+        return bisect_edge([&](double x) { return unstable(mode_at(x)); }, p[iv.i].speed, p[iv.i + 1].speed);
+    };
+    scan_branches(solver, cd, holds, refine, threads, [&](const Branch& b, double w, Mode m, double, double) {
+        const auto& p = b.points;
+        const auto it = std::find_if(p.begin(), p.end(), [&](const BranchPoint& q) { return q.speed >= w; });
+        const bool after = it != p.end() ? unstable(it->mode) : unstable(p.back().mode);
+        out.push_back({w, b.id, after, std::move(m)});
+    });
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
+    return out;
+}
+
+std::vector<UnstableRange> unstable_ranges(const CampbellDiagram& cd) {
+    std::vector<UnstableRange> out;
+    for (const Branch& b : cd.branches) {
+        for (size_t i = 0; i < b.points.size(); ++i) {
+            const Mode& m = b.points[i].mode;
+            if (m.stability() != Stability::Unstable) continue;
+            if (!out.empty() && out.back().branch == b.id && out.back().last_index + 1 == i) {
+                out.back().to = b.points[i].speed;
+                out.back().last_index = i;
+                out.back().max_real = std::max(out.back().max_real, m.lambda.real());
+                continue;
+            }
+            out.push_back({b.id, b.points[i].speed, b.points[i].speed, m.lambda.real(), i});
+        }
+    }
+    return out;
+}
+
+std::vector<CriticalSpeed> critical_speeds_direct(const GyroscopicSystem& sys, int harmonic, double from,
+                                                  double to) {
+    if (sys.has_damping())
+        throw InputError("the direct critical-speed method needs an undamped system; this one has damping "
+                         "(use the branch method)");
+    if (sys.has_circulatory())
+        throw InputError("the direct critical-speed method needs a system without circulatory matrix N");
+    if (!sys.bearings.empty())
+        throw InputError("the direct critical-speed method needs speed-independent matrices; this model has "
+                         "bearing tables (use the branch method)");
+    if (harmonic < 1) throw InputError("harmonic must be >= 1");
+    const double k = harmonic;
+    const std::complex<double> I(0.0, 1.0);
+    Eigen::MatrixXcd A = sys.K.cast<std::complex<double>>();
+    Eigen::MatrixXcd B = (k * k) * sys.M.cast<std::complex<double>>();
+    if (sys.G.size() > 0) B -= (I * k) * sys.G.cast<std::complex<double>>();
+    if (sys.K2.size() > 0) B -= sys.K2.cast<std::complex<double>>();   // K + w^2 K2 stays linear in w^2
+    const GeneralizedEigen ge = lapack_zggev(A, B);
+    std::vector<CriticalSpeed> out;
+    const double eps = std::numeric_limits<double>::epsilon();
+    for (Eigen::Index j = 0; j < ge.alpha.size(); ++j) {
+        if (std::abs(ge.beta_c(j)) <= 100 * eps * std::abs(ge.alpha(j))) continue;   // infinite
+        const std::complex<double> mu = ge.alpha(j) / ge.beta_c(j);
+        // Hermitian pencil: real mu up to rounding; mu = w^2 > 0.
+        if (mu.real() <= 0.0 || std::abs(mu.imag()) > 1e-8 * std::abs(mu)) continue;
+        const double w = std::sqrt(mu.real());
+        if (w < from || w > to) continue;
+        CriticalSpeed c;
+        c.speed = w;
+        c.harmonic = harmonic;
+        c.mode.lambda = I * (k * w);
+        c.mode.right = ge.right.col(j).normalized();
+        c.mode.backward_error = backward_error(sys.at_speed(w), c.mode.lambda, c.mode.right);
+        c.mode.whirl = classify_whirl(c.mode.lambda, c.mode.right, sys.whirl_pairs, 0.0);
+        // Mode number: its rank by frequency among the modes at that speed.
+        const QuadraticSpectrum sp = solve_at_speed(sys, w);
+        double nearest = std::numeric_limits<double>::infinity();
+        for (size_t i = 0; i < sp.modes.size(); ++i)
+            if (std::abs(sp.modes[i].lambda - c.mode.lambda) < nearest) {
+                nearest = std::abs(sp.modes[i].lambda - c.mode.lambda);
+                c.branch = static_cast<int>(i) + 1;
+            }
+        out.push_back(std::move(c));
+    }
+    std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
+    return out;
+}
+
+}  // namespace gyrokit

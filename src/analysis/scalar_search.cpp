@@ -1,0 +1,68 @@
+#include <gyrokit/analysis/scalar_search.hpp>
+
+#include <gyrokit/core/error.hpp>
+
+#include <cmath>
+#include <mutex>
+#include <fmt/format.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_roots.h>
+
+namespace gyrokit {
+
+namespace {
+
+double trampoline(double x, void* params) {
+    return (*static_cast<const std::function<double(double)>*>(params))(x);
+}
+
+}  // namespace
+
+double find_root(const std::function<double(double)>& f, double a, double b, double rel_tol) {
+    const double fa = f(a), fb = f(b);
+    if (fa == 0.0) return a;
+    if (fb == 0.0) return b;
+    if ((fa > 0) == (fb > 0))
+        throw SolverError(fmt::format("root search on [{}, {}] has no sign change", a, b));
+    // Errors are reported through return codes below; set once, since root
+    // searches may run on several threads.
+    static std::once_flag quiet;
+    std::call_once(quiet, [] { gsl_set_error_handler_off(); });
+    gsl_function F{&trampoline, const_cast<std::function<double(double)>*>(&f)};
+    gsl_root_fsolver* s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    gsl_root_fsolver_set(s, &F, a, b);
+    int status = GSL_CONTINUE;
+    double x = 0.5 * (a + b);
+    for (int it = 0; it < 200 && status == GSL_CONTINUE; ++it) {
+        if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS) break;
+        x = gsl_root_fsolver_root(s);
+        status = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s), 0.0, rel_tol);
+        if (gsl_root_fsolver_x_upper(s) - gsl_root_fsolver_x_lower(s) <= 4e-16 * std::fabs(x)) status = GSL_SUCCESS;
+    }
+    gsl_root_fsolver_free(s);
+    if (status != GSL_SUCCESS)
+        throw SolverError(fmt::format("Brent root search on [{}, {}] did not converge to relative "
+                                      "tolerance {}; use a finer speed grid",
+                                      a, b, rel_tol));
+    return x;
+}
+
+double find_minimum(const std::function<double(double)>& f, double a, double b, double rel_tol,
+                    const std::function<bool(double, double)>& give_up) {
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    double c = b - g * (b - a), d = a + g * (b - a);
+    double fc = f(c), fd = f(d);
+    for (int it = 0; it < 400 && (b - a) > rel_tol * std::max(1.0, std::fabs(c)); ++it) {
+        if (give_up && give_up(b - a, std::min(fc, fd))) break;
+        if (fc <= fd) {
+            b = d; d = c; fd = fc;
+            c = b - g * (b - a); fc = f(c);
+        } else {
+            a = c; c = d; fc = fd;
+            d = a + g * (b - a); fd = f(d);
+        }
+    }
+    return fc <= fd ? c : d;
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,360 @@
+#include <gyrokit/analysis/spectrum_solver.hpp>
+
+#include <gyrokit/core/error.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <fmt/format.h>
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace gyrokit {
+
+WorkerDied::WorkerDied(long long task_index, int signal_number)
+    : Error(fmt::format("a worker process died (signal {}) while solving task {}", signal_number, task_index)),
+      task(task_index), signal(signal_number) {}
+
+std::vector<QuadraticSpectrum> solve_speeds_unchecked(const SolverFactory& make, const std::vector<double>& speeds,
+                                                      int threads, const std::function<void(size_t, size_t)>& progress);
+
+SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig) {
+    return {[&sys, eig]() -> SpectrumSolver { return [&sys, eig](double w) { return solve_at_speed(sys, w, eig); }; },
+            true};
+}
+
+QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p) {
+    QuadraticSpectrum q;
+    q.modes = std::move(s.modes);
+    q.rigid_body = std::move(s.rigid_body);
+    q.notes = std::move(s.notes);
+    const double scale = std::sqrt(p.K.norm() / p.M.norm());
+    q.scale = std::isfinite(scale) && scale > 0 ? scale : 1.0;
+    q.real_tol = 1e-7 * q.scale;
+    q.partial = true;
+    return q;
+}
+
+SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vector<std::pair<int, int>> whirl_pairs,
+                            const SparseEigenOptions& opt, bool reuse) {
+    SolverFactory f;
+    f.thread_safe = false;
+    f.make = [pencil, whirl_pairs, opt, reuse]() -> SpectrumSolver {
+        // The state vectors [lambda x; x] of the last speed's modes, summed: a
+        // start vector rich in the wanted invariant subspace.
+        auto start = std::make_shared<Eigen::VectorXcd>();
+        // Rigid-body eigenvalues seen in the window at the last speed: asked for at once.
+        auto rigid = std::make_shared<int>(0);
+        return [pencil, whirl_pairs, opt, reuse, start, rigid](double w) {
+            const SparsePencil p = pencil(w);
+            SparseEigenOptions o = opt;
+            o.shift += std::complex<double>(0.0, opt.shift_order * w);   // continued along nu + k w
+            if (reuse) o.start = *start;
+            if (*rigid > 0) o.reserve = std::max(o.reserve, *rigid + 2);
+            SparseSpectrum s = solve_quadratic_sparse(p, o, whirl_pairs);
+            *rigid = static_cast<int>(s.rigid_body.size());
+            if (reuse && !s.modes.empty()) {
+                // Real and imaginary parts of [lambda x; x] span each mode and its
+                // conjugate (ARPACK wants both); a small random part keeps the
+                // Krylov space from closing on them before it holds all it needs.
+                const Eigen::Index n = p.M.rows();
+                Eigen::VectorXcd v = Eigen::VectorXcd::Zero(2 * n);
+                for (const Mode& m : s.modes) {
+                    Eigen::VectorXcd z(2 * n);
+                    z.head(n) = m.lambda / std::max(1.0, std::abs(m.lambda)) * m.right;
+                    z.tail(n) = m.right / std::max(1.0, std::abs(m.lambda));
+                    z /= z.norm();
+                    v += z.real().cast<std::complex<double>>() + z.imag().cast<std::complex<double>>();
+                }
+                v /= v.norm();
+                Eigen::VectorXcd r = Eigen::VectorXcd::Random(2 * n);
+                *start = v + 0.01 * r / r.norm();
+            }
+            return to_spectrum(std::move(s), p);
+        };
+    };
+    return f;
+}
+
+SolverFactory sparse_solver(const SparseGyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse) {
+    return sparse_solver([&sys](double w) { return sys.at_speed(w); }, sys.whirl_pairs, opt, reuse);
+}
+
+SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse) {
+    return sparse_solver([&sys](double w) { return to_sparse(sys.at_speed(w)); }, sys.whirl_pairs, opt, reuse);
+}
+
+namespace {
+
+// Spectra through a file: the worker process writes, the parent reads.
+template <class T>
+void put(std::FILE* f, const T& v) {
+    if (std::fwrite(&v, sizeof(T), 1, f) != 1) throw Error("cannot write a worker's result file");
+}
+template <class T>
+T get(std::FILE* f) {
+    T v{};
+    if (std::fread(&v, sizeof(T), 1, f) != 1) throw Error("a worker's result file ended early");
+    return v;
+}
+
+void put_vector(std::FILE* f, const Eigen::VectorXcd& v) {
+    put<long long>(f, v.size());
+    if (v.size() && std::fwrite(v.data(), sizeof(std::complex<double>), static_cast<size_t>(v.size()), f) !=
+                        static_cast<size_t>(v.size()))
+        throw Error("cannot write a worker's result file");
+}
+Eigen::VectorXcd get_vector(std::FILE* f) {
+    Eigen::VectorXcd v(get<long long>(f));
+    if (v.size() && std::fread(v.data(), sizeof(std::complex<double>), static_cast<size_t>(v.size()), f) !=
+                        static_cast<size_t>(v.size()))
+        throw Error("a worker's result file ended early");
+    return v;
+}
+
+void put_string(std::FILE* f, const std::string& text) {
+    put<long long>(f, static_cast<long long>(text.size()));
+    if (!text.empty() && std::fwrite(text.data(), 1, text.size(), f) != text.size())
+        throw Error("cannot write a worker's result file");
+}
+std::string get_string(std::FILE* f) {
+    std::string text(static_cast<size_t>(get<long long>(f)), ' ');
+    if (!text.empty() && std::fread(text.data(), 1, text.size(), f) != text.size())
+        throw Error("a worker's result file ended early");
+    return text;
+}
+
+void put_modes(std::FILE* f, const std::vector<Mode>& modes) {
+    put<long long>(f, static_cast<long long>(modes.size()));
+    for (const Mode& m : modes) {
+        put(f, m.lambda);
+        put(f, m.backward_error);
+        put(f, m.error_bound);
+        put(f, static_cast<int>(m.whirl));
+        put_vector(f, m.right);
+        put_vector(f, m.left);
+    }
+}
+std::vector<Mode> get_modes(std::FILE* f) {
+    std::vector<Mode> modes(static_cast<size_t>(get<long long>(f)));
+    for (Mode& m : modes) {
+        m.lambda = get<std::complex<double>>(f);
+        m.backward_error = get<double>(f);
+        m.error_bound = get<double>(f);
+        m.whirl = static_cast<Whirl>(get<int>(f));
+        m.right = get_vector(f);
+        m.left = get_vector(f);
+    }
+    return modes;
+}
+
+void put_spectrum(std::FILE* f, const QuadraticSpectrum& s) {
+    put_modes(f, s.modes);
+    put_modes(f, s.rigid_body);
+    put<long long>(f, static_cast<long long>(s.notes.size()));
+    for (const auto& note : s.notes) put_string(f, note);
+    put(f, s.infinite_count);
+    put(f, s.scale);
+    put(f, s.real_tol);
+    put(f, s.partial);
+    put(f, s.speed);
+}
+QuadraticSpectrum get_spectrum(std::FILE* f) {
+    QuadraticSpectrum s;
+    s.modes = get_modes(f);
+    s.rigid_body = get_modes(f);
+    s.notes.resize(static_cast<size_t>(get<long long>(f)));
+    for (auto& note : s.notes) note = get_string(f);
+    s.infinite_count = get<int>(f);
+    s.scale = get<double>(f);
+    s.real_tol = get<double>(f);
+    s.partial = get<bool>(f);
+    s.speed = get<double>(f);
+    return s;
+}
+
+// Blocks of tasks in forked workers. A worker writes 1 + its spectra, or 0 +
+// the error kind (1 input, 2 solver, 3 other) + message, to its file.
+std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_t n, size_t workers,
+                                                const WorkerTask& task,
+                                                const std::function<void(size_t, size_t)>& progress) {
+    // A counter all workers share, for the progress bar.
+    void* shared = mmap(nullptr, sizeof(std::atomic<size_t>), PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (shared == MAP_FAILED) throw Error("cannot map memory for the worker processes");
+    auto* done = new (shared) std::atomic<size_t>(0);
+    // Each worker's current task, for the report of a worker that dies.
+    void* current_map = mmap(nullptr, workers * sizeof(std::atomic<long long>), PROT_READ | PROT_WRITE,
+                             MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+    if (current_map == MAP_FAILED) {
+        munmap(shared, sizeof(std::atomic<size_t>));
+        throw Error("cannot map memory for the worker processes");
+    }
+    auto* current = static_cast<std::atomic<long long>*>(current_map);
+    for (size_t k = 0; k < workers; ++k) new (current + k) std::atomic<long long>(-1);
+    std::vector<std::FILE*> files;
+    std::vector<pid_t> pids;
+    // A worker that cannot start stops and reaps the ones already running.
+    const auto abandon = [&](const std::string& why) {
+        for (pid_t pid : pids) kill(pid, SIGKILL);
+        for (pid_t pid : pids) waitpid(pid, nullptr, 0);
+        for (std::FILE* f : files) std::fclose(f);
+        munmap(shared, sizeof(std::atomic<size_t>));
+        munmap(current_map, workers * sizeof(std::atomic<long long>));
+        throw Error(why);
+    };
+    std::fflush(nullptr);
+    for (size_t k = 0; k < workers; ++k) {
+        std::FILE* f = std::tmpfile();
+        if (!f) abandon(fmt::format("cannot create a temporary file for worker process {} of {}; use fewer jobs",
+                                    k + 1, workers));
+        const pid_t pid = fork();
+        if (pid < 0) {
+            std::fclose(f);
+            abandon(fmt::format("cannot start worker process {} of {} (fork failed); use fewer jobs", k + 1, workers));
+        }
+        if (pid == 0) {
+            int status = 0;
+            try {
+                SpectrumSolver solve = make();
+                std::vector<QuadraticSpectrum> part;
+                for (size_t i = k * n / workers; i < (k + 1) * n / workers; ++i) {
+                    current[k] = static_cast<long long>(i);
+                    part.push_back(task(solve, i));
+                    const size_t d = ++*done;
+                    if (progress) progress(d, n);
+                }
+                put<char>(f, 1);
+                for (const auto& s : part) put_spectrum(f, s);
+            } catch (const std::exception& e) {
+                const int kind = dynamic_cast<const InputError*>(&e) ? 1 : dynamic_cast<const SolverError*>(&e) ? 2 : 3;
+                const std::string what = e.what();
+                try {
+                    put<char>(f, 0);
+                    put(f, kind);
+                    put_string(f, what);
+                } catch (...) {   // the parent then reports the file as ended early
+                }
+                status = 1;
+            }
+            if (std::fflush(f) != 0) status = 2;
+            _exit(status);
+        }
+        files.push_back(f);
+        pids.push_back(pid);
+    }
+    // Every worker is reaped; one killed by a signal is reported with its task.
+    std::exception_ptr crash;
+    for (size_t k = 0; k < workers; ++k) {
+        int status = 0;
+        while (waitpid(pids[k], &status, 0) < 0 && errno == EINTR) {
+        }
+        if (!crash && WIFSIGNALED(status))
+            crash = std::make_exception_ptr(WorkerDied(static_cast<long long>(current[k]), WTERMSIG(status)));
+        else if (!crash && WIFEXITED(status) && WEXITSTATUS(status) == 2)
+            crash = std::make_exception_ptr(Error("a worker process could not write its results (disk full?)"));
+    }
+    munmap(current_map, workers * sizeof(std::atomic<long long>));
+    if (crash) {
+        munmap(shared, sizeof(std::atomic<size_t>));
+        for (std::FILE* f : files) std::fclose(f);
+        std::rethrow_exception(crash);
+    }
+    munmap(shared, sizeof(std::atomic<size_t>));
+    std::vector<QuadraticSpectrum> out(n);
+    std::exception_ptr failure;
+    for (size_t k = 0; k < workers; ++k) {
+        std::FILE* f = files[k];
+        try {
+            std::rewind(f);
+            if (get<char>(f) == 1) {
+                for (size_t i = k * n / workers; i < (k + 1) * n / workers; ++i) out[i] = get_spectrum(f);
+            } else {
+                const int kind = get<int>(f);
+                const std::string what = get_string(f);
+                if (kind == 1) throw InputError(what);
+                if (kind == 2) throw SolverError(what);
+                throw Error(what);
+            }
+        } catch (...) {
+            if (!failure) failure = std::current_exception();
+        }
+        std::fclose(f);
+    }
+    if (failure) std::rethrow_exception(failure);
+    return out;
+}
+
+}  // namespace
+
+std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t n, int threads, const WorkerTask& task,
+                                              const std::function<void(size_t, size_t)>& progress) {
+    std::vector<QuadraticSpectrum> out(n);
+    const size_t t = std::clamp<size_t>(threads < 1 ? 1 : static_cast<size_t>(threads), 1, std::max<size_t>(n, 1));
+    std::atomic<size_t> done{0};
+    std::mutex report;
+    std::exception_ptr failure;
+    const auto work = [&](size_t first, size_t last) {
+        try {
+            SpectrumSolver solve = make();
+            for (size_t i = first; i < last; ++i) {
+                {
+                    std::lock_guard<std::mutex> lock(report);
+                    if (failure) return;
+                }
+                out[i] = task(solve, i);
+                const size_t d = ++done;
+                if (progress) {
+                    std::lock_guard<std::mutex> lock(report);
+                    progress(d, n);
+                }
+            }
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(report);
+            if (!failure) failure = std::current_exception();
+        }
+    };
+    if (t > 1 && !make.thread_safe) return run_in_processes(make, n, t, task, progress);
+    if (t == 1) {
+        work(0, n);
+    } else {
+        std::vector<std::thread> pool;
+        for (size_t k = 0; k < t; ++k) pool.emplace_back(work, k * n / t, (k + 1) * n / t);
+        for (auto& th : pool) th.join();
+    }
+    if (failure) std::rethrow_exception(failure);
+    return out;
+}
+
+std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std::vector<double>& speeds, int threads,
+                                            const std::function<void(size_t, size_t)>& progress) {
+    try {
+        return solve_speeds_unchecked(make, speeds, threads, progress);
+    } catch (const WorkerDied& e) {
+        if (e.task < 0 || static_cast<size_t>(e.task) >= speeds.size()) throw;
+        throw Error(fmt::format("a worker process died (signal {}) while solving speed {} rad/s", e.signal,
+                                speeds[static_cast<size_t>(e.task)]));
+    }
+}
+
+std::vector<QuadraticSpectrum> solve_speeds_unchecked(const SolverFactory& make, const std::vector<double>& speeds,
+                                                      int threads, const std::function<void(size_t, size_t)>& progress) {
+    return run_on_workers(
+        make, speeds.size(), threads,
+        [&](SpectrumSolver& solve, size_t i) {
+            QuadraticSpectrum s = solve(speeds[i]);
+            s.speed = speeds[i];
+            return s;
+        },
+        progress);
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,107 @@
+#include <gyrokit/analysis/unbalance_response.hpp>
+
+#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/core/error.hpp>
+
+#include <Eigen/SparseLU>
+#include <fmt/format.h>
+#include <numeric>
+
+namespace gyrokit {
+
+namespace {
+
+// An exactly singular dynamic stiffness gives a huge or non-finite solution
+// with a large residual: an undamped resonance on the grid.
+void check_solution(double norm_S, double residual, const Eigen::VectorXcd& Z, const Eigen::VectorXcd& f, double w) {
+    if (!Z.allFinite() || residual > 1e-8 * (norm_S * Z.norm() + f.norm()))
+        throw SolverError(fmt::format("the dynamic stiffness is singular at {} rad/s (an undamped resonance): "
+                                      "the response is unbounded; add damping or move the speed grid",
+                                      w));
+}
+
+}  // namespace
+
+Eigen::VectorXcd unbalance_response(const GyroscopicSystem& sys, double w) {
+    if (sys.unbalance.size() == 0)
+        throw InputError("the model defines no unbalance load; the response is zero");
+    const Eigen::VectorXcd f = sys.unbalance_force(w);
+    if (w == 0.0) return Eigen::VectorXcd::Zero(sys.size());   // no force at standstill
+    const QuadraticPencil p = sys.at_speed(w);
+    const std::complex<double> l(0.0, w);
+    const Eigen::MatrixXcd S = p.evaluate(l);
+    Eigen::PartialPivLU<Eigen::MatrixXcd> lu(S);
+    Eigen::VectorXcd Z = lu.solve(f);
+    check_solution(S.norm(), (S * Z - f).norm(), Z, f, w);
+    return Z;
+}
+
+Eigen::VectorXcd unbalance_response(const SparseGyroscopicSystem& sys, double w) {
+    if (sys.unbalance.size() == 0)
+        throw InputError("the model defines no unbalance load; the response is zero");
+    if (w == 0.0) return Eigen::VectorXcd::Zero(sys.size());
+    const Eigen::VectorXcd f = sys.unbalance_force(w);
+    const SparsePencil p = sys.at_speed(w);
+    using cd = std::complex<double>;
+    const cd l(0.0, w);
+    const Eigen::SparseMatrix<cd> S = (l * l) * p.M.cast<cd>() + l * p.C.cast<cd>() + p.K.cast<cd>();
+    Eigen::SparseLU<Eigen::SparseMatrix<cd>, Eigen::COLAMDOrdering<int>> lu;
+    lu.compute(S);
+    Eigen::VectorXcd Z = lu.info() == Eigen::Success ? Eigen::VectorXcd(lu.solve(f))
+                                                     : Eigen::VectorXcd::Constant(sys.size(), cd(NAN, NAN));
+    check_solution(S.norm(), (S * Z - f).norm(), Z, f, w);
+    return Z;
+}
+
+ResponseCurve unbalance_response(const ResponseSolver& solve, int size, const std::vector<double>& speeds,
+                                 const std::vector<int>& dofs) {
+    ResponseCurve c;
+    c.speeds = speeds;
+    c.dofs = dofs;
+    if (c.dofs.empty()) {
+        c.dofs.resize(static_cast<size_t>(size));
+        std::iota(c.dofs.begin(), c.dofs.end(), 0);
+    }
+    c.Z.resize(static_cast<Eigen::Index>(speeds.size()), static_cast<Eigen::Index>(c.dofs.size()));
+    for (size_t i = 0; i < speeds.size(); ++i) {
+        const Eigen::VectorXcd z = solve(speeds[i]);
+        for (size_t k = 0; k < c.dofs.size(); ++k)
+            c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = z(c.dofs[k]);
+    }
+    return c;
+}
+
+ResponseCurve unbalance_response(const GyroscopicSystem& sys, const std::vector<double>& speeds) {
+    return unbalance_response([&](double w) { return unbalance_response(sys, w); }, sys.size(), speeds);
+}
+
+std::vector<ResponseExtremum> response_extrema(const GyroscopicSystem& sys, const ResponseCurve& c) {
+    return response_extrema([&](double w) { return unbalance_response(sys, w); }, c);
+}
+
+std::vector<ResponseExtremum> response_extrema(const ResponseSolver& solve, const ResponseCurve& c) {
+    std::vector<ResponseExtremum> out;
+    const Eigen::Index ns = c.Z.rows();
+    for (Eigen::Index col = 0; col < c.Z.cols(); ++col) {
+        const int k = c.dofs[static_cast<size_t>(col)];
+        for (Eigen::Index i = 1; i + 1 < ns; ++i) {
+            const double a0 = std::abs(c.Z(i - 1, col)), a1 = std::abs(c.Z(i, col)), a2 = std::abs(c.Z(i + 1, col));
+            const bool peak = a1 > a0 && a1 >= a2, dip = a1 < a0 && a1 <= a2;
+            if (!peak && !dip) continue;
+            const double s = peak ? -1.0 : 1.0;
+            const auto f = [&](double w) {
+                try {
+                    return s * std::abs(solve(w)(k));
+                } catch (const SolverError&) {   // exactly on an undamped resonance
+                    return s * std::numeric_limits<double>::infinity();
+                }
+            };
+            const double w = find_minimum(f, c.speeds[static_cast<size_t>(i - 1)],
+                                          c.speeds[static_cast<size_t>(i + 1)], 1e-12);
+            out.push_back({k, peak, w, s * f(w)});
+        }
+    }
+    return out;
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,193 @@
+#include <gyrokit/balancing/balancer_scene.hpp>
+
+#include <gyrokit/core/error.hpp>
+#include "io/toml_keys.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+namespace gyrokit {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+toml::table parse(const std::string& path) {
+    if (!std::filesystem::exists(path)) throw InputError(fmt::format("{}: scene file not found", path));
+    try {
+        return toml::parse_file(path);
+    } catch (const toml::parse_error& e) {
+        const auto& b = e.source().begin;
+        throw InputError(fmt::format("{}: line {}, column {}: {}", path, b.line, b.column, e.description()));
+    }
+}
+
+}  // namespace
+
+BalancerScene load_balancer_scene(const std::string& path) {
+    const toml::table root = parse(path);
+    BalancerScene sc;
+    sc.file = path;
+    for (const auto& [k, v] : root) {
+        const std::string key(k.str());
+        if (key != "title" && key != "model" && key != "simulation" && key != "runup")
+            throw InputError(fmt::format("{}: unknown top-level key '{}'; allowed: title, model, simulation, runup",
+                                         path, key));
+    }
+    if (const toml::node* t = root.get("title")) {
+        if (!t->is_string()) throw InputError(fmt::format("{}: title must be a string", path));
+        sc.title = *t->value<std::string>();
+    }
+    const toml::table* model = root.get_as<toml::table>("model");
+    if (!model) throw InputError(fmt::format("{}: missing table [model]", path));
+    const TomlKeys k(path, "model", *model);
+    k.only({"type", "m", "J", "m0", "eps0", "k_x", "k_y", "omega_x", "omega_y", "c_x", "c_y", "m1", "eps1", "R1", "r1",
+            "mu1", "beta1", "m2", "eps2", "R2", "r2", "mu2", "beta2", "speed", "L0", "beta0", "k", "omega", "c"});
+    if (!k.has("type")) throw InputError(fmt::format("{}: [model] key 'type' is missing; required: \"autobalancer\"", path));
+    k.choice("type", "", {"autobalancer"});
+
+    AutobalancerParameters& p = sc.params;
+    p.m = k.number("m", std::nullopt, 0.0, true, "kg");
+    p.J = k.number("J", 0.0, 0.0, false, "kg m^2");
+    p.m0 = k.number("m0", std::nullopt, 0.0, false, "kg");
+    p.eps0 = k.number("eps0", std::nullopt, 0.0, false, "m");
+    // Isotropic bearings: c for both axes.
+    if (k.has("c") && (k.has("c_x") || k.has("c_y")))
+        throw InputError(fmt::format("{}: [model] give either c (isotropic) or c_x and c_y, not both", path));
+    if (k.has("c")) {
+        p.c_x = p.c_y = k.number("c", std::nullopt, 0.0, false, "N s/m");
+    } else {
+        p.c_x = k.number("c_x", 0.0, 0.0, false, "N s/m");
+        p.c_y = k.number("c_y", 0.0, 0.0, false, "N s/m");
+    }
+    for (int i = 1; i <= 2; ++i) {
+        const std::string n = std::to_string(i);
+        const bool any = k.has("m" + n) || k.has("eps" + n) || k.has("R" + n) || k.has("r" + n) || k.has("mu" + n) ||
+                         k.has("beta" + n);
+        if (!any) continue;
+        if (i == 2 && p.rollers.empty())
+            throw InputError(fmt::format("{}: [model] roller 2 is given without roller 1; number rollers from 1", path));
+        Roller r;
+        r.m = k.number("m" + n, std::nullopt, 0.0, true, "kg");
+        r.eps = k.number("eps" + n, std::nullopt, 0.0, true, "m");
+        r.R = k.number("R" + n, std::nullopt, 0.0, true, "m");
+        if (!(r.R > r.eps))
+            throw InputError(fmt::format("{}: [model] R{} = {}: out of range; allowed: > eps{} = {} m (R = eps + r)", path,
+                                         n, r.R, n, r.eps));
+        if (k.has("r" + n)) {
+            const double rr = k.number("r" + n, std::nullopt, 0.0, true, "m");
+            if (std::fabs(r.R - r.eps - rr) > 1e-6 * r.R)
+                throw InputError(fmt::format("{}: [model] r{} = {}: must equal R{} - eps{} = {} m", path, n, rr, n, n,
+                                             r.R - r.eps));
+        }
+        r.mu = k.number("mu" + n, std::nullopt, 0.0, false, "J_S = mu m r^2; ball 0.4");
+        if (r.mu > 1.0)
+            throw InputError(fmt::format("{}: [model] mu{} = {}: out of range; allowed: 0 <= mu <= 1", path, n, r.mu));
+        r.beta = k.number("beta" + n, std::nullopt, 0.0, true, "N m s; the rollers need viscous damping to settle");
+        p.rollers.push_back(r);
+    }
+    const double M = p.M();
+    const bool iso = k.has("k") || k.has("omega");
+    if (iso && (k.has("k_x") || k.has("k_y") || k.has("omega_x") || k.has("omega_y")))
+        throw InputError(fmt::format("{}: [model] give either k or omega (isotropic) or the per-axis k_x, k_y / "
+                                     "omega_x, omega_y, not both", path));
+    if (iso) {
+        if (k.has("k") == k.has("omega"))
+            throw InputError(fmt::format("{}: [model] give exactly one of k (N/m) and omega (rad/s)", path));
+        p.k_x = p.k_y = k.has("k") ? k.number("k", std::nullopt, 0.0, true, "N/m")
+                                   : M * std::pow(k.number("omega", std::nullopt, 0.0, true, "rad/s"), 2);
+    }
+    for (const char* ax : {"x", "y"}) {
+        if (iso) break;
+        const std::string kk = std::string("k_") + ax, ww = std::string("omega_") + ax;
+        if (k.has(kk) == k.has(ww))
+            throw InputError(fmt::format("{}: [model] give exactly one of {} (N/m) and {} (rad/s)", path, kk, ww));
+        const double v = k.has(kk) ? k.number(kk, std::nullopt, 0.0, true, "N/m")
+                                   : M * std::pow(k.number(ww, std::nullopt, 0.0, true, "rad/s"), 2);
+        (ax[0] == 'x' ? p.k_x : p.k_y) = v;
+    }
+    const bool motor = k.has("L0") || k.has("beta0");
+    if (motor == k.has("speed"))
+        throw InputError(fmt::format("{}: [model] give either speed (rad/s) or the motor L0 and beta0", path));
+    if (motor) {
+        p.drive = Drive::Motor;
+        p.L0 = k.number("L0", std::nullopt, 0.0, true, "N m");
+        p.beta0 = k.number("beta0", std::nullopt, 0.0, true, "N m s; total beta0 of eq. (17)");
+        if (!(p.J > 0.0))
+            throw InputError(fmt::format("{}: [model] J = {}: out of range; allowed with a motor drive: > 0 kg m^2", path,
+                                         p.J));
+    } else {
+        p.drive = Drive::PrescribedSpeed;
+        p.speed = k.number("speed", std::nullopt, 0.0, true, "rad/s");
+    }
+    try {
+        p.validate();
+    } catch (const InputError& e) {
+        throw InputError(fmt::format("{}: [model] {}", path, e.what()));
+    }
+
+    if (const toml::table* sim = root.get_as<toml::table>("simulation")) {
+        const TomlKeys s(path, "simulation", *sim);
+        s.only({"duration", "alpha1", "alpha2", "x", "y", "method", "abs_tol", "rel_tol", "average_revolutions",
+                "max_steps"});
+        SimulationSettings& st = sc.simulation;
+        sc.has_simulation = true;
+        st.duration = s.number("duration", std::nullopt, 0.0, true, "s");
+        for (std::size_t i = 1; i <= 2; ++i) {
+            const std::string key = "alpha" + std::to_string(i);
+            if (i <= p.rollers.size())
+                st.alpha.push_back(s.any_number(key, "deg") * kPi / 180.0);
+            else if (s.has(key))
+                throw InputError(fmt::format("{}: [simulation] {} given, but the model has {} roller(s)", path, key,
+                                             p.rollers.size()));
+        }
+        st.x = s.has("x") ? s.any_number("x", "m") : 0.0;
+        st.y = s.has("y") ? s.any_number("y", "m") : 0.0;
+        std::set<std::string> names(ode_method_names().begin(), ode_method_names().end());
+        st.ode.method = parse_ode_method(s.choice("method", "rk8pd", names));
+        st.ode.abs_tol = s.number("abs_tol", 1e-10, 0.0, true, "absolute tolerance");
+        st.ode.rel_tol = s.number("rel_tol", 1e-10, 0.0, true, "relative tolerance");
+        st.average_revolutions = s.number("average_revolutions", 20.0, 1.0, false, "revolutions");
+        st.ode.max_steps = static_cast<unsigned long>(s.integer("max_steps", 100000000, 1000, 1000000000000LL));
+        const double rev = 2.0 * kPi / p.reference_speed();
+        if (st.duration < 2.0 * rev)
+            throw InputError(fmt::format("{}: [simulation] duration = {}: out of range; allowed: >= two revolutions "
+                                         "({:.6g} s)", path, st.duration, 2.0 * rev));
+    }
+    if (const toml::table* ru = root.get_as<toml::table>("runup")) {
+        const TomlKeys s(path, "runup", *ru);
+        s.only({"max_speed", "rise", "hold", "fall", "alpha1", "alpha2", "method", "abs_tol", "rel_tol", "max_steps"});
+        if (p.drive != Drive::Motor)
+            throw InputError(fmt::format("{}: [runup] needs the motor drive: give L0 and beta0 in [model] instead of "
+                                         "speed", path));
+        RunupSettings& st = sc.runup;
+        sc.has_runup = true;
+        st.max_speed = s.number("max_speed", std::nullopt, 0.0, true, "rad/s");
+        st.rise = s.number("rise", std::nullopt, 0.0, true, "s");
+        st.hold = s.number("hold", std::nullopt, 0.0, true, "s");
+        st.fall = s.number("fall", 0.0, 0.0, false, "s");
+        for (std::size_t i = 1; i <= 2; ++i) {
+            const std::string key = "alpha" + std::to_string(i);
+            if (i <= p.rollers.size())
+                st.alpha.push_back(s.has(key) ? s.any_number(key, "deg") * kPi / 180.0 : 0.0);
+            else if (s.has(key))
+                throw InputError(fmt::format("{}: [runup] {} given, but the model has {} roller(s)", path, key,
+                                             p.rollers.size()));
+        }
+        std::set<std::string> names(ode_method_names().begin(), ode_method_names().end());
+        st.ode.method = parse_ode_method(s.choice("method", "rk8pd", names));
+        st.ode.abs_tol = s.number("abs_tol", 1e-9, 0.0, true, "absolute tolerance");
+        st.ode.rel_tol = s.number("rel_tol", 1e-9, 0.0, true, "relative tolerance");
+        st.ode.max_steps = static_cast<unsigned long>(s.integer("max_steps", 100000000, 1000, 1000000000000LL));
+        try {
+            st.validate();
+        } catch (const InputError& e) {
+            throw InputError(fmt::format("{}: [runup] {}", path, e.what()));
+        }
+    }
+    return sc;
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,74 @@
+#include <gyrokit/core/speed_range.hpp>
+
+#include <gyrokit/core/error.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fmt/format.h>
+#include <sstream>
+
+namespace gyrokit {
+
+SpeedRange SpeedRange::parse(const std::string& text, const std::string& option, double unit_factor) {
+    std::istringstream in(text);
+    std::string a, b, c;
+    if (!std::getline(in, a, ':') || !std::getline(in, b, ':') || !std::getline(in, c) || a.empty() ||
+        b.empty() || c.empty())
+        throw InputError(fmt::format("{} '{}': expected FROM:TO:N, e.g. 0:60:601", option, text));
+    SpeedRange r;
+    try {
+        size_t pa = 0, pb = 0, pc = 0;
+        r.from = std::stod(a, &pa) / unit_factor;
+        r.to = std::stod(b, &pb) / unit_factor;
+        const long n = std::stol(c, &pc);
+        if (pa != a.size() || pb != b.size() || pc != c.size()) throw std::invalid_argument("trailing");
+        if (n < 1 || n > 10000000) throw std::out_of_range("count");
+        r.count = static_cast<int>(n);
+    } catch (const std::exception&) {
+        throw InputError(fmt::format("{} '{}': expected FROM:TO:N with numbers FROM, TO and a whole "
+                                     "number N in [1, 10000000]",
+                                     option, text));
+    }
+    r.validate(option + " '" + text + "'");
+    return r;
+}
+
+void SpeedRange::validate(const std::string& origin) const {
+    if (!std::isfinite(from) || !std::isfinite(to))
+        throw InputError(fmt::format("{}: speeds must be finite numbers", origin));
+    if (from < 0.0)
+        throw InputError(fmt::format("{}: FROM = {} is negative; allowed: 0 <= FROM <= TO", origin, from));
+    if (from > to)
+        throw InputError(fmt::format("{}: FROM = {} is greater than TO = {}; allowed: FROM <= TO", origin, from, to));
+    if (count < 1) throw InputError(fmt::format("{}: N = {} points; allowed: N >= 1", origin, count));
+    if (count == 1 && from != to)
+        throw InputError(fmt::format("{}: one point needs FROM = TO; allowed for FROM < TO: N >= 2", origin));
+    if (count >= 2 && from == to)
+        throw InputError(fmt::format("{}: FROM = TO = {} with N = {} points; allowed: FROM < TO", origin, from, count));
+    // Points closer than rounding would repeat: a sweep needs distinct speeds.
+    if (count >= 2 && !((to - from) / (count - 1) > 1e-12 * std::max(1.0, to)))
+        throw InputError(fmt::format("{}: the step (TO - FROM)/(N - 1) = {:.3g} is below 1e-12 of max(1, TO) = {:.6g}; "
+                                     "allowed: a step that keeps the {} speeds distinct",
+                                     origin, (to - from) / (count - 1), std::max(1.0, to), count));
+}
+
+std::vector<double> SpeedRange::points() const {
+    std::vector<double> w(static_cast<size_t>(count));
+    for (int i = 0; i < count; ++i)
+        w[static_cast<size_t>(i)] = count == 1 ? from : from + (to - from) * i / (count - 1);
+    if (count > 1) w.back() = to;
+    return w;
+}
+
+SpeedUnit SpeedUnit::parse(const std::string& name) {
+    // Case does not matter: Hz, hz and HZ are one unit.
+    std::string lower = name;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    if (lower == "rad/s") return {"rad/s", 1.0};
+    if (lower == "hz") return {"Hz", 1.0 / (2.0 * M_PI)};
+    if (lower == "rpm") return {"rpm", 60.0 / (2.0 * M_PI)};
+    throw InputError(fmt::format("--units '{}' is unknown; allowed: rad/s, Hz, rpm", name));
+}
+
+}  // namespace gyrokit

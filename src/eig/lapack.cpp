@@ -1,0 +1,66 @@
+#include "eig/lapack.hpp"
+
+#include <gyrokit/core/error.hpp>
+
+#include <complex>
+#define lapack_complex_float std::complex<float>
+#define lapack_complex_double std::complex<double>
+#include <lapacke.h>
+
+#include <fmt/format.h>
+
+namespace gyrokit {
+
+GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_left) {
+    const lapack_int n = static_cast<lapack_int>(A.rows());
+    Eigen::VectorXd ar(n), ai(n), be(n);
+    Eigen::MatrixXd vl(want_left ? n : 1, want_left ? n : 1), vr(n, n);
+    const lapack_int info = LAPACKE_dggev(LAPACK_COL_MAJOR, want_left ? 'V' : 'N', 'V', n, A.data(), n,
+                                          B.data(), n, ar.data(), ai.data(), be.data(), vl.data(),
+                                          want_left ? n : 1, vr.data(), n);
+    if (info != 0)
+        throw SolverError(fmt::format("LAPACK dggev (QZ) failed with info = {}; the pencil may contain "
+                                      "NaN or be too badly scaled",
+                                      info));
+    GeneralizedEigen g;
+    g.alpha.resize(n);
+    g.beta = be;
+    g.right.resize(n, n);
+    if (want_left) g.left.resize(n, n);
+    // Complex pairs are stored as (real part, imaginary part) in consecutive columns.
+    for (lapack_int j = 0; j < n; ++j) {
+        g.alpha(j) = {ar(j), ai(j)};
+        if (ai(j) == 0.0) {
+            g.right.col(j) = vr.col(j).cast<std::complex<double>>();
+            if (want_left) g.left.col(j) = vl.col(j).cast<std::complex<double>>();
+        } else if (ai(j) > 0.0 && j + 1 < n) {
+            const std::complex<double> I(0.0, 1.0);
+            g.right.col(j) = vr.col(j).cast<std::complex<double>>() + I * vr.col(j + 1);
+            g.right.col(j + 1) = g.right.col(j).conjugate();
+            if (want_left) {
+                g.left.col(j) = vl.col(j).cast<std::complex<double>>() + I * vl.col(j + 1);
+                g.left.col(j + 1) = g.left.col(j).conjugate();
+            }
+            g.alpha(j + 1) = {ar(j + 1), ai(j + 1)};
+            ++j;
+        }
+    }
+    return g;
+}
+
+GeneralizedEigen lapack_zggev(Eigen::MatrixXcd A, Eigen::MatrixXcd B) {
+    const lapack_int n = static_cast<lapack_int>(A.rows());
+    Eigen::VectorXcd al(n), be(n);
+    Eigen::MatrixXcd vl(1, 1), vr(n, n);
+    const lapack_int info = LAPACKE_zggev(LAPACK_COL_MAJOR, 'N', 'V', n, A.data(), n, B.data(), n, al.data(),
+                                          be.data(), vl.data(), 1, vr.data(), n);
+    if (info != 0)
+        throw SolverError(fmt::format("LAPACK zggev (QZ) failed with info = {}", info));
+    GeneralizedEigen g;
+    g.alpha = al;
+    g.beta_c = be;
+    g.right = vr;
+    return g;
+}
+
+}  // namespace gyrokit

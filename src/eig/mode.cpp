@@ -1,0 +1,232 @@
+#include <gyrokit/eig/mode.hpp>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gyrokit {
+
+std::string to_string(Whirl w) {
+    switch (w) {
+        case Whirl::Forward: return "forward";
+        case Whirl::Backward: return "backward";
+        case Whirl::Real: return "real";
+        case Whirl::Planar: return "planar";
+        case Whirl::None: return "none";
+        case Whirl::Undefined: break;
+    }
+    return "undefined";
+}
+
+std::string to_string(Stability s) {
+    switch (s) {
+        case Stability::Stable: return "stable";
+        case Stability::Unstable: return "unstable";
+        case Stability::Neutral: break;
+    }
+    return "neutral";
+}
+
+Stability Mode::stability() const {
+    if (lambda.real() > error_bound) return Stability::Unstable;
+    if (lambda.real() < -error_bound) return Stability::Stable;
+    return Stability::Neutral;
+}
+
+bool is_rigid_body(std::complex<double> lambda, const Eigen::VectorXcd& x, const PencilAction& pencil,
+                   double scale) {
+    if (!(std::abs(lambda) <= kRigidBodyTolerance * scale)) return false;
+    Eigen::VectorXcd Mx, Cx, Kx;
+    pencil.apply(x, Mx, Cx, Kx);
+    return Kx.norm() <= kRigidBodyTolerance * pencil.norm_K * x.norm();
+}
+
+double Mode::damping_ratio() const {
+    const double a = std::abs(lambda);
+    return a == 0.0 ? 0.0 : 0.0 - lambda.real() / a;   // 0.0 - x: no negative zero in the output
+}
+
+double Mode::log_decrement() const {
+    if (lambda.imag() > 0.0) return 0.0 - 2.0 * M_PI * lambda.real() / lambda.imag();   // no negative zero
+    if (lambda.real() == 0.0) return 0.0;
+    return lambda.real() < 0.0 ? std::numeric_limits<double>::infinity()
+                               : -std::numeric_limits<double>::infinity();
+}
+
+Whirl classify_whirl(std::complex<double> lambda, const Eigen::VectorXcd& x,
+                     const std::vector<std::pair<int, int>>& pairs, double real_tol) {
+    if (std::abs(lambda.imag()) <= real_tol) return Whirl::Real;
+    if (pairs.empty()) return Whirl::Undefined;
+    double turn = 0.0, largest_turn = 0.0, largest_pair = 0.0, largest_pair_dof = 0.0;
+    for (const auto& [u, v] : pairs) {
+        const double t = (x(u) * std::conj(x(v))).imag();
+        turn += t;
+        largest_turn = std::max(largest_turn, std::abs(t));
+        largest_pair = std::max(largest_pair, 0.5 * (std::norm(x(u)) + std::norm(x(v))));
+        largest_pair_dof = std::max({largest_pair_dof, std::abs(x(u)), std::abs(x(v))});
+    }
+    if (largest_pair_dof <= kWhirlTolerance * x.cwiseAbs().maxCoeff()) return Whirl::None;
+    if (largest_turn <= kWhirlTolerance * largest_pair) return Whirl::Planar;
+    if (lambda.imag() < 0.0) turn = -turn;  // the conjugate pair turns the other way
+    return turn >= 0.0 ? Whirl::Forward : Whirl::Backward;
+}
+
+namespace {
+
+// H x for the Hermitian form x^H H x = sum over the pairs of Im(x_u conj(x_v)).
+Eigen::VectorXcd whirl_form(const Eigen::VectorXcd& x, const std::vector<std::pair<int, int>>& pairs) {
+    const std::complex<double> half_i(0.0, 0.5);
+    Eigen::VectorXcd y = Eigen::VectorXcd::Zero(x.size());
+    for (const auto& [u, v] : pairs) {
+        y(u) += half_i * x(v);
+        y(v) -= half_i * x(u);
+    }
+    return y;
+}
+
+// What the separation needs to know of an eigenpair: its residual on the
+// mode's own scale, its backward error, and its Rayleigh-quotient refinement.
+struct PairCheck {
+    double local = 0.0, normwise = 0.0;
+    std::complex<double> refined;
+};
+
+PairCheck check(const PencilAction& p, std::complex<double> l, const Eigen::VectorXcd& x) {
+    Eigen::VectorXcd Mx, Cx, Kx;
+    p.apply(x, Mx, Cx, Kx);
+    const Eigen::VectorXcd r = (l * l) * Mx + l * Cx + Kx;
+    const double a = std::abs(l), own = a * a * Mx.norm() + a * Cx.norm() + Kx.norm();
+    const double whole = (a * a * p.norm_M + a * p.norm_C + p.norm_K) * x.norm();
+    const std::complex<double> slope = x.dot((2.0 * l) * Mx + Cx);
+    PairCheck c;
+    c.local = own > 0.0 ? r.norm() / own : 0.0;
+    c.normwise = whole > 0.0 ? r.norm() / whole : 0.0;
+    c.refined = std::abs(slope) > 0.0 ? l - x.dot(r) / slope : l;
+    return c;
+}
+
+// Turns modes a and b (the lower one first) into their most backward and most
+// forward combination if they are a double eigenvalue to working accuracy.
+void separate_pair(Mode& a, Mode& b, const std::vector<std::pair<int, int>>& pairs, const PencilAction& pencil) {
+    const PairCheck ca = check(pencil, a.lambda, a.right), cb = check(pencil, b.lambda, b.right);
+    if (!(std::abs(ca.refined - cb.refined) <= 1e-10 * std::abs(ca.refined))) return;   // split
+    Eigen::MatrixXcd V(a.right.size(), 2);
+    V.col(0) = a.right;
+    V.col(1) = b.right;
+    const Eigen::Matrix2cd G = V.adjoint() * V;
+    if (G.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff() < 1e-6 * G.trace().real()) return;   // one direction
+    Eigen::MatrixXcd HV(V.rows(), 2);
+    HV.col(0) = whirl_form(V.col(0), pairs);
+    HV.col(1) = whirl_form(V.col(1), pairs);
+    Eigen::Matrix2cd A = V.adjoint() * HV;
+    A = 0.5 * (A + A.adjoint()).eval();
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2cd> es(A, G);
+    if (es.info() != Eigen::Success) return;
+    const Eigen::Vector2d mu = es.eigenvalues();   // ascending: backward, forward
+    if (!(mu(1) - mu(0) > 1e-8)) return;           // no whirl content to separate
+    const Eigen::VectorXcd backward = unit_vector(V * es.eigenvectors().col(0));
+    const Eigen::VectorXcd forward = unit_vector(V * es.eigenvectors().col(1));
+    const PairCheck na = check(pencil, a.lambda, backward), nb = check(pencil, b.lambda, forward);
+    const double eps = std::numeric_limits<double>::epsilon();
+    if (!(std::max(na.local, nb.local) <= 10.0 * std::max({ca.local, cb.local, eps}))) return;
+    a.right = backward;
+    b.right = forward;
+    a.backward_error = na.normwise;
+    b.backward_error = nb.normwise;
+}
+
+// Lists the lower first: by frequency, then by real part.
+bool lower(const Mode& a, const Mode& b) {
+    return a.lambda.imag() != b.lambda.imag() ? a.lambda.imag() < b.lambda.imag() : a.lambda.real() < b.lambda.real();
+}
+
+}  // namespace
+
+double backward_error(const PencilAction& p, std::complex<double> lambda, const Eigen::VectorXcd& x) {
+    return check(p, lambda, x).normwise;
+}
+
+Eigen::VectorXcd unit_vector(const Eigen::VectorXcd& v) {
+    Eigen::Index k = 0;
+    if (v.size() == 0) return v;
+    v.cwiseAbs().maxCoeff(&k);
+    if (std::abs(v(k)) == 0.0) return v;
+    const std::complex<double> phase = std::conj(v(k)) / std::abs(v(k));
+    return v * phase / v.norm();
+}
+
+void separate_double_whirl(std::vector<Mode>& modes, const std::vector<std::pair<int, int>>& pairs,
+                           double real_tol, const PencilAction& pencil) {
+    if (pairs.empty()) return;
+    const std::size_t n = modes.size();
+    const auto oscillating = [&](std::size_t i) { return std::abs(modes[i].lambda.imag()) > real_tol; };
+    const auto close = [&](std::size_t i, std::size_t j) {
+        return std::abs(modes[i].lambda - modes[j].lambda) <= 1e-6 * std::abs(modes[i].lambda);
+    };
+    const auto neighbours = [&](std::size_t i, std::size_t& last) {
+        std::size_t count = 0;
+        for (std::size_t j = 0; j < n; ++j)
+            if (j != i && oscillating(j) && close(i, j)) {
+                last = j;
+                ++count;
+            }
+        return count;
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!oscillating(i)) continue;
+        // Exactly one other oscillating mode that close, and i its only one: a double, not a cluster.
+        std::size_t partner = n, back = n;
+        if (neighbours(i, partner) != 1 || partner < i || neighbours(partner, back) != 1) continue;
+        // The lower first; on an exact tie the one listed first (i < partner).
+        Mode& a = lower(modes[partner], modes[i]) ? modes[partner] : modes[i];
+        Mode& b = &a == &modes[i] ? modes[partner] : modes[i];
+        separate_pair(a, b, pairs, pencil);
+        a.whirl = classify_whirl(a.lambda, a.right, pairs, real_tol);
+        b.whirl = classify_whirl(b.lambda, b.right, pairs, real_tol);
+    }
+}
+
+void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil) {
+    const double eps = std::numeric_limits<double>::epsilon();
+    const size_t n = modes.size();
+    for (size_t i = 0; i < n; ++i) {
+        Mode& m = modes[i];
+        if (m.left.size() != m.right.size()) {
+            m.error_bound = std::numeric_limits<double>::infinity();
+            continue;
+        }
+        std::vector<size_t> cluster;
+        for (size_t j = 0; j < n; ++j)
+            if (modes[j].left.size() == m.right.size() &&
+                std::abs(modes[j].lambda - m.lambda) <= 1e-6 * std::abs(m.lambda))
+                cluster.push_back(j);
+        const Eigen::Index k = static_cast<Eigen::Index>(cluster.size());
+        Eigen::MatrixXcd X(m.right.size(), k), Y(m.right.size(), k), dPX(m.right.size(), k);
+        Eigen::VectorXcd Mx, Cx, Kx;
+        for (Eigen::Index c = 0; c < k; ++c) {
+            const Mode& o = modes[cluster[static_cast<size_t>(c)]];
+            X.col(c) = o.right.normalized();
+            Y.col(c) = o.left.normalized();
+            pencil.apply(X.col(c), Mx, Cx, Kx);
+            dPX.col(c) = (2.0 * m.lambda) * Mx + Cx;
+        }
+        const Eigen::MatrixXcd S = Y.adjoint() * dPX;
+        const double smin = Eigen::JacobiSVD<Eigen::MatrixXcd>(S).singularValues()(k - 1);
+        const double a = std::abs(m.lambda);
+        const double scale = (a * a * pencil.norm_M + a * pencil.norm_C + pencil.norm_K) *
+                             Eigen::JacobiSVD<Eigen::MatrixXcd>(X).singularValues()(0) *
+                             Eigen::JacobiSVD<Eigen::MatrixXcd>(Y).singularValues()(0);
+        m.error_bound = smin > 0.0 ? 10.0 * std::max(m.backward_error, eps) * scale / smin
+                                   : std::numeric_limits<double>::infinity();
+    }
+}
+
+double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b) {
+    const double na = a.squaredNorm(), nb = b.squaredNorm();
+    if (na == 0.0 || nb == 0.0) return 0.0;
+    return std::norm(a.dot(b)) / (na * nb);
+}
+
+}  // namespace gyrokit

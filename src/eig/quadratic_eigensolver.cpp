@@ -1,0 +1,193 @@
+#include <gyrokit/eig/quadratic_eigensolver.hpp>
+
+#include <gyrokit/core/error.hpp>
+#include "eig/lapack.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+namespace gyrokit {
+
+using cd = std::complex<double>;
+
+EigenMethod parse_eigen_method(const std::string& name) {
+    if (name == "qz") return EigenMethod::ScaledQZ;
+    if (name == "state") return EigenMethod::StateMatrix;
+    throw InputError(fmt::format("eigen method '{}' is unknown; allowed: qz, state", name));
+}
+
+std::string to_string(EigenMethod m) { return m == EigenMethod::ScaledQZ ? "qz" : "state"; }
+
+void split_rigid_body(std::vector<Mode>& modes, std::vector<Mode>& rigid_body, const PencilAction& pencil,
+                      double scale) {
+    std::vector<Mode> kept;
+    for (auto& m : modes) (is_rigid_body(m.lambda, m.right, pencil, scale) ? rigid_body : kept).push_back(std::move(m));
+    modes = std::move(kept);
+}
+
+double QuadraticSpectrum::max_backward_error() const {
+    double e = 0.0;
+    for (const auto& m : modes) e = std::max(e, m.backward_error);
+    return e;
+}
+
+namespace {
+
+PencilAction action_of(const QuadraticPencil& p) {
+    return pencil_action(p.M, p.C, p.K,
+                         [](const Eigen::MatrixXd& A, const Eigen::VectorXcd& x) -> Eigen::VectorXcd { return A * x; });
+}
+
+}  // namespace
+
+double backward_error(const QuadraticPencil& p, cd lambda, const Eigen::VectorXcd& x) {
+    return backward_error(action_of(p), lambda, x);
+}
+
+namespace {
+
+double natural_scale(const QuadraticPencil& p) {
+    const double nm = p.M.norm(), nk = p.K.norm();
+    return (nm > 0.0 && nk > 0.0) ? std::sqrt(nk / nm) : 1.0;
+}
+
+// Keeps the upper half plane and the real axis, sets the error bounds, puts
+// the rigid-body eigenvalues apart, classifies and sorts.
+void finish(QuadraticSpectrum& s, const QuadraticPencil& p, const std::vector<std::pair<int, int>>& pairs,
+            bool keep_left) {
+    std::vector<Mode> kept;
+    for (auto& m : s.modes) {
+        if (std::abs(m.lambda) <= s.real_tol) m.lambda = cd(m.lambda.real(), 0.0);
+        if (m.lambda.imag() < -s.real_tol) continue;
+        m.whirl = classify_whirl(m.lambda, m.right, pairs, s.real_tol);
+        kept.push_back(std::move(m));
+    }
+    const PencilAction action = action_of(p);
+    set_error_bounds(kept, action);
+    if (!keep_left)
+        for (auto& m : kept) m.left.resize(0);
+    split_rigid_body(kept, s.rigid_body, action, s.scale);
+    separate_double_whirl(kept, pairs, s.real_tol, action);
+    std::stable_sort(kept.begin(), kept.end(), [](const Mode& a, const Mode& b) {
+        if (a.lambda.imag() != b.lambda.imag()) return a.lambda.imag() < b.lambda.imag();
+        return a.lambda.real() < b.lambda.real();
+    });
+    s.modes = std::move(kept);
+}
+
+// Diagonal congruence z = T w with t_i = 1/sqrt(W_ii), W = g^2|M| + g|C| + |K|:
+// undoes badly scaled units (metres next to micrometres) without changing the
+// eigenvalues; the structure (symmetry, skew-symmetry) is kept.
+Eigen::VectorXd dof_scaling(const QuadraticPencil& p) {
+    const double g = natural_scale(p);
+    Eigen::VectorXd t(p.M.rows());
+    for (Eigen::Index i = 0; i < t.size(); ++i) {
+        const double w = g * g * std::abs(p.M(i, i)) + g * std::abs(p.C(i, i)) + std::abs(p.K(i, i));
+        t(i) = (w > 0.0 && std::isfinite(w)) ? 1.0 / std::sqrt(w) : 1.0;
+    }
+    return t / t.maxCoeff();
+}
+
+QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left) {
+    const int n = static_cast<int>(original.M.rows());
+    const Eigen::VectorXd t = dof_scaling(original);
+    const PencilAction action = action_of(original);   // backward errors refer to the original problem
+    const QuadraticPencil p{t.asDiagonal() * original.M * t.asDiagonal(), t.asDiagonal() * original.C * t.asDiagonal(),
+                            t.asDiagonal() * original.K * t.asDiagonal()};
+    // Fan-Lin-Van Dooren: lambda = gamma mu, coefficients of norm about one.
+    const double nm = p.M.norm(), nc = p.C.norm(), nk = p.K.norm();
+    const double gamma = (nk > 0.0) ? std::sqrt(nk / nm) : (nc > 0.0 ? nc / nm : 1.0);
+    const double delta = 2.0 / (nk + nc * gamma + nm * gamma * gamma * (nk > 0.0 ? 0.0 : 1.0));
+    // First companion form A - mu B, eigenvector [mu x; x].
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n), B = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+    A.topLeftCorner(n, n) = -(gamma * delta) * p.C;
+    A.topRightCorner(n, n) = -delta * p.K;
+    A.bottomLeftCorner(n, n).setIdentity();
+    B.topLeftCorner(n, n) = (gamma * gamma * delta) * p.M;
+    B.bottomRightCorner(n, n).setIdentity();
+
+    GeneralizedEigen ge = lapack_dggev(A, B, want_left);
+
+    QuadraticSpectrum s;
+    s.scale = natural_scale(original);
+    s.real_tol = 1e-7 * s.scale;   // about sqrt(eps) times the scale: rigid-body pairs land here
+    const double eps = std::numeric_limits<double>::epsilon();
+    for (int j = 0; j < 2 * n; ++j) {
+        const cd alpha = ge.alpha(j);
+        const double beta = ge.beta(j);
+        if (std::abs(beta) <= 100.0 * eps * std::abs(alpha) || beta == 0.0) {
+            ++s.infinite_count;
+            continue;
+        }
+        Mode m;
+        m.lambda = gamma * alpha / beta;
+        if (m.lambda.imag() < -1e-7 * std::max(std::abs(m.lambda), s.scale)) continue;  // conjugate
+        // Either block of [mu x; x] gives x; keep the one with the smaller backward error.
+        // Back to the original coordinates; backward errors refer to the original problem.
+        const Eigen::VectorXcd top = t.asDiagonal() * ge.right.col(j).head(n);
+        const Eigen::VectorXcd bottom = t.asDiagonal() * ge.right.col(j).tail(n);
+        const double et = backward_error(action, m.lambda, top), eb = backward_error(action, m.lambda, bottom);
+        const bool use_top = top.norm() > 0.0 && (bottom.norm() == 0.0 || et < eb);
+        m.right = unit_vector(use_top ? top : bottom);
+        m.backward_error = backward_error(action, m.lambda, m.right);
+        if (want_left) m.left = unit_vector(t.asDiagonal() * ge.left.col(j).head(n));
+        s.modes.push_back(std::move(m));
+    }
+    return s;
+}
+
+QuadraticSpectrum solve_state(const QuadraticPencil& p) {
+    const int n = static_cast<int>(p.M.rows());
+    const PencilAction action = action_of(p);
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(p.M);
+    if (!lu.isInvertible())
+        throw SolverError("the state-matrix method needs an invertible M, and M is singular; "
+                          "use the QZ method (--method qz)");
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+    A.topRightCorner(n, n).setIdentity();
+    A.bottomLeftCorner(n, n) = -lu.solve(p.K);
+    A.bottomRightCorner(n, n) = -lu.solve(p.C);
+    Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
+    if (es.info() != Eigen::Success)
+        throw SolverError("the state-matrix eigensolver did not converge; use the QZ method (--method qz)");
+    // Left eigenvectors w^H A = lambda w^H are the rows of V^{-1}; the quadratic's
+    // is y = M^{-T} w2 (w2 the lower half), since y^H P(lambda) = 0 follows.
+    const Eigen::PartialPivLU<Eigen::MatrixXcd> vlu(es.eigenvectors());
+    const Eigen::MatrixXcd W = vlu.inverse().adjoint();
+    const Eigen::MatrixXcd Y = Eigen::FullPivLU<Eigen::MatrixXd>(p.M.transpose()).solve(Eigen::MatrixXd::Identity(n, n)).cast<cd>() * W.bottomRows(n);
+    QuadraticSpectrum s;
+    s.scale = natural_scale(p);
+    s.real_tol = 1e-7 * s.scale;
+    for (int j = 0; j < 2 * n; ++j) {
+        Mode m;
+        m.lambda = es.eigenvalues()(j);
+        if (m.lambda.imag() < -1e-7 * std::max(std::abs(m.lambda), s.scale)) continue;
+        m.right = unit_vector(es.eigenvectors().col(j).head(n));
+        m.left = unit_vector(Y.col(j));
+        m.backward_error = backward_error(action, m.lambda, m.right);
+        s.modes.push_back(std::move(m));
+    }
+    return s;
+}
+
+}  // namespace
+
+QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& opt,
+                                  const std::vector<std::pair<int, int>>& whirl_pairs) {
+    if (!p.M.allFinite() || !p.C.allFinite() || !p.K.allFinite())
+        throw InputError("the pencil has a NaN or infinite coefficient");
+    QuadraticSpectrum s;
+    // Both methods compute left vectors: they give every eigenvalue its error bound.
+    s = opt.method == EigenMethod::ScaledQZ ? solve_qz(p, true) : solve_state(p);
+    finish(s, p, whirl_pairs, opt.left_vectors);
+    return s;
+}
+
+QuadraticSpectrum solve_at_speed(const GyroscopicSystem& sys, double w, const EigenOptions& opt) {
+    return solve_quadratic(sys.at_speed(w), opt, sys.whirl_pairs);
+}
+
+}  // namespace gyrokit

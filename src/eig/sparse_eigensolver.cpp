@@ -1,0 +1,411 @@
+#include <gyrokit/eig/sparse_eigensolver.hpp>
+
+#include <gyrokit/core/error.hpp>
+
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <arpack/arpack.hpp>
+#include <cmath>
+#include <fmt/format.h>
+
+namespace gyrokit {
+
+using cd = std::complex<double>;
+using SpC = Eigen::SparseMatrix<cd>;
+
+namespace {
+
+// Real sparse matrix times complex vector, without a complex copy of the matrix.
+Eigen::VectorXcd times(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x) {
+    const Eigen::VectorXd re = A * x.real(), im = A * x.imag();
+    Eigen::VectorXcd y(re.size());
+    y.real() = re;
+    y.imag() = im;
+    return y;
+}
+
+PencilAction action_of(const SparsePencil& p) { return pencil_action(p.M, p.C, p.K, times); }
+
+}  // namespace
+
+double backward_error(const SparsePencil& p, cd lambda, const Eigen::VectorXcd& x) {
+    return backward_error(action_of(p), lambda, x);
+}
+
+namespace {
+
+// A converged Ritz pair of the shift-invert operator: theta and its state vector.
+struct Ritz {
+    cd theta;
+    Eigen::VectorXcd z;
+};
+
+struct ArnoldiSize {
+    a_int N, nev, ncv;
+};
+
+// P(sigma) is singular or too nearly so for shift-invert (the shift sits on
+// an eigenvalue: sigma = 0 with rigid-body modes); the caller moves the shift.
+struct SingularShift {
+    std::string why;
+};
+
+// Reciprocal condition estimate of T P T (T the DOF scaling t_i = 1/sqrt(W_ii),
+// W = g^2|M| + g|C| + |K|), from two steps of inverse iteration with the LU.
+template <class Scalar, class LU>
+double rcond_estimate(const LU& lu, const Eigen::SparseMatrix<Scalar>& P, const Eigen::VectorXd& t) {
+    using Vec = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+    double norm2 = 0.0;
+    for (int k = 0; k < P.outerSize(); ++k)
+        for (typename Eigen::SparseMatrix<Scalar>::InnerIterator it(P, k); it; ++it)
+            norm2 += std::norm(t(it.row()) * it.value() * t(it.col()));
+    Vec z(P.rows());
+    for (Eigen::Index i = 0; i < z.size(); ++i) z(i) = Scalar(1.0 + static_cast<double>(i % 7) / 7.0);
+    double grow = 0.0;
+    for (int step = 0; step < 2; ++step) {
+        z /= z.norm();
+        const Vec tz = t.cwiseInverse().asDiagonal() * z;
+        z = t.cwiseInverse().asDiagonal() * Vec(lu.solve(tz));
+        if (!z.allFinite()) return 0.0;
+        grow = z.norm();
+    }
+    return grow > 0.0 ? 1.0 / (std::sqrt(norm2) * grow) : 0.0;
+}
+
+// The sparse LU of P(sigma) = sigma^2 M + sigma C + K in the arithmetic of sigma.
+// Throws SingularShift if it fails or P(sigma) is singular to working accuracy.
+template <class Scalar>
+void factorize(Eigen::SparseLU<Eigen::SparseMatrix<Scalar>, Eigen::COLAMDOrdering<int>>& lu, const SparsePencil& p,
+               Scalar s, const Eigen::VectorXd& t) {
+    const Eigen::SparseMatrix<Scalar> P =
+        (s * s) * p.M.cast<Scalar>() + s * p.C.cast<Scalar>() + p.K.cast<Scalar>();
+    lu.compute(P);
+    if (lu.info() != Eigen::Success) throw SingularShift{lu.lastErrorMessage()};
+    const double rc = rcond_estimate(lu, P, t);
+    if (!(rc >= 1e-12)) throw SingularShift{fmt::format("reciprocal condition {:.1e}", rc)};
+}
+
+// y = (A - sigma B)^{-1} B x on the companion pencil: with x = [v1; v2],
+// w2 = -P(sigma)^{-1} (M v1 + (C + sigma M) v2), y = [v2 + sigma w2; w2].
+template <class Scalar, class LU>
+void apply_operator(const LU& lu, const Eigen::SparseMatrix<Scalar>& M, const Eigen::SparseMatrix<Scalar>& CsM,
+                    Scalar s, const Scalar* x, Scalar* y, int n) {
+    using Vec = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+    const Eigen::Map<const Vec> v1(x, n), v2(x + n, n);
+    const Vec w2 = -lu.solve(M * v1 + CsM * v2);
+    Eigen::Map<Vec>(y, n) = v2 + s * w2;
+    Eigen::Map<Vec>(y + n, n) = w2;
+}
+
+void check_arnoldi(const char* routine, a_int info, const a_int* iparam, const SparseEigenOptions& opt,
+                   const ArnoldiSize& sz) {
+    // info 1 with every wanted value converged (a defective rigid-body block can
+    // keep ARPACK restarting) is a result: each pair is verified afterwards.
+    if (info == 1 && iparam[4] >= sz.nev) return;
+    if (info == 1)
+        throw SolverError(fmt::format("ARPACK reached {} restarts with {} of {} Ritz values converged; raise "
+                                      "the number of Lanczos vectors (--lanczos, now {}) or move --target closer "
+                                      "to the wanted modes",
+                                      opt.max_iterations, iparam[4], sz.nev, sz.ncv));
+    if (info != 0)
+        throw SolverError(fmt::format("ARPACK {} failed with info = {}; raise --lanczos (now {})", routine, info,
+                                      sz.ncv));
+}
+
+// Complex shift: complex Arnoldi (znaupd) on the complex operator.
+std::vector<Ritz> ritz_complex(const SparsePencil& p, const SparseEigenOptions& opt, const ArnoldiSize& sz,
+                               const Eigen::VectorXd& t, int& iterations) {
+    const int n = static_cast<int>(p.M.rows());
+    const cd s = opt.shift;
+    Eigen::SparseLU<SpC, Eigen::COLAMDOrdering<int>> lu;
+    factorize(lu, p, s, t);
+    const SpC Mc = p.M.cast<cd>(), CsM = p.C.cast<cd>() + s * p.M.cast<cd>();
+    const a_int N = sz.N, nev = sz.nev, ncv = sz.ncv, lworkl = 3 * ncv * ncv + 5 * ncv;
+    std::vector<cd> resid(static_cast<size_t>(N)), V(static_cast<size_t>(N * ncv)), workd(3 * static_cast<size_t>(N)),
+        workl(static_cast<size_t>(lworkl));
+    std::vector<double> rwork(static_cast<size_t>(ncv));
+    a_int iparam[11] = {1, 0, opt.max_iterations, 1, 0, 0, 1, 0, 0, 0, 0};   // exact shifts, mode 1 on OP
+    a_int ipntr[14] = {};
+    a_int ido = 0, info = 0;
+    if (opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0) {
+        Eigen::Map<Eigen::VectorXcd>(resid.data(), N) = opt.start;
+        info = 1;   // ARPACK starts from resid
+    }
+    while (true) {
+        arpack::naupd(ido, arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
+                      resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl,
+                      rwork.data(), info);
+        if (ido != -1 && ido != 1) break;
+        apply_operator(lu, Mc, CsM, s, workd.data() + ipntr[0] - 1, workd.data() + ipntr[1] - 1, n);
+    }
+    check_arnoldi("znaupd", info, iparam, opt, sz);
+
+    std::vector<cd> d(static_cast<size_t>(nev + 1)), Z(static_cast<size_t>(N * nev)), workev(2 * static_cast<size_t>(ncv));
+    std::vector<a_int> select(static_cast<size_t>(ncv));
+    a_int info2 = 0;
+    arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), d.data(), Z.data(), N, cd(0.0), workev.data(),
+                  arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance, resid.data(), ncv,
+                  V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl, rwork.data(), info2);
+    if (info2 != 0) throw SolverError(fmt::format("ARPACK zneupd failed with info = {}", info2));
+    iterations = static_cast<int>(iparam[2]);
+    std::vector<Ritz> out;
+    for (a_int j = 0; j < iparam[4]; ++j)
+        out.push_back({d[static_cast<size_t>(j)], Eigen::Map<const Eigen::VectorXcd>(Z.data() + j * N, N)});
+    return out;
+}
+
+// Real shift: the operator is real, so real Arnoldi (dnaupd) on a real LU
+// finds the same eigenvalues, conjugate pairs together, at a fraction of the
+// cost of complex arithmetic.
+std::vector<Ritz> ritz_real(const SparsePencil& p, const SparseEigenOptions& opt, const ArnoldiSize& sz,
+                            const Eigen::VectorXd& t, int& iterations) {
+    using SpD = Eigen::SparseMatrix<double>;
+    const int n = static_cast<int>(p.M.rows());
+    const double s = opt.shift.real();
+    Eigen::SparseLU<SpD, Eigen::COLAMDOrdering<int>> lu;
+    factorize(lu, p, s, t);
+    const SpD CsM = p.C + s * p.M;
+    const a_int N = sz.N, nev = sz.nev, ncv = sz.ncv, lworkl = 3 * ncv * ncv + 6 * ncv;
+    std::vector<double> resid(static_cast<size_t>(N)), V(static_cast<size_t>(N * ncv)),
+        workd(3 * static_cast<size_t>(N)), workl(static_cast<size_t>(lworkl));
+    a_int iparam[11] = {1, 0, opt.max_iterations, 1, 0, 0, 1, 0, 0, 0, 0};   // exact shifts, mode 1 on OP
+    a_int ipntr[14] = {};
+    a_int ido = 0, info = 0;
+    if (opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0) {
+        // A real start spanning the same directions as the complex one.
+        Eigen::Map<Eigen::VectorXd>(resid.data(), N) = opt.start.real() + opt.start.imag();
+        info = 1;
+    }
+    while (true) {
+        arpack::naupd(ido, arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
+                      resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl, info);
+        if (ido != -1 && ido != 1) break;
+        apply_operator(lu, p.M, CsM, s, workd.data() + ipntr[0] - 1, workd.data() + ipntr[1] - 1, n);
+    }
+    check_arnoldi("dnaupd", info, iparam, opt, sz);
+
+    // dneupd may return one value more than nev (a conjugate pair across the edge).
+    std::vector<double> dr(static_cast<size_t>(nev + 1)), di(static_cast<size_t>(nev + 1)),
+        Z(static_cast<size_t>(N * (nev + 1))), workev(3 * static_cast<size_t>(ncv));
+    std::vector<a_int> select(static_cast<size_t>(ncv));
+    a_int info2 = 0;
+    arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), dr.data(), di.data(), Z.data(), N, 0.0, 0.0,
+                  workev.data(), arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
+                  resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl, info2);
+    if (info2 != 0) throw SolverError(fmt::format("ARPACK dneupd failed with info = {}", info2));
+    iterations = static_cast<int>(iparam[2]);
+    std::vector<Ritz> out;
+    const a_int found = std::min<a_int>(iparam[4], nev + 1);
+    for (a_int j = 0; j < found; ++j) {
+        const Eigen::Map<const Eigen::VectorXd> re(Z.data() + j * N, N);
+        const cd theta(dr[static_cast<size_t>(j)], di[static_cast<size_t>(j)]);
+        if (theta.imag() == 0.0) {
+            out.push_back({theta, re.cast<cd>()});
+        } else if (theta.imag() > 0.0 && j + 1 < found) {
+            // A pair: columns j and j + 1 hold the real and imaginary part of
+            // the vector of the value with positive imaginary part.
+            const Eigen::Map<const Eigen::VectorXd> im(Z.data() + (j + 1) * N, N);
+            Eigen::VectorXcd z(N);
+            z.real() = re;
+            z.imag() = im;
+            out.push_back({theta, z});
+            out.push_back({std::conj(theta), z.conjugate()});
+            ++j;
+        }
+    }
+    return out;
+}
+
+// Inverse iteration on P(lambda) from an ARPACK eigenpair, with one LU of P at
+// a point 1e-12 |lambda| off the eigenvalue (so that it is not singular to
+// rounding, yet resolves pairs split by 1e-10): always finds the left vector;
+// refines the right vector and the eigenvalue (two-sided Rayleigh quotient)
+// only if the pair's backward error exceeds `accurate`, since inverse iteration
+// from two vectors of a double eigenvalue's plane may turn both to one
+// direction. Returns the backward error before refinement.
+double refine(const SparsePencil& p, const PencilAction& action, Mode& m, double accurate, double scale) {
+    const double raw = backward_error(action, m.lambda, m.right);
+    const cd off = 1e-12 * std::max(std::abs(m.lambda), kRigidBodyTolerance * scale) * std::polar(1.0, M_PI / 4);
+    const cd at = m.lambda + off;
+    const SpC P = (at * at) * p.M.cast<cd>() + at * p.C.cast<cd>() + p.K.cast<cd>();
+    Eigen::SparseLU<SpC, Eigen::COLAMDOrdering<int>> lu;
+    lu.compute(P);
+    if (lu.info() != Eigen::Success) return raw;   // no left vector: an infinite error bound
+    const SpC Mt = p.M.transpose().cast<cd>(), Ct = p.C.transpose().cast<cd>();
+    Eigen::VectorXcd x = m.right, y = m.right;
+    Eigen::VectorXcd Mx, Cx, Kx;
+    cd lambda = m.lambda;
+    double eta = raw;
+    const bool update = raw > accurate;
+    for (int step = 0; step < 4; ++step) {
+        // Left: y <- P^{-H} P'(l)^H y, with P'(l)^H = 2 conj(l) M^T + C^T for real M, C.
+        Eigen::VectorXcd yn = lu.adjoint().solve(Eigen::VectorXcd((2.0 * std::conj(lambda)) * (Mt * y) + Ct * y));
+        if (!yn.allFinite() || yn.norm() == 0.0) break;
+        y = yn.normalized();
+        if (!update) {
+            if (step == 1) break;   // two steps give the left vector
+            continue;
+        }
+        action.apply(x, Mx, Cx, Kx);
+        Eigen::VectorXcd xn = lu.solve(Eigen::VectorXcd((2.0 * lambda) * Mx + Cx));
+        if (!xn.allFinite() || xn.norm() == 0.0) break;
+        xn.normalize();
+        action.apply(xn, Mx, Cx, Kx);
+        const Eigen::VectorXcd r = (lambda * lambda) * Mx + lambda * Cx + Kx;
+        const cd slope = y.dot((2.0 * lambda) * Mx + Cx);
+        const cd next = std::abs(slope) > 0.0 ? lambda - y.dot(r) / slope : lambda;
+        const double e = backward_error(action, next, xn);
+        if (!(e < eta)) break;
+        x = xn;
+        lambda = next;
+        eta = e;
+        if (eta <= accurate) break;
+    }
+    m.lambda = lambda;
+    m.right = unit_vector(x);
+    m.left = unit_vector(y);
+    m.backward_error = eta;
+    return raw;
+}
+
+}  // namespace
+
+SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOptions& opt,
+                                      const std::vector<std::pair<int, int>>& whirl_pairs) {
+    const int n = static_cast<int>(p.M.rows());
+    if (n < 2) throw InputError("the sparse eigensolver needs at least 2 DOFs; use the dense solver");
+    if (opt.modes < 1 || 2 * opt.modes + 2 > 2 * n - 1)
+        throw InputError(fmt::format("--modes {}: allowed for this model with {} DOFs: 1 to {}", opt.modes, n,
+                                     std::max(1, n - 2)));
+    if (!(opt.verify_tolerance > 0.0 && opt.verify_tolerance < 1.0))
+        throw InputError(fmt::format("verify_tolerance {}: allowed: 0 < tolerance < 1", opt.verify_tolerance));
+    const PencilAction action = action_of(p);
+    const double g = std::sqrt(action.norm_K / action.norm_M);
+    const double scale = std::isfinite(g) && g > 0 ? g : 1.0;
+    const double real_tol = 1e-7 * scale;
+    // DOF scaling for the condition estimate of P(sigma) (as the dense solver scales).
+    Eigen::VectorXd t(n);
+    for (int i = 0; i < n; ++i) {
+        const double w = scale * scale * std::abs(p.M.coeff(i, i)) + scale * std::abs(p.C.coeff(i, i)) +
+                         std::abs(p.K.coeff(i, i));
+        t(i) = (w > 0.0 && std::isfinite(w)) ? 1.0 / std::sqrt(w) : 1.0;
+    }
+
+    SparseSpectrum out;
+    int reserve = std::max(0, opt.reserve);
+    std::vector<Ritz> ritz;
+    for (int attempt = 0;; ++attempt) {
+        // Conjugates come along with a real shift, so ask for twice the wanted count.
+        ArnoldiSize sz;
+        sz.N = 2 * n;
+        sz.nev = std::min<a_int>(2 * opt.modes + 2 + reserve, sz.N - 2);
+        sz.ncv = opt.lanczos_vectors > 0 ? opt.lanczos_vectors : std::max<a_int>(2 * sz.nev + 1, 30);
+        sz.ncv = std::min<a_int>(sz.ncv, sz.N);
+        if (sz.ncv <= sz.nev + 1)
+            throw InputError(fmt::format("--lanczos {}: must exceed 2 * modes + 3 = {}", sz.ncv, sz.nev + 1));
+        // The shift, moved off a singular P(sigma) in steps of the natural scale.
+        SparseEigenOptions o = opt;
+        std::string why;
+        const double moves[] = {0.0, 1e-5, 1e-4, 1e-3};
+        bool done = false;
+        for (double move : moves) {
+            o.shift = opt.shift - cd(move * scale, 0.0);
+            // Rigid-body eigenvalues in the window (at a singular shift, or seen at the
+            // last speed) form Jordan blocks whose Ritz values converge only to about
+            // sqrt(eps): ARPACK would restart to its limit. Every wanted pair is
+            // refined below, so a looser Ritz tolerance loses nothing.
+            if (move > 0.0 || reserve > 0) o.tolerance = std::max(opt.tolerance, 1e-9);
+            try {
+                ritz = o.shift.imag() == 0.0 ? ritz_real(p, o, sz, t, out.iterations)
+                                             : ritz_complex(p, o, sz, t, out.iterations);
+                done = true;
+                break;
+            } catch (const SingularShift& e) {
+                if (why.empty()) why = e.why;
+            }
+        }
+        if (!done)
+            throw InputError(fmt::format("P(shift) is singular at the shift ({}, {}) and at shifts moved by up to "
+                                         "1e-3 of the model's frequency scale {:.6g} rad/s ({}); choose another target",
+                                         opt.shift.real(), opt.shift.imag(), scale, why));
+        out.shift = o.shift;
+        if (o.shift != opt.shift && attempt == 0)
+            out.notes.push_back(fmt::format("the shift ({:.6g}, {:.6g}) was moved to ({:.6g}, {:.6g}): P(shift) is "
+                                            "singular there ({}), e.g. rigid-body modes at 0",
+                                            opt.shift.real(), opt.shift.imag(), o.shift.real(), o.shift.imag(), why));
+        // Rigid-body eigenvalues take places in the window: ask for that many more once.
+        int rigid = 0, kept = 0;
+        for (const Ritz& r : ritz) {
+            if (std::abs(r.theta) == 0.0) continue;
+            const cd l = out.shift + 1.0 / r.theta;
+            if (l.imag() < -real_tol) continue;
+            (is_rigid_body(l, r.z.tail(n), action, scale) ? rigid : kept) += 1;
+        }
+        if (kept >= opt.modes || rigid == 0 || attempt > 0 || sz.nev == sz.N - 2) break;
+        reserve += rigid + 2;
+    }
+
+    out.converged = static_cast<int>(ritz.size());
+    for (const Ritz& r : ritz) {
+        if (std::abs(r.theta) == 0.0) continue;
+        Mode m;
+        m.lambda = out.shift + 1.0 / r.theta;
+        if (m.lambda.imag() < -real_tol) continue;   // the conjugate of a kept mode
+        if (std::abs(m.lambda.imag()) <= real_tol) m.lambda = cd(m.lambda.real(), 0.0);
+        const Eigen::VectorXcd top = r.z.head(n), bottom = r.z.tail(n);
+        // The backward error does not depend on the vector's scale: the better half's is the mode's.
+        const double et = backward_error(action, m.lambda, top), eb = backward_error(action, m.lambda, bottom);
+        m.right = unit_vector(et < eb ? top : bottom);
+        m.backward_error = std::min(et, eb);
+        if (is_rigid_body(m.lambda, m.right, action, scale)) {
+            m.whirl = Whirl::Real;
+            out.rigid_body.push_back(std::move(m));
+            continue;
+        }
+        out.modes.push_back(std::move(m));
+    }
+    // The wanted count nearest the requested shift.
+    std::sort(out.modes.begin(), out.modes.end(), [&](const Mode& a, const Mode& b) {
+        return std::abs(a.lambda - opt.shift) < std::abs(b.lambda - opt.shift);
+    });
+    if (static_cast<int>(out.modes.size()) > opt.modes) out.modes.resize(static_cast<size_t>(opt.modes));
+    // Verification: refine every pair, and reject one that stays above the tolerance.
+    const double accurate = 1e-3 * opt.verify_tolerance;
+    const std::vector<Mode> arnoldi = out.modes;
+    for (Mode& m : out.modes) {
+        const double raw = refine(p, action, m, accurate, scale);
+        out.max_raw_backward_error = std::max(out.max_raw_backward_error, raw);
+        if (raw > accurate) ++out.refined;
+    }
+    // Two vectors of one double eigenvalue turned to one direction by the
+    // refinement: the pair keeps its Arnoldi vectors (verified below).
+    for (size_t i = 0; i < out.modes.size(); ++i)
+        for (size_t j = i + 1; j < out.modes.size(); ++j)
+            if (std::abs(out.modes[i].lambda - out.modes[j].lambda) <= 1e-6 * std::abs(out.modes[i].lambda) &&
+                mac(out.modes[i].right, out.modes[j].right) > 0.99)
+                for (size_t k : {i, j}) {
+                    out.modes[k].right = arnoldi[k].right;
+                    out.modes[k].lambda = arnoldi[k].lambda;
+                    out.modes[k].backward_error = arnoldi[k].backward_error;
+                }
+    for (Mode& m : out.modes) {
+        if (!(m.backward_error <= opt.verify_tolerance))
+            throw SolverError(fmt::format("the sparse eigenpair near lambda = ({:.6g}, {:.6g}) keeps a backward error "
+                                          "of {:.1e} after refinement, above the verification tolerance {:.1e}; "
+                                          "raise the Lanczos vectors or move the target closer",
+                                          m.lambda.real(), m.lambda.imag(), m.backward_error, opt.verify_tolerance));
+        if (std::abs(m.lambda.imag()) <= real_tol) m.lambda = cd(m.lambda.real(), 0.0);
+        m.whirl = classify_whirl(m.lambda, m.right, whirl_pairs, real_tol);
+    }
+    // Double eigenvalues turned into their backward and forward modes (after the
+    // refinement, which may rotate a pair's vectors in their plane).
+    separate_double_whirl(out.modes, whirl_pairs, real_tol, action);
+    set_error_bounds(out.modes, action);
+    for (Mode& m : out.modes) m.left.resize(0);
+    std::stable_sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) {
+        return a.lambda.imag() != b.lambda.imag() ? a.lambda.imag() < b.lambda.imag() : a.lambda.real() < b.lambda.real();
+    });
+    return out;
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,162 @@
+#include "io/fe_scene.hpp"
+
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/bearing_csv.hpp>
+#include <gyrokit/models/fe_rotor.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+
+namespace gyrokit {
+
+namespace {
+
+// The entries of an array of tables [[model.NAME]], each with its TomlKeys.
+template <class F>
+void for_each_entry(const TomlKeys& k, const std::string& name, bool required, const F& f) {
+    const toml::node* n = k.table().get(name);
+    if (!n) {
+        if (required) throw InputError(k.where(name) + " is missing; required: one or more [[model." + name + "]] tables");
+        return;
+    }
+    const toml::array* a = n->as_array();
+    if (!a || !a->is_array_of_tables())
+        throw InputError(k.where(name) + " must be an array of tables [[model." + name + "]]");
+    int i = 0;
+    for (const auto& e : *a) {
+        ++i;
+        f(TomlKeys(k.file(), fmt::format("model.{}[{}]", name, i), *e.as_table()));
+    }
+}
+
+// The node at axial position z; the position must be a node within 1e-9 of the length.
+int node_at(const TomlKeys& e, const std::vector<double>& z) {
+    const double L = z.back();
+    const double zi = e.number("z", std::nullopt, 0.0, false, "m");
+    const auto it = std::lower_bound(z.begin(), z.end(), zi - 1e-9 * L);
+    if (it == z.end() || std::abs(*it - zi) > 1e-9 * L) {
+        double nearest = z.front();
+        for (double x : z)
+            if (std::abs(x - zi) < std::abs(nearest - zi)) nearest = x;
+        throw InputError(fmt::format("{} = {} is not a node of the mesh; allowed: a section end or subdivision, "
+                                     "the nearest is {} (rotor length {})",
+                                     e.where("z"), zi, nearest, L));
+    }
+    return static_cast<int>(it - z.begin());
+}
+
+}  // namespace
+
+SparseGyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir) {
+    k.only({"type", "shaft", "disk", "bearing", "support", "E", "poisson", "density", "shear_deformation",
+            "rotary_inertia"});
+    FeRotor r;
+    const auto flag = [&](const char* key) {
+        const toml::node* n = k.table().get(key);
+        if (!n) return true;
+        if (!n->is_boolean()) throw InputError(k.where(key) + " must be true or false");
+        return *n->value<bool>();
+    };
+    r.shear_deformation = flag("shear_deformation");
+    r.rotary_inertia = flag("rotary_inertia");
+    const std::optional<double> E0 = k.has("E") ? std::optional(k.number("E", std::nullopt, 0, true, "Pa")) : std::nullopt;
+    const std::optional<double> rho0 =
+        k.has("density") ? std::optional(k.number("density", std::nullopt, 0, true, "kg/m^3")) : std::nullopt;
+    const double nu0 = k.has("poisson") ? k.number("poisson", std::nullopt, -1, true, "1") : 0.3;
+    if (nu0 > 0.5) throw InputError(fmt::format("{} = {}: out of range; allowed: -1 < poisson <= 0.5", k.where("poisson"), nu0));
+
+    std::vector<double> z{0.0};
+    for_each_entry(k, "shaft", true, [&](const TomlKeys& e) {
+        e.only({"length", "elements", "outer_diameter", "inner_diameter", "E", "poisson", "density"});
+        FeShaftElement el;
+        const double length = e.number("length", std::nullopt, 0, true, "m");
+        const int count = static_cast<int>(e.integer("elements", 1, 1, 10000000));
+        el.length = length / count;
+        el.outer_diameter = e.number("outer_diameter", std::nullopt, 0, true, "m");
+        el.inner_diameter = e.number("inner_diameter", 0.0, 0, false, "m");
+        if (el.inner_diameter >= el.outer_diameter)
+            throw InputError(fmt::format("{} = {} is not below outer_diameter = {}; allowed: 0 <= inner < outer",
+                                         e.where("inner_diameter"), el.inner_diameter, el.outer_diameter));
+        el.youngs_modulus = e.number("E", E0, 0, true, "Pa");
+        el.density = e.number("density", rho0, 0, true, "kg/m^3");
+        el.poisson_ratio = e.has("poisson") ? e.number("poisson", std::nullopt, -1, true, "1") : nu0;
+        if (el.poisson_ratio > 0.5)
+            throw InputError(fmt::format("{} = {}: out of range; allowed: -1 < poisson <= 0.5", e.where("poisson"),
+                                         el.poisson_ratio));
+        for (int i = 0; i < count; ++i) {
+            r.elements.push_back(el);
+            z.push_back(z.back() + el.length);
+        }
+    });
+
+    for_each_entry(k, "disk", false, [&](const TomlKeys& e) {
+        e.only({"z", "mass", "Id", "Ip", "unbalance", "phase"});
+        FeDisk d;
+        d.node = node_at(e, z);
+        d.mass = e.number("mass", std::nullopt, 0, false, "kg");
+        d.diametral_inertia = e.number("Id", 0.0, 0, false, "kg m^2");
+        d.polar_inertia = e.number("Ip", 0.0, 0, false, "kg m^2");
+        d.unbalance = e.number("unbalance", 0.0, 0, false, "kg m");
+        d.unbalance_phase = e.has("phase") ? e.any_number("phase", "deg") * std::acos(-1.0) / 180.0 : 0.0;
+        r.disks.push_back(d);
+    });
+
+    struct Tabulated {
+        int node;
+        std::string path;
+    };
+    std::vector<Tabulated> tables;
+    for_each_entry(k, "bearing", false, [&](const TomlKeys& e) {
+        e.only({"z", "k", "c", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy", "table"});
+        const int node = node_at(e, z);
+        if (e.has("table")) {
+            for (const char* key : {"k", "c", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"})
+                if (e.has(key))
+                    throw InputError(e.where(key) + " is given together with table; allowed: either a table or "
+                                                    "constant coefficients");
+            tables.push_back({node, (std::filesystem::path(dir) / e.choice("table", "", {})).string()});
+            return;
+        }
+        FeBearing b;
+        b.node = node;
+        const double kk = e.number("k", 0.0, 0, false, "N/m"), cc = e.number("c", 0.0, 0, false, "N s/m");
+        b.kxx = e.has("kxx") ? e.any_number("kxx", "N/m") : kk;
+        b.kyy = e.has("kyy") ? e.any_number("kyy", "N/m") : kk;
+        b.kxy = e.has("kxy") ? e.any_number("kxy", "N/m") : 0.0;
+        b.kyx = e.has("kyx") ? e.any_number("kyx", "N/m") : 0.0;
+        b.cxx = e.has("cxx") ? e.any_number("cxx", "N s/m") : cc;
+        b.cyy = e.has("cyy") ? e.any_number("cyy", "N s/m") : cc;
+        b.cxy = e.has("cxy") ? e.any_number("cxy", "N s/m") : 0.0;
+        b.cyx = e.has("cyx") ? e.any_number("cyx", "N s/m") : 0.0;
+        r.bearings.push_back(b);
+    });
+
+    for_each_entry(k, "support", false, [&](const TomlKeys& e) {
+        e.only({"z", "type"});
+        FeSupport s;
+        s.node = node_at(e, z);
+        const std::string type = e.choice("type", "pinned", {"pinned", "clamped"});
+        s.theta_x = s.theta_y = type == "clamped";
+        r.supports.push_back(s);
+    });
+
+    const FeRotorMatrices m = r.assemble();
+    SparseGyroscopicSystem sys = m.to_system();
+    for (const Tabulated& t : tables) {
+        const auto dof = [&](const char* prefix) {
+            const std::string name = prefix + std::to_string(t.node);
+            const auto it = std::find(m.dof_names.begin(), m.dof_names.end(), name);
+            if (it == m.dof_names.end())
+                throw InputError(fmt::format("{}: bearing table {} at node {} acts on DOF {}, which a support holds; "
+                                             "allowed: a bearing at a node whose x and y are free",
+                                             k.where("bearing"), t.path, t.node, name));
+            return static_cast<int>(it - m.dof_names.begin());
+        };
+        sys.bearings.push_back(read_bearing_csv(t.path, sys.size(), dof("x"), dof("y")));
+    }
+    return sys;
+}
+
+}  // namespace gyrokit

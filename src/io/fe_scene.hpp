@@ -1,0 +1,18 @@
+// Reader of [model] type = "fe_rotor" scene tables: a finite-element rotor
+// described by its geometry and material (see docs/scene_format.md).
+#pragma once
+
+#include <gyrokit/core/sparse_system.hpp>
+#include "io/toml_keys.hpp"
+
+#include <string>
+
+namespace gyrokit {
+
+// Builds and assembles the rotor. Positions (z, m) of disks, bearings and
+// supports must fall on a node (section ends and their subdivisions); bearing
+// tables are read relative to `dir`. Every error names the table entry, key,
+// value and allowed range.
+SparseGyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir);
+
+}  // namespace gyrokit

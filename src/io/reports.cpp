@@ -1,0 +1,215 @@
+#include <gyrokit/io/reports.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+namespace gyrokit {
+
+namespace {
+
+long long ll(int i) { return static_cast<long long>(i); }
+
+std::vector<Cell> mode_cells(const Mode& m, const SpeedUnit& u) {
+    return {m.lambda.real(), m.lambda.imag(), u.factor * m.frequency(), to_string(m.whirl), m.damping_ratio(),
+            m.log_decrement()};
+}
+
+std::string speed_label(const SpeedUnit& u) { return "speed [" + u.name + "]"; }
+
+}  // namespace
+
+Table eig_table(const QuadraticSpectrum& s, double speed, const SpeedUnit& u, bool rigid_body) {
+    Table t({"speed", "index", "re", "im", "frequency", "whirl", "damping_ratio", "log_dec", "backward_error"});
+    t.title = "eigenvalues at " + std::to_string(u.factor * speed) + " " + u.name +
+              (s.infinite_count ? " (" + std::to_string(s.infinite_count) + " infinite eigenvalues omitted)" : "");
+    int index = 0;
+    const auto add = [&](const Mode& m, bool rigid) {
+        std::vector<Cell> row{u.factor * speed, ll(++index)};
+        for (auto& c : mode_cells(m, u)) row.push_back(c);
+        if (rigid) row[5] = std::string("rigid-body");
+        row.push_back(m.backward_error);
+        t.add_row(std::move(row));
+    };
+    for (const Mode& m : s.modes) add(m, false);
+    if (rigid_body)
+        for (const Mode& m : s.rigid_body) add(m, true);
+    return t;
+}
+
+std::string rigid_body_note(const std::vector<Mode>& rigid, const std::vector<std::string>& names) {
+    if (rigid.empty()) return "";
+    std::vector<char> moves(names.size(), 0);
+    for (const Mode& m : rigid) {
+        const double top = m.right.cwiseAbs().maxCoeff();
+        for (Eigen::Index i = 0; i < m.right.size() && static_cast<size_t>(i) < names.size(); ++i)
+            if (std::abs(m.right(i)) >= 0.1 * top) moves[static_cast<size_t>(i)] = 1;
+    }
+    std::string list;
+    int shown = 0, more = 0;
+    for (size_t i = 0; i < names.size(); ++i) {
+        if (!moves[i]) continue;
+        if (shown < 12) list += (shown++ ? " " : "") + names[i];
+        else ++more;
+    }
+    if (more) list += " and " + std::to_string(more) + " more";
+    return std::to_string(rigid.size()) + " rigid-body eigenvalue" + (rigid.size() == 1 ? "" : "s") +
+           " (lambda = 0: free motion of a singular K) " + (rigid.size() == 1 ? "is" : "are") +
+           " not " + (rigid.size() == 1 ? "a mode" : "modes") + " and not listed; moving " + (list.empty() ? std::string("-") : list);
+}
+
+std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const SpeedUnit& u) {
+    std::vector<std::string> out;
+    for (const UnstableRange& r : unstable_ranges(cd)) {
+        char line[256];
+        std::snprintf(line, sizeof line, "mode %d is unstable from %.6g to %.6g %s (Re lambda up to %.4g 1/s)",
+                      r.branch, u.factor * r.from, u.factor * r.to, u.name.c_str(), r.max_real);
+        out.emplace_back(line);
+    }
+    return out;
+}
+
+Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u) {
+    Table t({"speed", "mode", "re", "im", "frequency", "whirl", "damping_ratio", "log_dec"});
+    t.title = "Campbell diagram";
+    // Rows by speed, then mode.
+    std::vector<size_t> next(cd.branches.size(), 0);
+    for (double w : cd.speeds)
+        for (size_t b = 0; b < cd.branches.size(); ++b) {
+            const auto& pts = cd.branches[b].points;
+            if (next[b] < pts.size() && pts[next[b]].speed == w) {
+                std::vector<Cell> row{u.factor * w, ll(cd.branches[b].id)};
+                for (auto& c : mode_cells(pts[next[b]].mode, u)) row.push_back(c);
+                t.add_row(std::move(row));
+                ++next[b];
+            }
+        }
+    return t;
+}
+
+Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u) {
+    Table t({"speed", "mode", "whirl", "harmonic", "frequency", "damping_ratio"});
+    t.title = "critical speeds";
+    for (const auto& c : cs)
+        t.add_row({u.factor * c.speed, ll(c.branch), to_string(c.mode.whirl), ll(c.harmonic),
+                   u.factor * c.mode.frequency(), c.mode.damping_ratio()});
+    return t;
+}
+
+Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u) {
+    Table t({"speed", "mode", "change", "frequency"});
+    t.title = "stability changes (a mode's real part passes its error bound)";
+    for (const auto& c : sc)
+        t.add_row({u.factor * c.speed, ll(c.branch), std::string(c.becomes_unstable ? "unstable" : "stable"),
+                   u.factor * c.mode.frequency()});
+    return t;
+}
+
+Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u) {
+    Table t({"damping", "speed", "mode", "frequency", "whirl", "residual"});
+    std::string checked;
+    for (const auto& c : r.checked) checked += (checked.empty() ? "" : ", ") + c;
+    t.title = "speeds where damping does not pervade (checked: " + (checked.empty() ? "no damping" : checked) + ")";
+    for (const auto& l : r.losses)
+        t.add_row({l.damping, u.factor * l.speed, ll(l.mode), u.factor * l.lost.frequency(), to_string(l.lost.whirl),
+                   l.residual});
+    return t;
+}
+
+Table response_table(const std::vector<std::string>& names, const ResponseCurve& c, const SpeedUnit& u) {
+    Table t({"speed", "dof", "amplitude", "phase"});
+    t.title = "unbalance response z = Re(Z e^{i w t}); amplitude |Z| in the DOF's unit, phase arg Z in degrees";
+    for (size_t i = 0; i < c.speeds.size(); ++i)
+        for (size_t k = 0; k < c.dofs.size(); ++k) {
+            const auto z = c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k));
+            t.add_row({u.factor * c.speeds[i], names[static_cast<size_t>(c.dofs[k])], std::abs(z),
+                       std::abs(z) == 0.0 ? 0.0 : std::arg(z) * 180.0 / M_PI});
+        }
+    return t;
+}
+
+Table extrema_table(const std::vector<std::string>& names, const std::vector<ResponseExtremum>& e,
+                    const SpeedUnit& u) {
+    Table t({"dof", "kind", "speed", "amplitude"});
+    t.title = "response peaks and antiresonances";
+    for (const auto& x : e)
+        t.add_row({names[static_cast<size_t>(x.dof)], std::string(x.peak ? "peak" : "antiresonance"),
+                   u.factor * x.speed, x.amplitude});
+    return t;
+}
+
+Figure campbell_figure(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& cs,
+                       const std::vector<int>& harmonics, const SpeedUnit& u, const std::string& title) {
+    Figure f;
+    f.title = title.empty() ? "Campbell diagram" : title;
+    Panel freq{speed_label(u), "frequency [" + u.name + "]", "", false, {}, 0.0, {}, {}, {}};
+    Panel damp{speed_label(u), "damping ratio", "", false, {}, {}, {}, {}, {}};
+    bool fwd_labelled = false, bwd_labelled = false;
+    for (const Branch& b : cd.branches) {
+        // Split the branch into runs of one whirl direction so each gets its style.
+        size_t i = 0;
+        while (i < b.points.size()) {
+            const Whirl w = b.points[i].mode.whirl;
+            Series s, d;
+            for (; i < b.points.size() && b.points[i].mode.whirl == w; ++i) {
+                s.x.push_back(u.factor * b.points[i].speed);
+                s.y.push_back(u.factor * b.points[i].mode.frequency());
+                d.x.push_back(s.x.back());
+                d.y.push_back(b.points[i].mode.damping_ratio());
+            }
+            if (i < b.points.size()) {   // join to the next run
+                s.x.push_back(u.factor * b.points[i].speed);
+                s.y.push_back(u.factor * b.points[i].mode.frequency());
+            }
+            const bool fwd = w == Whirl::Forward, bwd = w == Whirl::Backward;
+            s.color = d.color = fwd ? "#d62728" : bwd ? "#1f77b4" : "#7f7f7f";
+            s.style = d.style = bwd ? "dashed" : "lines";
+            if (fwd && !fwd_labelled) { s.label = "forward whirl"; fwd_labelled = true; }
+            if (bwd && !bwd_labelled) { s.label = "backward whirl"; bwd_labelled = true; }
+            freq.series.push_back(std::move(s));
+            damp.series.push_back(std::move(d));
+        }
+    }
+    if (!cd.speeds.empty()) {
+        const double w0 = cd.speeds.front(), w1 = cd.speeds.back();
+        for (int k : harmonics)
+            freq.series.push_back({{u.factor * w0, u.factor * w1}, {u.factor * k * w0, u.factor * k * w1},
+                                   std::to_string(k) + "x", "dashed", "#000000"});
+        double fmax = 0.0;
+        for (const Branch& b : cd.branches)
+            for (const auto& p : b.points) fmax = std::max(fmax, u.factor * p.mode.frequency());
+        if (fmax > 0.0) freq.ymax = 1.05 * fmax;
+    }
+    Series crit{{}, {}, "critical speeds", "points", "#2ca02c"};
+    for (const auto& c : cs) {
+        crit.x.push_back(u.factor * c.speed);
+        crit.y.push_back(u.factor * c.mode.frequency());
+    }
+    if (!crit.x.empty()) freq.series.push_back(std::move(crit));
+    f.panels = {std::move(freq), std::move(damp)};
+    return f;
+}
+
+Figure response_figure(const std::vector<std::string>& names, const ResponseCurve& c, const SpeedUnit& u,
+                       const std::string& title) {
+    Figure f;
+    f.title = title.empty() ? "Unbalance response" : title;
+    Panel amp{speed_label(u), "amplitude |Z|", "", true, {}, {}, {}, {}, {}};
+    Panel ph{speed_label(u), "phase [deg]", "", false, {}, -180.0, 180.0, {}, {}};
+    for (size_t k = 0; k < c.dofs.size(); ++k) {
+        Series a, p;
+        a.label = names[static_cast<size_t>(c.dofs[k])];
+        for (size_t i = 0; i < c.speeds.size(); ++i) {
+            const auto z = c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k));
+            a.x.push_back(u.factor * c.speeds[i]);
+            a.y.push_back(std::abs(z));
+            p.x.push_back(a.x.back());
+            p.y.push_back(std::abs(z) == 0.0 ? 0.0 : std::arg(z) * 180.0 / M_PI);
+        }
+        amp.series.push_back(std::move(a));
+        ph.series.push_back(std::move(p));
+    }
+    f.panels = {std::move(amp), std::move(ph)};
+    return f;
+}
+
+}  // namespace gyrokit

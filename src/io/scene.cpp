@@ -1,0 +1,207 @@
+#include <gyrokit/io/scene.hpp>
+
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/bearing_csv.hpp>
+#include "io/fe_scene.hpp"
+#include "io/fluid_scene.hpp"
+#include <gyrokit/io/matrix_market.hpp>
+#include "io/toml_keys.hpp"
+#include <gyrokit/models/gyrostat.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <map>
+#include <set>
+#include <toml++/toml.h>
+
+namespace gyrokit {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+GyroscopicSystem gyrostat_from(const TomlKeys& k) {
+    k.only({"type", "A_G", "B_G", "A_R", "C_R", "m", "s", "eps", "c_G", "c_T", "c_R", "d_G", "d_T", "d_R", "shaft",
+            "housing"});
+    GyrostatParameters p;
+    p.rigid_shaft = k.choice("shaft", "elastic", {"elastic", "rigid"}) == "rigid";
+    p.rigid_housing = k.choice("housing", "elastic", {"elastic", "rigid"}) == "rigid";
+    if (p.rigid_shaft && p.rigid_housing)
+        throw InputError(k.where("shaft") + " = 'rigid' with housing = 'rigid' leaves no degree of freedom; "
+                                            "allowed: at most one of them rigid");
+    const std::optional<double> unused = 0.0;   // keys a rigid element makes irrelevant
+    p.A_G = k.number("A_G", p.rigid_housing ? unused : std::nullopt, 0, true, "kg m^2");
+    p.B_G = k.number("B_G", p.rigid_housing ? unused : std::nullopt, 0, true, "kg m^2");
+    p.c_G = k.number("c_G", p.rigid_housing ? unused : std::nullopt, 0, true, "N m/rad");
+    p.A_R = k.number("A_R", std::nullopt, 0, true, "kg m^2");
+    p.C_R = k.number("C_R", std::nullopt, 0, true, "kg m^2");
+    p.m = k.number("m", std::nullopt, 0, true, "kg");
+    p.s = k.any_number("s", "m");
+    p.eps = k.number("eps", 0.0, 0, false, "m");
+    p.c_T = k.number("c_T", p.rigid_shaft ? unused : std::nullopt, 0, true, "N/m");
+    p.c_R = k.number("c_R", p.rigid_shaft ? unused : std::nullopt, 0, true, "N m/rad");
+    p.d_G = k.number("d_G", 0.0, 0, false, "N m s/rad");
+    p.d_T = k.number("d_T", 0.0, 0, false, "N s/m");
+    p.d_R = k.number("d_R", 0.0, 0, false, "N m s/rad");
+    return make_gyrostat(p);
+}
+
+// A matrix model, read in sparse form. A circulatory N exists only in the dense
+// form, so it is returned separately.
+SparseGyroscopicSystem matrices_from(const TomlKeys& k, const fs::path& dir, Eigen::MatrixXd& N) {
+    k.only({"type", "M", "K", "D", "G", "N", "unbalance", "dof_names", "whirl_pairs", "bearings"});
+    const auto path_of = [&](const std::string& key) -> std::optional<std::string> {
+        if (!k.has(key)) return std::nullopt;
+        const std::string rel = k.choice(key, "", {});
+        return (dir / rel).string();
+    };
+    SparseGyroscopicSystem sys;
+    const auto m = path_of("M"), kk = path_of("K");
+    if (!m) throw InputError(k.where("M") + " is missing; required: path of a Matrix Market file");
+    if (!kk) throw InputError(k.where("K") + " is missing; required: path of a Matrix Market file");
+    sys.M = read_matrix_market_sparse(*m);
+    sys.K = read_matrix_market_sparse(*kk);
+    if (auto d = path_of("D")) sys.D = read_matrix_market_sparse(*d);
+    if (auto g = path_of("G")) sys.G = read_matrix_market_sparse(*g);
+    if (auto n = path_of("N")) N = read_matrix_market(*n);
+    if (auto u = path_of("unbalance")) sys.unbalance = read_matrix_market_vector(*u);
+    const int n = static_cast<int>(sys.M.rows());
+    if (const toml::array* names = k.table().get_as<toml::array>("dof_names")) {
+        for (const auto& e : *names) {
+            auto s = e.value<std::string>();
+            if (!s) throw InputError(k.where("dof_names") + ": every entry must be a string");
+            sys.dof_names.push_back(*s);
+        }
+        if (static_cast<int>(sys.dof_names.size()) != n)
+            throw InputError(fmt::format("{} has {} names for {} DOFs; allowed: exactly one name per DOF",
+                                         k.where("dof_names"), sys.dof_names.size(), n));
+    } else {
+        if (k.has("dof_names")) throw InputError(k.where("dof_names") + " must be an array of strings");
+        for (int i = 0; i < n; ++i) sys.dof_names.push_back("q" + std::to_string(i));
+    }
+    if (const toml::array* pairs = k.table().get_as<toml::array>("whirl_pairs")) {
+        for (const auto& e : *pairs) {
+            const toml::array* pr = e.as_array();
+            if (!pr || pr->size() != 2 || !(*pr)[0].is_integer() || !(*pr)[1].is_integer())
+                throw InputError(k.where("whirl_pairs") + ": each entry must be a pair [u, v] of 0-based DOF indices");
+            const long long u = *(*pr)[0].value<long long>(), v = *(*pr)[1].value<long long>();
+            if (u < 0 || v < 0 || u >= n || v >= n || u == v)
+                throw InputError(fmt::format("{}: pair [{}, {}] out of range; allowed: two distinct indices in [0, {}]",
+                                             k.where("whirl_pairs"), u, v, n - 1));
+            sys.whirl_pairs.emplace_back(static_cast<int>(u), static_cast<int>(v));
+        }
+    } else {
+        if (k.has("whirl_pairs")) throw InputError(k.where("whirl_pairs") + " must be an array of pairs");
+        // Lateral DOFs usually come as (x, y) pairs.
+        if (n % 2 == 0)
+            for (int i = 0; i < n; i += 2) sys.whirl_pairs.emplace_back(i, i + 1);
+    }
+    if (k.has("bearings")) {
+        const toml::array* files = k.table().get_as<toml::array>("bearings");
+        if (!files) throw InputError(k.where("bearings") + " must be an array of CSV file paths");
+        for (const auto& e : *files) {
+            auto f = e.value<std::string>();
+            if (!f) throw InputError(k.where("bearings") + ": every entry must be a string (a CSV file path)");
+            sys.bearings.push_back(read_bearing_csv((dir / *f).string(), n));
+        }
+    }
+    return sys;
+}
+
+toml::table parse_scene_file(const std::string& path) {
+    try {
+        return toml::parse_file(path);
+    } catch (const toml::parse_error& e) {
+        const auto& b = e.source().begin;
+        if (!fs::exists(path)) throw InputError(fmt::format("{}: scene file not found", path));
+        throw InputError(fmt::format("{}: line {}, column {}: {}", path, b.line, b.column, e.description()));
+    }
+}
+
+void apply_overrides(toml::table& root, const std::string& path, const std::map<std::string, double>& overrides) {
+    for (const auto& [name, value] : overrides) {
+        const size_t dot = name.find('.');
+        toml::table* t = dot == std::string::npos ? nullptr : root.get_as<toml::table>(name.substr(0, dot));
+        if (!t)
+            throw InputError(fmt::format("{}: parameter '{}' does not name TABLE.KEY of the scene; e.g. model.c_G",
+                                         path, name));
+        t->insert_or_assign(name.substr(dot + 1), value);
+    }
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& path, const std::map<std::string, double>& overrides) {
+    Scene sc;
+    sc.path = path;
+    toml::table root = parse_scene_file(path);
+    apply_overrides(root, path, overrides);
+    TomlKeys top(path, "top level", root);
+    top.only({"title", "model", "speeds", "analysis"});
+    sc.title = top.choice("title", "", {});
+    const toml::table* model = root.get_as<toml::table>("model");
+    if (!model) throw InputError(path + ": table [model] is missing; required: [model] with type = \"gyrostat\", \"matrices\", \"fluid_rotor\" or \"fe_rotor\"");
+    TomlKeys mk(path, "model", *model);
+    sc.model_type = mk.choice("type", "", {"gyrostat", "matrices", "fluid_rotor", "fe_rotor"});
+    if (sc.model_type.empty()) throw InputError(mk.where("type") + " is missing; allowed: fe_rotor, fluid_rotor, gyrostat, matrices");
+    const fs::path dir = fs::path(path).parent_path();
+    if (sc.model_type == "fluid_rotor") {
+        sc.fluid = fluid_rotor_from(mk);
+        sc.system = make_fluid_rotor(build_fluid_rotor(*sc.fluid));
+    } else if (sc.model_type == "gyrostat") {
+        sc.system = gyrostat_from(mk);
+    } else {
+        Eigen::MatrixXd N;
+        sc.sparse = sc.model_type == "fe_rotor" ? fe_rotor_from(mk, dir.string()) : matrices_from(mk, dir, N);
+        sc.sparse->validate(path);
+        if (N.size() > 0 && sc.sparse->size() > kDenseLimit)
+            throw InputError(fmt::format("{}: N (circulatory) is supported up to {} DOFs (dense models only); this "
+                                         "model has {}",
+                                         mk.where("N"), kDenseLimit, sc.sparse->size()));
+        if (N.size() > 0 && !sc.sparse->dense_representable())
+            throw InputError(mk.where("D") + " is not symmetric; with N the model is held densely, which needs a "
+                                             "symmetric D (put its skew part into G or N)");
+        if (sc.sparse->size() <= kDenseLimit && sc.sparse->dense_representable()) {
+            sc.system = sc.sparse->to_dense();
+            sc.system.N = N;
+            if (N.size() > 0) sc.sparse.reset();   // the sparse form cannot hold N
+        }
+    }
+    if (sc.has_dense()) sc.system.validate(path);
+
+    if (const toml::table* sp = root.get_as<toml::table>("speeds")) {
+        TomlKeys k(path, "speeds", *sp);
+        k.only({"from", "to", "count"});
+        SpeedRange r;
+        r.from = k.number("from", std::nullopt, 0, false, "rad/s");
+        r.to = k.number("to", std::nullopt, 0, false, "rad/s");
+        r.count = static_cast<int>(k.integer("count", 201, 1, 10000000));
+        r.validate(path + ": [speeds]");
+        sc.speeds = r;
+    } else if (root.contains("speeds")) {
+        throw InputError(path + ": speeds must be a table [speeds] with from, to, count");
+    }
+    if (const toml::table* an = root.get_as<toml::table>("analysis")) {
+        TomlKeys k(path, "analysis", *an);
+        k.only({"modes", "harmonics", "solver", "target", "target_order"});
+        sc.modes = static_cast<int>(k.integer("modes", 0, 0, 100000));
+        sc.solver = k.choice("solver", "auto", {"auto", "dense", "sparse"});
+        if (k.has("target")) sc.target = k.number("target", std::nullopt, 0, false, "rad/s");
+        sc.target_order = k.number("target_order", 0.0, 0, false, "multiple of the speed");
+        if (const toml::array* h = an->get_as<toml::array>("harmonics")) {
+            sc.harmonics.clear();
+            for (const auto& e : *h) {
+                if (!e.is_integer() || *e.value<long long>() < 1 || *e.value<long long>() > 1000)
+                    throw InputError(k.where("harmonics") + ": each entry must be a whole number in [1, 1000]");
+                sc.harmonics.push_back(static_cast<int>(*e.value<long long>()));
+            }
+            if (sc.harmonics.empty()) throw InputError(k.where("harmonics") + " is empty; allowed: e.g. [1] or [1, 2]");
+        } else if (an->contains("harmonics")) {
+            throw InputError(k.where("harmonics") + " must be an array such as [1, 2]");
+        }
+    }
+    return sc;
+}
+
+}  // namespace gyrokit

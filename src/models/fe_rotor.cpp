@@ -1,0 +1,307 @@
+#include <gyrokit/models/fe_rotor.hpp>
+
+#include <gyrokit/core/error.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace gyrokit {
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+std::string where(const char* kind, std::size_t index) { return fmt::format("fe rotor: {} {}", kind, index); }
+
+void require(bool ok, const std::string& item, const char* key, double value, const std::string& range) {
+    if (!ok) throw InputError(fmt::format("{}: {} = {} is out of range; allowed: {}", item, key, value, range));
+}
+
+void require_finite(const std::string& item, const char* key, double value) {
+    require(std::isfinite(value), item, key, value, "a finite number");
+}
+
+using Mat4 = Eigen::Matrix4d;
+
+// Plane matrices of a Timoshenko beam in the standard DOFs (w1, psi1, w2, psi2),
+// psi the cross-section rotation with psi = dw/dz in the slender limit
+// (Przemieniecki; Friswell et al. eq. 5.x). Phi = 12 E I / (kappa G A L^2).
+struct PlaneMatrices {
+    Mat4 K, Mt, Mr;   // stiffness, translational mass, rotary inertia (per rho I)
+};
+
+PlaneMatrices plane_matrices(double L, double EI, double rhoA, double rhoI, double Phi) {
+    PlaneMatrices p;
+    const double L2 = L * L;
+    const double k = EI / ((1.0 + Phi) * L2 * L);
+    p.K << 12, 6 * L, -12, 6 * L,
+           6 * L, (4 + Phi) * L2, -6 * L, (2 - Phi) * L2,
+           -12, -6 * L, 12, -6 * L,
+           6 * L, (2 - Phi) * L2, -6 * L, (4 + Phi) * L2;
+    p.K *= k;
+
+    const double P2 = Phi * Phi;
+    const double m1 = 13.0 / 35 + 7.0 * Phi / 10 + P2 / 3;
+    const double m2 = 11.0 / 210 + 11.0 * Phi / 120 + P2 / 24;
+    const double m3 = 9.0 / 70 + 3.0 * Phi / 10 + P2 / 6;
+    const double m4 = 13.0 / 420 + 3.0 * Phi / 40 + P2 / 24;
+    const double m5 = 1.0 / 105 + Phi / 60 + P2 / 120;
+    const double m6 = 1.0 / 140 + Phi / 60 + P2 / 120;
+    p.Mt << m1, m2 * L, m3, -m4 * L,
+            m2 * L, m5 * L2, m4 * L, -m6 * L2,
+            m3, m4 * L, m1, -m2 * L,
+            -m4 * L, -m6 * L2, -m2 * L, m5 * L2;
+    p.Mt *= rhoA * L / ((1 + Phi) * (1 + Phi));
+
+    const double r1 = 6.0 / 5;
+    const double r2 = 1.0 / 10 - Phi / 2;
+    const double r3 = 2.0 / 15 + Phi / 6 + P2 / 3;
+    const double r4 = -1.0 / 30 - Phi / 6 + P2 / 6;
+    p.Mr << r1, r2 * L, -r1, r2 * L,
+            r2 * L, r3 * L2, -r2 * L, r4 * L2,
+            -r1, -r2 * L, r1, -r2 * L,
+            r2 * L, r4 * L2, -r2 * L, r3 * L2;
+    p.Mr *= rhoI / (L * (1 + Phi) * (1 + Phi));
+    return p;
+}
+
+}  // namespace
+
+double cowper_shear_coefficient(double nu, double m) {
+    const double q = (1 + m * m) * (1 + m * m);
+    return 6 * (1 + nu) * q / ((7 + 6 * nu) * q + (20 + 12 * nu) * m * m);
+}
+
+FeSection fe_section(const FeShaftElement& e) {
+    FeSection s;
+    const double o = e.outer_diameter, i = e.inner_diameter;
+    s.area = pi * (o * o - i * i) / 4;
+    s.second_moment = pi * (o * o * o * o - i * i * i * i) / 64;
+    s.shear_coefficient = cowper_shear_coefficient(e.poisson_ratio, i / o);
+    s.shear_modulus = e.shear_modulus > 0 ? e.shear_modulus : e.youngs_modulus / (2 * (1 + e.poisson_ratio));
+    return s;
+}
+
+FeElementMatrices fe_shaft_element_matrices(const FeShaftElement& e, bool shear_deformation, bool rotary_inertia) {
+    const FeSection s = fe_section(e);
+    const double L = e.length;
+    const double EI = e.youngs_modulus * s.second_moment;
+    const double Phi = shear_deformation ? 12 * EI / (s.shear_coefficient * s.shear_modulus * s.area * L * L) : 0.0;
+    const double rhoI = rotary_inertia ? e.density * s.second_moment : 0.0;
+    const PlaneMatrices p = plane_matrices(L, EI, e.density * s.area, rhoI, Phi);
+
+    // x-z plane: (x, theta_y) with theta_y = +dx/dz: the standard DOFs.
+    // y-z plane: (y, theta_x) with theta_x = -dy/dz: standard DOFs (y, -theta_x),
+    // i.e. the plane matrix transformed with T = diag(1, -1, 1, -1).
+    const int ix[4] = {0, 3, 4, 7};   // x1, ty1, x2, ty2
+    const int iy[4] = {1, 2, 5, 6};   // y1, tx1, y2, tx2
+    const double t[4] = {1, -1, 1, -1};
+
+    FeElementMatrices m;
+    m.M.setZero();
+    m.K.setZero();
+    m.G.setZero();
+    const Mat4 Mp = p.Mt + p.Mr;
+    for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) {
+            m.K(ix[a], ix[b]) = p.K(a, b);
+            m.K(iy[a], iy[b]) = t[a] * t[b] * p.K(a, b);
+            m.M(ix[a], ix[b]) = Mp(a, b);
+            m.M(iy[a], iy[b]) = t[a] * t[b] * Mp(a, b);
+            // Distributed polar inertia 2 rho I: G = int 2 rho I (N_tx^T N_ty - N_ty^T N_tx) dz
+            // with N_ty = N_psi S_x, N_tx = -N_psi T S_y:
+            // G = 2 (S_y^T T Mr S_x)^T-part: G(x-plane a, y-plane b) = 2 Mr(a,b) t_b, and its negative transpose.
+            const double g = 2 * p.Mr(a, b) * t[b];
+            m.G(ix[a], iy[b]) = g;
+            m.G(iy[b], ix[a]) = -g;
+        }
+    return m;
+}
+
+void FeRotor::validate() const {
+    if (elements.empty())
+        throw InputError("fe rotor: elements: the shaft has no elements; allowed: at least one element");
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        const FeShaftElement& s = elements[e];
+        const std::string w = where("element", e);
+        require(std::isfinite(s.length) && s.length > 0, w, "length", s.length, "(0, inf) m");
+        require(std::isfinite(s.outer_diameter) && s.outer_diameter > 0, w, "outer_diameter", s.outer_diameter,
+                "(0, inf) m");
+        require(std::isfinite(s.inner_diameter) && s.inner_diameter >= 0 && s.inner_diameter < s.outer_diameter, w,
+                "inner_diameter", s.inner_diameter, fmt::format("[0, outer_diameter = {}) m", s.outer_diameter));
+        require(std::isfinite(s.youngs_modulus) && s.youngs_modulus > 0, w, "youngs_modulus", s.youngs_modulus,
+                "(0, inf) Pa");
+        require(std::isfinite(s.shear_modulus) && s.shear_modulus >= 0, w, "shear_modulus", s.shear_modulus,
+                "(0, inf) Pa, or 0 to derive it from youngs_modulus and poisson_ratio");
+        require(std::isfinite(s.poisson_ratio) && s.poisson_ratio > -1 && s.poisson_ratio <= 0.5, w,
+                "poisson_ratio", s.poisson_ratio, "(-1, 0.5]");
+        require(std::isfinite(s.density) && s.density > 0, w, "density", s.density, "(0, inf) kg/m^3");
+    }
+    const int nodes = node_count();
+    const std::string node_range = fmt::format("an integer in [0, {}]", nodes - 1);
+    for (std::size_t i = 0; i < disks.size(); ++i) {
+        const FeDisk& d = disks[i];
+        const std::string w = where("disk", i);
+        require(d.node >= 0 && d.node < nodes, w, "node", d.node, node_range);
+        require(std::isfinite(d.mass) && d.mass >= 0, w, "mass", d.mass, "[0, inf) kg");
+        require(std::isfinite(d.diametral_inertia) && d.diametral_inertia >= 0, w, "diametral_inertia",
+                d.diametral_inertia, "[0, inf) kg m^2");
+        require(std::isfinite(d.polar_inertia) && d.polar_inertia >= 0, w, "polar_inertia", d.polar_inertia,
+                "[0, inf) kg m^2");
+        require(std::isfinite(d.unbalance) && d.unbalance >= 0, w, "unbalance", d.unbalance, "[0, inf) kg m");
+        require_finite(w, "unbalance_phase", d.unbalance_phase);
+    }
+    for (std::size_t i = 0; i < bearings.size(); ++i) {
+        const FeBearing& b = bearings[i];
+        const std::string w = where("bearing", i);
+        require(b.node >= 0 && b.node < nodes, w, "node", b.node, node_range);
+        const std::pair<const char*, double> coeffs[] = {{"kxx", b.kxx}, {"kxy", b.kxy}, {"kyx", b.kyx},
+                                                         {"kyy", b.kyy}, {"cxx", b.cxx}, {"cxy", b.cxy},
+                                                         {"cyx", b.cyx}, {"cyy", b.cyy}};
+        for (const auto& [key, v] : coeffs) require_finite(w, key, v);
+    }
+    for (std::size_t i = 0; i < supports.size(); ++i)
+        require(supports[i].node >= 0 && supports[i].node < nodes, where("support", i), "node", supports[i].node,
+                node_range);
+}
+
+FeRotorMatrices FeRotor::assemble() const {
+    validate();
+    const int nodes = node_count();
+    const int full = 4 * nodes;
+
+    // Map full DOF -> assembled DOF (-1: constrained).
+    std::vector<char> fixed(full, 0);
+    for (const FeSupport& s : supports) {
+        const int b = 4 * s.node;
+        if (s.x) fixed[b] = 1;
+        if (s.y) fixed[b + 1] = 1;
+        if (s.theta_x) fixed[b + 2] = 1;
+        if (s.theta_y) fixed[b + 3] = 1;
+    }
+    std::vector<int> map(full, -1);
+    FeRotorMatrices r;
+    static const char* prefix[4] = {"x", "y", "tx", "ty"};
+    int n = 0;
+    for (int j = 0; j < full; ++j)
+        if (!fixed[j]) {
+            map[j] = n++;
+            r.dof_names.push_back(prefix[j % 4] + std::to_string(j / 4));
+            r.node_of_dof.push_back(j / 4);
+        }
+    if (n == 0) throw InputError("fe rotor: supports: every DOF is constrained; allowed: at least one free DOF");
+    for (int k = 0; k < nodes; ++k)
+        for (int p = 0; p < 2; ++p) {
+            const int u = map[4 * k + 2 * p], v = map[4 * k + 2 * p + 1];
+            if (u >= 0 && v >= 0) r.whirl_pairs.emplace_back(u, v);
+        }
+    r.node_z.resize(nodes);
+    r.node_z[0] = 0.0;
+    for (int e = 0; e < nodes - 1; ++e) r.node_z[e + 1] = r.node_z[e] + elements[e].length;
+
+    using T = Eigen::Triplet<double>;
+    std::vector<T> tm, tk, tg, td;
+    tm.reserve(64 * elements.size() + 4 * disks.size());
+    tk.reserve(64 * elements.size() + 4 * bearings.size());
+    tg.reserve(32 * elements.size() + 2 * disks.size());
+    td.reserve(4 * bearings.size());
+    auto add = [&](std::vector<T>& t, int i, int j, double v) {
+        const int a = map[i], b = map[j];
+        if (a >= 0 && b >= 0 && v != 0.0) t.emplace_back(a, b, v);
+    };
+
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        const FeElementMatrices em = fe_shaft_element_matrices(elements[e], shear_deformation, rotary_inertia);
+        const int base = 4 * static_cast<int>(e);
+        for (int a = 0; a < 8; ++a)
+            for (int b = 0; b < 8; ++b) {
+                add(tm, base + a, base + b, em.M(a, b));
+                add(tk, base + a, base + b, em.K(a, b));
+                add(tg, base + a, base + b, em.G(a, b));
+            }
+    }
+    r.unbalance = Eigen::VectorXcd::Zero(n);
+    for (const FeDisk& d : disks) {
+        const int b = 4 * d.node;
+        add(tm, b, b, d.mass);
+        add(tm, b + 1, b + 1, d.mass);
+        add(tm, b + 2, b + 2, d.diametral_inertia);
+        add(tm, b + 3, b + 3, d.diametral_inertia);
+        add(tg, b + 2, b + 3, d.polar_inertia);
+        add(tg, b + 3, b + 2, -d.polar_inertia);
+        // Force w^2 m_e e (cos(w t + phi), sin(w t + phi)) = Re(w^2 m_e e e^{i phi} (1, -i) e^{i w t}).
+        const std::complex<double> f = d.unbalance * std::polar(1.0, d.unbalance_phase);
+        if (map[b] >= 0) r.unbalance(map[b]) += f;
+        if (map[b + 1] >= 0) r.unbalance(map[b + 1]) += std::complex<double>(0, -1) * f;
+    }
+    for (const FeBearing& br : bearings) {
+        const int b = 4 * br.node;
+        add(tk, b, b, br.kxx);
+        add(tk, b, b + 1, br.kxy);
+        add(tk, b + 1, b, br.kyx);
+        add(tk, b + 1, b + 1, br.kyy);
+        add(td, b, b, br.cxx);
+        add(td, b, b + 1, br.cxy);
+        add(td, b + 1, b, br.cyx);
+        add(td, b + 1, b + 1, br.cyy);
+    }
+    auto build = [n](Eigen::SparseMatrix<double>& S, const std::vector<T>& t) {
+        S.resize(n, n);
+        S.setFromTriplets(t.begin(), t.end());
+        S.makeCompressed();
+    };
+    build(r.M, tm);
+    build(r.K, tk);
+    build(r.G, tg);
+    build(r.D, td);
+    return r;
+}
+
+SparsePencil FeRotorMatrices::at_speed(double w) const {
+    SparsePencil p;
+    p.M = M;
+    p.C = D + w * G;
+    p.K = K;
+    return p;
+}
+
+SparseGyroscopicSystem FeRotorMatrices::to_system() const {
+    SparseGyroscopicSystem s;
+    s.dof_names = dof_names;
+    s.M = M;
+    s.K = K;
+    s.G = G;
+    s.D = D;
+    s.damping_name = "bearings";
+    if (unbalance.size() > 0 && unbalance.cwiseAbs().maxCoeff() > 0) s.unbalance = unbalance;
+    s.whirl_pairs = whirl_pairs;
+    return s;
+}
+
+GyroscopicSystem FeRotorMatrices::to_dense() const {
+    const Eigen::MatrixXd Dd(D);
+    const double scale = Dd.cwiseAbs().maxCoeff();
+    if ((Dd - Dd.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
+        throw InputError("fe rotor: bearings: cross-coupled damping cxy != cyx makes D unsymmetric, which a "
+                         "GyroscopicSystem cannot hold; allowed: cxy = cyx (use the sparse matrices otherwise)");
+    return to_system().to_dense();
+}
+
+FeRotor fe_uniform_shaft(double length, int count, double outer_diameter, double inner_diameter,
+                         double youngs_modulus, double poisson_ratio, double density) {
+    if (count < 1)
+        throw InputError(fmt::format("fe rotor: element count = {} is out of range; allowed: an integer >= 1", count));
+    FeRotor r;
+    FeShaftElement e;
+    e.length = length / count;
+    e.outer_diameter = outer_diameter;
+    e.inner_diameter = inner_diameter;
+    e.youngs_modulus = youngs_modulus;
+    e.poisson_ratio = poisson_ratio;
+    e.density = density;
+    r.elements.assign(static_cast<std::size_t>(count), e);
+    return r;
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,250 @@
+// Criteria evaluation of one design.
+#include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/pervasive_damping.hpp>
+#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/analysis/unbalance_response.hpp>
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/screening/screening.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+namespace gyrokit {
+
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+std::string position_text(double sm, double wc, const Sweep& s) {
+    if (sm >= 0 && wc <= s.op_from) return fmt::format("is {:.3g}% below the operating range", sm);
+    if (sm >= 0) return fmt::format("is {:.3g}% above the operating range", sm);
+    return "lies inside the operating range";
+}
+
+// API 684 style margin of one critical speed from [from, to], in percent.
+double separation_margin(double wc, double from, double to) {
+    if (wc <= from) return 100.0 * (from - wc) / from;
+    if (wc >= to) return 100.0 * (wc - to) / to;
+    return -100.0 * std::min((wc - from) / from, (to - wc) / to);
+}
+
+void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion& c, std::size_t& q,
+                      DesignResult& r) {
+    const double w_scan = s.op_to * (1.0 + c.margin_percent / 100.0) * 1.05;
+    CampbellOptions co;
+    co.modes = sc.modes;
+    const CampbellDiagram cd = campbell(sc.system, SpeedRange{0.0, w_scan, c.count}.points(), co);
+    const std::vector<CriticalSpeed> cs = critical_speeds(sc.system, cd, c.harmonics);
+    const CriticalSpeed* worst = nullptr;
+    double best = inf;
+    for (const auto& x : cs) {
+        if (c.forward_only && x.mode.whirl != Whirl::Forward) continue;
+        const double sm = separation_margin(x.speed, s.op_from, s.op_to);
+        if (sm < best) best = sm, worst = &x;
+    }
+    if (worst) {
+        r.quantities[q] = worst->speed * s.unit.factor;
+        r.quantities[q + 1] = best;
+        if (best < c.margin_percent) {
+            r.failed.push_back("separation");
+            r.reason += fmt::format("{}separation: critical speed {:.6g} {} ({}x, {} whirl, branch {}) {}, required "
+                                    "{:.3g}%",
+                                    r.reason.empty() ? "" : "; ", worst->speed * s.unit.factor, s.unit.name,
+                                    worst->harmonic, to_string(worst->mode.whirl), worst->branch,
+                                    position_text(best, worst->speed, s), c.margin_percent);
+        }
+    }
+    q += 2;
+}
+
+void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& c, std::size_t& q,
+                     DesignResult& r) {
+    const GyroscopicSystem& sys = sc.system;
+    const CampbellDiagram cd = campbell(sys, SpeedRange{0.0, c.up_to, c.count}.points());
+    const std::vector<StabilityChange> changes = stability_changes(sys, cd);
+    double onset = inf;
+    const Branch* which = nullptr;
+    for (const Branch& b : cd.branches) {
+        for (std::size_t k = 0; k < b.points.size(); ++k) {
+            const Mode& m = b.points[k].mode;
+            // The library's rule: Re lambda beyond its error bound (rounding is neutral).
+            if (m.stability() != Stability::Unstable) continue;
+            double w = b.points[k].speed;
+            if (k > 0)
+                for (const auto& ch : changes)
+                    if (ch.branch == b.id && ch.becomes_unstable && ch.speed <= b.points[k].speed) w = ch.speed;
+            if (w < onset) onset = w, which = &b;
+            break;
+        }
+    }
+    if (which) {
+        r.quantities[q] = onset * s.unit.factor;
+        r.failed.push_back("stability");
+        r.reason += fmt::format("{}stability: mode {} is unstable from {:.6g} {} (checked up to {:.6g} {})",
+                                r.reason.empty() ? "" : "; ", which->id, onset * s.unit.factor, s.unit.name,
+                                c.up_to * s.unit.factor, s.unit.name);
+    }
+    q += 1;
+}
+
+void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& c, std::size_t& q,
+                     DesignResult& r) {
+    const GyroscopicSystem& sys = sc.system;
+    double first = inf;
+    std::string lost_set;
+    int lost_mode = 0;
+    for (const auto& name : c.damping) {
+        GyroscopicSystem one;
+        if (name == "total") {
+            if (!sys.has_damping()) {
+                first = std::min(first, s.op_from);
+                lost_set = "total (no damping in this design)";
+                continue;
+            }
+            one = sys;
+            // Constant damping: one component holding the total, so that the
+            // Hautus test is not also run for every component.
+            const bool constant = sys.bearings.empty() &&
+                                  std::none_of(sys.damping.begin(), sys.damping.end(),
+                                               [](const DampingComponent& d) { return bool(d.of_speed); });
+            if (constant) {
+                DampingComponent total;
+                total.name = "total";
+                total.D = sys.damping_matrix();
+                one.damping = {total};
+            }
+        } else {
+            const std::vector<std::string> names = sys.damping_names();
+            const bool present = std::find(names.begin(), names.end(), name) != names.end();
+            if (!present) {
+                if (s.op_from < first) first = s.op_from, lost_set = name + " (zero in this design)";
+                continue;
+            }
+            one = sys.with_damping_only({name});
+        }
+        const PervasiveReport rep = pervasive_damping(one, s.operating_speeds(), {c.tolerance});
+        for (const auto& l : rep.losses)
+            if (l.damping == "total" && l.speed < first) first = l.speed, lost_set = name, lost_mode = l.mode;
+    }
+    if (first < inf) {
+        r.quantities[q] = first * s.unit.factor;
+        r.failed.push_back("pervasive");
+        r.reason += lost_mode > 0 ? fmt::format("{}pervasive: damping {} does not reach mode {} at {:.6g} {}",
+                                                r.reason.empty() ? "" : "; ", lost_set, lost_mode,
+                                                first * s.unit.factor, s.unit.name)
+                                  : fmt::format("{}pervasive: damping {} is missing", r.reason.empty() ? "" : "; ",
+                                                lost_set);
+    }
+    q += 1;
+}
+
+void check_response(const Sweep& s, const Scene& sc, const ResponseCriterion& c, std::size_t& q,
+                    DesignResult& r) {
+    const GyroscopicSystem& sys = sc.system;
+    std::vector<int> dofs;
+    for (int k = 0; k < sys.size(); ++k)
+        if (c.dofs.empty() || std::find(c.dofs.begin(), c.dofs.end(), sys.dof_names.at(k)) != c.dofs.end())
+            dofs.push_back(k);
+    if (dofs.empty()) throw InputError("[criteria.response] dofs: none of them is a DOF of this design");
+    const ResponseCurve rc = unbalance_response(sys, s.operating_speeds());
+    double amax = -1, wmax = 0;
+    int dmax = 0;
+    for (std::size_t i = 0; i < rc.speeds.size(); ++i)
+        for (int k : dofs)
+            if (std::abs(rc.Z(i, k)) > amax) amax = std::abs(rc.Z(i, k)), wmax = rc.speeds[i], dmax = k;
+    // Peaks between grid speeds, refined by golden section on the chosen DOFs only.
+    for (int k : dofs)
+        for (std::size_t i = 1; i + 1 < rc.speeds.size(); ++i) {
+            const double a0 = std::abs(rc.Z(i - 1, k)), a1 = std::abs(rc.Z(i, k)), a2 = std::abs(rc.Z(i + 1, k));
+            if (!(a1 >= a0 && a1 >= a2)) continue;
+            const auto neg = [&](double w) { return -std::abs(unbalance_response(sys, w)(k)); };
+            const double w = find_minimum(neg, rc.speeds[i - 1], rc.speeds[i + 1]);
+            const double a = -neg(w);
+            if (a > amax) amax = a, wmax = w, dmax = k;
+        }
+    r.quantities[q] = amax;
+    r.quantities[q + 1] = wmax * s.unit.factor;
+    if (amax > c.max_amplitude) {
+        r.failed.push_back("response");
+        r.reason += fmt::format("{}response: |{}| = {:.4g} at {:.6g} {} exceeds {:.4g}", r.reason.empty() ? "" : "; ",
+                                sys.dof_names.at(dmax), amax, wmax * s.unit.factor, s.unit.name, c.max_amplitude);
+    }
+    q += 2;
+}
+
+std::string one_line(std::string m) {
+    std::replace(m.begin(), m.end(), '\n', ' ');
+    std::replace(m.begin(), m.end(), '\r', ' ');
+    return m;
+}
+
+}  // namespace
+
+std::string to_string(Verdict v) {
+    switch (v) {
+        case Verdict::Pass: return "pass";
+        case Verdict::Fail: return "fail";
+        default: return "error";
+    }
+}
+
+std::vector<std::string> quantity_columns(const Sweep& s) {
+    std::vector<std::string> c;
+    if (s.criteria.separation) c.insert(c.end(), {"critical_speed", "separation_percent"});
+    if (s.criteria.stability) c.push_back("instability_onset");
+    if (s.criteria.pervasive) c.push_back("pervasive_loss");
+    if (s.criteria.response) c.insert(c.end(), {"max_amplitude", "max_amplitude_speed"});
+    return c;
+}
+
+std::vector<std::string> result_columns(const Sweep& s) {
+    std::vector<std::string> c{"design"};
+    for (const auto& p : s.parameters) c.push_back(p.name);
+    for (const auto& q : quantity_columns(s)) c.push_back(q);
+    c.insert(c.end(), {"verdict", "failed", "reason"});
+    return c;
+}
+
+DesignResult evaluate_design(const Sweep& s, std::size_t i) {
+    DesignResult r;
+    r.index = i;
+    r.parameters = s.design(i);
+    const std::vector<std::string> qc = quantity_columns(s);
+    r.quantities.assign(qc.size(), std::nullopt);
+    std::map<std::string, double> overrides;
+    for (std::size_t j = 0; j < s.parameters.size(); ++j) overrides[s.parameters[j].name] = r.parameters[j];
+    Scene sc;
+    try {
+        sc = s.loader(overrides);
+    } catch (const std::exception& e) {
+        r.verdict = Verdict::Error;
+        r.reason = one_line(std::string("invalid parameters: ") + e.what());
+        return r;
+    }
+    try {
+        std::size_t q = 0;
+        const Criteria& c = s.criteria;
+        if (c.separation) check_separation(s, sc, *c.separation, q, r);
+        if (c.stability) check_stability(s, sc, *c.stability, q, r);
+        if (c.pervasive) check_pervasive(s, sc, *c.pervasive, q, r);
+        if (c.response) check_response(s, sc, *c.response, q, r);
+        for (std::size_t k = 0; k < qc.size(); ++k)
+            if (r.quantities[k] && !std::isfinite(*r.quantities[k]))
+                throw SolverError(qc[k] + " is not finite");
+    } catch (const std::exception& e) {
+        r.verdict = Verdict::Error;
+        r.failed.clear();
+        r.quantities.assign(qc.size(), std::nullopt);
+        r.reason = one_line(std::string("analysis failed: ") + e.what());
+        return r;
+    }
+    r.verdict = r.failed.empty() ? Verdict::Pass : Verdict::Fail;
+    if (r.failed.empty()) r.reason = "all criteria met";
+    r.reason = one_line(r.reason);
+    return r;
+}
+
+}  // namespace gyrokit

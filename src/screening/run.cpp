@@ -1,0 +1,381 @@
+// Parallel run, result files, resume, merge, summary and the safe-region plot.
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/screening/screening.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <gsl/gsl_errno.h>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <thread>
+
+namespace gyrokit {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string header_line(const Sweep& s) {
+    std::string h = csv_line(result_columns(s));
+    h.pop_back();
+    return h;
+}
+
+// The complete lines of a result file and the byte length they occupy; a last
+// line without its newline (an interrupted write) is left out.
+struct ParsedFile {
+    bool has_header = false;
+    std::vector<ResultRow> rows;
+    std::size_t valid_bytes = 0;
+    bool partial_tail = false;
+};
+
+ParsedFile parse_result_file(const Sweep& s, const std::string& path, const Shard* shard) {
+    ParsedFile pf;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(fmt::format("{}: cannot read the result file", path));
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string text = ss.str();
+    const std::vector<std::string> cols = result_columns(s);
+    const std::string header = header_line(s);
+    std::set<std::size_t> seen;
+    std::size_t pos = 0, line_no = 0;
+    while (pos < text.size()) {
+        const std::size_t nl = text.find('\n', pos);
+        if (nl == std::string::npos) {
+            pf.partial_tail = true;
+            break;
+        }
+        std::string line = text.substr(pos, nl - pos);
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        ++line_no;
+        if (line_no == 1) {
+            if (line != header)
+                throw InputError(fmt::format("{}: the header does not match the sweep {}; expected '{}'", path,
+                                             s.path, header));
+            pf.has_header = true;
+        } else {
+            std::vector<std::string> cells;
+            try {
+                cells = parse_csv_line(line);
+            } catch (const Error& e) {
+                throw InputError(fmt::format("{}: line {}: {}", path, line_no, e.what()));
+            }
+            if (cells.size() != cols.size())
+                throw InputError(fmt::format("{}: line {} has {} fields; the sweep has {} columns", path, line_no,
+                                             cells.size(), cols.size()));
+            std::size_t idx = 0;
+            try {
+                std::size_t used = 0;
+                const unsigned long long v = std::stoull(cells[0], &used);
+                if (used != cells[0].size()) throw std::invalid_argument(cells[0]);
+                idx = static_cast<std::size_t>(v);
+            } catch (const std::exception&) {
+                throw InputError(fmt::format("{}: line {}: design '{}' is not a design index", path, line_no, cells[0]));
+            }
+            if (idx >= s.design_count())
+                throw InputError(fmt::format("{}: line {}: design {} is out of range; the sweep has {} designs", path,
+                                             line_no, idx, s.design_count()));
+            if (shard && !shard->owns(idx))
+                throw InputError(fmt::format("{}: line {}: design {} belongs to another shard than {}/{}", path,
+                                             line_no, idx, shard->index, shard->count));
+            if (!seen.insert(idx).second)
+                throw InputError(fmt::format("{}: line {}: design {} appears twice", path, line_no, idx));
+            const std::vector<double> x = s.design(idx);
+            for (std::size_t j = 0; j < x.size(); ++j)
+                if (cells[1 + j] != fmt::format("{}", x[j]))
+                    throw InputError(fmt::format("{}: line {}: design {} has {} = {}, the sweep gives {}; the file "
+                                                 "belongs to another sweep",
+                                                 path, line_no, idx, s.parameters[j].name, cells[1 + j], x[j]));
+            pf.rows.push_back({idx, std::move(cells)});
+        }
+        pos = nl + 1;
+        pf.valid_bytes = pos;
+    }
+    return pf;
+}
+
+bool is_number_column(const Sweep& s, std::size_t c) {
+    return c >= 1 && c < 1 + s.parameters.size() + quantity_columns(s).size();
+}
+
+}  // namespace
+
+std::string csv_line(const std::vector<std::string>& cells) {
+    std::string out;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+        if (i) out += ',';
+        const std::string& c = cells[i];
+        if (c.find_first_of(",\"\n\r") == std::string::npos) {
+            out += c;
+        } else {
+            out += '"';
+            for (char ch : c) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+            out += '"';
+        }
+    }
+    out += '\n';
+    return out;
+}
+
+std::vector<std::string> parse_csv_line(const std::string& line) {
+    std::vector<std::string> cells(1);
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        const char ch = line[i];
+        if (quoted) {
+            if (ch == '"') {
+                if (i + 1 < line.size() && line[i + 1] == '"') cells.back() += '"', ++i;
+                else quoted = false;
+            } else {
+                cells.back() += ch;
+            }
+        } else if (ch == '"') {
+            quoted = true;
+        } else if (ch == ',') {
+            cells.emplace_back();
+        } else {
+            cells.back() += ch;
+        }
+    }
+    if (quoted) throw Error("unterminated quoted field");
+    return cells;
+}
+
+ResultRow format_row(const Sweep& s, const DesignResult& r) {
+    ResultRow row;
+    row.index = r.index;
+    row.cells.push_back(std::to_string(r.index));
+    // Shortest round-trip form: the row names the exact design.
+    for (double x : r.parameters) row.cells.push_back(fmt::format("{}", x));
+    for (const auto& q : r.quantities) row.cells.push_back(q ? fmt::format("{:.12g}", *q) : std::string());
+    row.cells.push_back(to_string(r.verdict));
+    std::string failed;
+    for (const auto& f : r.failed) failed += (failed.empty() ? "" : ";") + f;
+    row.cells.push_back(failed);
+    row.cells.push_back(r.reason);
+    (void)s;
+    return row;
+}
+
+RunResult run_screening(const Sweep& s, const RunOptions& opt) {
+    RunResult res;
+    res.columns = result_columns(s);
+    const std::size_t n = s.design_count();
+    std::vector<std::size_t> owned;
+    for (std::size_t i = static_cast<std::size_t>(opt.shard.index); i < n; i += static_cast<std::size_t>(opt.shard.count))
+        owned.push_back(i);
+    res.shard_designs = owned.size();
+
+    std::set<std::size_t> done;
+    std::ofstream out;
+    if (!opt.out.empty()) {
+        bool need_header = true;
+        if (opt.resume && fs::exists(opt.out)) {
+            ParsedFile pf = parse_result_file(s, opt.out, &opt.shard);
+            need_header = !pf.has_header;
+            // Drop the partial last line before appending.
+            fs::resize_file(opt.out, pf.valid_bytes);
+            for (auto& r : pf.rows) done.insert(r.index);
+            res.resumed = pf.rows.size();
+            res.rows = std::move(pf.rows);
+        }
+        out.open(opt.out, opt.resume ? std::ios::app | std::ios::binary : std::ios::trunc | std::ios::binary);
+        if (!out) throw InputError(fmt::format("{}: cannot write the result file", opt.out));
+        if (need_header) out << header_line(s) << '\n' << std::flush;
+        if (!out) throw Error(fmt::format("{}: write failed (disk full?)", opt.out));
+    }
+    std::vector<std::size_t> todo;
+    for (std::size_t i : owned)
+        if (!done.count(i)) todo.push_back(i);
+    if (opt.limit > 0 && todo.size() > opt.limit) todo.resize(opt.limit);
+
+    gsl_set_error_handler_off();   // global GSL state: set once before the workers start
+    std::vector<std::optional<DesignResult>> slots(todo.size());
+    std::atomic<std::size_t> next{0};
+    std::mutex mu;
+    std::condition_variable cv;
+    const auto worker = [&] {
+        for (;;) {
+            const std::size_t k = next.fetch_add(1);
+            if (k >= todo.size()) return;
+            DesignResult r = evaluate_design(s, todo[k]);
+            {
+                std::lock_guard<std::mutex> lock(mu);
+                slots[k] = std::move(r);
+            }
+            cv.notify_one();
+        }
+    };
+    const int jobs = std::max(1, std::min<int>(opt.jobs, static_cast<int>(std::max<std::size_t>(todo.size(), 1))));
+    std::vector<std::thread> threads;
+    for (int t = 0; t < jobs; ++t) threads.emplace_back(worker);
+    std::vector<ResultRow> fresh;
+    try {
+        for (std::size_t k = 0; k < todo.size(); ++k) {
+            DesignResult r;
+            {
+                std::unique_lock<std::mutex> lock(mu);
+                cv.wait(lock, [&] { return slots[k].has_value(); });
+                r = std::move(*slots[k]);
+                slots[k].reset();
+            }
+            ResultRow row = format_row(s, r);
+            if (out.is_open()) {
+                out << csv_line(row.cells) << std::flush;
+                if (!out) throw Error(fmt::format("{}: write failed", opt.out));
+            }
+            fresh.push_back(std::move(row));
+            ++res.computed;
+            if (opt.progress) opt.progress(res.resumed + res.computed, owned.size());
+        }
+    } catch (...) {
+        next = todo.size();   // workers stop after their current design
+        for (auto& t : threads) t.join();
+        throw;
+    }
+    for (auto& t : threads) t.join();
+    if (out.is_open()) {
+        out.close();   // a failure to write the last buffered bytes shows here
+        if (!out) throw Error(fmt::format("{}: write failed (disk full?)", opt.out));
+    }
+    res.rows.insert(res.rows.end(), std::make_move_iterator(fresh.begin()), std::make_move_iterator(fresh.end()));
+    std::stable_sort(res.rows.begin(), res.rows.end(), [](const auto& a, const auto& b) { return a.index < b.index; });
+    return res;
+}
+
+std::vector<ResultRow> merge_results(const Sweep& s, const std::vector<std::string>& files, bool complete) {
+    std::vector<ResultRow> rows;
+    for (const auto& f : files) {
+        if (!fs::exists(f)) throw InputError(fmt::format("{}: result file not found", f));
+        ParsedFile pf = parse_result_file(s, f, nullptr);
+        if (pf.partial_tail)
+            throw InputError(fmt::format("{}: the last line is incomplete; finish that run with --resume first", f));
+        rows.insert(rows.end(), std::make_move_iterator(pf.rows.begin()), std::make_move_iterator(pf.rows.end()));
+    }
+    std::stable_sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.index < b.index; });
+    for (std::size_t k = 1; k < rows.size(); ++k)
+        if (rows[k].index == rows[k - 1].index)
+            throw InputError(fmt::format("design {} appears in more than one result file", rows[k].index));
+    if (complete) {
+        const std::size_t n = s.design_count();
+        for (std::size_t k = 0; k < n; ++k)
+            if (k >= rows.size() || rows[k].index != k)
+                throw InputError(fmt::format("the result files miss design {} (of {})", k, n));
+    }
+    return rows;
+}
+
+void write_results(std::ostream& os, const Sweep& s, const std::vector<ResultRow>& rows, TableFormat f) {
+    const std::vector<std::string> cols = result_columns(s);
+    if (f == TableFormat::Csv) {
+        os << csv_line(cols);
+        for (const auto& r : rows) os << csv_line(r.cells);
+        return;
+    }
+    if (f == TableFormat::Json) {
+        nlohmann::ordered_json a = nlohmann::ordered_json::array();
+        for (const auto& r : rows) {
+            nlohmann::ordered_json o;
+            for (std::size_t c = 0; c < cols.size(); ++c) {
+                const std::string& v = r.cells[c];
+                if (c == 0) o[cols[c]] = r.index;
+                else if (is_number_column(s, c)) o[cols[c]] = v.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(std::stod(v));
+                else o[cols[c]] = v;
+            }
+            a.push_back(std::move(o));
+        }
+        os << a.dump(2) << '\n';
+        return;
+    }
+    Table t(cols);
+    for (const auto& r : rows) {
+        std::vector<Cell> cells;
+        for (std::size_t c = 0; c < cols.size(); ++c) {
+            const std::string& v = r.cells[c];
+            if (c == 0) cells.emplace_back(static_cast<long long>(r.index));
+            else if (is_number_column(s, c) && !v.empty()) cells.emplace_back(std::stod(v));
+            else cells.emplace_back(v.empty() ? std::string("-") : v);
+        }
+        t.add_row(std::move(cells));
+    }
+    write_table(os, t, f);
+}
+
+Table summary_table(const Sweep& s, const std::vector<ResultRow>& rows) {
+    const std::size_t nc = result_columns(s).size();
+    std::map<std::string, long long> verdicts{{"pass", 0}, {"fail", 0}, {"error", 0}};
+    std::map<std::string, long long> failing;
+    for (const auto& q : {"separation", "stability", "pervasive", "response"}) failing[q] = 0;
+    for (const auto& r : rows) {
+        ++verdicts[r.cells[nc - 3]];
+        std::size_t start = 0;
+        const std::string& f = r.cells[nc - 2];
+        while (start < f.size()) {
+            const std::size_t end = std::min(f.find(';', start), f.size());
+            ++failing[f.substr(start, end - start)];
+            start = end + 1;
+        }
+    }
+    Table t({"outcome", "designs"});
+    t.title = "summary" + (s.title.empty() ? std::string() : " of " + s.title);
+    t.add_row({std::string("designs"), static_cast<long long>(rows.size())});
+    for (const auto& v : {"pass", "fail", "error"}) t.add_row({std::string(v), verdicts[v]});
+    const Criteria& c = s.criteria;
+    const std::vector<std::pair<std::string, bool>> used{{"separation", c.separation.has_value()},
+                                                         {"stability", c.stability.has_value()},
+                                                         {"pervasive", c.pervasive.has_value()},
+                                                         {"response", c.response.has_value()}};
+    for (const auto& [name, on] : used)
+        if (on) t.add_row({"failing " + name, failing[name]});
+    return t;
+}
+
+Figure safe_region_figure(const Sweep& s, const std::vector<ResultRow>& rows, const std::string& x,
+                          const std::string& y) {
+    const std::vector<std::string> cols = result_columns(s);
+    const auto col = [&](const std::string& name) -> std::size_t {
+        for (std::size_t j = 0; j < s.parameters.size(); ++j)
+            if (s.parameters[j].name == name) return 1 + j;
+        throw InputError(fmt::format("plot axis '{}' is not a parameter of the sweep {}", name, s.path));
+    };
+    const std::size_t cx = col(x), cy = col(y), cv = cols.size() - 3;
+    Series pass{{}, {}, "pass", "points", "#2ca02c"}, fail{{}, {}, "fail", "points", "#d62728"},
+        error{{}, {}, "error", "points", "#7f7f7f"};
+    for (const auto& r : rows) {
+        Series& se = r.cells[cv] == "pass" ? pass : r.cells[cv] == "fail" ? fail : error;
+        se.x.push_back(std::stod(r.cells[cx]));
+        se.y.push_back(std::stod(r.cells[cy]));
+    }
+    Figure fig;
+    fig.title = s.title.empty() ? "safe region" : s.title;
+    Panel p;
+    p.xlabel = x;
+    p.ylabel = y;
+    p.title = fmt::format("{} designs: {} pass, {} fail, {} error", rows.size(), pass.x.size(), fail.x.size(),
+                          error.x.size());
+    // Pad the axes so that designs on the range ends are not drawn on the frame.
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    for (const Series* se : {&pass, &fail, &error})
+        for (std::size_t k = 0; k < se->x.size(); ++k)
+            x0 = std::min(x0, se->x[k]), x1 = std::max(x1, se->x[k]), y0 = std::min(y0, se->y[k]),
+            y1 = std::max(y1, se->y[k]);
+    if (x0 <= x1) {
+        const double dx = x1 > x0 ? 0.05 * (x1 - x0) : 0.05 * std::max(std::abs(x0), 1.0);
+        const double dy = y1 > y0 ? 0.05 * (y1 - y0) : 0.05 * std::max(std::abs(y0), 1.0);
+        p.xmin = x0 - dx, p.xmax = x1 + dx, p.ymin = y0 - dy, p.ymax = y1 + dy;
+    }
+    for (Series* se : {&pass, &fail, &error})
+        if (!se->x.empty()) p.series.push_back(std::move(*se));
+    fig.panels.push_back(std::move(p));
+    return fig;
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,378 @@
+#include <gyrokit/screening/sweep.hpp>
+
+#include <gyrokit/core/error.hpp>
+#include "io/toml_keys.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <limits>
+#include <random>
+#include <set>
+#include <toml++/toml.h>
+
+namespace gyrokit {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::size_t max_designs = 100000000;
+
+// Uniform integer in [0, n) by rejection, so it depends only on the engine's
+// (standardized) output sequence.
+std::uint64_t uniform_index(std::mt19937_64& g, std::uint64_t n) {
+    const std::uint64_t limit = std::numeric_limits<std::uint64_t>::max() - std::numeric_limits<std::uint64_t>::max() % n;
+    std::uint64_t x;
+    do x = g();
+    while (x >= limit);
+    return x % n;
+}
+
+// Uniform real in [0, 1) from the top 53 bits.
+double uniform_unit(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
+
+double map_unit(const SweepParameter& p, double u) {
+    if (p.log_scale) return std::exp(std::log(p.from) + u * (std::log(p.to) - std::log(p.from)));
+    return p.from + u * (p.to - p.from);
+}
+
+std::vector<double> numbers_of(const TomlKeys& k, const std::string& key) {
+    const toml::array* a = k.table().get_as<toml::array>(key);
+    if (!a) throw InputError(k.where(key) + " must be an array of numbers");
+    std::vector<double> v;
+    for (const auto& e : *a) {
+        const std::optional<double> x = e.value<double>();
+        if (!x || !(e.is_floating_point() || e.is_integer()) || !std::isfinite(*x))
+            throw InputError(k.where(key) + ": every entry must be a finite number");
+        v.push_back(*x);
+    }
+    return v;
+}
+
+std::vector<std::string> strings_of(const TomlKeys& k, const std::string& key) {
+    const toml::array* a = k.table().get_as<toml::array>(key);
+    if (!a) throw InputError(k.where(key) + " must be an array of strings");
+    std::vector<std::string> v;
+    for (const auto& e : *a) {
+        const std::optional<std::string> x = e.value<std::string>();
+        if (!x) throw InputError(k.where(key) + ": every entry must be a string");
+        v.push_back(*x);
+    }
+    return v;
+}
+
+const toml::table& sub_table(const toml::table& root, const std::string& file, const std::string& key) {
+    const toml::table* t = root.get_as<toml::table>(key);
+    if (!t) throw InputError(fmt::format("{}: {} must be a table [{}]", file, key, key));
+    return *t;
+}
+
+SweepParameter read_parameter(const std::string& file, const toml::table& t, std::size_t i, Sampling sampling) {
+    TomlKeys k(file, fmt::format("parameter {}", i + 1), t);
+    k.only({"name", "from", "to", "count", "values", "scale"});
+    SweepParameter p;
+    p.name = k.choice("name", "", {});
+    if (p.name.empty()) throw InputError(k.where("name") + " is missing; required: a scene key such as \"model.c_G\"");
+    if (p.name.rfind("model.", 0) != 0 || p.name.size() <= 6 || p.name.find('.', 6) != std::string::npos)
+        throw InputError(fmt::format("{} = '{}': allowed: a numeric key of the scene's [model] table, e.g. model.c_G",
+                                     k.where("name"), p.name));
+    p.log_scale = k.choice("scale", "linear", {"linear", "log"}) == "log";
+    if (k.has("values")) {
+        if (sampling == Sampling::LatinHypercube)
+            throw InputError(k.where("values") + ": Latin hypercube sampling needs from and to, not values");
+        if (k.has("from") || k.has("to") || k.has("count"))
+            throw InputError(k.where("values") + ": give either values or from/to/count, not both");
+        p.values = numbers_of(k, "values");
+        if (p.values.empty()) throw InputError(k.where("values") + " is empty; allowed: at least one number");
+        return p;
+    }
+    p.from = k.any_number("from", "scene units");
+    p.to = k.any_number("to", "scene units");
+    const bool single = sampling == Sampling::Grid && k.has("count") && k.integer("count", 0, 1, 1000000) == 1;
+    if (!(p.to > p.from) && !(p.to == p.from && single))
+        throw InputError(fmt::format("{}: empty range from = {} to = {}; allowed: to > from", k.where("to"), p.from,
+                                     p.to));
+    if (p.log_scale && !(p.from > 0))
+        throw InputError(fmt::format("{} = {}: scale = \"log\" needs from > 0", k.where("from"), p.from));
+    if (sampling == Sampling::Grid) {
+        if (!k.has("count")) throw InputError(k.where("count") + " is missing; required: a whole number >= 1 (grid points)");
+        p.count = static_cast<int>(k.integer("count", 0, 1, 1000000));
+    } else if (k.has("count")) {
+        throw InputError(k.where("count") + ": not used with Latin hypercube sampling (set [sampling] samples)");
+    }
+    return p;
+}
+
+// Every parameter must name a key the scene accepts: the scene is loaded with
+// the parameter at each candidate value, and the sweep is rejected only if no
+// candidate is accepted (single bad values are reported per design).
+void check_parameter(const Sweep& s, const SweepParameter& p) {
+    std::vector<double> candidates = p.values;
+    if (candidates.empty()) candidates = {p.from, p.to, map_unit(p, 0.5)};
+    std::string first_error;
+    for (double v : candidates) {
+        try {
+            s.loader({{p.name, v}});
+            return;
+        } catch (const InputError& e) {
+            if (first_error.empty()) first_error = e.what();
+        }
+    }
+    throw InputError(fmt::format("{}: parameter '{}' is not accepted by the scene: {}", s.path, p.name, first_error));
+}
+
+}  // namespace
+
+std::vector<double> latin_hypercube(std::size_t n, std::size_t d, std::uint64_t seed) {
+    std::mt19937_64 g(seed);
+    std::vector<double> x(n * d);
+    std::vector<std::size_t> perm(n);
+    for (std::size_t j = 0; j < d; ++j) {
+        for (std::size_t i = 0; i < n; ++i) perm[i] = i;
+        for (std::size_t i = n; i > 1; --i) std::swap(perm[i - 1], perm[uniform_index(g, i)]);   // Fisher-Yates
+        for (std::size_t i = 0; i < n; ++i) x[i * d + j] = (static_cast<double>(perm[i]) + uniform_unit(g)) / n;
+    }
+    return x;
+}
+
+std::size_t Sweep::design_count() const {
+    if (sampling == Sampling::LatinHypercube) return static_cast<std::size_t>(samples);
+    std::size_t n = 1;
+    for (const auto& p : parameters) n *= p.values.empty() ? static_cast<std::size_t>(p.count) : p.values.size();
+    return n;
+}
+
+std::vector<double> Sweep::design(std::size_t i) const {
+    const std::size_t d = parameters.size();
+    std::vector<double> x(d);
+    if (sampling == Sampling::LatinHypercube) {
+        for (std::size_t j = 0; j < d; ++j) x[j] = map_unit(parameters[j], lhs.at(i * d + j));
+        return x;
+    }
+    // Grid: the last parameter varies fastest.
+    for (std::size_t j = d; j-- > 0;) {
+        const SweepParameter& p = parameters[j];
+        const std::size_t n = p.values.empty() ? static_cast<std::size_t>(p.count) : p.values.size();
+        const std::size_t k = i % n;
+        i /= n;
+        if (!p.values.empty()) x[j] = p.values[k];
+        else x[j] = k == 0 ? p.from : (k + 1 == n ? p.to : map_unit(p, static_cast<double>(k) / (n - 1)));
+    }
+    return x;
+}
+
+std::vector<double> Sweep::operating_speeds() const {
+    return SpeedRange{op_from, op_to, op_from == op_to ? 1 : op_count}.points();
+}
+
+Shard Shard::parse(const std::string& text) {
+    Shard s;
+    const size_t slash = text.find('/');
+    try {
+        if (slash == std::string::npos) throw std::invalid_argument(text);
+        size_t p1 = 0, p2 = 0;
+        const std::string a = text.substr(0, slash), b = text.substr(slash + 1);
+        const long k = std::stol(a, &p1), n = std::stol(b, &p2);
+        if (p1 != a.size() || p2 != b.size() || n < 1 || n > 1000000 || k < 0 || k >= n)
+            throw std::out_of_range(text);
+        s.index = static_cast<int>(k);
+        s.count = static_cast<int>(n);
+    } catch (const std::exception&) {
+        throw InputError(fmt::format("--shard '{}': allowed: K/N with whole numbers 0 <= K < N (e.g. 0/4)", text));
+    }
+    return s;
+}
+
+void finalize_sweep(Sweep& s) {
+    if (!s.loader) {
+        const std::string scene = s.scene;
+        s.loader = [scene](const std::map<std::string, double>& o) { return load_scene(scene, o); };
+    }
+    std::set<std::string> names;
+    for (const auto& p : s.parameters)
+        if (!names.insert(p.name).second)
+            throw InputError(fmt::format("{}: parameter '{}' appears twice", s.path, p.name));
+    if (s.sampling == Sampling::LatinHypercube && s.parameters.empty())
+        throw InputError(s.path + ": Latin hypercube sampling needs at least one [[parameter]]");
+    // Guard the grid size before it overflows.
+    long double n = 1;
+    for (const auto& p : s.parameters) n *= p.values.empty() ? p.count : static_cast<long double>(p.values.size());
+    if (s.sampling == Sampling::Grid && n > max_designs)
+        throw InputError(fmt::format("{}: the grid has {:.0f} designs; allowed: at most {}", s.path,
+                                     static_cast<double>(n), max_designs));
+    if (!(s.op_from >= 0 && s.op_to >= s.op_from && std::isfinite(s.op_to)))
+        throw InputError(fmt::format("{}: [operating] from = {}, to = {}; allowed: 0 <= from <= to", s.path,
+                                     s.op_from * s.unit.factor, s.op_to * s.unit.factor));
+    const Criteria& c = s.criteria;
+    if (!c.separation && !c.stability && !c.pervasive && !c.response)
+        throw InputError(s.path + ": no criteria; required: at least one of [criteria.separation], "
+                                  "[criteria.stability], [criteria.pervasive], [criteria.response]");
+    if (c.separation && !(s.op_from > 0))
+        throw InputError(s.path + ": [criteria.separation] needs [operating] from > 0 (the margin is relative to it)");
+
+    const Scene base = s.loader({});
+    s.dof_names = base.system.dof_names;
+    if (c.separation && c.separation->harmonics.empty()) s.criteria.separation->harmonics = base.harmonics;
+    if (c.response) {
+        if (base.system.unbalance.size() == 0 || base.system.unbalance.norm() == 0.0)
+            throw InputError(fmt::format("{}: [criteria.response] needs an unbalance, but scene {} has none", s.path,
+                                         s.scene));
+        for (const auto& d : c.response->dofs)
+            if (std::find(s.dof_names.begin(), s.dof_names.end(), d) == s.dof_names.end())
+                throw InputError(fmt::format("{}: [criteria.response] dofs: '{}' is not a DOF of scene {}", s.path, d,
+                                             s.scene));
+    }
+    if (c.pervasive) {
+        if (base.system.damping_names().empty() && s.parameters.empty())
+            throw InputError(fmt::format("{}: [criteria.pervasive] needs damping, but scene {} has none", s.path,
+                                         s.scene));
+        for (const auto& d : c.pervasive->damping) {
+            if (d == "total") continue;
+            // A component may be zero in the base scene but switched on by a parameter.
+            const std::vector<std::string> names = base.system.damping_names();
+            const bool known = std::find(names.begin(), names.end(), d) != names.end() ||
+                               std::any_of(s.parameters.begin(), s.parameters.end(),
+                                           [&](const SweepParameter& p) { return p.name == "model." + d; });
+            if (!known)
+                throw InputError(fmt::format("{}: [criteria.pervasive] damping: '{}' is not a damping component of "
+                                             "scene {}; allowed: total or a component name",
+                                             s.path, d, s.scene));
+        }
+    }
+    for (const auto& p : s.parameters) check_parameter(s, p);
+    if (!s.plot_axes.empty()) {
+        if (s.plot_axes.size() != 2)
+            throw InputError(s.path + ": [plot] axes must name exactly two parameters");
+        for (const auto& a : s.plot_axes)
+            if (!names.count(a))
+                throw InputError(fmt::format("{}: [plot] axes: '{}' is not a parameter of the sweep", s.path, a));
+    }
+    if (s.sampling == Sampling::LatinHypercube)
+        s.lhs = latin_hypercube(static_cast<std::size_t>(s.samples), s.parameters.size(), s.seed);
+}
+
+Sweep read_sweep(const std::string& path) {
+    Sweep s;
+    s.path = path;
+    toml::table root;
+    try {
+        root = toml::parse_file(path);
+    } catch (const toml::parse_error& e) {
+        if (!fs::exists(path)) throw InputError(fmt::format("{}: sweep file not found", path));
+        const auto& b = e.source().begin;
+        throw InputError(fmt::format("{}: line {}, column {}: {}", path, b.line, b.column, e.description()));
+    }
+    TomlKeys top(path, "top level", root);
+    top.only({"title", "scene", "units", "sampling", "parameter", "operating", "criteria", "plot"});
+    s.title = top.choice("title", "", {});
+    const std::string scene = top.choice("scene", "", {});
+    if (scene.empty()) throw InputError(top.where("scene") + " is missing; required: path of the base scene file");
+    s.scene = fs::path(scene).is_absolute() ? scene : (fs::path(path).parent_path() / scene).string();
+    s.unit = SpeedUnit::parse(top.choice("units", "rad/s", {"rad/s", "Hz", "rpm"}));
+    const double f = s.unit.factor;
+
+    if (root.contains("sampling")) {
+        TomlKeys k(path, "sampling", sub_table(root, path, "sampling"));
+        k.only({"method", "samples", "seed"});
+        s.sampling = k.choice("method", "grid", {"grid", "lhs"}) == "lhs" ? Sampling::LatinHypercube : Sampling::Grid;
+        if (s.sampling == Sampling::LatinHypercube) {
+            if (!k.has("samples")) throw InputError(k.where("samples") + " is missing; required: a whole number >= 1");
+            s.samples = k.integer("samples", 0, 1, 10000000);
+            s.seed = static_cast<std::uint64_t>(k.integer("seed", 1, 0, std::numeric_limits<long long>::max()));
+        } else if (k.has("samples") || k.has("seed")) {
+            throw InputError(k.where(k.has("samples") ? "samples" : "seed") + ": only used with method = \"lhs\"");
+        }
+    }
+    if (root.contains("parameter")) {
+        const toml::array* ps = root.get_as<toml::array>("parameter");
+        if (!ps) throw InputError(path + ": parameter must be an array of tables [[parameter]]");
+        for (std::size_t i = 0; i < ps->size(); ++i) {
+            const toml::table* t = (*ps)[i].as_table();
+            if (!t) throw InputError(path + ": parameter must be an array of tables [[parameter]]");
+            s.parameters.push_back(read_parameter(path, *t, i, s.sampling));
+        }
+    }
+
+    if (!root.contains("operating"))
+        throw InputError(path + ": table [operating] is missing; required: from, to (operating speed range)");
+    {
+        TomlKeys k(path, "operating", sub_table(root, path, "operating"));
+        k.only({"from", "to", "count"});
+        s.op_from = k.number("from", std::nullopt, 0, false, s.unit.name.c_str()) / f;
+        s.op_to = k.number("to", std::nullopt, 0, false, s.unit.name.c_str()) / f;
+        if (s.op_to < s.op_from)
+            throw InputError(fmt::format("{}: empty range from = {} to = {}; allowed: to >= from", k.where("to"),
+                                         s.op_from * f, s.op_to * f));
+        s.op_count = static_cast<int>(k.integer("count", 41, 2, 100000));
+    }
+
+    if (root.contains("criteria")) {
+        const toml::table& ct = sub_table(root, path, "criteria");
+        TomlKeys k(path, "criteria", ct);
+        k.only({"separation", "stability", "pervasive", "response", "balancer"});
+        if (ct.contains("balancer"))
+            throw InputError(fmt::format("{}: [criteria.balancer] needs a balancer model: no balancer model in scene "
+                                         "{}", path, s.scene));
+        if (ct.contains("separation")) {
+            TomlKeys c(path, "criteria.separation", sub_table(ct, path + ": criteria", "separation"));
+            c.only({"margin_percent", "whirl", "harmonics", "count"});
+            SeparationCriterion sc;
+            sc.margin_percent = c.number("margin_percent", 15.0, 0, false, "%");
+            sc.forward_only = c.choice("whirl", "all", {"all", "forward"}) == "forward";
+            if (c.has("harmonics")) {
+                for (double h : numbers_of(c, "harmonics")) {
+                    if (h != std::floor(h) || h < 1 || h > 1000)
+                        throw InputError(c.where("harmonics") + ": each entry must be a whole number in [1, 1000]");
+                    sc.harmonics.push_back(static_cast<int>(h));
+                }
+                if (sc.harmonics.empty()) throw InputError(c.where("harmonics") + " is empty; allowed: e.g. [1]");
+            }
+            sc.count = static_cast<int>(c.integer("count", 121, 3, 100000));
+            s.criteria.separation = sc;
+        }
+        if (ct.contains("stability")) {
+            TomlKeys c(path, "criteria.stability", sub_table(ct, path + ": criteria", "stability"));
+            c.only({"up_to", "count"});
+            StabilityCriterion sc;
+            sc.up_to = c.number("up_to", s.op_to * f, 0, true, s.unit.name.c_str()) / f;
+            if (!(sc.up_to > 0.0))   // the default, [operating] to, may be 0
+                throw InputError(fmt::format("{}: [criteria.stability] up_to is missing and [operating] to = {} gives "
+                                             "no speed range; required: up_to > 0 ({})",
+                                             path, s.op_to * f, s.unit.name));
+            sc.count = static_cast<int>(c.integer("count", 121, 3, 100000));
+            s.criteria.stability = sc;
+        }
+        if (ct.contains("pervasive")) {
+            TomlKeys c(path, "criteria.pervasive", sub_table(ct, path + ": criteria", "pervasive"));
+            c.only({"damping", "tolerance"});
+            PervasiveCriterion pc;
+            if (c.has("damping")) pc.damping = strings_of(c, "damping");
+            if (pc.damping.empty()) throw InputError(c.where("damping") + " is empty; allowed: e.g. [\"total\"]");
+            pc.tolerance = c.number("tolerance", 1e-8, 0, true, "1");
+            if (pc.tolerance >= 1) throw InputError(c.where("tolerance") + ": allowed: 0 < tolerance < 1");
+            s.criteria.pervasive = pc;
+        }
+        if (ct.contains("response")) {
+            TomlKeys c(path, "criteria.response", sub_table(ct, path + ": criteria", "response"));
+            c.only({"max_amplitude", "dofs"});
+            ResponseCriterion rc;
+            rc.max_amplitude = c.number("max_amplitude", std::nullopt, 0, true, "DOF units");
+            if (c.has("dofs")) {
+                rc.dofs = strings_of(c, "dofs");
+                if (rc.dofs.empty()) throw InputError(c.where("dofs") + " is empty; allowed: DOF names, or omit it");
+            }
+            s.criteria.response = rc;
+        }
+    }
+    if (root.contains("plot")) {
+        TomlKeys k(path, "plot", sub_table(root, path, "plot"));
+        k.only({"axes"});
+        s.plot_axes = strings_of(k, "axes");
+    }
+    finalize_sweep(s);
+    return s;
+}
+
+}  // namespace gyrokit

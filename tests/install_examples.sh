@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Installs gyrokit into a temporary prefix, builds examples/ against it with
+# find_package(gyrokit) only (and one example through pkg-config), and runs them.
+# Usage: install_examples.sh BUILD_DIR SOURCE_DIR
+set -u
+build=$1 src=$2
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+
+cmake --install "$build" --prefix "$dir/prefix" > "$dir/install.log" || { cat "$dir/install.log"; fail "cmake --install"; }
+[ -f "$dir/prefix/include/gyrokit/gyrokit.hpp" ] || fail "umbrella header not installed"
+for f in gyrokitConfig.cmake gyrokitConfigVersion.cmake gyrokit-targets.cmake gyrokit.pc; do
+    [ -n "$(find "$dir/prefix" -name "$f")" ] || fail "not installed: $f"
+done
+[ -n "$(find "$dir/prefix" -name 'libgyrokit.a')" ] || fail "no static library installed"
+[ -n "$(find "$dir/prefix" -name 'libgyrokit.so*')" ] || fail "no shared library installed"
+# No private glue in the public headers: they must compile without toml++, fmt, LAPACKE or ARPACK.
+if grep -rlE '#include <(toml\+\+|fmt/|lapacke|arpack|nlohmann|gsl/)' "$dir/prefix/include/gyrokit"; then
+    fail "a public header includes a private dependency"
+fi
+
+cmake -S "$src/examples" -B "$dir/examples" -DCMAKE_PREFIX_PATH="$dir/prefix" -DCMAKE_BUILD_TYPE=Release \
+    > "$dir/configure.log" 2>&1 || { cat "$dir/configure.log"; fail "configure examples"; }
+cmake --build "$dir/examples" -j2 > "$dir/build.log" 2>&1 || { cat "$dir/build.log"; fail "build examples"; }
+
+run() {
+    "$@" > "$dir/out" 2>&1 || { cat "$dir/out"; fail "$*"; }
+    cat "$dir/out"
+}
+libdir=$(dirname "$(find "$dir/prefix" -name 'libgyrokit.so' | head -1)")
+export LD_LIBRARY_PATH="$libdir"
+run "$dir/examples/gyrostat_campbell"
+run "$dir/examples/own_matrices"
+run "$dir/examples/own_matrices_static"
+run "$dir/examples/critical_speeds" "$src/data/centrifuge.toml"
+grep -q "rad/s" "$dir/out" || fail "critical_speeds printed no critical speed"
+
+# pkg-config: the same example from the .pc file alone (--define-prefix: the prefix is where the .pc file was installed).
+export PKG_CONFIG_PATH="$libdir/pkgconfig"
+# shellcheck disable=SC2046
+c++ -O1 -o "$dir/own_matrices_pc" "$src/examples/own_matrices.cpp" $(pkg-config --define-prefix --cflags --libs gyrokit) \
+    || fail "pkg-config build"
+run "$dir/own_matrices_pc"
+echo "install and examples: ok"
