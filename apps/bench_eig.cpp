@@ -48,14 +48,12 @@ GyroscopicSystem make_multi_disk_rotor(int disks) {
     const double l = L / (disks - 1), EI = E * std::acos(-1.0) * std::pow(d, 4) / 64.0;
 
     GyroscopicSystem sys;
-    sys.M = Eigen::MatrixXd::Zero(n, n);
-    sys.G = Eigen::MatrixXd::Zero(n, n);
-    sys.K = Eigen::MatrixXd::Zero(n, n);
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), G = M, K = M;
     for (int i = 0; i < disks; ++i) {
         const int b = 4 * i;
-        sys.M.diagonal().segment(b, 4) << mass / disks, mass / disks, I_d / disks, I_d / disks;
-        sys.G(b + 2, b + 3) = I_p / disks;
-        sys.G(b + 3, b + 2) = -I_p / disks;
+        M.diagonal().segment(b, 4) << mass / disks, mass / disks, I_d / disks, I_d / disks;
+        G(b + 2, b + 3) = I_p / disks;
+        G(b + 3, b + 2) = -I_p / disks;
         for (const char* dof : {"x", "y", "tilt_x", "tilt_y"}) sys.dof_names.push_back(fmt::format("{}{}", dof, i + 1));
         sys.whirl_pairs.emplace_back(b, b + 1);
         sys.whirl_pairs.emplace_back(b + 2, b + 3);
@@ -74,12 +72,15 @@ GyroscopicSystem make_multi_disk_rotor(int disks) {
         const double sign_yz[4] = {1, -1, 1, -1};
         for (int r = 0; r < 4; ++r)
             for (int s = 0; s < 4; ++s) {
-                sys.K(xz[r], xz[s]) += ke(r, s);
-                sys.K(yz[r], yz[s]) += sign_yz[r] * sign_yz[s] * ke(r, s);
+                K(xz[r], xz[s]) += ke(r, s);
+                K(yz[r], yz[s]) += sign_yz[r] * sign_yz[s] * ke(r, s);
             }
     }
-    for (int dof : {0, 1, n - 4, n - 3}) sys.K(dof, dof) += k_bearing;
-    sys.damping.push_back({"proportional", alpha * sys.M + beta * sys.K, {}});
+    for (int dof : {0, 1, n - 4, n - 3}) K(dof, dof) += k_bearing;
+    sys.M = to_sparse(M);
+    sys.G = to_sparse(G);
+    sys.K = to_sparse(K);
+    sys.damping.push_back({"proportional", to_sparse(alpha * M + beta * K)});
     sys.validate(fmt::format("rotor with {} disks", disks));
     return sys;
 }

@@ -31,9 +31,7 @@ Scene multi_disk_rotor(int disks, double k_bearing, double c_bearing) {
     Scene sc;
     sc.model_type = "matrices";
     GyroscopicSystem& s = sc.system;
-    s.M = Eigen::MatrixXd::Zero(n, n);
-    s.K = Eigen::MatrixXd::Zero(n, n);
-    s.G = Eigen::MatrixXd::Zero(n, n);
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), K = M, G = M;
     Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);
     Eigen::Matrix4d ke;
     ke << 12, 6 * l, -12, 6 * l, 6 * l, 4 * l * l, -6 * l, 2 * l * l, -12, -6 * l, 12, -6 * l, 6 * l, 2 * l * l,
@@ -41,10 +39,10 @@ Scene multi_disk_rotor(int disks, double k_bearing, double c_bearing) {
     ke *= EI / (l * l * l);
     for (int i = 0; i < disks; ++i) {
         const int b = 4 * i;
-        s.M(b, b) = s.M(b + 1, b + 1) = m;
-        s.M(b + 2, b + 2) = s.M(b + 3, b + 3) = Id;
-        s.G(b + 2, b + 3) = Ip;
-        s.G(b + 3, b + 2) = -Ip;
+        M(b, b) = M(b + 1, b + 1) = m;
+        M(b + 2, b + 2) = M(b + 3, b + 3) = Id;
+        G(b + 2, b + 3) = Ip;
+        G(b + 3, b + 2) = -Ip;
         for (const char* nm : {"x", "y", "tilt_x", "tilt_y"}) s.dof_names.push_back(fmt::format("{}{}", nm, i + 1));
         s.whirl_pairs.emplace_back(b, b + 1);
         s.whirl_pairs.emplace_back(b + 2, b + 3);
@@ -54,17 +52,20 @@ Scene multi_disk_rotor(int disks, double k_bearing, double c_bearing) {
         for (const auto& [w, t] : {std::pair<int, int>{0, 3}, std::pair<int, int>{1, 2}}) {
             const int idx[4] = {4 * e + w, 4 * e + t, 4 * (e + 1) + w, 4 * (e + 1) + t};
             for (int a = 0; a < 4; ++a)
-                for (int c = 0; c < 4; ++c) s.K(idx[a], idx[c]) += ke(a, c);
+                for (int c = 0; c < 4; ++c) K(idx[a], idx[c]) += ke(a, c);
         }
     }
     for (int end : {0, disks - 1})
         for (int q : {4 * end, 4 * end + 1}) {
-            s.K(q, q) += k_bearing;
+            K(q, q) += k_bearing;
             D(q, q) += c_bearing;
         }
     DampingComponent bearings;
     bearings.name = "bearings";
-    bearings.D = D;
+    bearings.D = to_sparse(D);
+    s.M = to_sparse(M);
+    s.K = to_sparse(K);
+    s.G = to_sparse(G);
     s.damping.push_back(bearings);
     s.unbalance = Eigen::VectorXcd::Zero(n);
     const int mid = 4 * (disks / 2);

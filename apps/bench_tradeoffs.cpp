@@ -201,13 +201,13 @@ void eig_rows(Table& t, const Settings& s) {
     const Scene centrifuge = load_scene(std::string(GYROKIT_DATA_DIR) + "/centrifuge.toml");
     const int elements = s.quick ? 24 : 75;
     const FeRotorMatrices fe = fe_machine(elements, true).assemble();
-    const auto fe_sys = std::make_shared<SparseGyroscopicSystem>(fe.to_system());
+    const auto fe_sys = std::make_shared<GyroscopicSystem>(fe.to_system());
     const GyroscopicSystem& csys = centrifuge.system;
     std::vector<EigCase> cases;
     cases.push_back({"centrifuge (6 DOFs, 30 rad/s)", csys,
-                     [&csys](double w) { return to_sparse(csys.at_speed(w)); }, 30.0, {{2, 0}, {4, 0}}});
-    cases.push_back({fmt::format("FE rotor ({} DOFs, 1000 rad/s)", fe.size()), fe.to_dense(),
-                     [fe_sys](double w) { return fe_sys->at_speed(w); }, 1000.0,
+                     [&csys](double w) { return csys.sparse_at_speed(w); }, 30.0, {{2, 0}, {4, 0}}});
+    cases.push_back({fmt::format("FE rotor ({} DOFs, 1000 rad/s)", fe.size()), fe.to_system(),
+                     [fe_sys](double w) { return fe_sys->sparse_at_speed(w); }, 1000.0,
                      {{2, 0}, {6, 16}, {6, 0}, {6, 60}, {12, 28}, {12, 0}}});
     for (const EigCase& c : cases) {
         const QuadraticSpectrum qz = solve_at_speed(c.sys, c.speed);
@@ -309,7 +309,7 @@ void critical_rows(Table& t, const Settings& s) {
     std::vector<SpeedCase> cases;
     cases.push_back({"centrifuge (6 DOFs)", load_scene(std::string(GYROKIT_DATA_DIR) + "/centrifuge.toml").system,
                      0.0, 60.0, 6});
-    cases.push_back({"FE rotor, undamped (52 DOFs)", fe_machine(12, false).assemble().to_dense(), 0.0, 3000.0, 8});
+    cases.push_back({"FE rotor, undamped (52 DOFs)", fe_machine(12, false).assemble().to_system(), 0.0, 3000.0, 8});
     const std::vector<int> counts = s.quick ? std::vector<int>{4, 13, 61} : std::vector<int>{4, 7, 13, 25, 61, 241};
     for (const SpeedCase& c : cases) {
         CampbellOptions opt;
@@ -377,7 +377,7 @@ void campbell_rows(Table& t, const Settings& s) {
     // The centrifuge beyond its scene's range (0..60 rad/s), where coarse steps skip over crossings.
     cases.push_back({"centrifuge (6 DOFs)", load_scene(std::string(GYROKIT_DATA_DIR) + "/centrifuge.toml").system,
                      0.0, 300.0, 6});
-    cases.push_back({"FE rotor, damped (52 DOFs)", fe_machine(12, true).assemble().to_dense(), 0.0, 4000.0, 8});
+    cases.push_back({"FE rotor, damped (52 DOFs)", fe_machine(12, true).assemble().to_system(), 0.0, 4000.0, 8});
     // Every coarse grid speed is a fine one: 480 = 3 * 160 = 10 * 48 = 40 * 12 = 160 * 3, 120 = 3 * 40 = 10 * 12.
     const int fine = s.quick ? 121 : 481;
     const std::vector<int> counts = s.quick ? std::vector<int>{4, 11, 41} : std::vector<int>{4, 11, 41, 161};
@@ -466,7 +466,7 @@ void mesh_rows(Table& t, const Settings& s) {
         add(t, {"mesh", model, "elements", fmt::format("{} ({} DOFs), sparse k = 6", count, n), t_sparse, error(sp),
                 "rel. frequency, 3 lowest (x, y)", reference, fmt::format("max bwd {}", sci(sp.max_backward_error()))});
         if (count <= (s.quick ? 16 : 64)) {
-            const double t_dense = s.time([&] { sp = solve_at_speed(r.assemble().to_dense(), 0.0); }, 1.0);
+            const double t_dense = s.time([&] { sp = solve_at_speed(r.assemble().to_system(), 0.0); }, 1.0);
             add(t, {"mesh", model, "elements", fmt::format("{} ({} DOFs), dense QZ", count, n), t_dense, error(sp),
                     "rel. frequency, 3 lowest (x, y)", reference,
                     fmt::format("max bwd {}", sci(sp.max_backward_error()))});
@@ -628,7 +628,7 @@ void size_rows(Table& t, Table& fit, const Settings& s) {
     };
     for (int n : dense_sizes) {
         const FeRotor r = fe_machine(n / 4 - 1, true);
-        const GyroscopicSystem sys = r.assemble().to_dense();
+        const GyroscopicSystem sys = r.assemble().to_system();
         QuadraticSpectrum sp;
         const double sec = s.time([&] { sp = solve_at_speed(sys, w); }, 2.0);
         row(dense, sys.size(), r, sec, sp, "");
@@ -636,12 +636,12 @@ void size_rows(Table& t, Table& fit, const Settings& s) {
     SparseEigenOptions so;
     so.modes = 6;
     const auto sparse_run = [&](const std::string& path, const FeRotor& r) {
-        const SparseGyroscopicSystem sys = r.assemble().to_system();
+        const GyroscopicSystem sys = r.assemble().to_system();
         QuadraticSpectrum sp;
         int restarts = 0;
         const double sec = s.time(
             [&] {
-                const SparsePencil p = sys.at_speed(w);
+                const SparsePencil p = sys.sparse_at_speed(w);
                 SparseSpectrum ss = solve_quadratic_sparse(p, so, sys.whirl_pairs);
                 restarts = ss.iterations;
                 sp = to_spectrum(std::move(ss), p);

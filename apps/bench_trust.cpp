@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
         GyroscopicSystem damped = sc.system;
         Eigen::MatrixXd D = Eigen::MatrixXd::Zero(damped.size(), damped.size());
         for (int dof : {0, 1, 36, 37}) D(dof, dof) = 500.0;
-        damped.damping.push_back({"bearings", D, {}});
+        damped.damping.push_back({"bearings", to_sparse(D)});
         const std::vector<double> speeds = linspace(0.0, 1000.0, 101);
 
         Table t({"case", "speeds", "modes", "campbell_s", "bare_solves_s", "ratio", "inserted", "ambiguous",

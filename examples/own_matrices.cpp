@@ -15,9 +15,10 @@ int main() {
     sys.dof_names = {"x", "y", "theta_x", "theta_y"};
     sys.M = Eigen::Vector4d(m, m, Id, Id).asDiagonal();
     sys.K = Eigen::Vector4d(k, k, kt, kt).asDiagonal();
-    sys.G = Eigen::MatrixXd::Zero(4, 4);
-    sys.G(2, 3) = Ip;   // gyroscopic moments per unit speed: Ip w theta_y' and -Ip w theta_x'
-    sys.G(3, 2) = -Ip;
+    Eigen::Matrix4d G = Eigen::Matrix4d::Zero();
+    G(2, 3) = Ip;   // gyroscopic moments per unit speed: Ip w theta_y' and -Ip w theta_x'
+    G(3, 2) = -Ip;
+    sys.G = G;      // stored sparse; a large model assigns an Eigen::SparseMatrix<double> instead
     sys.whirl_pairs = {{0, 1}, {2, 3}};
     sys.validate("own_matrices");
 

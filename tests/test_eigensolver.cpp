@@ -35,8 +35,7 @@ GyroscopicSystem random_gyroscopic(std::mt19937& g, int n, bool definite) {
     Eigen::MatrixXd A = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return test::uniform(g, -1, 1); });
     s.M = A * A.transpose() + n * Eigen::MatrixXd::Identity(n, n);
     Eigen::MatrixXd B = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return test::uniform(g, -1, 1); });
-    s.K = B + B.transpose();
-    if (definite) s.K += 3.0 * n * Eigen::MatrixXd::Identity(n, n);
+    s.K = B + B.transpose() + (definite ? 3.0 * n : 0.0) * Eigen::MatrixXd::Identity(n, n);
     Eigen::MatrixXd C = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return test::uniform(g, -1, 1); });
     s.G = C - C.transpose();
     for (int i = 0; i < n; ++i) s.dof_names.push_back("q" + std::to_string(i));

@@ -120,9 +120,13 @@ TEST_CASE("fe rotor: matrix structure, DOF names and whirl pairs", "[fe_rotor]")
     const FeRotorMatrices c = machine(30, 1e6, 0.0).assemble();
     CHECK(Eigen::MatrixXd(c.K - Eigen::SparseMatrix<double>(c.K.transpose())).cwiseAbs().maxCoeff() ==
           Approx(2e6).epsilon(1e-12));
-    // The dense system passes the structural checks of GyroscopicSystem.
-    CHECK_NOTHROW(m.to_dense().validate("fe"));
-    CHECK_THROWS_AS(machine(30, 0.0, 50.0).assemble().to_dense(), InputError);
+    // The system passes the structural checks of GyroscopicSystem, also with
+    // cross-coupled bearing damping (cxy != cyx: an unsymmetric D).
+    CHECK_NOTHROW(m.to_system().validate("fe"));
+    const GyroscopicSystem cross = machine(30, 0.0, 50.0).assemble().to_system();
+    CHECK_NOTHROW(cross.validate("fe"));
+    const Eigen::MatrixXd Dc = cross.damping_matrix();
+    CHECK((Dc - Dc.transpose()).cwiseAbs().maxCoeff() == Approx(100.0).epsilon(1e-12));
     // Total mass: translational mass of the shaft plus disks, seen by a rigid x translation.
     Eigen::VectorXd ux = Eigen::VectorXd::Zero(m.size());
     for (int i = 0; i < m.size(); i += 4) ux(i) = 1.0;
@@ -233,7 +237,7 @@ TEST_CASE("fe rotor: thick hollow Timoshenko shaft, pinned-pinned, at rest and s
 
     // Spinning at W: forward whirl stiffens, backward softens; the split agrees with the closed form.
     const double W = 3000.0;
-    const GyroscopicSystem sys = pinned_pinned(L, 64, d_o, d_i).assemble().to_dense();
+    const GyroscopicSystem sys = pinned_pinned(L, 64, d_o, d_i).assemble().to_system();
     const QuadraticSpectrum sp = solve_at_speed(sys, W);
     const Mode* fwd = nullptr;
     const Mode* bwd = nullptr;
@@ -268,7 +272,7 @@ TEST_CASE("fe rotor: single disk on a light shaft against the closed-form Jeffco
     probe.outer_diameter = d;
     const double EI = E * fe_section(probe).second_moment;
     const double W = 400.0;
-    const QuadraticSpectrum sp = solve_at_speed(r.assemble().to_dense(), W);
+    const QuadraticSpectrum sp = solve_at_speed(r.assemble().to_system(), W);
     const double wt = std::sqrt(48 * EI / (m * L * L * L)), kt = 12 * EI / L;
     const double wf = (Ip * W + std::sqrt(Ip * Ip * W * W + 4 * Id * kt)) / (2 * Id);
     const double wb = (-Ip * W + std::sqrt(Ip * Ip * W * W + 4 * Id * kt)) / (2 * Id);
@@ -285,19 +289,18 @@ TEST_CASE("fe rotor: single disk on a light shaft against the closed-form Jeffco
 TEST_CASE("fe rotor: sparse shift-invert agrees with dense QZ on a 300-DOF rotor", "[fe_rotor][sparse]") {
     const FeRotorMatrices m = machine(74, 2e6, 100.0).assemble();
     REQUIRE(m.size() == 300);
-    const FeRotorMatrices sym = machine(74, 2e6, 0.0).assemble();   // to_dense needs cxy = cyx
+    const FeRotorMatrices sym = machine(74, 2e6, 0.0).assemble();   // symmetric bearing damping
     const double W = 800.0;
     for (const FeRotorMatrices* model : {&sym, &m}) {
         const SparsePencil p = model->at_speed(W);
         const QuadraticSpectrum ref =
             solve_quadratic(QuadraticPencil{Eigen::MatrixXd(p.M), Eigen::MatrixXd(p.C), Eigen::MatrixXd(p.K)}, {},
                             model->whirl_pairs);
-        if (model == &sym) {
-            const QuadraticSpectrum viadense = solve_at_speed(model->to_dense(), W);
-            REQUIRE(viadense.modes.size() == ref.modes.size());
-            for (std::size_t i = 0; i < ref.modes.size(); ++i)
-                CHECK(std::abs(viadense.modes[i].lambda - ref.modes[i].lambda) <= 1e-12 * std::abs(ref.modes[i].lambda));
-        }
+        // Through the system (cross-coupled damping included): the same pencil.
+        const QuadraticSpectrum viasystem = solve_at_speed(model->to_system(), W);
+        REQUIRE(viasystem.modes.size() == ref.modes.size());
+        for (std::size_t i = 0; i < ref.modes.size(); ++i)
+            CHECK(std::abs(viasystem.modes[i].lambda - ref.modes[i].lambda) <= 1e-12 * std::abs(ref.modes[i].lambda));
         SparseEigenOptions o;
         o.modes = 8;
         const SparseSpectrum s = solve_quadratic_sparse(p, o, model->whirl_pairs);
@@ -459,7 +462,7 @@ TEST_CASE("fe rotor: Friswell et al. Examples 5.9.1 and 5.9.2 (published natural
     double worst = 0.0;
     for (const Case& c : cases) {
         INFO(c.name);
-        const QuadraticSpectrum sp = solve_at_speed(friswell_rotor(1e6, c.kyy).assemble().to_dense(), c.speed);
+        const QuadraticSpectrum sp = solve_at_speed(friswell_rotor(1e6, c.kyy).assemble().to_system(), c.speed);
         REQUIRE(sp.modes.size() >= 6);
         CHECK(sp.max_backward_error() < 1e-12);
         for (int i = 0; i < 6; ++i) {
@@ -482,7 +485,7 @@ TEST_CASE("fe rotor: Friswell et al. Examples 5.9.1 and 5.9.2 (published natural
         e.shear_modulus = 0.0;
         e.poisson_ratio = 0.3;
     }
-    const QuadraticSpectrum sg = solve_at_speed(g.assemble().to_dense(), 4000 * rpm);
+    const QuadraticSpectrum sg = solve_at_speed(g.assemble().to_system(), 4000 * rpm);
     double moved = 0.0;
     for (int i = 0; i < 6; ++i)
         moved = std::max(moved, std::abs(sg.modes[static_cast<size_t>(i)].frequency() - cases[1].published[i]) /
@@ -493,7 +496,6 @@ TEST_CASE("fe rotor: Friswell et al. Examples 5.9.1 and 5.9.2 (published natural
 TEST_CASE("fe rotor: the scene data/friswell_5_9_1.toml reproduces Example 5.9.1", "[fe_rotor][validation][published]") {
     const Scene sc = load_scene(std::string(GYROKIT_DATA_DIR) + "/friswell_5_9_1.toml");
     REQUIRE(sc.model_type == "fe_rotor");
-    REQUIRE(sc.has_dense());
     CHECK(sc.dofs() == 28);
     REQUIRE(sc.speeds);
     CHECK(sc.speeds->to == Approx(4000 * pi / 30).epsilon(1e-15));
@@ -570,7 +572,7 @@ TEST_CASE("fe rotor: a free-free spinning shaft: rigid-body eigenvalues put apar
           "[fe_rotor][rigid]") {
     const double L = 1.0, d = 0.05;
     const FeRotorMatrices m = fe_uniform_shaft(L, 20, d, 0.0, E, nu, rho).assemble();
-    const GyroscopicSystem sys = m.to_dense();
+    const GyroscopicSystem sys = m.to_system();
     // At rest: x, y, and the two tilts are free, each q = a + b t: eight zero eigenvalues.
     CHECK(solve_at_speed(sys, 0.0).rigid_body.size() == 8);
     const double w = 500.0;

@@ -119,22 +119,20 @@ TEST_CASE("sparse Matrix Market reader equals the dense one", "[bearings][matrix
 
 TEST_CASE("speed-dependent bearings enter K and C of dense and sparse systems alike", "[bearings]") {
     const Scene sc = load_scene(data("fe_rotor.toml"));
-    REQUIRE(sc.sparse);
-    REQUIRE(sc.has_dense());
-    REQUIRE(sc.sparse->bearings.size() == 2);
+    REQUIRE(sc.system.bearings.size() == 2);
     for (double w : {0.0, 333.0, 1250.0, 5000.0}) {
         const QuadraticPencil d = sc.system.at_speed(w);
-        const SparsePencil s = sc.sparse->at_speed(w);
+        const SparsePencil s = sc.system.sparse_at_speed(w);
         CHECK((d.K - Eigen::MatrixXd(s.K)).cwiseAbs().maxCoeff() <= 1e-15 * d.K.cwiseAbs().maxCoeff());
         CHECK((d.C - Eigen::MatrixXd(s.C)).cwiseAbs().maxCoeff() <= 1e-15 * d.C.cwiseAbs().maxCoeff());
         // The bearing at node 0 (DOFs x0, y0 = 0, 1) adds its interpolated coefficients.
-        const BearingCoefficients b = sc.sparse->bearings[0].at(w);
-        const SparseGyroscopicSystem bare = [&] {
-            SparseGyroscopicSystem x = *sc.sparse;
+        const BearingCoefficients b = sc.system.bearings[0].at(w);
+        const GyroscopicSystem bare = [&] {
+            GyroscopicSystem x = sc.system;
             x.bearings.clear();
             return x;
         }();
-        const Eigen::MatrixXd dK = d.K - Eigen::MatrixXd(bare.at_speed(w).K);
+        const Eigen::MatrixXd dK = d.K - Eigen::MatrixXd(bare.sparse_at_speed(w).K);
         CHECK((dK.block(0, 0, 2, 2) - b.K).cwiseAbs().maxCoeff() <= 1e-8 * b.K.cwiseAbs().maxCoeff());
     }
 }
@@ -147,9 +145,9 @@ TEST_CASE("sparse Campbell diagram agrees with dense QZ on the finite-element ro
     const CampbellDiagram dense = campbell(dense_solver(sc.system), speeds, co);
     SparseEigenOptions so;
     so.modes = 6;   // a window a little wider than the tracked modes
-    const CampbellDiagram sparse1 = campbell(sparse_solver(*sc.sparse, so), speeds, co);
+    const CampbellDiagram sparse1 = campbell(sparse_solver(sc.system, so), speeds, co);
     co.threads = 2;   // worker processes
-    const CampbellDiagram sparse2 = campbell(sparse_solver(*sc.sparse, so), speeds, co);
+    const CampbellDiagram sparse2 = campbell(sparse_solver(sc.system, so), speeds, co);
 
     // Every point of the four lowest branches: sparse equals dense to 1e-10
     // (well-separated eigenvalues, backward errors ~1e-14).
@@ -177,7 +175,7 @@ TEST_CASE("sparse Campbell diagram agrees with dense QZ on the finite-element ro
     }
     // Critical speeds from the sparse branches equal the dense ones.
     const auto cd = critical_speeds(dense_solver(sc.system), dense, {1});
-    const auto cs = critical_speeds(sparse_solver(*sc.sparse, so), sparse1, {1});
+    const auto cs = critical_speeds(sparse_solver(sc.system, so), sparse1, {1});
     REQUIRE(cd.size() >= 2);
     for (size_t i = 0; i < 2; ++i) CHECK(cs.at(i).speed == Approx(cd[i].speed).epsilon(1e-9));
 }
@@ -234,8 +232,8 @@ TEST_CASE("start-vector reuse gives the same modes", "[sparse]") {
     const Scene sc = load_scene(data("fe_rotor.toml"));
     SparseEigenOptions so;
     so.modes = 6;
-    SpectrumSolver fresh = sparse_solver(*sc.sparse, so, false)();
-    SpectrumSolver reused = sparse_solver(*sc.sparse, so, true)();
+    SpectrumSolver fresh = sparse_solver(sc.system, so, false)();
+    SpectrumSolver reused = sparse_solver(sc.system, so, true)();
     for (double w : {1000.0, 1010.0, 1020.0}) {
         const QuadraticSpectrum a = fresh(w), b = reused(w);
         REQUIRE(a.modes.size() == b.modes.size());
@@ -253,7 +251,8 @@ TEST_CASE("start-vector reuse gives the same modes", "[sparse]") {
 TEST_CASE("sparse unbalance response equals the dense one", "[sparse][response]") {
     const Scene sc = load_scene(data("fe_rotor.toml"));
     for (double w : {50.0, 700.0, 2500.0}) {
-        const Eigen::VectorXcd a = unbalance_response(sc.system, w), b = unbalance_response(*sc.sparse, w);
+        const Eigen::VectorXcd a = unbalance_response(sc.system, w, SolverKind::Dense),
+                               b = unbalance_response(sc.system, w, SolverKind::Sparse);
         CHECK((a - b).norm() <= 1e-10 * a.norm());
     }
 }
@@ -292,8 +291,8 @@ TEST_CASE("sparse window following the 1x line finds every 1x critical speed wit
     so.shift_order = 1.0;
     CampbellOptions co;
     co.modes = 4;
-    const CampbellDiagram sparse = campbell(sparse_solver(*sc.sparse, so), speeds, co);
-    const auto cs = critical_speeds(sparse_solver(*sc.sparse, so), sparse, {1});
+    const CampbellDiagram sparse = campbell(sparse_solver(sc.system, so), speeds, co);
+    const auto cs = critical_speeds(sparse_solver(sc.system, so), sparse, {1});
 
     REQUIRE(cd.size() >= 8);   // more crossings than the window holds modes
     REQUIRE(cs.size() == cd.size());
@@ -303,8 +302,8 @@ TEST_CASE("sparse window following the 1x line finds every 1x critical speed wit
     }
     // Without the continuation the fixed window (centre 0) sees only the lowest four.
     so.shift_order = 0.0;
-    const CampbellDiagram fixed = campbell(sparse_solver(*sc.sparse, so), speeds, co);
-    CHECK(critical_speeds(sparse_solver(*sc.sparse, so), fixed, {1}).size() < cd.size());
+    const CampbellDiagram fixed = campbell(sparse_solver(sc.system, so), speeds, co);
+    CHECK(critical_speeds(sparse_solver(sc.system, so), fixed, {1}).size() < cd.size());
 }
 
 TEST_CASE("critical speeds refined on two workers equal the serial ones", "[critical][campbell]") {
@@ -327,9 +326,9 @@ TEST_CASE("critical speeds refined on two workers equal the serial ones", "[crit
     co.modes = 6;
     SparseEigenOptions so;
     so.modes = 8;
-    const CampbellDiagram sparse = campbell(sparse_solver(*sc.sparse, so), speeds, co);
-    const auto s1 = critical_speeds(sparse_solver(*sc.sparse, so), sparse, {1}, 1);
-    const auto s2 = critical_speeds(sparse_solver(*sc.sparse, so), sparse, {1}, 2);
+    const CampbellDiagram sparse = campbell(sparse_solver(sc.system, so), speeds, co);
+    const auto s1 = critical_speeds(sparse_solver(sc.system, so), sparse, {1}, 1);
+    const auto s2 = critical_speeds(sparse_solver(sc.system, so), sparse, {1}, 2);
     REQUIRE(s1.size() >= 5);
     REQUIRE(s2.size() == s1.size());
     for (size_t i = 0; i < s1.size(); ++i) CHECK(s2[i].speed == Approx(s1[i].speed).epsilon(1e-10));

@@ -114,8 +114,9 @@ TEST_CASE("Campbell tracking follows crossing branches without swapping", "[camp
     GyroscopicSystem s;
     s.M = Eigen::Vector4d(1.0, 1.0, 0.5, 0.5).asDiagonal();
     s.K = Eigen::Vector4d(900.0, 900.0, 800.0, 800.0).asDiagonal();
-    s.G = Eigen::Matrix4d::Zero();
-    s.G.bottomRightCorner<2, 2>() = 0.4 * J;
+    Eigen::Matrix4d G = Eigen::Matrix4d::Zero();
+    G.bottomRightCorner<2, 2>() = 0.4 * J;
+    s.G = G;
     s.dof_names = {"x", "y", "ax", "ay"};
     s.whirl_pairs = {{0, 1}, {2, 3}};
     const CampbellDiagram cd = campbell(s, SpeedRange{0.0, 300.0, 31}.points());

@@ -36,38 +36,19 @@ void add_solver_options(CLI::App* c, Common& o) {
 TableFormat parse_format(const Common& o) { return parse_table_format(o.format); }
 
 bool use_sparse(const Context& c) {
-    return c.solver == "sparse" || !c.scene.has_dense() || (c.solver == "auto" && c.scene.dofs() > kAutoSparseDofs);
+    return resolve_solver_kind(c.scene.dofs(), c.solver.kind) == SolverKind::Sparse;
 }
 
-SolverPlan plan_solver(const Context& c, int modes) {
-    const Scene& sc = c.scene;
-    SolverPlan p;
-    const int n = sc.dofs();
-    p.sparse = use_sparse(c);
-    if (!p.sparse) {   // every mode; a target does not matter
-        p.modes = modes;
-        p.make = dense_solver(sc.system, c.eig);
-        return p;
-    }
-    if (c.solver == "dense" && !sc.has_dense())
-        throw InputError(fmt::format("{}: --solver dense: the model has {} DOFs, above the dense limit of {}; "
-                                     "allowed: --solver sparse or auto",
-                                     sc.path, n, kDenseLimit));
-    SparseEigenOptions so;
-    so.modes = modes > 0 ? modes : 6;
-    if (modes <= 0)
-        std::cerr << "note: the sparse solver computes " << so.modes
-                  << " modes near the target; set --modes K for another number\n";
-    so.shift = {0.0, c.target.value_or(0.0)};
-    so.shift_order = c.target_order;
-    so.lanczos_vectors = c.lanczos;
-    p.modes = so.modes;
-    p.make = sc.sparse ? sparse_solver(*sc.sparse, so) : sparse_solver(sc.system, so);
-    return p;
+SolverChoice plan_solver(const Context& c, int modes) {
+    SolverOptions so = c.solver;
+    so.modes = modes;
+    SolverChoice choice = choose_solver(c.scene.system, so);
+    for (const auto& n : choice.notes) std::cerr << "note: " << n << "\n";
+    return choice;
 }
 
 void require_dense(const Context& c, const std::string& command) {
-    if (!c.scene.has_dense())
+    if (c.scene.dofs() > kDenseLimit)
         throw InputError(fmt::format("{}: gyrokit {} needs the dense model, which exists up to {} DOFs; this model "
                                      "has {}",
                                      c.scene.path, command, kDenseLimit, c.scene.dofs()));
@@ -83,7 +64,6 @@ Context open_scene(const Common& o, bool need_speeds) {
     if (o.jobs < 0) throw InputError(fmt::format("--jobs {}: allowed: 0 (all cores) or a count", o.jobs));
     if (!o.solver.empty() && o.solver != "auto" && o.solver != "dense" && o.solver != "sparse")
         throw InputError("--solver '" + o.solver + "': allowed: auto, dense, sparse");
-    c.lanczos = o.lanczos;
     // More workers than cores only add processes, memory and temporary files.
     const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     c.jobs = o.jobs > 0 ? o.jobs : cores;
@@ -92,11 +72,12 @@ Context open_scene(const Common& o, bool need_speeds) {
         c.jobs = cores;
     }
     c.scene = load_scene(o.scene);
-    c.solver = o.solver.empty() ? c.scene.solver : o.solver;
-    if (!o.target.empty()) c.target = parse_speed(o.target, "--target", c.unit);
-    else c.target = c.scene.target;
-    c.target_order = c.scene.target_order;
-    if (!o.target_order.empty()) c.target_order = parse_order(o.target_order, "--target-order");
+    c.solver = c.scene.solver_options();
+    c.solver.eig = c.eig;
+    c.solver.lanczos_vectors = o.lanczos;
+    if (!o.solver.empty()) c.solver.kind = parse_solver_kind(o.solver);
+    if (!o.target.empty()) c.solver.target = parse_speed(o.target, "--target", c.unit);
+    if (!o.target_order.empty()) c.solver.target_order = parse_order(o.target_order, "--target-order");
     if (!o.speeds.empty()) {
         c.speeds = SpeedRange::parse(o.speeds, "--speeds", c.unit.factor).points();
     } else if (c.scene.speeds) {

@@ -42,25 +42,18 @@ struct Context {
     SpeedUnit unit;
     EigenOptions eig;
     std::vector<double> speeds;
-    std::string solver;          // "dense" | "sparse" | "auto" (from --solver, else the scene)
-    std::optional<double> target;   // rad/s
-    double target_order = 0.0;      // the target moves as target + order * speed
-    int lanczos = 0, jobs = 1;
+    // The scene's [analysis] solver options with --solver, --target,
+    // --target-order, --lanczos and --method in their place.
+    SolverOptions solver;
+    int jobs = 1;
 };
 
-// The solver a command runs with: resolved from --solver/--target and the
-// model's size; `modes` is the number of modes wanted (0: all, dense only).
-struct SolverPlan {
-    bool sparse = false;
-    int modes = 0;            // for the sparse solver: the window size
-    SolverFactory make;
-};
-// auto: sparse above kAutoSparseDofs DOFs (or when the model is sparse-only), else dense.
-constexpr int kAutoSparseDofs = 200;
-SolverPlan plan_solver(const Context& c, int modes);
-// Whether the plan is sparse (the rule of plan_solver, without building a solver).
+// The library's solver choice (choose_solver) for `modes` modes (0: all, or the
+// sparse default); its notes go to stderr.
+SolverChoice plan_solver(const Context& c, int modes);
+// Whether the choice is the sparse solver (without building one).
 bool use_sparse(const Context& c);
-// Throws InputError naming `command` when the model has no dense form.
+// Throws InputError naming `command` when the model is above the dense limit.
 void require_dense(const Context& c, const std::string& command);
 
 // Validates the options (before any work) and loads the scene.

@@ -28,7 +28,7 @@ struct Options {
 
 int wanted_modes(const Context& c, int modes) { return modes >= 0 ? modes : c.scene.modes; }
 
-CampbellOptions campbell_options(const Context& c, const SolverPlan& plan) {
+CampbellOptions campbell_options(const Context& c, const SolverChoice& plan) {
     CampbellOptions co;
     co.eig = c.eig;
     co.modes = plan.modes;
@@ -39,7 +39,7 @@ CampbellOptions campbell_options(const Context& c, const SolverPlan& plan) {
 
 void note_extrapolation(const Context& c) {
     if (c.speeds.empty()) return;
-    const auto& b = c.scene.sparse ? c.scene.sparse->bearings : c.scene.system.bearings;
+    const auto& b = c.scene.system.bearings;
     for (const auto& n : extrapolation_notes(b, c.speeds.front(), c.speeds.back())) std::cerr << "note: " << n << "\n";
 }
 
@@ -83,7 +83,7 @@ void warn_unstable_response(const Context& c, int modes) {
         grid.clear();
         for (int k = 0; k <= 20; ++k) grid.push_back(c.speeds.front() + (c.speeds.back() - c.speeds.front()) * k / 20.0);
     }
-    const SolverPlan plan = plan_solver(c, modes);
+    const SolverChoice plan = plan_solver(c, modes);
     CampbellOptions co = campbell_options(c, plan);
     co.progress = {};
     const CampbellDiagram cd = campbell(plan.make, grid, co);
@@ -106,7 +106,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     cmds.push_back({eig, [o](std::ostream& out) {
         const Context c = open_scene(o->common, false);
         const double w = parse_speed(o->speed, "--speed", c.unit);
-        const SolverPlan plan = plan_solver(c, wanted_modes(c, o->modes));
+        const SolverChoice plan = plan_solver(c, wanted_modes(c, o->modes));
         const QuadraticSpectrum s = plan.make()(w);
         for (const auto& n : s.notes) std::cerr << "note: " << n << "\n";
         if (!o->rigid_body && !s.rigid_body.empty())
@@ -124,7 +124,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     cmds.push_back({camp, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
         const auto h = parse_harmonics(o->harmonics, c.scene.harmonics);
-        const SolverPlan plan = plan_solver(c, wanted_modes(c, o->modes));
+        const SolverChoice plan = plan_solver(c, wanted_modes(c, o->modes));
         note_extrapolation(c);
         const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
         write_table(out, campbell_table(cd, c.unit), c.format);
@@ -155,7 +155,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
             }
             std::sort(cs.begin(), cs.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
         } else {
-            const SolverPlan plan = plan_solver(c, wanted_modes(c, o->modes));
+            const SolverChoice plan = plan_solver(c, wanted_modes(c, o->modes));
             note_extrapolation(c);
             const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
             cs = critical_speeds(plan.make, cd, h, c.jobs);
@@ -170,7 +170,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     stab->add_option("--modes", o->modes, "number of modes considered (0 = all; sparse: default 6)");
     cmds.push_back({stab, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
-        const SolverPlan plan = plan_solver(c, std::max(0, o->modes));
+        const SolverChoice plan = plan_solver(c, std::max(0, o->modes));
         note_extrapolation(c);
         const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
         const auto changes = stability_changes(plan.make, cd, c.jobs);
@@ -211,11 +211,10 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     cmds.push_back({resp, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
         const Scene& sc = c.scene;
-        // The sparse LU of the dynamic stiffness where the plan is sparse and a sparse model exists.
-        const bool sparse = use_sparse(c) && sc.sparse;
-        const std::vector<std::string>& names = sparse ? sc.sparse->dof_names : sc.system.dof_names;
-        const ResponseSolver solve = sparse ? ResponseSolver([&](double w) { return unbalance_response(*sc.sparse, w); })
-                                            : ResponseSolver([&](double w) { return unbalance_response(sc.system, w); });
+        // The sparse LU of the dynamic stiffness where the solver choice is sparse.
+        const SolverKind kind = use_sparse(c) ? SolverKind::Sparse : SolverKind::Dense;
+        const std::vector<std::string>& names = sc.system.dof_names;
+        const ResponseSolver solve = [&](double w) { return unbalance_response(sc.system, w, kind); };
         note_extrapolation(c);
         const ResponseCurve rc = unbalance_response(solve, sc.dofs(), c.speeds, parse_dofs(o->dofs, names));
         warn_unstable_response(c, wanted_modes(c, o->modes));
@@ -232,9 +231,9 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     exp->add_option("--dir", o->dir, "output directory (created if missing)")->required();
     cmds.push_back({exp, [o](std::ostream&) {
         const Context c = open_scene(o->common, false);
-        require_dense(c, "export");
         const double w = parse_speed(o->speed, "--speed", c.unit);
-        export_matrices(c.scene.system, w, o->dir);
+        const ExportReport r = export_matrices(c.scene.system, w, o->dir);
+        for (const auto& n : r.notes) std::cerr << "note: " << n << "\n";
         std::cerr << "wrote the matrices at " << c.unit.factor * w << " " << c.unit.name << " into " << o->dir
                   << "\n";
     }});

@@ -18,7 +18,6 @@
 #include <gyrokit/core/bearing_table.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
-#include <gyrokit/core/sparse_system.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/eig/mode.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>

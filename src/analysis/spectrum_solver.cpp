@@ -28,7 +28,16 @@ std::vector<QuadraticSpectrum> solve_speeds_unchecked(const SolverFactory& make,
                                                       int threads, const std::function<void(size_t, size_t)>& progress);
 
 SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig) {
-    return {[&sys, eig]() -> SpectrumSolver { return [&sys, eig](double w) { return solve_at_speed(sys, w, eig); }; },
+    sys.validate("dense solver: the system");
+    if (sys.size() > kDenseLimit)
+        throw InputError(fmt::format("solver 'dense': the model has {} DOFs, above the dense limit of {}; allowed: "
+                                     "sparse or auto (choose_solver)",
+                                     sys.size(), kDenseLimit));
+    // The solvers share ownership of one copy: a temporary system outlives the call.
+    const auto model = std::make_shared<const GyroscopicSystem>(sys);
+    return {[model, eig]() -> SpectrumSolver {
+                return [model, eig](double w) { return solve_at_speed(*model, w, eig); };
+            },
             true};
 }
 
@@ -85,12 +94,63 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
     return f;
 }
 
-SolverFactory sparse_solver(const SparseGyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse) {
-    return sparse_solver([&sys](double w) { return sys.at_speed(w); }, sys.whirl_pairs, opt, reuse);
+SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse) {
+    sys.validate("sparse solver: the system");
+    const auto model = std::make_shared<const GyroscopicSystem>(sys);
+    return sparse_solver([model](double w) { return model->sparse_at_speed(w); }, sys.whirl_pairs, opt, reuse);
 }
 
-SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse) {
-    return sparse_solver([&sys](double w) { return to_sparse(sys.at_speed(w)); }, sys.whirl_pairs, opt, reuse);
+SolverKind parse_solver_kind(const std::string& name) {
+    if (name == "auto") return SolverKind::Auto;
+    if (name == "dense") return SolverKind::Dense;
+    if (name == "sparse") return SolverKind::Sparse;
+    throw InputError(fmt::format("solver '{}': allowed: auto, dense, sparse", name));
+}
+
+std::string to_string(SolverKind k) {
+    switch (k) {
+    case SolverKind::Auto: return "auto";
+    case SolverKind::Dense: return "dense";
+    case SolverKind::Sparse: return "sparse";
+    }
+    return "auto";
+}
+
+SolverKind resolve_solver_kind(int dofs, SolverKind requested) {
+    if (requested != SolverKind::Auto) return requested;
+    return dofs > kAutoSparseDofs ? SolverKind::Sparse : SolverKind::Dense;
+}
+
+SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt) {
+    if (opt.modes < 0)
+        throw InputError(fmt::format("modes = {}: allowed: 0 (all modes; the sparse solver: {}) or more", opt.modes,
+                                     kDefaultSparseModes));
+    if (opt.target && !std::isfinite(*opt.target))
+        throw InputError("target is not a finite number; allowed: a frequency in rad/s");
+    if (!std::isfinite(opt.target_order))
+        throw InputError("target_order is not a finite number; allowed: a multiple of the speed");
+    if (opt.lanczos_vectors < 0)
+        throw InputError(fmt::format("lanczos_vectors = {}: allowed: 0 (automatic) or more", opt.lanczos_vectors));
+    const int n = sys.size();
+    SolverChoice c;
+    c.kind = resolve_solver_kind(n, opt.kind);
+    if (c.kind == SolverKind::Dense) {
+        c.modes = opt.modes;   // every mode is computed; a target does not matter
+        c.make = dense_solver(sys, opt.eig);
+        return c;
+    }
+    SparseEigenOptions so;
+    so.modes = opt.modes > 0 ? opt.modes : kDefaultSparseModes;
+    if (opt.modes == 0)
+        c.notes.push_back(fmt::format("the sparse solver computes {} modes near the target; set modes for another "
+                                      "number",
+                                      so.modes));
+    so.shift = {0.0, opt.target.value_or(0.0)};
+    so.shift_order = opt.target_order;
+    so.lanczos_vectors = opt.lanczos_vectors;
+    c.modes = so.modes;
+    c.make = sparse_solver(sys, so, opt.reuse);
+    return c;
 }
 
 namespace {

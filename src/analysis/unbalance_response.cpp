@@ -22,11 +22,10 @@ void check_solution(double norm_S, double residual, const Eigen::VectorXcd& Z, c
 
 }  // namespace
 
-Eigen::VectorXcd unbalance_response(const GyroscopicSystem& sys, double w) {
-    if (sys.unbalance.size() == 0)
-        throw InputError("the model defines no unbalance load; the response is zero");
+namespace {
+
+Eigen::VectorXcd dense_response(const GyroscopicSystem& sys, double w) {
     const Eigen::VectorXcd f = sys.unbalance_force(w);
-    if (w == 0.0) return Eigen::VectorXcd::Zero(sys.size());   // no force at standstill
     const QuadraticPencil p = sys.at_speed(w);
     const std::complex<double> l(0.0, w);
     const Eigen::MatrixXcd S = p.evaluate(l);
@@ -36,12 +35,9 @@ Eigen::VectorXcd unbalance_response(const GyroscopicSystem& sys, double w) {
     return Z;
 }
 
-Eigen::VectorXcd unbalance_response(const SparseGyroscopicSystem& sys, double w) {
-    if (sys.unbalance.size() == 0)
-        throw InputError("the model defines no unbalance load; the response is zero");
-    if (w == 0.0) return Eigen::VectorXcd::Zero(sys.size());
+Eigen::VectorXcd sparse_response(const GyroscopicSystem& sys, double w) {
     const Eigen::VectorXcd f = sys.unbalance_force(w);
-    const SparsePencil p = sys.at_speed(w);
+    const SparsePencil p = sys.sparse_at_speed(w);
     using cd = std::complex<double>;
     const cd l(0.0, w);
     const Eigen::SparseMatrix<cd> S = (l * l) * p.M.cast<cd>() + l * p.C.cast<cd>() + p.K.cast<cd>();
@@ -51,6 +47,16 @@ Eigen::VectorXcd unbalance_response(const SparseGyroscopicSystem& sys, double w)
                                                      : Eigen::VectorXcd::Constant(sys.size(), cd(NAN, NAN));
     check_solution(S.norm(), (S * Z - f).norm(), Z, f, w);
     return Z;
+}
+
+}  // namespace
+
+Eigen::VectorXcd unbalance_response(const GyroscopicSystem& sys, double w, SolverKind kind) {
+    if (sys.unbalance.size() == 0)
+        throw InputError("the model defines no unbalance load; the response is zero");
+    if (w == 0.0) return Eigen::VectorXcd::Zero(sys.size());   // no force at standstill
+    return resolve_solver_kind(sys.size(), kind) == SolverKind::Dense ? dense_response(sys, w)
+                                                                       : sparse_response(sys, w);
 }
 
 ResponseCurve unbalance_response(const ResponseSolver& solve, int size, const std::vector<double>& speeds,

@@ -3,9 +3,19 @@
 #include <gyrokit/core/error.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
+#include <tuple>
 
 namespace gyrokit {
+
+SparseMatrix to_sparse(const Eigen::MatrixXd& A) {
+    SparseMatrix S = A.sparseView(1.0, 0.0);
+    S.makeCompressed();
+    return S;
+}
+
+SparsePencil to_sparse(const QuadraticPencil& p) { return {to_sparse(p.M), to_sparse(p.C), to_sparse(p.K)}; }
 
 void add_block(Eigen::MatrixXd& A, int i, int j, const Eigen::Matrix2d& B) {
     A(i, i) += B(0, 0);
@@ -19,11 +29,37 @@ Eigen::MatrixXcd QuadraticPencil::evaluate(std::complex<double> lambda) const {
            K.cast<std::complex<double>>();
 }
 
-Eigen::MatrixXd GyroscopicSystem::damping_matrix(double w) const {
-    Eigen::MatrixXd D = Eigen::MatrixXd::Zero(size(), size());
+namespace {
+
+using Block = std::tuple<int, int, Eigen::Matrix2d>;
+
+// The n x n matrix of 2x2 blocks on the rows and columns (i, j).
+SparseMatrix blocks_matrix(int n, const std::vector<Block>& blocks) {
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(4 * blocks.size());
+    for (const auto& [i, j, B] : blocks) {
+        t.emplace_back(i, i, B(0, 0));
+        t.emplace_back(i, j, B(0, 1));
+        t.emplace_back(j, i, B(1, 0));
+        t.emplace_back(j, j, B(1, 1));
+    }
+    SparseMatrix A(n, n);
+    A.setFromTriplets(t.begin(), t.end());
+    return A;
+}
+
+bool present(const SparseMatrix& A) { return A.rows() > 0 && A.nonZeros() > 0; }
+
+}  // namespace
+
+SparseMatrix GyroscopicSystem::damping_matrix(double w) const {
+    const int n = size();
+    SparseMatrix D(n, n);
     for (const auto& c : damping) D += c.at(w);
+    std::vector<Block> cb;
     for (const auto& b : bearings)
-        if (b.damping_enabled) add_block(D, b.dof_x, b.dof_y, b.at(w).C);
+        if (b.damping_enabled) cb.emplace_back(b.dof_x, b.dof_y, b.at(w).C);
+    if (!cb.empty()) D += blocks_matrix(n, cb);
     return D;
 }
 
@@ -43,13 +79,23 @@ bool GyroscopicSystem::has_damping() const {
     return false;
 }
 
-QuadraticPencil GyroscopicSystem::at_speed(double w) const {
-    QuadraticPencil p{M, damping_matrix(w), K};
-    if (G.size() > 0) p.C += w * G;
-    if (N.size() > 0) p.K += w * N;
-    if (K2.size() > 0) p.K += (w * w) * K2;
-    for (const auto& b : bearings) add_block(p.K, b.dof_x, b.dof_y, b.at(w).K);
+SparsePencil GyroscopicSystem::sparse_at_speed(double w) const {
+    SparsePencil p{M, damping_matrix(w), K};
+    if (present(G)) p.C += w * G;
+    if (present(N)) p.K += w * N;
+    if (present(K2)) p.K += (w * w) * K2;
+    std::vector<Block> kb;
+    for (const auto& b : bearings) kb.emplace_back(b.dof_x, b.dof_y, b.at(w).K);
+    if (!kb.empty()) p.K += blocks_matrix(size(), kb);
+    p.M.makeCompressed();
+    p.C.makeCompressed();
+    p.K.makeCompressed();
     return p;
+}
+
+QuadraticPencil GyroscopicSystem::at_speed(double w) const {
+    const SparsePencil p = sparse_at_speed(w);
+    return {Eigen::MatrixXd(p.M), Eigen::MatrixXd(p.C), Eigen::MatrixXd(p.K)};
 }
 
 Eigen::VectorXcd GyroscopicSystem::unbalance_force(double w) const {
@@ -69,22 +115,31 @@ GyroscopicSystem GyroscopicSystem::with_damping_only(const std::vector<std::stri
 
 namespace {
 
-void check_matrix(const Eigen::MatrixXd& A, int n, const std::string& origin, const char* name,
-                  bool optional) {
+void check_matrix(const SparseMatrix& A, int n, const std::string& origin, const std::string& name, bool optional) {
     if (optional && A.size() == 0) return;
     if (A.rows() != n || A.cols() != n)
-        throw InputError(fmt::format("{}: matrix {} is {}x{}, expected {}x{} (the size of M)", origin,
-                                     name, A.rows(), A.cols(), n, n));
-    if (!A.allFinite())
-        throw InputError(fmt::format("{}: matrix {} has a NaN or infinite entry; allowed: finite numbers",
-                                     origin, name));
+        throw InputError(fmt::format("{}: matrix {} is {}x{}, expected {}x{} (the size of M)", origin, name, A.rows(),
+                                     A.cols(), n, n));
+    for (int k = 0; k < A.outerSize(); ++k)
+        for (SparseMatrix::InnerIterator it(A, k); it; ++it)
+            if (!std::isfinite(it.value()))
+                throw InputError(fmt::format("{}: matrix {} has a NaN or infinite entry at ({}, {}); allowed: "
+                                             "finite numbers",
+                                             origin, name, it.row() + 1, it.col() + 1));
 }
 
-// Largest |A - s A^T| relative to |A|, s = +1 for symmetric, -1 for skew.
-double asymmetry(const Eigen::MatrixXd& A, double s) {
-    const double scale = A.cwiseAbs().maxCoeff();
+// Largest |A - s A^T| relative to the largest |A|, s = +1 for symmetric, -1 for skew.
+double asymmetry(const SparseMatrix& A, double s) {
+    double scale = 0.0;
+    for (int k = 0; k < A.outerSize(); ++k)
+        for (SparseMatrix::InnerIterator it(A, k); it; ++it) scale = std::max(scale, std::abs(it.value()));
     if (scale == 0.0) return 0.0;
-    return (A - s * A.transpose()).cwiseAbs().maxCoeff() / scale;
+    const SparseMatrix At = A.transpose();
+    const SparseMatrix R = A - s * At;
+    double worst = 0.0;
+    for (int k = 0; k < R.outerSize(); ++k)
+        for (SparseMatrix::InnerIterator it(R, k); it; ++it) worst = std::max(worst, std::abs(it.value()));
+    return worst / scale;
 }
 
 }  // namespace
@@ -97,26 +152,14 @@ void GyroscopicSystem::validate(const std::string& origin) const {
     check_matrix(G, n, origin, "G", true);
     check_matrix(N, n, origin, "N", true);
     check_matrix(K2, n, origin, "K2", true);
-    for (const auto& c : damping) check_matrix(c.D, n, origin, c.name.c_str(), false);
+    for (const auto& c : damping) check_matrix(c.D, n, origin, "damping " + c.name, c.of_speed != nullptr);
     constexpr double tol = 1e-12;  // structural checks are exact up to rounding of the input
+    if (M.norm() == 0.0) throw InputError(fmt::format("{}: M is zero", origin));
     if (asymmetry(M, 1.0) > tol)
-        throw InputError(fmt::format("{}: M is not symmetric (relative asymmetry {:.3g})", origin,
-                                     asymmetry(M, 1.0)));
-    for (const auto& c : damping)
-        if (asymmetry(c.D, 1.0) > tol)
-            throw InputError(fmt::format("{}: damping {} is not symmetric (relative asymmetry {:.3g}); "
-                                         "put its skew part into G or N",
-                                         origin, c.name, asymmetry(c.D, 1.0)));
+        throw InputError(fmt::format("{}: M is not symmetric (relative asymmetry {:.3g})", origin, asymmetry(M, 1.0)));
     if (G.size() > 0 && asymmetry(G, -1.0) > tol)
         throw InputError(fmt::format("{}: G is not skew-symmetric (relative deviation {:.3g})", origin,
                                      asymmetry(G, -1.0)));
-    if (M.cwiseAbs().maxCoeff() == 0.0) throw InputError(fmt::format("{}: M is zero", origin));
-    validate_attachments(origin, n, unbalance, dof_names, bearings, whirl_pairs);
-}
-
-void validate_attachments(const std::string& origin, int n, const Eigen::VectorXcd& unbalance,
-                          const std::vector<std::string>& dof_names, const std::vector<BearingTable>& bearings,
-                          const std::vector<std::pair<int, int>>& whirl_pairs) {
     if (unbalance.size() != 0 && unbalance.size() != n)
         throw InputError(fmt::format("{}: unbalance has {} entries, expected {}", origin, unbalance.size(), n));
     if (unbalance.size() != 0 && !unbalance.allFinite())

@@ -7,6 +7,7 @@
 #include <arpack/arpack.hpp>
 #include <cmath>
 #include <fmt/format.h>
+#include <mutex>
 
 namespace gyrokit {
 
@@ -113,6 +114,14 @@ void check_arnoldi(const char* routine, a_int info, const a_int* iparam, const S
 }
 
 // Complex shift: complex Arnoldi (znaupd) on the complex operator.
+// ARPACK keeps its iteration state in Fortran SAVE variables between the
+// reverse-communication calls: two iterations in one process must not overlap
+// (threads of a design study, scripts). Parallel speeds run in worker processes.
+std::mutex& arpack_mutex() {
+    static std::mutex m;
+    return m;
+}
+
 std::vector<Ritz> ritz_complex(const SparsePencil& p, const SparseEigenOptions& opt, const ArnoldiSize& sz,
                                const Eigen::VectorXd& t, int& iterations) {
     const int n = static_cast<int>(p.M.rows());
@@ -120,6 +129,7 @@ std::vector<Ritz> ritz_complex(const SparsePencil& p, const SparseEigenOptions& 
     Eigen::SparseLU<SpC, Eigen::COLAMDOrdering<int>> lu;
     factorize(lu, p, s, t);
     const SpC Mc = p.M.cast<cd>(), CsM = p.C.cast<cd>() + s * p.M.cast<cd>();
+    const std::lock_guard<std::mutex> one_at_a_time(arpack_mutex());
     const a_int N = sz.N, nev = sz.nev, ncv = sz.ncv, lworkl = 3 * ncv * ncv + 5 * ncv;
     std::vector<cd> resid(static_cast<size_t>(N)), V(static_cast<size_t>(N * ncv)), workd(3 * static_cast<size_t>(N)),
         workl(static_cast<size_t>(lworkl));
@@ -165,6 +175,7 @@ std::vector<Ritz> ritz_real(const SparsePencil& p, const SparseEigenOptions& opt
     Eigen::SparseLU<SpD, Eigen::COLAMDOrdering<int>> lu;
     factorize(lu, p, s, t);
     const SpD CsM = p.C + s * p.M;
+    const std::lock_guard<std::mutex> one_at_a_time(arpack_mutex());
     const a_int N = sz.N, nev = sz.nev, ncv = sz.ncv, lworkl = 3 * ncv * ncv + 6 * ncv;
     std::vector<double> resid(static_cast<size_t>(N)), V(static_cast<size_t>(N * ncv)),
         workd(3 * static_cast<size_t>(N)), workl(static_cast<size_t>(lworkl));

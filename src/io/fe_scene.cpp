@@ -49,7 +49,7 @@ int node_at(const TomlKeys& e, const std::vector<double>& z) {
 
 }  // namespace
 
-SparseGyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir) {
+GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir) {
     k.only({"type", "shaft", "disk", "bearing", "support", "E", "poisson", "density", "shear_deformation",
             "rotary_inertia"});
     FeRotor r;
@@ -143,7 +143,7 @@ SparseGyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir) 
     });
 
     const FeRotorMatrices m = r.assemble();
-    SparseGyroscopicSystem sys = m.to_system();
+    GyroscopicSystem sys = m.to_system();
     for (const Tabulated& t : tables) {
         const auto dof = [&](const char* prefix) {
             const std::string name = prefix + std::to_string(t.node);

@@ -2,7 +2,8 @@
 // described by its geometry and material (see docs/scene_format.md).
 #pragma once
 
-#include <gyrokit/core/sparse_system.hpp>
+#include <gyrokit/core/gyroscopic_system.hpp>
+
 #include "io/toml_keys.hpp"
 
 #include <string>
@@ -13,6 +14,6 @@ namespace gyrokit {
 // supports must fall on a node (section ends and their subdivisions); bearing
 // tables are read relative to `dir`. Every error names the table entry, key,
 // value and allowed range.
-SparseGyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir);
+GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir);
 
 }  // namespace gyrokit

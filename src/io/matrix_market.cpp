@@ -320,22 +320,24 @@ Eigen::VectorXcd read_matrix_market_vector(const std::string& path) {
 }
 
 
-void write_matrix_market(const std::string& path, const Eigen::MatrixXd& A, const std::string& comment) {
-    // Refuse what read_matrix_market would reject, so every written file reads back.
-    if (A.size() == 0)
-        throw InputError(fmt::format("{}: cannot write a {}x{} matrix; allowed at least 1 row and 1 column", path,
-                                     A.rows(), A.cols()));
-    // -0.0 is kept so the round trip is bitwise exact.
-    auto stored = [](double v) { return v != 0.0 || std::signbit(v); };
-    Eigen::Index nnz = 0;
-    for (Eigen::Index j = 0; j < A.cols(); ++j)
-        for (Eigen::Index i = 0; i < A.rows(); ++i) {
-            if (!std::isfinite(A(i, j)))
-                throw InputError(fmt::format("{}: entry ({}, {}) is {}, not a finite number; allowed finite values",
-                                             path, i + 1, j + 1, A(i, j)));
-            nnz += stored(A(i, j));
-        }
+namespace {
 
+// Writes the entries (1-based row, column, value), given in column order, in
+// "coordinate real general" form.
+struct Entry {
+    Eigen::Index row, col;
+    double value;
+};
+void write_entries(const std::string& path, Eigen::Index rows, Eigen::Index cols, const std::vector<Entry>& entries,
+                   const std::string& comment) {
+    // Refuse what read_matrix_market would reject, so every written file reads back.
+    if (rows == 0 || cols == 0)
+        throw InputError(fmt::format("{}: cannot write a {}x{} matrix; allowed at least 1 row and 1 column", path,
+                                     rows, cols));
+    for (const Entry& e : entries)
+        if (!std::isfinite(e.value))
+            throw InputError(fmt::format("{}: entry ({}, {}) is {}, not a finite number; allowed finite values",
+                                         path, e.row, e.col, e.value));
     fmt::memory_buffer out;
     auto put = std::back_inserter(out);
     fmt::format_to(put, "%%MatrixMarket matrix coordinate real general\n");
@@ -345,15 +347,37 @@ void write_matrix_market(const std::string& path, const Eigen::MatrixXd& A, cons
         fmt::format_to(put, "% {}\n", rest.substr(0, end));
         rest.remove_prefix(std::min(end + 1, rest.size()));
     }
-    fmt::format_to(put, "{} {} {}\n", A.rows(), A.cols(), nnz);
-    for (Eigen::Index j = 0; j < A.cols(); ++j)
-        for (Eigen::Index i = 0; i < A.rows(); ++i)
-            if (stored(A(i, j))) fmt::format_to(put, "{} {} {:.17g}\n", i + 1, j + 1, A(i, j));
+    fmt::format_to(put, "{} {} {}\n", rows, cols, entries.size());
+    for (const Entry& e : entries) fmt::format_to(put, "{} {} {:.17g}\n", e.row, e.col, e.value);
 
     std::ofstream file(path, std::ios::binary);
     file.write(out.data(), static_cast<std::streamsize>(out.size()));
     file.close();
     if (!file) throw Error(fmt::format("{}: cannot write file ({})", path, std::strerror(errno)));
+}
+
+// -0.0 is kept so the round trip is bitwise exact.
+bool stored(double v) { return v != 0.0 || std::signbit(v); }
+
+}  // namespace
+
+void write_matrix_market(const std::string& path, const Eigen::MatrixXd& A, const std::string& comment) {
+    std::vector<Entry> entries;
+    for (Eigen::Index j = 0; j < A.cols(); ++j)
+        for (Eigen::Index i = 0; i < A.rows(); ++i)
+            if (stored(A(i, j)) || !std::isfinite(A(i, j))) entries.push_back({i + 1, j + 1, A(i, j)});
+    write_entries(path, A.rows(), A.cols(), entries, comment);
+}
+
+void write_matrix_market(const std::string& path, const Eigen::SparseMatrix<double>& A, const std::string& comment) {
+    Eigen::SparseMatrix<double> S = A;   // column order with sorted rows
+    S.makeCompressed();
+    std::vector<Entry> entries;
+    entries.reserve(static_cast<size_t>(S.nonZeros()));
+    for (Eigen::Index j = 0; j < S.outerSize(); ++j)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(S, j); it; ++it)
+            if (stored(it.value()) || !std::isfinite(it.value())) entries.push_back({it.row() + 1, j + 1, it.value()});
+    write_entries(path, S.rows(), S.cols(), entries, comment);
 }
 
 }  // namespace gyrokit

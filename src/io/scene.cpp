@@ -47,24 +47,23 @@ GyroscopicSystem gyrostat_from(const TomlKeys& k) {
     return make_gyrostat(p);
 }
 
-// A matrix model, read in sparse form. A circulatory N exists only in the dense
-// form, so it is returned separately.
-SparseGyroscopicSystem matrices_from(const TomlKeys& k, const fs::path& dir, Eigen::MatrixXd& N) {
+// A matrix model, read in sparse form.
+GyroscopicSystem matrices_from(const TomlKeys& k, const fs::path& dir) {
     k.only({"type", "M", "K", "D", "G", "N", "unbalance", "dof_names", "whirl_pairs", "bearings"});
     const auto path_of = [&](const std::string& key) -> std::optional<std::string> {
         if (!k.has(key)) return std::nullopt;
         const std::string rel = k.choice(key, "", {});
         return (dir / rel).string();
     };
-    SparseGyroscopicSystem sys;
+    GyroscopicSystem sys;
     const auto m = path_of("M"), kk = path_of("K");
     if (!m) throw InputError(k.where("M") + " is missing; required: path of a Matrix Market file");
     if (!kk) throw InputError(k.where("K") + " is missing; required: path of a Matrix Market file");
     sys.M = read_matrix_market_sparse(*m);
     sys.K = read_matrix_market_sparse(*kk);
-    if (auto d = path_of("D")) sys.D = read_matrix_market_sparse(*d);
+    if (auto d = path_of("D")) sys.damping.push_back({"D", read_matrix_market_sparse(*d)});
     if (auto g = path_of("G")) sys.G = read_matrix_market_sparse(*g);
-    if (auto n = path_of("N")) N = read_matrix_market(*n);
+    if (auto n = path_of("N")) sys.N = read_matrix_market_sparse(*n);
     if (auto u = path_of("unbalance")) sys.unbalance = read_matrix_market_vector(*u);
     const int n = static_cast<int>(sys.M.rows());
     if (const toml::array* names = k.table().get_as<toml::array>("dof_names")) {
@@ -151,24 +150,12 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
         sc.system = make_fluid_rotor(build_fluid_rotor(*sc.fluid));
     } else if (sc.model_type == "gyrostat") {
         sc.system = gyrostat_from(mk);
+    } else if (sc.model_type == "fe_rotor") {
+        sc.system = fe_rotor_from(mk, dir.string());
     } else {
-        Eigen::MatrixXd N;
-        sc.sparse = sc.model_type == "fe_rotor" ? fe_rotor_from(mk, dir.string()) : matrices_from(mk, dir, N);
-        sc.sparse->validate(path);
-        if (N.size() > 0 && sc.sparse->size() > kDenseLimit)
-            throw InputError(fmt::format("{}: N (circulatory) is supported up to {} DOFs (dense models only); this "
-                                         "model has {}",
-                                         mk.where("N"), kDenseLimit, sc.sparse->size()));
-        if (N.size() > 0 && !sc.sparse->dense_representable())
-            throw InputError(mk.where("D") + " is not symmetric; with N the model is held densely, which needs a "
-                                             "symmetric D (put its skew part into G or N)");
-        if (sc.sparse->size() <= kDenseLimit && sc.sparse->dense_representable()) {
-            sc.system = sc.sparse->to_dense();
-            sc.system.N = N;
-            if (N.size() > 0) sc.sparse.reset();   // the sparse form cannot hold N
-        }
+        sc.system = matrices_from(mk, dir);
     }
-    if (sc.has_dense()) sc.system.validate(path);
+    sc.system.validate(path);
 
     if (const toml::table* sp = root.get_as<toml::table>("speeds")) {
         TomlKeys k(path, "speeds", *sp);
@@ -186,7 +173,7 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
         TomlKeys k(path, "analysis", *an);
         k.only({"modes", "harmonics", "solver", "target", "target_order"});
         sc.modes = static_cast<int>(k.integer("modes", 0, 0, 100000));
-        sc.solver = k.choice("solver", "auto", {"auto", "dense", "sparse"});
+        sc.solver = parse_solver_kind(k.choice("solver", "auto", {"auto", "dense", "sparse"}));
         if (k.has("target")) sc.target = k.number("target", std::nullopt, 0, false, "rad/s");
         sc.target_order = k.number("target_order", 0.0, 0, false, "multiple of the speed");
         if (const toml::array* h = an->get_as<toml::array>("harmonics")) {
@@ -202,6 +189,15 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
         }
     }
     return sc;
+}
+
+SolverOptions Scene::solver_options() const {
+    SolverOptions o;
+    o.kind = solver;
+    o.modes = modes;
+    o.target = target;
+    o.target_order = target_order;
+    return o;
 }
 
 }  // namespace gyrokit

@@ -266,26 +266,16 @@ SparsePencil FeRotorMatrices::at_speed(double w) const {
     return p;
 }
 
-SparseGyroscopicSystem FeRotorMatrices::to_system() const {
-    SparseGyroscopicSystem s;
+GyroscopicSystem FeRotorMatrices::to_system() const {
+    GyroscopicSystem s;
     s.dof_names = dof_names;
     s.M = M;
     s.K = K;
     s.G = G;
-    s.D = D;
-    s.damping_name = "bearings";
+    if (D.nonZeros() > 0) s.damping.push_back({"bearings", D});
     if (unbalance.size() > 0 && unbalance.cwiseAbs().maxCoeff() > 0) s.unbalance = unbalance;
     s.whirl_pairs = whirl_pairs;
     return s;
-}
-
-GyroscopicSystem FeRotorMatrices::to_dense() const {
-    const Eigen::MatrixXd Dd(D);
-    const double scale = Dd.cwiseAbs().maxCoeff();
-    if ((Dd - Dd.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
-        throw InputError("fe rotor: bearings: cross-coupled damping cxy != cyx makes D unsymmetric, which a "
-                         "GyroscopicSystem cannot hold; allowed: cxy = cyx (use the sparse matrices otherwise)");
-    return to_system().to_dense();
 }
 
 FeRotor fe_uniform_shaft(double length, int count, double outer_diameter, double inner_diameter,

@@ -312,33 +312,36 @@ GyroscopicSystem make_fluid_rotor(const FluidRotor& f) {
     const int ns = static_cast<int>(f.liquid.modes.size());
     const int n = 4 + 2 * ns;
     GyroscopicSystem s;
-    s.M = Eigen::MatrixXd::Zero(n, n);
-    s.K = Eigen::MatrixXd::Zero(n, n);
-    s.G = Eigen::MatrixXd::Zero(n, n);
-    s.K2 = Eigen::MatrixXd::Zero(n, n);
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), K = M, G = M, K2 = M;
     Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);   // per sqrt(w)
     s.dof_names = {"x", "y", "alpha", "beta"};
-    s.M(0, 0) = s.M(1, 1) = f.m;
-    s.M(2, 2) = s.M(3, 3) = f.J;
-    s.K(0, 0) = s.K(1, 1) = f.k.gamma;
-    s.K(2, 2) = s.K(3, 3) = f.k.tilt;
-    s.K(0, 2) = s.K(2, 0) = s.K(1, 3) = s.K(3, 1) = -f.k.delta;
-    s.G(2, 3) = f.I;
-    s.G(3, 2) = -f.I;
+    M(0, 0) = M(1, 1) = f.m;
+    M(2, 2) = M(3, 3) = f.J;
+    K(0, 0) = K(1, 1) = f.k.gamma;
+    K(2, 2) = K(3, 3) = f.k.tilt;
+    K(0, 2) = K(2, 0) = K(1, 3) = K(3, 1) = -f.k.delta;
+    G(2, 3) = f.I;
+    G(3, 2) = -f.I;
     s.whirl_pairs = {{0, 1}, {2, 3}};
     for (int j = 0; j < ns; ++j) {
         const auto& m = f.liquid.modes[j];
         const int q = 4 + 2 * j, r = q + 1;
         s.dof_names.push_back("q" + std::to_string(m.n));
         s.dof_names.push_back("s" + std::to_string(m.n));
-        s.M(q, q) = s.M(r, r) = m.mu;
-        s.M(2, q) = s.M(q, 2) = s.M(3, r) = s.M(r, 3) = m.lambda;
-        s.K2(q, q) = s.K2(r, r) = m.mu * m.ratio;   // mu_n sigma_n^2 = mu_n (sigma_n/w)^2 w^2
+        M(q, q) = M(r, r) = m.mu;
+        M(2, q) = M(q, 2) = M(3, r) = M(r, 3) = m.lambda;
+        K2(q, q) = K2(r, r) = m.mu * m.ratio;   // mu_n sigma_n^2 = mu_n (sigma_n/w)^2 w^2
         D(q, q) = D(r, r) = m.mu * m.tau(1.0);        // mu_n tau_n = mu_n tau_n(1) sqrt(w)
         s.whirl_pairs.emplace_back(q, r);
     }
-    if (ns > 0 && D.norm() > 0.0)
-        s.damping.push_back({"sloshing", D, [D](double w) { return Eigen::MatrixXd(D * std::sqrt(std::max(w, 0.0))); }});
+    s.M = to_sparse(M);
+    s.K = to_sparse(K);
+    s.G = to_sparse(G);
+    s.K2 = to_sparse(K2);
+    if (ns > 0 && D.norm() > 0.0) {
+        const SparseMatrix Ds = to_sparse(D);
+        s.damping.push_back({"sloshing", Ds, [Ds](double w) { return SparseMatrix(Ds * std::sqrt(std::max(w, 0.0))); }});
+    }
     if (f.p.e > 0) {
         s.unbalance = Eigen::VectorXcd::Zero(n);
         s.unbalance(0) = f.p.m0 * f.p.e;

@@ -61,14 +61,14 @@ GyroscopicSystem make_gyrostat(const GyrostatParameters& p) {
     const char* names[6] = {"alpha", "beta", "x", "y", "psi", "theta"};
 
     GyroscopicSystem sys;
-    sys.M = keep(M, dofs);
-    sys.G = keep(G, dofs);
-    sys.K = keep(K, dofs);
+    sys.M = to_sparse(keep(M, dofs));
+    sys.G = to_sparse(keep(G, dofs));
+    sys.K = to_sparse(keep(K, dofs));
     const std::vector<std::pair<const char*, Eigen::MatrixXd>> comps = {
         {"d_G", diag(a, b, p.d_G)}, {"d_T", diag(x, y, p.d_T)}, {"d_R", diag(ps, th, p.d_R)}};
     for (const auto& [name, D] : comps) {
         Eigen::MatrixXd Dk = keep(D, dofs);
-        if (Dk.norm() > 0.0) sys.damping.push_back({name, Dk});
+        if (Dk.norm() > 0.0) sys.damping.push_back({name, to_sparse(Dk)});
     }
     sys.unbalance.resize(static_cast<int>(dofs.size()));
     for (size_t i = 0; i < dofs.size(); ++i) {

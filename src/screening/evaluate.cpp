@@ -34,10 +34,13 @@ double separation_margin(double wc, double from, double to) {
 void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion& c, std::size_t& q,
                       DesignResult& r) {
     const double w_scan = s.op_to * (1.0 + c.margin_percent / 100.0) * 1.05;
+    // The scene's solver choice: dense for small designs, sparse (a window of
+    // modes near the scene's target) for large ones.
+    const SolverChoice solver = choose_solver(sc.system, sc.solver_options());
     CampbellOptions co;
-    co.modes = sc.modes;
-    const CampbellDiagram cd = campbell(sc.system, SpeedRange{0.0, w_scan, c.count}.points(), co);
-    const std::vector<CriticalSpeed> cs = critical_speeds(sc.system, cd, c.harmonics);
+    co.modes = solver.modes;
+    const CampbellDiagram cd = campbell(solver.make, SpeedRange{0.0, w_scan, c.count}.points(), co);
+    const std::vector<CriticalSpeed> cs = critical_speeds(solver.make, cd, c.harmonics);
     const CriticalSpeed* worst = nullptr;
     double best = inf;
     for (const auto& x : cs) {
@@ -62,9 +65,11 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
 
 void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& c, std::size_t& q,
                      DesignResult& r) {
-    const GyroscopicSystem& sys = sc.system;
-    const CampbellDiagram cd = campbell(sys, SpeedRange{0.0, c.up_to, c.count}.points());
-    const std::vector<StabilityChange> changes = stability_changes(sys, cd);
+    const SolverChoice solver = choose_solver(sc.system, sc.solver_options());
+    CampbellOptions co;
+    co.modes = solver.modes;
+    const CampbellDiagram cd = campbell(solver.make, SpeedRange{0.0, c.up_to, c.count}.points(), co);
+    const std::vector<StabilityChange> changes = stability_changes(solver.make, cd);
     double onset = inf;
     const Branch* which = nullptr;
     for (const Branch& b : cd.branches) {

@@ -8,11 +8,11 @@
 
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
-#include <gyrokit/core/sparse_system.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 #include <gyrokit/eig/sparse_eigensolver.hpp>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,7 +29,8 @@ struct SolverFactory {
     SpectrumSolver operator()() const { return make(); }
 };
 
-// All modes of the dense system by scaled QZ (or the state matrix, per `eig`).
+// All modes by dense scaled QZ (or the state matrix, per `eig`). The solvers
+// share one copy of the validated system (a temporary argument is safe).
 SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig = {});
 
 // `opt.modes` modes nearest the shift by ARPACK shift-invert on the pencils
@@ -38,9 +39,43 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig 
 // speed step is small).
 SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vector<std::pair<int, int>> whirl_pairs,
                             const SparseEigenOptions& opt, bool reuse = true);
-SolverFactory sparse_solver(const SparseGyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse = true);
-// The dense model's pencils converted to sparse form per speed.
+// The system's sparse pencils (one shared copy of the validated system).
 SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse = true);
+
+// The solver choice every analysis makes the same way.
+enum class SolverKind { Auto, Dense, Sparse };
+SolverKind parse_solver_kind(const std::string& name);   // "auto" | "dense" | "sparse"
+std::string to_string(SolverKind k);
+
+// Auto: the sparse solver above this many DOFs, the dense one up to it.
+constexpr int kAutoSparseDofs = 200;
+// The dense solver refuses models above this many DOFs (its 2n x 2n QZ needs
+// O(n^2) memory and O(n^3) time: minutes and gigabytes beyond it).
+constexpr int kDenseLimit = 3000;
+// Modes the sparse solver computes when none are asked for.
+constexpr int kDefaultSparseModes = 6;
+
+// The fields carry the names of the scene's [analysis] keys (and the CLI's options).
+struct SolverOptions {
+    SolverKind kind = SolverKind::Auto;   // solver
+    EigenOptions eig;                     // dense: scaled QZ or state matrix
+    int modes = 0;                        // modes wanted; 0: all (dense) or kDefaultSparseModes (sparse)
+    std::optional<double> target;         // rad/s: the sparse search centre (default 0: the lowest modes)
+    double target_order = 0.0;            // the centre moves as target + target_order * speed
+    int lanczos_vectors = 0;              // sparse: Arnoldi vectors, 0 = automatic
+    bool reuse = true;                    // sparse: start each speed from the last one's vectors
+};
+
+struct SolverChoice {
+    SolverKind kind = SolverKind::Dense;  // Dense or Sparse, never Auto
+    int modes = 0;                        // the number of modes (sparse: the window size; dense: as asked)
+    SolverFactory make;
+    std::vector<std::string> notes;       // e.g. the default number of sparse modes
+};
+// Auto resolved by size (kAutoSparseDofs).
+SolverKind resolve_solver_kind(int dofs, SolverKind requested);
+// Validates the options (InputError naming the field) and the system, and makes the solver.
+SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt);
 
 // The spectra at all speeds, on `threads` workers (contiguous blocks of speeds,
 // so that reuse works within a block): threads, or forked processes that hand

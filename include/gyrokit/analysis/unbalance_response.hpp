@@ -2,8 +2,8 @@
 // M z'' + (D + w G) z' + (K + w N) z = Re(w^2 u e^{i w t}).
 #pragma once
 
+#include <gyrokit/analysis/spectrum_solver.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
-#include <gyrokit/core/sparse_system.hpp>
 
 #include <functional>
 
@@ -12,11 +12,10 @@
 
 namespace gyrokit {
 
-// Complex amplitudes Z at speed w: [K + w N - w^2 M + i w (D + w G)] Z = w^2 u.
-// Throws SolverError where the dynamic stiffness is singular (an undamped resonance).
-Eigen::VectorXcd unbalance_response(const GyroscopicSystem& sys, double w);
-// The same for a sparse model: one sparse LU of the dynamic stiffness per speed.
-Eigen::VectorXcd unbalance_response(const SparseGyroscopicSystem& sys, double w);
+// Complex amplitudes Z at speed w: [K + w N - w^2 M + i w (D + w G)] Z = w^2 u,
+// by a dense LU or (Sparse; Auto above kAutoSparseDofs) a sparse LU of the
+// dynamic stiffness. Throws SolverError where it is singular (an undamped resonance).
+Eigen::VectorXcd unbalance_response(const GyroscopicSystem& sys, double w, SolverKind kind = SolverKind::Auto);
 
 // Amplitudes of every DOF at a speed (one of the functions above, bound to a model).
 using ResponseSolver = std::function<Eigen::VectorXcd(double w)>;

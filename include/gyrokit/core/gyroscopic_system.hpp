@@ -1,10 +1,14 @@
-// The linear gyroscopic system  M z'' + (D + w G) z' + (K + w N) z = w^2 Re(u e^{i w t})
-// with w the spin speed (rad/s). G and N are given per unit speed.
+// The linear gyroscopic system  M z'' + (D + w G) z' + (K + w N + w^2 K2) z = w^2 Re(u e^{i w t})
+// with w the spin speed (rad/s); G and N per unit speed, K2 per speed squared.
+// One type for every model and size: the matrices are stored sparse (a
+// finite-element rotor of 100,000 DOFs fits), and the pencil at a speed comes
+// dense (at_speed, for the dense solvers) or sparse (sparse_at_speed).
 #pragma once
 
 #include <gyrokit/core/bearing_table.hpp>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 #include <complex>
 #include <functional>
 #include <string>
@@ -13,19 +17,57 @@
 
 namespace gyrokit {
 
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+// The sparse form of a dense matrix, exact zeros dropped.
+SparseMatrix to_sparse(const Eigen::MatrixXd& A);
+
+// A matrix of the system: stored sparse, assigned from a sparse matrix or from
+// any dense Eigen expression (exact zeros dropped), so that a small model is
+// written down with dense Eigen code and a large one assembled sparse.
+class SystemMatrix : public SparseMatrix {
+public:
+    SystemMatrix() = default;
+    SystemMatrix(const SparseMatrix& A) : SparseMatrix(A) {}
+    SystemMatrix(SparseMatrix&& A) : SparseMatrix(std::move(A)) {}
+    template <class Derived>
+    SystemMatrix(const Eigen::SparseMatrixBase<Derived>& A) : SparseMatrix(A) {}
+    template <class Derived>
+    SystemMatrix(const Eigen::MatrixBase<Derived>& A) : SparseMatrix(to_sparse(A.eval())) {}
+    template <class Derived>
+    SystemMatrix& operator=(const Eigen::SparseMatrixBase<Derived>& A) {
+        SparseMatrix::operator=(A);
+        return *this;
+    }
+    template <class Derived>
+    SystemMatrix& operator=(const Eigen::MatrixBase<Derived>& A) {
+        SparseMatrix::operator=(to_sparse(A.eval()));
+        return *this;
+    }
+    template <class Derived>
+    SystemMatrix(const Eigen::DiagonalBase<Derived>& A) : SparseMatrix(to_sparse(Eigen::MatrixXd(A))) {}
+    template <class Derived>
+    SystemMatrix& operator=(const Eigen::DiagonalBase<Derived>& A) {
+        SparseMatrix::operator=(to_sparse(Eigen::MatrixXd(A)));
+        return *this;
+    }
+    Eigen::MatrixXd dense() const { return Eigen::MatrixXd(static_cast<const SparseMatrix&>(*this)); }
+};
+
 // A += B on the rows and columns (i, j): a 2x2 element acting on one DOF pair.
 void add_block(Eigen::MatrixXd& A, int i, int j, const Eigen::Matrix2d& B);
 
 // One named source of damping (e.g. "d_G" cage damping); the total damping
 // matrix is the sum of all components. Kept apart so that pervasive damping
-// can be checked for each component alone.
+// can be checked for each component alone. D may be unsymmetric (cross-coupled
+// bearing damping, cxy != cyx).
 struct DampingComponent {
     std::string name;
-    Eigen::MatrixXd D;
+    SystemMatrix D;
     // Optional: the matrix at speed w when it depends on speed (e.g. Stokes-layer
     // damping of a liquid ~ sqrt(w)); empty means the constant D.
-    std::function<Eigen::MatrixXd(double)> of_speed;
-    Eigen::MatrixXd at(double w) const { return of_speed ? of_speed(w) : D; }
+    std::function<SparseMatrix(double)> of_speed = {};
+    SparseMatrix at(double w) const { return of_speed ? of_speed(w) : SparseMatrix(D); }
 };
 
 // The three coefficient matrices of the quadratic pencil at one speed:
@@ -35,14 +77,20 @@ struct QuadraticPencil {
     Eigen::MatrixXcd evaluate(std::complex<double> lambda) const;
 };
 
+// The same pencil in sparse form.
+struct SparsePencil {
+    SparseMatrix M, C, K;
+};
+SparsePencil to_sparse(const QuadraticPencil& p);
+
 class GyroscopicSystem {
 public:
     std::vector<std::string> dof_names;
-    Eigen::MatrixXd M;                        // mass, symmetric
-    Eigen::MatrixXd K;                        // stiffness
-    Eigen::MatrixXd G;                        // gyroscopic per unit speed, skew
-    Eigen::MatrixXd N;                        // circulatory per unit speed (empty: none)
-    Eigen::MatrixXd K2;                       // stiffness per speed squared (empty: none), e.g. sloshing
+    SystemMatrix M;                           // mass, symmetric
+    SystemMatrix K;                           // stiffness (any structure: cross-coupled bearings)
+    SystemMatrix G;                           // gyroscopic per unit speed, skew (0 x 0: none)
+    SystemMatrix N;                           // circulatory per unit speed (0 x 0: none)
+    SystemMatrix K2;                          // stiffness per speed squared (0 x 0: none), e.g. sloshing
     std::vector<DampingComponent> damping;    // D = sum of components
     // Speed-dependent bearings: their stiffness adds to K, their damping to D;
     // each one's damping counts as a damping component named after the table.
@@ -53,15 +101,17 @@ public:
     std::vector<std::pair<int, int>> whirl_pairs;
 
     int size() const { return static_cast<int>(M.rows()); }
-    // Total damping at speed w (speed matters only for speed-dependent components).
-    Eigen::MatrixXd damping_matrix(double w = 0.0) const;
+    // Total damping at speed w (speed matters for speed-dependent components and bearing tables).
+    SparseMatrix damping_matrix(double w = 0.0) const;
     // Names of the damping components: `damping`, then bearing tables with damping.
     std::vector<std::string> damping_names() const;
     bool has_damping() const;
-    bool has_circulatory() const { return N.size() > 0 && N.norm() > 0.0; }
-    bool has_speed_squared_stiffness() const { return K2.size() > 0 && K2.norm() > 0.0; }
+    bool has_circulatory() const { return N.nonZeros() > 0 && N.norm() > 0.0; }
+    bool has_speed_squared_stiffness() const { return K2.nonZeros() > 0 && K2.norm() > 0.0; }
 
     // Pencil at spin speed w: C = D(w) + w G, K(w) = K + w N + w^2 K2 (+ bearings).
+    SparsePencil sparse_at_speed(double w) const;
+    // The same pencil dense (for models small enough to hold densely).
     QuadraticPencil at_speed(double w) const;
     // Unbalance force amplitude at speed w (zero vector if there is none).
     Eigen::VectorXcd unbalance_force(double w) const;
@@ -69,15 +119,10 @@ public:
     // The same system with only the named damping components (others removed).
     GyroscopicSystem with_damping_only(const std::vector<std::string>& names) const;
 
-    // Checks dimensions, finiteness and the structural properties (M, D
-    // symmetric; G skew). Throws InputError naming `origin` on violation.
+    // Checks dimensions, finiteness and the structural properties (M symmetric
+    // and not zero, G skew), the unbalance, DOF names, bearing tables and whirl
+    // pairs. Throws InputError naming `origin` on violation.
     void validate(const std::string& origin) const;
 };
-
-// The checks both system forms share: unbalance size and finiteness, one name
-// per DOF, bearing tables, whirl pairs in range. Throws InputError naming `origin`.
-void validate_attachments(const std::string& origin, int n, const Eigen::VectorXcd& unbalance,
-                          const std::vector<std::string>& dof_names, const std::vector<BearingTable>& bearings,
-                          const std::vector<std::pair<int, int>>& whirl_pairs);
 
 }  // namespace gyrokit

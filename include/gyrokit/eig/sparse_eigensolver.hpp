@@ -8,7 +8,7 @@
 // conjugate pairs found together; a complex shift uses complex Arnoldi (znaupd).
 #pragma once
 
-#include <gyrokit/core/sparse_system.hpp>
+#include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/eig/mode.hpp>
 
 #include <Eigen/Sparse>

@@ -25,5 +25,7 @@ Eigen::VectorXcd read_matrix_market_vector(const std::string& path);
 // 17 significant digits. Throws gyrokit::Error if the file cannot be written
 // (InputError if A is empty or holds NaN/Inf, which the reader would reject).
 void write_matrix_market(const std::string& path, const Eigen::MatrixXd& A, const std::string& comment = "");
+// The same for a sparse matrix: its stored nonzeros, in O(nonzeros).
+void write_matrix_market(const std::string& path, const Eigen::SparseMatrix<double>& A, const std::string& comment = "");
 
 }  // namespace gyrokit

@@ -80,12 +80,8 @@ struct FeRotorMatrices {
     int size() const { return static_cast<int>(M.rows()); }
     // Sparse pencil at spin speed w: M, C = D + w G, K.
     SparsePencil at_speed(double w) const;
-    // The model as a sparse gyroscopic system (bearing damping named "bearings").
-    SparseGyroscopicSystem to_system() const;
-    // The same model as a dense GyroscopicSystem (for small models). Bearing
-    // damping becomes the damping component "bearings"; throws InputError if it
-    // is not symmetric (cxy != cyx), which GyroscopicSystem cannot hold.
-    GyroscopicSystem to_dense() const;
+    // The model as a gyroscopic system (bearing damping: the damping component "bearings").
+    GyroscopicSystem to_system() const;
 };
 
 class FeRotor {
