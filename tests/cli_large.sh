@@ -80,11 +80,12 @@ printf '[model]\ntype = "fe_rotor"\nE = 2e11\ndensity = 7800\n[[model.shaft]]\nl
 run eig "$dir/b/free.toml" --speed 0 --solver sparse --modes 2
 grep -q "was moved" "$dir/err" && grep -q "rigid-body" "$dir/err" \
     || { echo "FAIL: free-free sparse eig: no note of the moved shift and the rigid-body modes"; cat "$dir/err"; fail=1; }
-# Above the dense limit: the dense solver and the dense-only analyses refuse.
+# Above the dense limit: the dense solver and the dense-only direct critical-speed method refuse
+# (pervasive, export and screening run sparse: cli_sparse_models.sh).
 printf '[model]\ntype = "fe_rotor"\nE = 2e11\ndensity = 7800\n[[model.shaft]]\nlength = 8\nelements = 800\nouter_diameter = 0.05\n[[model.bearing]]\nz = 0\nk = 1e8\n[[model.bearing]]\nz = 8\nk = 1e8\n' \
     > "$dir/b/large.toml"
 expect "above the dense limit of 3000" eig "$dir/b/large.toml" --speed 0 --solver dense
-expect "gyrokit pervasive needs the dense model" pervasive "$dir/b/large.toml" --speeds 0:10:2
+expect "gyrokit critical --critical-method direct needs the dense model" critical "$dir/b/large.toml" --speeds 0:10:2 --critical-method direct
 run eig "$dir/b/large.toml" --speed 100 --modes 3 --format csv
 [ "$(tail -n +2 "$dir/out" | wc -l)" -eq 3 ] || { echo "FAIL: auto solver on 3204 DOFs"; fail=1; }
 exit $fail

@@ -184,6 +184,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
 
     auto* perv = app.add_subcommand("pervasive", "Hautus pervasive-damping check for each damping component");
     add_common(perv, o->common, true);
+    add_solver_options(perv, o->common);
     perv->add_option("--tolerance", o->tolerance, "largest residual of a loss (a loss must also be within 1e3 "
                                                   "times the eigenpair's backward error)")
         ->capture_default_str();
@@ -193,10 +194,14 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         if (!(o->tolerance > 0.0 && o->tolerance < 1.0))
             throw InputError(fmt::format("--tolerance {}: allowed: 0 < tolerance < 1", o->tolerance));
         const Context c = open_scene(o->common, true);
-        require_dense(c, "pervasive");
         PervasiveOptions po;
         po.tolerance = o->tolerance;
         po.modes = wanted_modes(c, o->modes);
+        po.solver = c.solver;
+        po.threads = c.jobs;
+        if (use_sparse(c) && po.modes == 0)
+            std::cerr << "note: the sparse solver checks the " << kDefaultSparseModes
+                      << " modes nearest the target; set --modes K for another number\n";
         write_table(out, pervasive_table(pervasive_damping(c.scene.system, c.speeds, po), c.unit), c.format);
     }});
 

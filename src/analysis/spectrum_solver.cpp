@@ -148,6 +148,7 @@ SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt
     so.shift = {0.0, opt.target.value_or(0.0)};
     so.shift_order = opt.target_order;
     so.lanczos_vectors = opt.lanczos_vectors;
+    so.left_vectors = opt.eig.left_vectors;
     c.modes = so.modes;
     c.make = sparse_solver(sys, so, opt.reuse);
     return c;

@@ -412,7 +412,8 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
     // refinement, which may rotate a pair's vectors in their plane).
     separate_double_whirl(out.modes, whirl_pairs, real_tol, action);
     set_error_bounds(out.modes, action);
-    for (Mode& m : out.modes) m.left.resize(0);
+    if (!opt.left_vectors)
+        for (Mode& m : out.modes) m.left.resize(0);
     std::stable_sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) {
         return a.lambda.imag() != b.lambda.imag() ? a.lambda.imag() < b.lambda.imag() : a.lambda.real() < b.lambda.real();
     });

@@ -6,6 +6,7 @@
 // speed is located by golden section to near machine precision.
 #pragma once
 
+#include <gyrokit/analysis/spectrum_solver.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/eig/mode.hpp>
 
@@ -18,7 +19,13 @@ struct PervasiveOptions {
     // Upper limit of the residual of a loss. Below it, a residual counts as a
     // loss only at the level the eigenpair's accuracy explains: r <= 1e3 max(eta, eps).
     double tolerance = 1e-8;
-    int modes = 0;   // the K lowest branches at the first speed are checked; 0 = all
+    int modes = 0;   // the K lowest branches at the first speed are checked; 0 = all (dense) or
+                     // the sparse solver's default window
+    // Which solver computes the modes (choose_solver; its `modes` is replaced by
+    // the field above). Dense: the full SVD of [P^T; D] refines a loss as well;
+    // sparse: the residual over the left eigenvectors, in O(nonzeros).
+    SolverOptions solver;
+    int threads = 1;   // speeds of each Campbell diagram solved in parallel (run_on_workers)
 };
 
 struct DampingLoss {
@@ -39,6 +46,10 @@ double pervasion_residual(const QuadraticPencil& p, const Eigen::MatrixXd& D, st
 // The same minimum over z = conj(Y) c, Y the left eigenvectors (n x k, y^H P = 0;
 // k = 2 for a double eigenvalue): a 2n x k SVD, for the grid scan.
 double pervasion_residual(const QuadraticPencil& p, const Eigen::MatrixXd& D, std::complex<double> lambda,
+                          const Eigen::MatrixXcd& Y);
+
+// The same over the left vectors of a sparse pencil, in O(nonzeros) per vector.
+double pervasion_residual(const SparsePencil& p, const SparseMatrix& D, std::complex<double> lambda,
                           const Eigen::MatrixXcd& Y);
 
 // Checks each damping component alone and the total damping over the speeds.

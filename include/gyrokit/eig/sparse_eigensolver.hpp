@@ -33,6 +33,7 @@ struct SparseEigenOptions {
     // this after refinement (inverse iteration on P(lambda)), else SolverError.
     double verify_tolerance = 1e-10;
     int reserve = 0;                        // extra eigenvalues asked of ARPACK (rigid-body ones expected in the window)
+    bool left_vectors = false;              // keep the left vectors in the modes (always computed, for the error bounds)
 };
 
 struct SparseSpectrum {
