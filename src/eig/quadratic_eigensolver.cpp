@@ -145,14 +145,14 @@ QuadraticSpectrum solve_state(const QuadraticPencil& p) {
     Eigen::FullPivLU<Eigen::MatrixXd> lu(p.M);
     if (!lu.isInvertible())
         throw SolverError("the state-matrix method needs an invertible M, and M is singular; "
-                          "use the QZ method (--method qz)");
+                          "use the QZ method (method = qz)");
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
     A.topRightCorner(n, n).setIdentity();
     A.bottomLeftCorner(n, n) = -lu.solve(p.K);
     A.bottomRightCorner(n, n) = -lu.solve(p.C);
     Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
     if (es.info() != Eigen::Success)
-        throw SolverError("the state-matrix eigensolver did not converge; use the QZ method (--method qz)");
+        throw SolverError("the state-matrix eigensolver did not converge; use the QZ method (method = qz)");
     // Left eigenvectors w^H A = lambda w^H are the rows of V^{-1}; the quadratic's
     // is y = M^{-T} w2 (w2 the lower half), since y^H P(lambda) = 0 follows.
     const Eigen::PartialPivLU<Eigen::MatrixXcd> vlu(es.eigenvectors());

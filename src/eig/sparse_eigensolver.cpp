@@ -105,11 +105,11 @@ void check_arnoldi(const char* routine, a_int info, const a_int* iparam, const S
     if (info == 1 && iparam[4] >= sz.nev) return;
     if (info == 1)
         throw SolverError(fmt::format("ARPACK reached {} restarts with {} of {} Ritz values converged; raise "
-                                      "the number of Lanczos vectors (--lanczos, now {}) or move --target closer "
+                                      "the number of Lanczos vectors (lanczos_vectors = {}) or move the target closer "
                                       "to the wanted modes",
                                       opt.max_iterations, iparam[4], sz.nev, sz.ncv));
     if (info != 0)
-        throw SolverError(fmt::format("ARPACK {} failed with info = {}; raise --lanczos (now {})", routine, info,
+        throw SolverError(fmt::format("ARPACK {} failed with info = {}; raise lanczos_vectors = {}", routine, info,
                                       sz.ncv));
 }
 
@@ -286,7 +286,7 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
     const int n = static_cast<int>(p.M.rows());
     if (n < 2) throw InputError("the sparse eigensolver needs at least 2 DOFs; use the dense solver");
     if (opt.modes < 1 || 2 * opt.modes + 2 > 2 * n - 1)
-        throw InputError(fmt::format("--modes {}: allowed for this model with {} DOFs: 1 to {}", opt.modes, n,
+        throw InputError(fmt::format("modes = {}: allowed for this model with {} DOFs: 1 to {}", opt.modes, n,
                                      std::max(1, n - 2)));
     if (!(opt.verify_tolerance > 0.0 && opt.verify_tolerance < 1.0))
         throw InputError(fmt::format("verify_tolerance {}: allowed: 0 < tolerance < 1", opt.verify_tolerance));
@@ -313,7 +313,7 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
         sz.ncv = opt.lanczos_vectors > 0 ? opt.lanczos_vectors : std::max<a_int>(2 * sz.nev + 1, 30);
         sz.ncv = std::min<a_int>(sz.ncv, sz.N);
         if (sz.ncv <= sz.nev + 1)
-            throw InputError(fmt::format("--lanczos {}: must exceed 2 * modes + 3 = {}", sz.ncv, sz.nev + 1));
+            throw InputError(fmt::format("lanczos_vectors = {}: must exceed 2 * modes + 3 = {}", sz.ncv, sz.nev + 1));
         // The shift, moved off a singular P(sigma) in steps of the natural scale.
         SparseEigenOptions o = opt;
         std::string why;

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <functional>
 #include <map>
 #include <set>
 #include <toml++/toml.h>
@@ -108,6 +110,29 @@ GyroscopicSystem matrices_from(const TomlKeys& k, const fs::path& dir) {
     return sys;
 }
 
+// The model readers: [model] type -> reader. A new model type plugs in here
+// with one line (and its keys in docs/scene_format.md).
+using ModelReader = std::function<void(const TomlKeys&, const fs::path& dir, Scene&)>;
+const std::map<std::string, ModelReader>& model_readers() {
+    static const std::map<std::string, ModelReader> readers = {
+        {"fe_rotor", [](const TomlKeys& k, const fs::path& dir, Scene& sc) { sc.system = fe_rotor_from(k, dir.string()); }},
+        {"fluid_rotor",
+         [](const TomlKeys& k, const fs::path&, Scene& sc) {
+             sc.fluid = fluid_rotor_from(k);
+             sc.system = make_fluid_rotor(build_fluid_rotor(*sc.fluid));
+         }},
+        {"gyrostat", [](const TomlKeys& k, const fs::path&, Scene& sc) { sc.system = gyrostat_from(k); }},
+        {"matrices", [](const TomlKeys& k, const fs::path& dir, Scene& sc) { sc.system = matrices_from(k, dir); }},
+    };
+    return readers;
+}
+
+std::set<std::string> model_types() {
+    std::set<std::string> t;
+    for (const auto& [name, reader] : model_readers()) t.insert(name);
+    return t;
+}
+
 toml::table parse_scene_file(const std::string& path) {
     try {
         return toml::parse_file(path);
@@ -140,21 +165,12 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
     top.only({"title", "model", "speeds", "analysis"});
     sc.title = top.choice("title", "", {});
     const toml::table* model = root.get_as<toml::table>("model");
-    if (!model) throw InputError(path + ": table [model] is missing; required: [model] with type = \"gyrostat\", \"matrices\", \"fluid_rotor\" or \"fe_rotor\"");
+    const std::string types = fmt::format("{}", fmt::join(model_types(), ", "));
+    if (!model) throw InputError(path + ": table [model] is missing; required: [model] with type = one of " + types);
     TomlKeys mk(path, "model", *model);
-    sc.model_type = mk.choice("type", "", {"gyrostat", "matrices", "fluid_rotor", "fe_rotor"});
-    if (sc.model_type.empty()) throw InputError(mk.where("type") + " is missing; allowed: fe_rotor, fluid_rotor, gyrostat, matrices");
-    const fs::path dir = fs::path(path).parent_path();
-    if (sc.model_type == "fluid_rotor") {
-        sc.fluid = fluid_rotor_from(mk);
-        sc.system = make_fluid_rotor(build_fluid_rotor(*sc.fluid));
-    } else if (sc.model_type == "gyrostat") {
-        sc.system = gyrostat_from(mk);
-    } else if (sc.model_type == "fe_rotor") {
-        sc.system = fe_rotor_from(mk, dir.string());
-    } else {
-        sc.system = matrices_from(mk, dir);
-    }
+    sc.model_type = mk.choice("type", "", model_types());
+    if (sc.model_type.empty()) throw InputError(mk.where("type") + " is missing; allowed: " + types);
+    model_readers().at(sc.model_type)(mk, fs::path(path).parent_path(), sc);
     sc.system.validate(path);
 
     if (const toml::table* sp = root.get_as<toml::table>("speeds")) {

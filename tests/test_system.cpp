@@ -1,0 +1,120 @@
+// The one system type and the library's solver choice: storage, pencils,
+// validation before any analysis, solvers that own their system.
+#include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/models/fe_rotor.hpp>
+#include <gyrokit/models/gyrostat.hpp>
+#include "test_helpers.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace gyrokit;
+
+namespace {
+
+GyrostatParameters centrifuge() {
+    GyrostatParameters p;
+    p.A_G = p.B_G = 1.2;
+    p.A_R = 0.05;
+    p.C_R = 0.08;
+    p.m = 10.0;
+    p.s = 0.3;
+    p.c_G = 5e4;
+    p.c_T = 2e5;
+    p.c_R = 1e4;
+    p.d_G = 20.0;
+    return p;
+}
+
+}  // namespace
+
+TEST_CASE("system: dense and sparse pencils are the same matrices", "[system]") {
+    const GyroscopicSystem s = fe_uniform_shaft(1.0, 10, 0.05, 0.0, 2.1e11, 0.3, 7800).assemble().to_system();
+    for (double w : {0.0, 10.0, 1234.5}) {
+        CAPTURE(w);
+        const QuadraticPencil d = s.at_speed(w);
+        const SparsePencil p = s.sparse_at_speed(w);
+        CHECK((d.M - Eigen::MatrixXd(p.M)).norm() == 0.0);
+        CHECK((d.C - Eigen::MatrixXd(p.C)).norm() == 0.0);
+        CHECK((d.K - Eigen::MatrixXd(p.K)).norm() == 0.0);
+    }
+    // Assigned from a dense expression, stored without its zeros.
+    GyroscopicSystem t;
+    t.M = Eigen::Matrix3d::Identity();
+    CHECK(t.M.nonZeros() == 3);
+    CHECK(t.M.dense() == Eigen::Matrix3d::Identity());
+}
+
+TEST_CASE("system: every analysis validates before it solves", "[system][validation]") {
+    GyroscopicSystem bad;
+    bad.M = Eigen::Matrix2d::Identity();
+    bad.K = Eigen::Matrix3d::Identity();   // 3x3 against a 2x2 M
+    bad.dof_names = {"x", "y"};
+    const std::vector<double> speeds{0.0, 1.0, 2.0};
+    const auto message = [&](const std::function<void()>& f) {
+        try {
+            f();
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no InputError");
+    };
+    CHECK(message([&] { campbell(bad, speeds); }).find("matrix K is 3x3, expected 2x2") != std::string::npos);
+    CHECK(message([&] { choose_solver(bad, {}); }).find("matrix K is 3x3") != std::string::npos);
+    SparseEigenOptions so;
+    CHECK(message([&] { sparse_solver(bad, so); }).find("matrix K is 3x3") != std::string::npos);
+    GyroscopicSystem nan = make_gyrostat(centrifuge());
+    nan.K.coeffRef(0, 0) = std::nan("");
+    CHECK(message([&] { choose_solver(nan, {}); }).find("NaN") != std::string::npos);
+    // Options are checked by field name.
+    SolverOptions o;
+    o.modes = -1;
+    CHECK(message([&] { choose_solver(make_gyrostat(centrifuge()), o); }).rfind("modes = -1", 0) == 0);
+}
+
+TEST_CASE("system: solvers own their system, a temporary model is safe", "[system]") {
+    // The factory and its solvers outlive the temporary GyroscopicSystem.
+    const SolverFactory dense = dense_solver(make_gyrostat(centrifuge()));
+    const SolverChoice choice = choose_solver(make_gyrostat(centrifuge()), {});
+    const QuadraticSpectrum a = dense()(20.0), b = choice.make()(20.0);
+    const QuadraticSpectrum ref = solve_at_speed(make_gyrostat(centrifuge()), 20.0);
+    REQUIRE(a.modes.size() == ref.modes.size());
+    REQUIRE(b.modes.size() == ref.modes.size());
+    for (std::size_t i = 0; i < ref.modes.size(); ++i) {
+        CAPTURE(i);
+        CHECK(a.modes[i].lambda == ref.modes[i].lambda);
+        CHECK(b.modes[i].lambda == ref.modes[i].lambda);
+    }
+}
+
+TEST_CASE("system: the automatic choice by size, dense refused above its limit", "[system][solver]") {
+    const auto shaft = [](int elements) {   // pinned at both ends
+        FeRotor r = fe_uniform_shaft(2.0, elements, 0.05, 0.0, 2.1e11, 0.3, 7800);
+        r.supports = {FeSupport{0}, FeSupport{elements}};
+        return r.assemble().to_system();
+    };
+    const GyroscopicSystem small = shaft(10), large = shaft(60), huge = shaft(760);
+    CHECK(small.size() <= kAutoSparseDofs);
+    CHECK(large.size() > kAutoSparseDofs);
+    CHECK(huge.size() > kDenseLimit);
+    CHECK(choose_solver(small, {}).kind == SolverKind::Dense);
+    const SolverChoice sparse = choose_solver(large, {});
+    CHECK(sparse.kind == SolverKind::Sparse);
+    CHECK(sparse.modes == kDefaultSparseModes);
+    CHECK(sparse.notes.size() == 1);   // the default window is said
+    SolverOptions dense;
+    dense.kind = SolverKind::Dense;
+    CHECK_THROWS_WITH(choose_solver(huge, dense), Catch::Contains("above the dense limit of 3000"));
+    // The sparse choice on the small model gives its lowest modes as the dense one does.
+    SolverOptions so;
+    so.kind = SolverKind::Sparse;
+    so.modes = 4;
+    const QuadraticSpectrum s = choose_solver(small, so).make()(0.0), d = choose_solver(small, {}).make()(0.0);
+    REQUIRE(s.modes.size() == 4);
+    for (std::size_t i = 0; i < 4; ++i) {
+        CAPTURE(i);
+        CHECK(std::abs(s.modes[i].lambda - d.modes[i].lambda) <= 1e-10 * std::abs(d.modes[i].lambda));
+    }
+}
