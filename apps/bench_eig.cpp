@@ -216,11 +216,11 @@ int main(int argc, char** argv) {
         all.C_R = 1.1e-9;
         singular.A_R = singular.C_R = 0.0;   // massless rotor tilt: M singular
         const std::vector<double> fast{1e5};
-        cases.push_back({"centrifuge c_T=c_R=1e12", make_gyrostat(stiff), scene_speeds});
+        cases.push_back({"centrifuge c_T=c_R=1e12", make_system(stiff), scene_speeds});
         cases.push_back({"centrifuge w=1e5", scene.system, fast});
-        cases.push_back({"centrifuge A_R=1e-9", make_gyrostat(tiny), scene_speeds});
-        cases.push_back({"centrifuge combined", make_gyrostat(all), fast});
-        cases.push_back({"centrifuge A_R=C_R=0", make_gyrostat(singular), scene_speeds});
+        cases.push_back({"centrifuge A_R=1e-9", make_system(tiny), scene_speeds});
+        cases.push_back({"centrifuge combined", make_system(all), fast});
+        cases.push_back({"centrifuge A_R=C_R=0", make_system(singular), scene_speeds});
 
         Table t({"case", "n", "speeds_rad_s", "method", "seconds_per_speed", "time_vs_qz", "max_backward_error",
                  "max_rel_diff_to_qz", "note"});

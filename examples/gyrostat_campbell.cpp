@@ -11,7 +11,7 @@ int main() {
     p.m = 10.0; p.s = 0.3;          // rotor mass (kg), distance to the suspension point (m)
     p.c_G = 5e4; p.c_T = 2e5; p.c_R = 1e4;
     p.d_G = 20.0;                   // cage damping only
-    const gyrokit::GyroscopicSystem sys = gyrokit::make_gyrostat(p);
+    const gyrokit::GyroscopicSystem sys = gyrokit::make_system(p);
 
     const auto speeds = gyrokit::SpeedRange{0.0, 60.0, 7}.points();
     const gyrokit::CampbellDiagram cd = gyrokit::campbell(sys, speeds);

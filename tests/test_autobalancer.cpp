@@ -65,6 +65,7 @@ TEST_CASE("Synchronous states satisfy the existence conditions (34)-(35) and com
         const auto& p = sc.params;
         const double f0 = p.f_unbalance(0, 1), f1 = p.f_unbalance(1, 1), f2 = p.f_unbalance(2, 1);
         for (const auto& s : synchronous_states(p)) {
+            CAPTURE(s);
             const double a1 = s.alpha[0], a2 = s.alpha[1];
             CHECK(std::fabs(f0 * std::sin(a1) + f2 * std::sin(a1 - a2)) < 1e-15 * 4 * f0);
             CHECK(std::fabs(f0 * std::sin(a2) - f1 * std::sin(a1 - a2)) < 1e-15 * 4 * f0);
@@ -90,6 +91,7 @@ TEST_CASE("Tabelle 3: the printed rows (pi, 0) and (0, pi) are interchanged", "[
     const auto ranges = speed_intervals(sc.params);
     int disagreements = 0;
     for (const auto& e : stability_table(sc.params)) {
+        CAPTURE(e);
         std::size_t idx = 0;
         while (ranges[idx].name != e.range.name) ++idx;
         if (e.stable_criterion != (printed.at(e.state.label)[idx] == 1)) ++disagreements;
@@ -120,6 +122,7 @@ TEST_CASE("Rotor without rollers: the simulated orbit matches the damped closed 
 TEST_CASE("Damped slow-phase model: compensating states are exact, the others move off", "[autobalancer]") {
     const BalancerScene sc = load_balancer_scene(scene("table1"));
     for (const auto& s : synchronous_states(sc.params)) {
+        CAPTURE(s);
         const auto a = damped_equilibrium(sc.params, 80.0, s.alpha);
         const double d = std::max(phase_distance(a[0], s.alpha[0]), phase_distance(a[1], s.alpha[1]));
         if (s.compensating) CHECK(d < 1e-12);
@@ -129,6 +132,7 @@ TEST_CASE("Damped slow-phase model: compensating states are exact, the others mo
     AutobalancerParameters p = sc.params;
     p.c_x = p.c_y = 0.0;
     for (const auto& s : synchronous_states(p)) {
+        CAPTURE(s);
         const auto a = damped_equilibrium(p, 40.0, s.alpha);
         CHECK(std::max(phase_distance(a[0], s.alpha[0]), phase_distance(a[1], s.alpha[1])) < 1e-12);
     }

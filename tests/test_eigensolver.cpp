@@ -18,6 +18,7 @@ void require_backward_stable(const GyroscopicSystem& s, double w, int expect_mod
     INFO("speed " << w);
     CHECK(static_cast<int>(sp.modes.size() + sp.rigid_body.size()) >= expect_modes);
     for (const auto& m : sp.modes) {
+        CAPTURE(m);
         CHECK(std::isfinite(m.lambda.real()));
         CHECK(std::isfinite(m.lambda.imag()));
         CHECK(m.backward_error <= 1e-12);
@@ -26,7 +27,7 @@ void require_backward_stable(const GyroscopicSystem& s, double w, int expect_mod
 
 // Undamped: the extreme case at speeds from standstill to 1e5 rad/s.
 void sweep_extremes(GyrostatParameters p) {
-    const GyroscopicSystem s = make_gyrostat(p);
+    const GyroscopicSystem s = make_system(p);
     for (double w : {0.0, 1.0, 100.0, 1e4, 1e5}) require_backward_stable(s, w, 6);
 }
 
@@ -61,7 +62,7 @@ TEST_CASE("scaled QZ: backward error <= 1e-12 at the extremes", "[eig][extremes]
     SECTION("free cage (singular K, rigid-body modes)") {
         p.c_G = 0.0;
         sweep_extremes(p);
-        for (double w : {0.0, 100.0}) CHECK(!solve_at_speed(make_gyrostat(p), w).rigid_body.empty());
+        for (double w : {0.0, 100.0}) CHECK(!solve_at_speed(make_system(p), w).rigid_body.empty());
     }
     SECTION("everything at once") {
         p.c_T = p.c_R = 1e12;
@@ -70,7 +71,7 @@ TEST_CASE("scaled QZ: backward error <= 1e-12 at the extremes", "[eig][extremes]
         sweep_extremes(p);
     }
     SECTION("badly scaled units (DOFs in m, mm, um)") {
-        GyroscopicSystem s = make_gyrostat(test::centrifuge());
+        GyroscopicSystem s = make_system(test::centrifuge());
         const Eigen::VectorXd t = (Eigen::VectorXd(6) << 1e3, 1e-3, 1e4, 1e-4, 1.0, 1e2).finished();
         const GyroscopicSystem ref = s;
         s.M = t.asDiagonal() * s.M * t.asDiagonal();
@@ -78,6 +79,7 @@ TEST_CASE("scaled QZ: backward error <= 1e-12 at the extremes", "[eig][extremes]
         s.G = t.asDiagonal() * s.G * t.asDiagonal();
         for (auto& c : s.damping) c.D = t.asDiagonal() * c.D * t.asDiagonal();
         for (double w : {0.0, 30.0, 1e4}) {
+            CAPTURE(w);
             require_backward_stable(s, w, 6);
             // A congruence leaves the eigenvalues unchanged.
             const auto a = solve_at_speed(s, w), b = solve_at_speed(ref, w);
@@ -91,11 +93,13 @@ TEST_CASE("scaled QZ: backward error <= 1e-12 at the extremes", "[eig][extremes]
 TEST_CASE("undamped gyroscopic systems: eigenvalues in quadruples, on the axis when stable", "[eig]") {
     std::mt19937 g(7);
     for (int trial = 0; trial < 10; ++trial) {
+        CAPTURE(trial);
         const int n = 3 + trial;
         // Indefinite K: eigenvalues lambda, -lambda, conj(lambda), -conj(lambda) (Hamiltonian symmetry).
         const GyroscopicSystem s = random_gyroscopic(g, n, false);
         const auto sp = solve_at_speed(s, 2.0);
         for (const auto& m : sp.modes) {
+            CAPTURE(m);
             CHECK(m.backward_error <= 1e-13);
             const std::complex<double> mirror = -std::conj(m.lambda);
             double d = INFINITY;
@@ -109,11 +113,12 @@ TEST_CASE("undamped gyroscopic systems: eigenvalues in quadruples, on the axis w
 }
 
 TEST_CASE("left eigenvectors satisfy y^H P(lambda) = 0", "[eig]") {
-    const GyroscopicSystem s = make_gyrostat(test::centrifuge());
+    const GyroscopicSystem s = make_system(test::centrifuge());
     const QuadraticPencil p = s.at_speed(20.0);
     EigenOptions o;
     o.left_vectors = true;
     for (const auto& m : solve_quadratic(p, o, s.whirl_pairs).modes) {
+        CAPTURE(m);
         const Eigen::MatrixXcd P = p.evaluate(m.lambda);
         const double scale = std::norm(m.lambda) * p.M.norm() + std::abs(m.lambda) * p.C.norm() + p.K.norm();
         CHECK((m.left.adjoint() * P).norm() <= 1e-12 * scale);
@@ -122,10 +127,11 @@ TEST_CASE("left eigenvectors satisfy y^H P(lambda) = 0", "[eig]") {
 }
 
 TEST_CASE("state-matrix path: agrees on ordinary cases, refuses singular M", "[eig]") {
-    const GyroscopicSystem s = make_gyrostat(test::centrifuge());
+    const GyroscopicSystem s = make_system(test::centrifuge());
     const auto a = solve_at_speed(s, 30.0), b = solve_at_speed(s, 30.0, {EigenMethod::StateMatrix, false});
     REQUIRE(a.modes.size() == b.modes.size());
     for (size_t i = 0; i < a.modes.size(); ++i) {
+        CAPTURE(i);
         CHECK(std::abs(a.modes[i].lambda - b.modes[i].lambda) <= 1e-10 * std::abs(a.modes[i].lambda));
         CHECK(b.modes[i].backward_error <= 1e-10);
     }
@@ -190,6 +196,7 @@ TEST_CASE("double eigenvalue: the plane is turned into backward and forward circ
     };
     std::vector<Mode> three(3);
     for (int i = 0; i < 3; ++i) {
+        CAPTURE(i);
         three[static_cast<size_t>(i)].lambda = {0.0, 2.0};
         three[static_cast<size_t>(i)].right = Eigen::Vector2cd(i == 1 ? 0.0 : 1.0, i == 1 ? 1.0 : 0.0);
     }

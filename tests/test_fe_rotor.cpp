@@ -183,6 +183,7 @@ TEST_CASE("fe rotor: Euler-Bernoulli pinned-pinned and free-free frequencies, fo
         const std::vector<double> w = frequencies_at_rest(r.assemble());
         double e = 0.0;
         for (int k = 1; k <= 3; ++k) {
+            CAPTURE(k);
             const double exact = std::pow(k * pi / L, 2) * c;
             CHECK(w[2 * (k - 1)] == Approx(w[2 * (k - 1) + 1]).epsilon(1e-9));   // x and y planes
             e = std::max(e, std::abs(w[2 * (k - 1)] - exact) / exact);
@@ -191,6 +192,7 @@ TEST_CASE("fe rotor: Euler-Bernoulli pinned-pinned and free-free frequencies, fo
     }
     CHECK(err.back() < 1e-5);
     for (std::size_t i = 1; i < err.size(); ++i) {
+        CAPTURE(i);
         const double order = std::log2(err[i - 1] / err[i]);
         CHECK(order > 3.7);
         CHECK(order < 4.3);
@@ -306,6 +308,7 @@ TEST_CASE("fe rotor: sparse shift-invert agrees with dense QZ on a 300-DOF rotor
         const SparseSpectrum s = solve_quadratic_sparse(p, o, model->whirl_pairs);
         REQUIRE(s.modes.size() == 8);
         for (std::size_t i = 0; i < s.modes.size(); ++i) {
+            CAPTURE(i);
             const Mode& sm = s.modes[i];
             const Mode& dm = ref.modes[i];   // both lists: lowest frequencies first
             // Symmetric bearing damping: 1e-10 relative. Cross-coupled (non-normal) bearings
@@ -558,6 +561,7 @@ TEST_CASE("fe rotor: a pair split by a small anisotropy keeps its planar modes",
             INFO((is_dense ? "dense" : "sparse") << ", anisotropy " << a);
             REQUIRE(std::abs((*modes)[1].lambda - (*modes)[0].lambda) < 1e-6 * std::abs((*modes)[0].lambda));
             for (std::size_t i = 0; i < 6; ++i) {
+                CAPTURE(i);
                 const Mode& md = (*modes)[i];
                 double turn = 0.0;   // zero for a planar mode, +-1/2 for a circular one
                 for (const auto& [u, v] : m.whirl_pairs) turn += (md.right(u) * std::conj(md.right(v))).imag();

@@ -167,10 +167,12 @@ double rel(double a, double b) { return std::fabs(a - b) / std::fabs(b); }
 
 TEST_CASE("fluid: sloshing coefficients against unscaled Bessel functions and quadrature", "[fluid]") {
     for (int N = 1; N <= 4; ++N) {
+        CAPTURE(N);
         const FluidRotorParameters p = table_case(N);
         const LiquidCoefficients L = liquid_coefficients(p);
         REQUIRE(L.modes.size() == 5);
         for (const auto& m : L.modes) {
+            CAPTURE(m);
             const Unscaled u(m.kappa, p.R0, p.R, -1.0, 0.0);
             // Free-surface condition h' + sigma^2/(w^2 R0) h = 0 with h'(R0) = -1.
             CHECK(rel(m.ratio, p.R0 / u.h(p.R0)) < 1e-12);
@@ -203,6 +205,7 @@ TEST_CASE("fluid: sloshing frequency against a finite-difference radial solve", 
     const FluidRotorParameters p = table_case(2);
     const LiquidCoefficients L = liquid_coefficients(p);
     for (int j : {0, 2}) {
+        CAPTURE(j);
         const auto& m = L.modes[j];
         const double h1 = fd_h_R0(m.kappa, p.R0, p.R, 1000), h2 = fd_h_R0(m.kappa, p.R0, p.R, 2000);
         const double h = (4 * h2 - h1) / 3;   // Richardson: O(dr^2) error removed
@@ -212,6 +215,7 @@ TEST_CASE("fluid: sloshing frequency against a finite-difference radial solve", 
 
 TEST_CASE("fluid: J* and lambda_1 against a finite-difference Neumann solve", "[fluid]") {
     for (int N : {1, 2, 4}) {
+        CAPTURE(N);
         const FluidRotorParameters p = table_case(N);
         const LiquidCoefficients L = liquid_coefficients(p);
         const auto c = fd_jstar(p.R0, p.R, p.a, p.rho, 80, 160), f = fd_jstar(p.R0, p.R, p.a, p.rho, 160, 320);
@@ -230,6 +234,7 @@ TEST_CASE("fluid: J* series converges with the fitted tail", "[fluid]") {
     const double ref = liquid_coefficients(p).J_star;
     double prev = 1.0;
     for (int nj : {10, 40, 160}) {
+        CAPTURE(nj);
         p.jstar_terms = nj;
         const double e = rel(liquid_coefficients(p).J_star, ref);
         CHECK(e < prev);
@@ -241,9 +246,11 @@ TEST_CASE("fluid: J* series converges with the fitted tail", "[fluid]") {
 TEST_CASE("fluid: thin-layer series and Bessel closed forms agree where both hold", "[fluid]") {
     for (double k : {0.5, 5.0, 50.0})
         for (double t : {0.02, 0.05}) {
+            CAPTURE(t);
             const double R = 0.6, R0 = R - t / k;
             if (t / k > 0.25 * R0) continue;
             for (auto bc : {std::pair<double, double>{-1.0, 0.0}, {-1.0, -1.0}}) {
+                CAPTURE(bc);
                 const auto s = detail::radial(k, R0, R, bc.first, bc.second, detail::RadialPath::Series);
                 const auto b = detail::radial(k, R0, R, bc.first, bc.second, detail::RadialPath::Bessel);
                 CHECK(rel(s.h_R0, b.h_R0) < 1e-9);
@@ -279,6 +286,7 @@ TEST_CASE("fluid: undamped critical speeds: quadratic in w^2 equals the roots of
         const auto D = [&](double w) { return fluid_delta(f, J, w); };
         double wa = 1.0;
         for (int i = 1; i <= 20000; ++i) {
+            CAPTURE(i);
             const double wb = 1.0 + i * 0.1;
             if ((D(wa) < 0) != (D(wb) < 0)) roots.push_back(find_root(D, wa, wb));
             wa = wb;
@@ -298,7 +306,8 @@ TEST_CASE("fluid: the coupled gyroscopic system has i w at each critical speed",
         p.nu = 0;
         const FluidRotor f = build_fluid_rotor(p);
         for (double w : critical_speeds_quadratic(f, equivalent_inertia(f))) {
-            const GyroscopicSystem s = make_fluid_rotor(f);
+            CAPTURE(w);
+            const GyroscopicSystem s = make_system(f);
             s.validate("test");
             const auto sp = solve_at_speed(s, w);
             double best = 1e300;
@@ -308,8 +317,9 @@ TEST_CASE("fluid: the coupled gyroscopic system has i w at each critical speed",
         // The direct method of the core (linear in w^2 with K2) finds these speeds among its
         // crossings (it also lists backward-whirl and sloshing-branch crossings of the 1x line).
         const auto q = critical_speeds_quadratic(f, equivalent_inertia(f));
-        const auto direct = critical_speeds_direct(make_fluid_rotor(f), 1, 0.0, 10.0 * q.back());
+        const auto direct = critical_speeds_direct(make_system(f), 1, 0.0, 10.0 * q.back());
         for (double wc : q) {
+            CAPTURE(wc);
             double d = INFINITY;
             for (const auto& c : direct) d = std::min(d, std::abs(c.speed - wc));
             CHECK(d <= 1e-8 * wc);
@@ -321,6 +331,7 @@ TEST_CASE("fluid: Tabelle 2 of the paper", "[fluid]") {
     // Paper: first critical speed of every case (3 digits); rigid second ones.
     const double first[4] = {64.7, 49.3, 43.2, 38.1};
     for (int N = 1; N <= 4; ++N) {
+        CAPTURE(N);
         const FluidCriticalSpeeds cs = fluid_critical_speeds(build_fluid_rotor(table_case(N)));
         // The first one is sqrt(gamma/m) up to O(delta^2): within the paper's rounding, except
         // N3, whose 43.2 is 0.2 % above the consistent value (docs/fluid_rotor.md).
@@ -345,6 +356,7 @@ TEST_CASE("fluid: nearly empty cavity", "[fluid]") {
     p.R0 = p.R * (1 - 1e-9);
     const FluidRotor f = build_fluid_rotor(p);
     for (const auto& m : f.liquid.modes) {
+        CAPTURE(m);
         // Thin layer: sigma^2/w^2 -> R0 (R - R0)(1/R0^2 + kappa^2), relative correction O(kappa (R - R0)).
         const double thin = p.R0 * (p.R - p.R0) * (1 / (p.R0 * p.R0) + m.kappa * m.kappa);
         CHECK(rel(m.ratio, thin) < 1e-6);
@@ -367,6 +379,7 @@ TEST_CASE("fluid: nearly full cavity keeps the detuning sigma^2/w^2 - 1", "[flui
     p.R0 = 1e-9 * p.R;
     const FluidRotor f = build_fluid_rotor(p);
     for (const auto& m : f.liquid.modes) {
+        CAPTURE(m);
         // X0 -> 0: sigma^2/w^2 - 1 = X0^2 (ln(2/X0) - gamma_E + L) + O(X0^4 ln X0),
         // L = K1'(X)/I1'(X), all from unscaled functions at moderate X.
         const double X0 = m.kappa * p.R0, X = m.kappa * p.R;
@@ -389,6 +402,7 @@ TEST_CASE("fluid: very short cavity (kappa R >> 700)", "[fluid]") {
     p.jstar_terms = 200;
     const FluidRotor f = build_fluid_rotor(p);
     for (const auto& m : f.liquid.modes) {
+        CAPTURE(m);
         // Deep-liquid limit: sigma^2/w^2 = 1 + X0 K0/K1 -> X0 + 1/2 + O(1/X0).
         const double X0 = m.kappa * p.R0;
         CHECK(std::fabs(m.ratio - (X0 + 0.5)) < 1.0 / X0);
@@ -409,6 +423,7 @@ TEST_CASE("fluid: very long cavity", "[fluid]") {
     // Slender liquid column: the z^2 part of the inertia dominates; J* -> J_rigid.
     CHECK(rel(f.liquid.J_star, f.liquid.J_rigid) < 1e-3);
     for (const auto& m : f.liquid.modes) {
+        CAPTURE(m);
         CHECK(std::isfinite(m.lambda));
         CHECK(m.mu > 0);
     }
@@ -429,6 +444,7 @@ TEST_CASE("fluid: fill level next to the first sloshing resonance", "[fluid]") {
     };
     const double Rres = find_root(detune, 0.3, 0.45, 1e-15);
     for (double eps : {1e-6, 1e-10, -1e-10, -1e-6}) {
+        CAPTURE(eps);
         p.R0 = Rres * (1 + eps);
         const FluidRotor f = build_fluid_rotor(p);
         const FluidCriticalSpeeds cs = fluid_critical_speeds(f);
@@ -458,6 +474,7 @@ TEST_CASE("fluid: truncation by tolerance", "[fluid]") {
 
 TEST_CASE("fluid: scenes of Tabelle 2 and bad input", "[fluid]") {
     for (int N = 1; N <= 4; ++N) {
+        CAPTURE(N);
         const Scene s = load_scene(std::string(GYROKIT_DATA_DIR) + "/fluid_N" + std::to_string(N) + ".toml");
         REQUIRE(s.fluid);
         CHECK(s.system.size() == 14);

@@ -40,8 +40,9 @@ std::vector<double> losses_of(const PervasiveReport& r, const std::string& name)
 TEST_CASE("gyrostat matrices: M, D, K symmetric, G skew, det M closed form", "[gyrostat]") {
     std::mt19937 gen(1);
     for (int trial = 0; trial < 20; ++trial) {
+        CAPTURE(trial);
         const GyrostatParameters p = test::random_gyrostat(gen, trial % 2 == 0);
-        const GyroscopicSystem s = make_gyrostat(p);
+        const GyroscopicSystem s = make_system(p);
         REQUIRE(s.size() == 6);
         const Eigen::MatrixXd M = s.M.dense(), K = s.K.dense(), G = s.G.dense();
         CHECK((M - M.transpose()).norm() == 0.0);
@@ -60,7 +61,7 @@ TEST_CASE("cage damping stops pervading exactly at eq. (29)", "[gyrostat][pervas
     for (int trial = 0; trial < 12; ++trial) {
         const GyrostatParameters p = test::random_gyrostat(gen, trial % 3 != 0);   // (29) holds for any cage
         const double w1 = closed_form_w1(p);
-        const GyroscopicSystem s = make_gyrostat(p);
+        const GyroscopicSystem s = make_system(p);
         const auto rep = pervasive_damping(s.with_damping_only({"d_G"}), SpeedRange{0.0, 2.0 * w1, 201}.points());
         const auto w = losses_of(rep, "d_G");
         INFO("trial " << trial << " w1 = " << w1);
@@ -75,7 +76,7 @@ TEST_CASE("rotation damping stops pervading at eq. (37) for a symmetric cage onl
         const GyrostatParameters p = test::random_gyrostat(gen, true);
         const auto [w2, w3] = closed_form_w23(p);
         const auto rep =
-            pervasive_damping(make_gyrostat(p).with_damping_only({"d_R"}), SpeedRange{0.0, 1.5 * w3, 301}.points());
+            pervasive_damping(make_system(p).with_damping_only({"d_R"}), SpeedRange{0.0, 1.5 * w3, 301}.points());
         const auto w = losses_of(rep, "d_R");
         INFO("trial " << trial << " w2 = " << w2 << " w3 = " << w3);
         REQUIRE(w.size() == 2);
@@ -86,7 +87,7 @@ TEST_CASE("rotation damping stops pervading at eq. (37) for a symmetric cage onl
         const GyrostatParameters p = test::random_gyrostat(gen, false);
         const auto [w2, w3] = closed_form_w23(p);
         const auto rep =
-            pervasive_damping(make_gyrostat(p).with_damping_only({"d_R"}), SpeedRange{0.0, 2.0 * w3, 301}.points());
+            pervasive_damping(make_system(p).with_damping_only({"d_R"}), SpeedRange{0.0, 2.0 * w3, 301}.points());
         CHECK(losses_of(rep, "d_R").empty());
     }
 }
@@ -94,11 +95,12 @@ TEST_CASE("rotation damping stops pervading at eq. (37) for a symmetric cage onl
 TEST_CASE("translation damping pervades iff s != 0", "[gyrostat][pervasive]") {
     std::mt19937 gen(4);
     for (int trial = 0; trial < 8; ++trial) {
+        CAPTURE(trial);
         GyrostatParameters p = test::random_gyrostat(gen, trial % 2 == 0);
         const auto speeds = SpeedRange{0.0, 3.0 * closed_form_w1(p), 101}.points();
-        CHECK(losses_of(pervasive_damping(make_gyrostat(p).with_damping_only({"d_T"}), speeds), "d_T").empty());
+        CHECK(losses_of(pervasive_damping(make_system(p).with_damping_only({"d_T"}), speeds), "d_T").empty());
         p.s = 0.0;   // translation decouples: its damping reaches nothing else, at every speed
-        const auto rep = pervasive_damping(make_gyrostat(p).with_damping_only({"d_T"}), speeds);
+        const auto rep = pervasive_damping(make_system(p).with_damping_only({"d_T"}), speeds);
         const auto lost = losses_of(rep, "d_T");
         const std::set<double> at(lost.begin(), lost.end());
         std::set<int> modes;
@@ -111,7 +113,7 @@ TEST_CASE("translation damping pervades iff s != 0", "[gyrostat][pervasive]") {
 TEST_CASE("centrifuge: undamped resonances only at forward crossings of the 1x line", "[gyrostat][response]") {
     GyrostatParameters p = test::centrifuge();
     p.d_G = p.d_T = p.d_R = 0.0;
-    const GyroscopicSystem s = make_gyrostat(p);
+    const GyroscopicSystem s = make_system(p);
     const auto cs = critical_speeds_direct(s, 1, 0.0, 60.0);
     int forward = 0;
     for (const auto& c : cs) {
@@ -142,7 +144,8 @@ TEST_CASE("whirl directions alternate as in Tabelle 1 (-,+,-,+,-,+)", "[gyrostat
     GyrostatParameters p = test::centrifuge();
     p.d_G = p.d_T = p.d_R = 0.0;
     for (double w : {1.0, 10.0, 30.0, 100.0, 1000.0}) {
-        const auto sp = solve_at_speed(make_gyrostat(p), w);
+        CAPTURE(w);
+        const auto sp = solve_at_speed(make_system(p), w);
         REQUIRE(sp.modes.size() == 6);
         for (size_t i = 0; i < 6; ++i)
             CHECK(sp.modes[i].whirl == (i % 2 == 0 ? Whirl::Backward : Whirl::Forward));
@@ -154,9 +157,10 @@ TEST_CASE("high-speed asymptotes: nutation (15) from above, precession (19) from
     for (int trial = 0; trial < 10; ++trial) {
         GyrostatParameters p = test::random_gyrostat(gen, trial % 2 == 0);
         p.d_G = p.d_T = p.d_R = 0.0;
-        const GyroscopicSystem s = make_gyrostat(p);
+        const GyroscopicSystem s = make_system(p);
         double prev_nut = INFINITY, prev_pre = INFINITY;
         for (double w : {1e3, 1e4, 1e5}) {
+            CAPTURE(w);
             const auto sp = solve_at_speed(s, w);
             const double L = p.C_R * w;
             const double nu6 = sp.modes.back().frequency(), nu1 = sp.modes.front().frequency();
@@ -182,7 +186,7 @@ TEST_CASE("rigid shaft and rigid housing limits", "[gyrostat][limits]") {
     SECTION("rigid shaft: gyro pendulum (12), A nu^2 -+ C_R w nu - c_G = 0") {
         GyrostatParameters q = p;
         q.rigid_shaft = true;
-        const auto sp = solve_at_speed(make_gyrostat(q), w);
+        const auto sp = solve_at_speed(make_system(q), w);
         REQUIRE(sp.modes.size() == 2);
         const double L = p.C_R * w, r = std::sqrt(L * L + 4 * A * p.c_G);
         CHECK(sp.modes[0].frequency() == Approx((r - L) / (2 * A)).epsilon(1e-12));
@@ -192,14 +196,14 @@ TEST_CASE("rigid shaft and rigid housing limits", "[gyrostat][limits]") {
         // The elastic model approaches it as the shaft stiffens (error of order 1/c).
         GyrostatParameters e = p;
         e.c_T = e.c_R = 1e12;
-        const auto se = solve_at_speed(make_gyrostat(e), w);
+        const auto se = solve_at_speed(make_system(e), w);
         CHECK(se.modes[0].frequency() == Approx(sp.modes[0].frequency()).epsilon(1e-6));
         CHECK(se.modes[1].frequency() == Approx(sp.modes[1].frequency()).epsilon(1e-6));
     }
     SECTION("rigid housing: decoupled translation and gyroscopic tilt") {
         GyrostatParameters q = p;
         q.rigid_housing = true;
-        const auto sp = solve_at_speed(make_gyrostat(q), w);
+        const auto sp = solve_at_speed(make_system(q), w);
         REQUIRE(sp.modes.size() == 4);
         const double L = p.C_R * w, r = std::sqrt(L * L + 4 * p.A_R * p.c_R), wT = std::sqrt(p.c_T / p.m);
         std::vector<double> expect{(r - L) / (2 * p.A_R), wT, wT, (r + L) / (2 * p.A_R)};
@@ -210,8 +214,9 @@ TEST_CASE("rigid shaft and rigid housing limits", "[gyrostat][limits]") {
 
 TEST_CASE("symmetric cage: response magnitudes pairwise equal, (alpha,beta), (x,y), (psi,theta)",
           "[gyrostat][response]") {
-    const GyroscopicSystem s = make_gyrostat(test::centrifuge());
+    const GyroscopicSystem s = make_system(test::centrifuge());
     for (double w : {5.0, 12.0, 31.0, 50.0}) {
+        CAPTURE(w);
         const Eigen::VectorXcd Z = unbalance_response(s, w);
         for (int k = 0; k < 6; k += 2) CHECK(std::abs(Z(k)) == Approx(std::abs(Z(k + 1))).epsilon(1e-12));
     }
@@ -222,7 +227,7 @@ TEST_CASE("branch-refined and direct critical speeds agree", "[gyrostat][critica
     for (int trial = 0; trial < 6; ++trial) {
         GyrostatParameters p = trial == 0 ? test::centrifuge() : test::random_gyrostat(gen, trial % 2 == 0);
         p.d_G = p.d_T = p.d_R = 0.0;
-        const GyroscopicSystem s = make_gyrostat(p);
+        const GyroscopicSystem s = make_system(p);
         const double top = 2.0 * std::sqrt(p.c_T / p.m);
         const auto direct = critical_speeds_direct(s, 1, 0.0, top);
         const auto cd = campbell(s, SpeedRange{0.0, top, 161}.points());
@@ -230,6 +235,7 @@ TEST_CASE("branch-refined and direct critical speeds agree", "[gyrostat][critica
         INFO("trial " << trial);
         REQUIRE(branch.size() == direct.size());
         for (size_t i = 0; i < direct.size(); ++i) {
+            CAPTURE(i);
             CHECK(branch[i].speed == Approx(direct[i].speed).epsilon(1e-10));
             CHECK(branch[i].mode.whirl == direct[i].mode.whirl);
         }

@@ -104,6 +104,7 @@ TEST_CASE("sparse Matrix Market reader equals the dense one", "[bearings][matrix
         "%%MatrixMarket matrix coordinate real general\n2 3 3\n1 3 7\n2 1 -3\n2 2 0\n",
         "%%MatrixMarket matrix array real general\n2 2\n1\n2\n3\n4\n"};
     for (size_t i = 0; i < files.size(); ++i) {
+        CAPTURE(i);
         const std::string path = write_temp("mm" + std::to_string(i) + ".mtx", files[i]);
         const Eigen::MatrixXd A = read_matrix_market(path);
         const Eigen::MatrixXd B(read_matrix_market_sparse(path));
@@ -121,6 +122,7 @@ TEST_CASE("speed-dependent bearings enter K and C of dense and sparse systems al
     const Scene sc = load_scene(data("fe_rotor.toml"));
     REQUIRE(sc.system.bearings.size() == 2);
     for (double w : {0.0, 333.0, 1250.0, 5000.0}) {
+        CAPTURE(w);
         const QuadraticPencil d = sc.system.at_speed(w);
         const SparsePencil s = sc.system.sparse_at_speed(w);
         CHECK((d.K - Eigen::MatrixXd(s.K)).cwiseAbs().maxCoeff() <= 1e-15 * d.K.cwiseAbs().maxCoeff());
@@ -158,6 +160,7 @@ TEST_CASE("sparse Campbell diagram agrees with dense QZ on the finite-element ro
         for (const auto& p : bd.points) at[p.speed] = p.mode.lambda;
         int compared = 0;
         for (const auto& p : bs.points) {
+            CAPTURE(p);
             if (!at.count(p.speed)) continue;
             CHECK(std::abs(p.mode.lambda - at[p.speed]) <= 1e-10 * std::abs(at[p.speed]));
             CHECK(p.mode.backward_error < 1e-12);
@@ -168,6 +171,7 @@ TEST_CASE("sparse Campbell diagram agrees with dense QZ on the finite-element ro
     // The worker processes return the same diagram.
     REQUIRE(sparse1.branches.size() == sparse2.branches.size());
     for (size_t b = 0; b < sparse1.branches.size(); ++b) {
+        CAPTURE(b);
         REQUIRE(sparse1.branches[b].points.size() == sparse2.branches[b].points.size());
         for (size_t k = 0; k < sparse1.branches[b].points.size(); ++k)
             CHECK(std::abs(sparse1.branches[b].points[k].mode.lambda - sparse2.branches[b].points[k].mode.lambda) <=
@@ -192,9 +196,11 @@ TEST_CASE("dense Campbell on two threads equals one thread, bit for bit", "[camp
     const CampbellDiagram serial = campbell(dense_solver(sc.system), speeds, co);
     co.threads = 2;
     for (int run = 0; run < 5; ++run) {
+        CAPTURE(run);
         const CampbellDiagram parallel = campbell(dense_solver(sc.system), speeds, co);
         REQUIRE(parallel.branches.size() == serial.branches.size());
         for (size_t b = 0; b < serial.branches.size(); ++b) {
+            CAPTURE(b);
             REQUIRE(parallel.branches[b].points.size() == serial.branches[b].points.size());
             for (size_t k = 0; k < serial.branches[b].points.size(); ++k)
                 REQUIRE(parallel.branches[b].points[k].mode.lambda == serial.branches[b].points[k].mode.lambda);
@@ -216,10 +222,12 @@ TEST_CASE("dense Campbell with K modes: same branches as with all modes, no bise
     REQUIRE(low.branches.size() == 4);
     CHECK(low.inserted_speeds < all.inserted_speeds);
     for (size_t b = 0; b < 4; ++b) {
+        CAPTURE(b);
         std::map<double, std::complex<double>> at;
         for (const auto& p : all.branches[b].points) at[p.speed] = p.mode.lambda;
         int compared = 0;
         for (const auto& p : low.branches[b].points) {
+            CAPTURE(p);
             if (!at.count(p.speed)) continue;
             CHECK(p.mode.lambda == at[p.speed]);   // the same QZ solve at the same speed
             ++compared;
@@ -235,6 +243,7 @@ TEST_CASE("start-vector reuse gives the same modes", "[sparse]") {
     SpectrumSolver fresh = sparse_solver(sc.system, so, false)();
     SpectrumSolver reused = sparse_solver(sc.system, so, true)();
     for (double w : {1000.0, 1010.0, 1020.0}) {
+        CAPTURE(w);
         const QuadraticSpectrum a = fresh(w), b = reused(w);
         REQUIRE(a.modes.size() == b.modes.size());
         // Both runs converge to machine precision (backward errors up to ~1e-12
@@ -251,6 +260,7 @@ TEST_CASE("start-vector reuse gives the same modes", "[sparse]") {
 TEST_CASE("sparse unbalance response equals the dense one", "[sparse][response]") {
     const Scene sc = load_scene(data("fe_rotor.toml"));
     for (double w : {50.0, 700.0, 2500.0}) {
+        CAPTURE(w);
         const Eigen::VectorXcd a = unbalance_response(sc.system, w, SolverKind::Dense),
                                b = unbalance_response(sc.system, w, SolverKind::Sparse);
         CHECK((a - b).norm() <= 1e-10 * a.norm());
@@ -297,6 +307,7 @@ TEST_CASE("sparse window following the 1x line finds every 1x critical speed wit
     REQUIRE(cd.size() >= 8);   // more crossings than the window holds modes
     REQUIRE(cs.size() == cd.size());
     for (size_t i = 0; i < cd.size(); ++i) {
+        CAPTURE(i);
         CHECK(cs[i].speed == Approx(cd[i].speed).epsilon(1e-9));
         CHECK(cs[i].mode.whirl == cd[i].mode.whirl);
     }
@@ -316,6 +327,7 @@ TEST_CASE("critical speeds refined on two workers equal the serial ones", "[crit
     REQUIRE(d1.size() >= 5);
     REQUIRE(d2.size() == d1.size());
     for (size_t i = 0; i < d1.size(); ++i) {
+        CAPTURE(i);
         CHECK(d2[i].speed == d1[i].speed);
         CHECK(d2[i].branch == d1[i].branch);
         CHECK(d2[i].mode.lambda == d1[i].mode.lambda);

@@ -106,6 +106,7 @@ TEST_CASE("ROSS example: the sparse solver moves its shift off the rigid-body mo
         CHECK(s.shift.real() > -1.0);
         CHECK(!s.rigid_body.empty());
         for (size_t k = 0; k < s.modes.size(); ++k) {
+            CAPTURE(k);
             CHECK(s.modes[k].backward_error <= 1e-10);
             CHECK(std::abs(s.modes[k].lambda - d.modes[k].lambda) <= 1e-10 * std::abs(d.modes[k].lambda));
             CHECK(s.modes[k].whirl == d.modes[k].whirl);

@@ -158,8 +158,10 @@ TEST_CASE("Latin hypercube: one point per stratum, same points for the same seed
     CHECK(a == b);
     CHECK(a != c);
     for (std::size_t j = 0; j < d; ++j) {
+        CAPTURE(j);
         std::set<int> strata;
         for (std::size_t i = 0; i < n; ++i) {
+            CAPTURE(i);
             const double x = a[i * d + j];
             REQUIRE(x >= 0.0);
             REQUIRE(x < 1.0);
@@ -331,6 +333,7 @@ to = 35.0
     REQUIRE(s.design_count() == 8);
     std::set<int> strata;
     for (std::size_t i = 0; i < 8; ++i) {
+        CAPTURE(i);
         const auto x = s.design(i);
         CHECK(x[0] >= 50.0);
         CHECK(x[0] < 100.0);
@@ -359,6 +362,7 @@ TEST_CASE("shards merge to the unsharded table, jobs do not change the rows", "[
 
     std::vector<std::string> files;
     for (int k = 0; k < 3; ++k) {
+        CAPTURE(k);
         RunOptions ro;
         ro.jobs = 2;
         ro.shard = Shard{k, 3};

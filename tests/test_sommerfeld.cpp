@@ -177,6 +177,7 @@ TEST_CASE("Run-up profile: sinusoidal rise, hold, fall, and the angle integrates
     CHECK(runup_nominal_speed(s, 7.5) == Approx(200.0));
     CHECK(runup_nominal_speed(s, 10.0) == 0.0);
     for (double t : {1.0, 3.9, 4.5, 6.2, 8.0}) {
+        CAPTURE(t);
         const double h = 1e-5;
         CHECK((runup_nominal_angle(s, t + h) - runup_nominal_angle(s, t - h)) / (2 * h) ==
               Approx(runup_nominal_speed(s, t)).epsilon(1e-7));

@@ -130,6 +130,7 @@ TEST_CASE("real shift: real Arnoldi finds real and complex eigenvalues alike", "
     const SparseSpectrum c = solve_quadratic_sparse(p, o);
     REQUIRE(c.modes.size() == s.modes.size());
     for (size_t i = 0; i < s.modes.size(); ++i) {
+        CAPTURE(i);
         double d = INFINITY;
         for (const Mode& m : c.modes) d = std::min(d, std::abs(m.lambda - s.modes[i].lambda));
         CHECK(d <= 1e-10 * std::abs(s.modes[i].lambda));

@@ -65,21 +65,21 @@ TEST_CASE("system: every analysis validates before it solves", "[system][validat
     CHECK(message([&] { choose_solver(bad, {}); }).find("matrix K is 3x3") != std::string::npos);
     SparseEigenOptions so;
     CHECK(message([&] { sparse_solver(bad, so); }).find("matrix K is 3x3") != std::string::npos);
-    GyroscopicSystem nan = make_gyrostat(centrifuge());
+    GyroscopicSystem nan = make_system(centrifuge());
     nan.K.coeffRef(0, 0) = std::nan("");
     CHECK(message([&] { choose_solver(nan, {}); }).find("NaN") != std::string::npos);
     // Options are checked by field name.
     SolverOptions o;
     o.modes = -1;
-    CHECK(message([&] { choose_solver(make_gyrostat(centrifuge()), o); }).rfind("modes = -1", 0) == 0);
+    CHECK(message([&] { choose_solver(make_system(centrifuge()), o); }).rfind("modes = -1", 0) == 0);
 }
 
 TEST_CASE("system: solvers own their system, a temporary model is safe", "[system]") {
     // The factory and its solvers outlive the temporary GyroscopicSystem.
-    const SolverFactory dense = dense_solver(make_gyrostat(centrifuge()));
-    const SolverChoice choice = choose_solver(make_gyrostat(centrifuge()), {});
+    const SolverFactory dense = dense_solver(make_system(centrifuge()));
+    const SolverChoice choice = choose_solver(make_system(centrifuge()), {});
     const QuadraticSpectrum a = dense()(20.0), b = choice.make()(20.0);
-    const QuadraticSpectrum ref = solve_at_speed(make_gyrostat(centrifuge()), 20.0);
+    const QuadraticSpectrum ref = solve_at_speed(make_system(centrifuge()), 20.0);
     REQUIRE(a.modes.size() == ref.modes.size());
     REQUIRE(b.modes.size() == ref.modes.size());
     for (std::size_t i = 0; i < ref.modes.size(); ++i) {
@@ -117,4 +117,47 @@ TEST_CASE("system: the automatic choice by size, dense refused above its limit",
         CAPTURE(i);
         CHECK(std::abs(s.modes[i].lambda - d.modes[i].lambda) <= 1e-10 * std::abs(d.modes[i].lambda));
     }
+}
+
+TEST_CASE("workers: threads, processes and one worker give the same sparse spectra", "[system][workers]") {
+    FeRotor r = fe_uniform_shaft(2.0, 60, 0.05, 0.0, 2.1e11, 0.3, 7800);
+    r.supports = {FeSupport{0}, FeSupport{60}};
+    const GyroscopicSystem sys = r.assemble().to_system();
+    SparseEigenOptions so;
+    so.modes = 4;
+    const SolverFactory make = sparse_solver(sys, so, false);   // no reuse: each speed alone
+    REQUIRE(!make.thread_safe);
+    std::vector<double> speeds;
+    for (int k = 0; k < 8; ++k) speeds.push_back(100.0 * k);
+    const auto one = solve_speeds(make, speeds, 1);
+    const auto threads = solve_speeds(make, speeds, Workers{2, WorkerKind::Threads});
+    const auto processes = solve_speeds(make, speeds, Workers{2, WorkerKind::Processes});
+    for (std::size_t i = 0; i < speeds.size(); ++i)
+        for (const auto* other : {&threads, &processes}) {
+            CAPTURE(i);
+            REQUIRE((*other)[i].modes.size() == one[i].modes.size());
+            for (std::size_t k = 0; k < one[i].modes.size(); ++k) {
+                CAPTURE(k);
+                CHECK(std::abs((*other)[i].modes[k].lambda - one[i].modes[k].lambda) <=
+                      1e-10 * std::abs(one[i].modes[k].lambda));
+            }
+        }
+}
+
+TEST_CASE("spectra say which solver made them and what it took", "[system][status]") {
+    const GyroscopicSystem g = make_system(centrifuge());
+    CHECK(solve_at_speed(g, 10.0).method == "scaled QZ");
+    EigenOptions state;
+    state.method = EigenMethod::StateMatrix;
+    CHECK(solve_at_speed(g, 10.0, state).method == "state matrix");
+    SparseEigenOptions so;
+    so.modes = 2;
+    const QuadraticSpectrum s = sparse_solver(g, so)()(10.0);
+    CHECK(s.method == "ARPACK shift-invert");
+    CHECK(s.iterations >= 1);
+    CHECK(s.partial);
+    // Through a worker process the account arrives whole.
+    const auto viaprocess = solve_speeds(sparse_solver(g, so), {10.0, 20.0}, Workers{2, WorkerKind::Processes});
+    CHECK(viaprocess[0].method == "ARPACK shift-invert");
+    CHECK(viaprocess[1].iterations >= 1);
 }

@@ -88,6 +88,7 @@ TEST_CASE("CSV numbers have 12 significant digits and parse back exactly") {
     const auto ls = lines(write(t, TableFormat::Csv));
     REQUIRE(ls.size() == values.size() + 1);
     for (std::size_t i = 0; i < values.size(); ++i) {
+        CAPTURE(i);
         const std::string expected = printf_g(values[i], 12);
         CHECK(ls[i + 1] == expected);
         CHECK(std::strtod(ls[i + 1].c_str(), nullptr) == std::strtod(expected.c_str(), nullptr));
@@ -105,6 +106,7 @@ TEST_CASE("JSON parses back to the same values, keys in column order") {
     REQUIRE(j.is_array());
     REQUIRE(j.size() == t.rows());
     for (std::size_t i = 0; i < values.size(); ++i) {
+        CAPTURE(i);
         const auto& r = j[i];
         std::vector<std::string> keys;
         for (auto it = r.begin(); it != r.end(); ++it) keys.push_back(it.key());
@@ -166,6 +168,7 @@ TEST_CASE("a NaN cell throws naming the column and writes nothing") {
     t.add_row({1.0, 0.5});
     t.add_row({2.0, kNaN});
     for (auto f : {TableFormat::Text, TableFormat::Csv, TableFormat::Json}) {
+        CAPTURE(f);
         std::ostringstream os;
         try {
             write_table(os, t, f);

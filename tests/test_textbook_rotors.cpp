@@ -50,6 +50,7 @@ TEST_CASE("Jeffcott rotor: unbalance response closed form", "[textbook][response
     const double m = 3.0, k = 1.2e4, c = 15.0, eps = 2e-4;
     const GyroscopicSystem s = jeffcott(m, k, c, 0.0, eps);
     for (double w : {5.0, 40.0, std::sqrt(k / m), 90.0, 400.0}) {
+        CAPTURE(w);
         const Eigen::VectorXcd Z = unbalance_response(s, w);
         const double amp = m * eps * w * w / std::abs(std::complex<double>(k - m * w * w, c * w));
         CHECK(std::abs(Z(0)) == Approx(amp).epsilon(1e-13));
@@ -85,6 +86,7 @@ TEST_CASE("rigid rotor: closed-form Campbell diagram and critical speed", "[text
     REQUIRE(cd.branches.size() == 2);
     for (const Branch& b : cd.branches)
         for (const auto& p : b.points) {
+            CAPTURE(p);
             const double L = Ip * p.speed, r = std::sqrt(L * L + 4 * It * kt);
             // Backward branch (r - L)/(2 It), forward (r + L)/(2 It).
             const double expect = b.id == 1 ? (r - L) / (2 * It) : (r + L) / (2 * It);

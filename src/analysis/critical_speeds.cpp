@@ -21,11 +21,11 @@ struct Interval {
 };
 
 // Every interval of every oscillating branch that `holds` accepts, refined on
-// `threads` workers (each search is independent) by `refine(solve, mode_at,
+// `workers` (each search is independent) by `refine(solve, mode_at,
 // interval)`, then emitted in branch order.
 template <class Holds, class Refine, class Emit>
 void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const Holds& holds, const Refine& refine,
-                   int threads, const Emit& emit) {
+                   Workers workers, const Emit& emit) {
     std::vector<Interval> found;
     for (const Branch& b : cd.branches) {
         for (size_t i = 0; i + 1 < b.points.size(); ++i) {
@@ -37,7 +37,7 @@ void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const H
         }
     }
     const std::vector<QuadraticSpectrum> roots =
-        run_on_workers(make, found.size(), threads, [&](SpectrumSolver& solve, size_t k) {
+        run_on_workers(make, found.size(), workers, [&](SpectrumSolver& solve, size_t k) {
             const Branch& b = *found[k].branch;
             const size_t i = found[k].i;
             const auto mode_at = [&](double w) { return continue_branch(b, i, w, solve(w)); };
@@ -72,7 +72,7 @@ std::vector<CriticalSpeed> critical_speeds(const GyroscopicSystem& sys, const Ca
 }
 
 std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const CampbellDiagram& cd,
-                                           const std::vector<int>& harmonics, int threads) {
+                                           const std::vector<int>& harmonics, Workers workers) {
     std::vector<CriticalSpeed> out;
     for (int k : harmonics) {
         if (k < 1) throw InputError("harmonic " + std::to_string(k) + " is not allowed; allowed: k >= 1");
@@ -87,7 +87,7 @@ std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const Ca
             const auto& p = iv.branch->points;
             return find_root([&](double x) { return g(mode_at(x), x); }, p[iv.i].speed, p[iv.i + 1].speed);
         };
-        scan_branches(solver, cd, holds, refine, threads, [&](const Branch& b, double w, Mode m, double, double) {
+        scan_branches(solver, cd, holds, refine, workers, [&](const Branch& b, double w, Mode m, double, double) {
             out.push_back({w, k, b.id, std::move(m)});
         });
     }
@@ -100,7 +100,7 @@ std::vector<StabilityChange> stability_changes(const GyroscopicSystem& sys, cons
     return stability_changes(dense_solver(sys, eig), cd);
 }
 
-std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd, int threads) {
+std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd, Workers workers) {
     std::vector<StabilityChange> out;
     const auto unstable = [](const Mode& m) { return m.stability() == Stability::Unstable; };
     // A change: one end unstable, the other not (stable or neutral); g holds Re lambda.
@@ -118,7 +118,7 @@ std::vector<StabilityChange> stability_changes(const SolverFactory& solver, cons
             return find_root([&](double x) { return mode_at(x).lambda.real(); }, p[iv.i].speed, p[iv.i + 1].speed);
         return bisect_edge([&](double x) { return unstable(mode_at(x)); }, p[iv.i].speed, p[iv.i + 1].speed);
     };
-    scan_branches(solver, cd, holds, refine, threads, [&](const Branch& b, double w, Mode m, double, double) {
+    scan_branches(solver, cd, holds, refine, workers, [&](const Branch& b, double w, Mode m, double, double) {
         const auto& p = b.points;
         const auto it = std::find_if(p.begin(), p.end(), [&](const BranchPoint& q) { return q.speed >= w; });
         const bool after = it != p.end() ? unstable(it->mode) : unstable(p.back().mode);

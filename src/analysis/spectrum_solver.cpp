@@ -25,7 +25,8 @@ WorkerDied::WorkerDied(long long task_index, int signal_number)
       task(task_index), signal(signal_number) {}
 
 std::vector<QuadraticSpectrum> solve_speeds_unchecked(const SolverFactory& make, const std::vector<double>& speeds,
-                                                      int threads, const std::function<void(size_t, size_t)>& progress);
+                                                      Workers workers,
+                                                      const std::function<void(size_t, size_t)>& progress);
 
 SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig) {
     sys.validate("dense solver: the system");
@@ -46,6 +47,9 @@ QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p) {
     q.modes = std::move(s.modes);
     q.rigid_body = std::move(s.rigid_body);
     q.notes = std::move(s.notes);
+    q.method = "ARPACK shift-invert";
+    q.iterations = s.iterations;
+    q.refined = s.refined;
     const double scale = std::sqrt(p.K.norm() / p.M.norm());
     q.scale = std::isfinite(scale) && scale > 0 ? scale : 1.0;
     q.real_tol = 1e-7 * q.scale;
@@ -228,6 +232,9 @@ void put_spectrum(std::FILE* f, const QuadraticSpectrum& s) {
     put(f, s.real_tol);
     put(f, s.partial);
     put(f, s.speed);
+    put_string(f, s.method);
+    put(f, s.iterations);
+    put(f, s.refined);
 }
 QuadraticSpectrum get_spectrum(std::FILE* f) {
     QuadraticSpectrum s;
@@ -240,6 +247,9 @@ QuadraticSpectrum get_spectrum(std::FILE* f) {
     s.real_tol = get<double>(f);
     s.partial = get<bool>(f);
     s.speed = get<double>(f);
+    s.method = get_string(f);
+    s.iterations = get<int>(f);
+    s.refined = get<int>(f);
     return s;
 }
 
@@ -356,9 +366,11 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
 
 }  // namespace
 
-std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t n, int threads, const WorkerTask& task,
+std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t n, Workers workers,
+                                              const WorkerTask& task,
                                               const std::function<void(size_t, size_t)>& progress) {
     std::vector<QuadraticSpectrum> out(n);
+    const int threads = workers.count;
     const size_t t = std::clamp<size_t>(threads < 1 ? 1 : static_cast<size_t>(threads), 1, std::max<size_t>(n, 1));
     std::atomic<size_t> done{0};
     std::mutex report;
@@ -383,7 +395,9 @@ std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t 
             if (!failure) failure = std::current_exception();
         }
     };
-    if (t > 1 && !make.thread_safe) return run_in_processes(make, n, t, task, progress);
+    const bool processes = workers.kind == WorkerKind::Processes ||
+                           (workers.kind == WorkerKind::Auto && !make.thread_safe);
+    if (t > 1 && processes) return run_in_processes(make, n, t, task, progress);
     if (t == 1) {
         work(0, n);
     } else {
@@ -395,10 +409,10 @@ std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t 
     return out;
 }
 
-std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std::vector<double>& speeds, int threads,
-                                            const std::function<void(size_t, size_t)>& progress) {
+std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std::vector<double>& speeds,
+                                            Workers workers, const std::function<void(size_t, size_t)>& progress) {
     try {
-        return solve_speeds_unchecked(make, speeds, threads, progress);
+        return solve_speeds_unchecked(make, speeds, workers, progress);
     } catch (const WorkerDied& e) {
         if (e.task < 0 || static_cast<size_t>(e.task) >= speeds.size()) throw;
         throw Error(fmt::format("a worker process died (signal {}) while solving speed {} rad/s", e.signal,
@@ -407,9 +421,10 @@ std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std
 }
 
 std::vector<QuadraticSpectrum> solve_speeds_unchecked(const SolverFactory& make, const std::vector<double>& speeds,
-                                                      int threads, const std::function<void(size_t, size_t)>& progress) {
+                                                      Workers workers,
+                                                      const std::function<void(size_t, size_t)>& progress) {
     return run_on_workers(
-        make, speeds.size(), threads,
+        make, speeds.size(), workers,
         [&](SpectrumSolver& solve, size_t i) {
             QuadraticSpectrum s = solve(speeds[i]);
             s.speed = speeds[i];

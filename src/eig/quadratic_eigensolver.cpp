@@ -182,6 +182,7 @@ QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& 
     QuadraticSpectrum s;
     // Both methods compute left vectors: they give every eigenvalue its error bound.
     s = opt.method == EigenMethod::ScaledQZ ? solve_qz(p, true) : solve_state(p);
+    s.method = opt.method == EigenMethod::ScaledQZ ? "scaled QZ" : "state matrix";
     finish(s, p, whirl_pairs, opt.left_vectors);
     return s;
 }

@@ -46,7 +46,7 @@ GyroscopicSystem gyrostat_from(const TomlKeys& k) {
     p.d_G = k.number("d_G", 0.0, 0, false, "N m s/rad");
     p.d_T = k.number("d_T", 0.0, 0, false, "N s/m");
     p.d_R = k.number("d_R", 0.0, 0, false, "N m s/rad");
-    return make_gyrostat(p);
+    return make_system(p);
 }
 
 // A matrix model, read in sparse form.
@@ -119,7 +119,7 @@ const std::map<std::string, ModelReader>& model_readers() {
         {"fluid_rotor",
          [](const TomlKeys& k, const fs::path&, Scene& sc) {
              sc.fluid = fluid_rotor_from(k);
-             sc.system = make_fluid_rotor(build_fluid_rotor(*sc.fluid));
+             sc.system = make_system(build_fluid_rotor(*sc.fluid));
          }},
         {"gyrostat", [](const TomlKeys& k, const fs::path&, Scene& sc) { sc.system = gyrostat_from(k); }},
         {"matrices", [](const TomlKeys& k, const fs::path& dir, Scene& sc) { sc.system = matrices_from(k, dir); }},

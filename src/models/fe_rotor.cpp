@@ -278,6 +278,12 @@ GyroscopicSystem FeRotorMatrices::to_system() const {
     return s;
 }
 
+GyroscopicSystem make_system(const FeRotor& r) {
+    GyroscopicSystem s = r.assemble().to_system();
+    s.validate("fe rotor");
+    return s;
+}
+
 FeRotor fe_uniform_shaft(double length, int count, double outer_diameter, double inner_diameter,
                          double youngs_modulus, double poisson_ratio, double density) {
     if (count < 1)

@@ -308,7 +308,7 @@ double fluid_delta(const FluidRotor& f, double J_eq, double w) {
     return (f.k.gamma - f.m * w2) * (f.k.tilt + J_eq * w2) - f.k.delta * f.k.delta;
 }
 
-GyroscopicSystem make_fluid_rotor(const FluidRotor& f) {
+GyroscopicSystem make_system(const FluidRotor& f) {
     const int ns = static_cast<int>(f.liquid.modes.size());
     const int n = 4 + 2 * ns;
     GyroscopicSystem s;

@@ -18,7 +18,7 @@ Eigen::MatrixXd keep(const Eigen::MatrixXd& A, const std::vector<int>& dofs) {
 
 }  // namespace
 
-GyroscopicSystem make_gyrostat(const GyrostatParameters& p) {
+GyroscopicSystem make_system(const GyrostatParameters& p) {
     if (p.rigid_shaft && p.rigid_housing)
         throw InputError("a gyrostat with rigid shaft and rigid housing has no degrees of freedom; "
                          "make at least one of them elastic");

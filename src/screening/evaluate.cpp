@@ -130,7 +130,11 @@ void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& 
             }
             one = sys.with_damping_only({name});
         }
-        const PervasiveReport rep = pervasive_damping(one, s.operating_speeds(), {c.tolerance});
+        PervasiveOptions po;
+        po.tolerance = c.tolerance;
+        po.modes = sc.modes;
+        po.solver = sc.solver_options();   // the scene's choice, as for the other criteria
+        const PervasiveReport rep = pervasive_damping(one, s.operating_speeds(), po);
         for (const auto& l : rep.losses)
             if (l.damping == "total" && l.speed < first) first = l.speed, lost_set = name, lost_mode = l.mode;
     }

@@ -19,7 +19,7 @@ struct CampbellOptions {
                               // Dense: only these (and the next two) decide whether a step is ambiguous
     int max_refine = 8;       // bisection levels allowed between two grid speeds
     double mac_min = 0.9;     // a match with a lower MAC is ambiguous
-    int threads = 1;          // grid speeds solved in parallel on this many threads
+    Workers threads = 1;      // grid speeds solved in parallel: this many threads or worker processes
     // Called after each grid speed with (done, total); e.g. a progress bar.
     std::function<void(size_t, size_t)> progress;
 };

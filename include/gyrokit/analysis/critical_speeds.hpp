@@ -23,7 +23,7 @@ std::vector<CriticalSpeed> critical_speeds(const GyroscopicSystem& sys, const Ca
 // The same with any solver (the one the diagram was made with); the root
 // searches run on `threads` workers (run_on_workers).
 std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const CampbellDiagram& cd,
-                                           const std::vector<int>& harmonics, int threads = 1);
+                                           const std::vector<int>& harmonics, Workers workers = {});
 
 // For undamped systems without circulatory terms, lambda = i k w is an
 // eigenvalue exactly at a critical speed, so w^2 solves the linear Hermitian
@@ -46,7 +46,7 @@ struct StabilityChange {
 std::vector<StabilityChange> stability_changes(const GyroscopicSystem& sys, const CampbellDiagram& cd,
                                                const EigenOptions& eig = {});
 std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd,
-                                               int threads = 1);
+                                               Workers workers = {});
 
 // Grid ranges of the diagram where a branch is unstable (oscillating, or a real
 // eigenvalue beyond its bound: divergence): what the Campbell diagram and the

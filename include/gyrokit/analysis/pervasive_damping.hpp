@@ -25,7 +25,7 @@ struct PervasiveOptions {
     // the field above). Dense: the full SVD of [P^T; D] refines a loss as well;
     // sparse: the residual over the left eigenvectors, in O(nonzeros).
     SolverOptions solver;
-    int threads = 1;   // speeds of each Campbell diagram solved in parallel (run_on_workers)
+    Workers threads = 1;   // speeds of each Campbell diagram solved in parallel (run_on_workers)
 };
 
 struct DampingLoss {

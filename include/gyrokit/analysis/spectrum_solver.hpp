@@ -77,20 +77,33 @@ SolverKind resolve_solver_kind(int dofs, SolverKind requested);
 // Validates the options (InputError naming the field) and the system, and makes the solver.
 SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt);
 
-// The spectra at all speeds, on `threads` workers (contiguous blocks of speeds,
-// so that reuse works within a block): threads, or forked processes that hand
-// back their spectra through temporary files when the solver is not thread
-// safe. `progress(done, total)` is called from the workers, one call at a time.
+// How parallel work runs, apart from what is solved: `count` workers as
+// threads or as forked worker processes (results through temporary files, a
+// crashed worker reported as WorkerDied). Auto: processes for a solver that is
+// not thread safe (ARPACK: its iterations would wait on each other), else
+// threads. Threads is always correct (ARPACK iterations are serialized within a
+// process) and is the choice inside a host that must not fork (an interpreter);
+// Processes also for thread-safe solvers. Converts from a plain count.
+enum class WorkerKind { Auto, Threads, Processes };
+struct Workers {
+    int count = 1;
+    WorkerKind kind = WorkerKind::Auto;
+    Workers(int n = 1, WorkerKind k = WorkerKind::Auto) : count(n), kind(k) {}
+};
+
+// The spectra at all speeds on `workers` (contiguous blocks of speeds, so that
+// reuse works within a block). `progress(done, total)` is called from the
+// workers, one call at a time.
 std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std::vector<double>& speeds,
-                                            int threads = 1,
+                                            Workers workers = {},
                                             const std::function<void(size_t, size_t)>& progress = {});
 
 // The general form: task(solve, i) for i = 0 .. n-1, each worker with its own
-// solver from `make` and a contiguous block of i (threads, or forked processes
-// for a solver that is not thread safe); the results in the order of i. An
-// error in any task is rethrown with its type and message.
+// solver from `make` and a contiguous block of i; the results in the order of i.
+// An error in any task is rethrown with its type and message.
 using WorkerTask = std::function<QuadraticSpectrum(SpectrumSolver& solve, size_t i)>;
-std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t n, int threads, const WorkerTask& task,
+std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t n, Workers workers,
+                                              const WorkerTask& task,
                                               const std::function<void(size_t, size_t)>& progress = {});
 
 // A worker process was killed by a signal (a crash) while solving task `task`.

@@ -36,6 +36,11 @@ struct QuadraticSpectrum {
     bool partial = false;         // only a window of modes (near a shift), not all
     double speed = 0.0;           // rad/s, where a sweep or a root search set it
     std::vector<std::string> notes;   // what the solver changed or could not vouch for (e.g. a moved shift)
+    // The solver's account, as Spectra's CompInfo: a spectrum is only returned
+    // when it converged and every mode passed verification (else SolverError).
+    std::string method;           // "scaled QZ", "state matrix" or "ARPACK shift-invert"
+    int iterations = 0;           // Arnoldi restarts (sparse); 0 for the dense solvers
+    int refined = 0;              // sparse: eigenpairs whose backward error needed refinement
     double max_backward_error() const;
 };
 

@@ -102,6 +102,9 @@ public:
     FeRotorMatrices assemble() const;
 };
 
+// The rotor's GyroscopicSystem (validated, assembled): the verb every model shares.
+GyroscopicSystem make_system(const FeRotor& r);
+
 // Section and element quantities, exposed for tests and documentation.
 struct FeSection {
     double area = 0.0;              // A = pi (do^2 - di^2) / 4

@@ -6,7 +6,7 @@
 // docs/fluid_rotor.md for the equations as implemented and the corrections to
 // the paper.
 //
-// Coordinates of the coupled system (make_fluid_rotor):
+// Coordinates of the coupled system (make_system):
 //   z = [x, y, alpha, beta, q_1, s_1, q_3, s_3, ...]
 // x, y: translation of the rotor centre C (m); alpha: tilt in the x-z plane
 // (rotation about +y), beta: tilt in the y-z plane (rotation about -x), so that
@@ -106,7 +106,7 @@ double fluid_delta(const FluidRotor& f, double J_eq, double w);
 // The coupled rotor + sloshing system, exact at every speed: the sloshing
 // stiffness mu_n sigma_n^2 grows with w^2 (stiffness per speed squared K2) and
 // the damping mu_n tau_n with sqrt(w) (speed-dependent damping component "sloshing").
-GyroscopicSystem make_fluid_rotor(const FluidRotor& f);
+GyroscopicSystem make_system(const FluidRotor& f);
 
 namespace detail {
 

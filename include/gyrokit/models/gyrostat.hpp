@@ -22,8 +22,9 @@ struct GyrostatParameters {
     bool rigid_housing = false;         // c_G -> infinity: only x, y, psi, theta
 };
 
-// Builds M, D (components "d_G", "d_T", "d_R"), G, K and the unbalance load.
+// Builds M, D (components "d_G", "d_T", "d_R"), G, K and the unbalance load
+// (make_system: the verb every model shares).
 // With a rigid shaft or housing only the remaining DOFs are built.
-GyroscopicSystem make_gyrostat(const GyrostatParameters& p);
+GyroscopicSystem make_system(const GyrostatParameters& p);
 
 }  // namespace gyrokit
