@@ -62,7 +62,10 @@ TEST_CASE("scaled QZ: backward error <= 1e-12 at the extremes", "[eig][extremes]
     SECTION("free cage (singular K, rigid-body modes)") {
         p.c_G = 0.0;
         sweep_extremes(p);
-        for (double w : {0.0, 100.0}) CHECK(!solve_at_speed(make_system(p), w).rigid_body.empty());
+        for (double w : {0.0, 100.0}) {
+            CAPTURE(w);
+            CHECK(!solve_at_speed(make_system(p), w).rigid_body.empty());
+        }
     }
     SECTION("everything at once") {
         p.c_T = p.c_R = 1e12;
@@ -108,7 +111,10 @@ TEST_CASE("undamped gyroscopic systems: eigenvalues in quadruples, on the axis w
         }
         // Definite K: gyroscopically stable, purely imaginary.
         const GyroscopicSystem t = random_gyroscopic(g, n, true);
-        for (const auto& m : solve_at_speed(t, 5.0).modes) CHECK(std::fabs(m.lambda.real()) <= 1e-11 * std::abs(m.lambda));
+        for (const auto& m : solve_at_speed(t, 5.0).modes) {
+            CAPTURE(m);
+            CHECK(std::fabs(m.lambda.real()) <= 1e-11 * std::abs(m.lambda));
+        }
     }
 }
 
@@ -143,7 +149,10 @@ TEST_CASE("state-matrix path: agrees on ordinary cases, refuses singular M", "[e
     t.dof_names = {"a", "b", "c"};
     const auto q = solve_at_speed(t, 0.0);
     CHECK(q.infinite_count >= 1);
-    for (const auto& m : q.modes) CHECK(m.backward_error <= 1e-12);
+    for (const auto& m : q.modes) {
+        CAPTURE(m);
+        CHECK(m.backward_error <= 1e-12);
+    }
     CHECK_THROWS_AS(solve_at_speed(t, 0.0, {EigenMethod::StateMatrix, false}), SolverError);
 }
 

@@ -205,7 +205,10 @@ TEST_CASE("fe rotor: Euler-Bernoulli pinned-pinned and free-free frequencies, fo
     const std::vector<double> w = frequencies_at_rest(f.assemble());
     for (int i = 0; i < 4; ++i) CHECK(w[i] < 1e-4 * w[4]);   // sqrt of rounding noise in w^2
     const double beta[3] = {4.730040744862704, 7.853204624095838, 10.995607838001671};
-    for (int k = 0; k < 3; ++k) CHECK(w[4 + 2 * k] == Approx(std::pow(beta[k] / L, 2) * c).epsilon(1e-5));
+    for (int k = 0; k < 3; ++k) {
+        CAPTURE(k);
+        CHECK(w[4 + 2 * k] == Approx(std::pow(beta[k] / L, 2) * c).epsilon(1e-5));
+    }
 }
 
 TEST_CASE("fe rotor: thick hollow Timoshenko shaft, pinned-pinned, at rest and spinning", "[fe_rotor][validation]") {
@@ -232,7 +235,10 @@ TEST_CASE("fe rotor: thick hollow Timoshenko shaft, pinned-pinned, at rest and s
     // Once the elements are short against the section (Phi >> 1) the interdependent
     // interpolation tends to linear w and psi: second-order convergence.
     CHECK(err.back() < 1e-3);
-    for (std::size_t i = 1; i < err.size(); ++i) CHECK(std::log2(err[i - 1] / err[i]) > 1.8);
+    for (std::size_t i = 1; i < err.size(); ++i) {
+        CAPTURE(i);
+        CHECK(std::log2(err[i - 1] / err[i]) > 1.8);
+    }
     // The Euler-Bernoulli value is far off for this thick shaft: shear really is in the model.
     const double eb = std::pow(pi / L, 2) * std::sqrt(E * s.second_moment / (rho * s.area));
     CHECK(spinning_timoshenko(s, pi / L, 0.0, 1.0) < 0.9 * eb);

@@ -292,11 +292,17 @@ TEST_CASE("fluid: undamped critical speeds: quadratic in w^2 equals the roots of
             wa = wb;
         }
         REQUIRE(roots.size() == q.size());
-        for (size_t i = 0; i < q.size(); ++i) CHECK(rel(q[i], roots[i]) < 1e-11);
+        for (size_t i = 0; i < q.size(); ++i) {
+            CAPTURE(i);
+            CHECK(rel(q[i], roots[i]) < 1e-11);
+        }
         // Far from sloshing resonance the damping (nu = 1e-6) moves them very little.
         const FluidCriticalSpeeds cs = fluid_critical_speeds(f);
         REQUIRE(cs.moving_damped.size() == q.size());
-        for (size_t i = 0; i < q.size(); ++i) CHECK(rel(cs.moving_damped[i], q[i]) < 1e-4);
+        for (size_t i = 0; i < q.size(); ++i) {
+            CAPTURE(i);
+            CHECK(rel(cs.moving_damped[i], q[i]) < 1e-4);
+        }
     }
 }
 
@@ -389,8 +395,14 @@ TEST_CASE("fluid: nearly full cavity keeps the detuning sigma^2/w^2 - 1", "[flui
         CHECK(m.detuning > 0);
     }
     const FluidCriticalSpeeds cs = fluid_critical_speeds(f);
-    for (double w : cs.moving_undamped) CHECK(std::isfinite(w));
-    for (double w : cs.moving_damped) CHECK(std::isfinite(w));
+    for (double w : cs.moving_undamped) {
+        CAPTURE(w);
+        CHECK(std::isfinite(w));
+    }
+    for (double w : cs.moving_damped) {
+        CAPTURE(w);
+        CHECK(std::isfinite(w));
+    }
 }
 
 TEST_CASE("fluid: very short cavity (kappa R >> 700)", "[fluid]") {
@@ -413,7 +425,10 @@ TEST_CASE("fluid: very short cavity (kappa R >> 700)", "[fluid]") {
     CHECK(rel(f.liquid.J_star, 0.5 * f.liquid.I_star) < 1e-3);
     const FluidCriticalSpeeds cs = fluid_critical_speeds(f);
     REQUIRE(!cs.moving_undamped.empty());
-    for (double w : cs.moving_damped) CHECK(std::isfinite(w));
+    for (double w : cs.moving_damped) {
+        CAPTURE(w);
+        CHECK(std::isfinite(w));
+    }
 }
 
 TEST_CASE("fluid: very long cavity", "[fluid]") {
@@ -449,9 +464,15 @@ TEST_CASE("fluid: fill level next to the first sloshing resonance", "[fluid]") {
         const FluidRotor f = build_fluid_rotor(p);
         const FluidCriticalSpeeds cs = fluid_critical_speeds(f);
         CHECK(std::isfinite(cs.J_eq));
-        for (double w : cs.moving_undamped) CHECK(std::isfinite(w));
+        for (double w : cs.moving_undamped) {
+            CAPTURE(w);
+            CHECK(std::isfinite(w));
+        }
         REQUIRE(!cs.moving_damped.empty());
-        for (double w : cs.moving_damped) CHECK(std::isfinite(w));
+        for (double w : cs.moving_damped) {
+            CAPTURE(w);
+            CHECK(std::isfinite(w));
+        }
         // The damped equivalent inertia stays bounded at resonance: |J_eq,d - (I - J)| <= lambda^2 w^{1/2} / (2 mu tau_coeff).
         const auto& m = f.liquid.modes[0];
         const double w = cs.moving_damped.front();

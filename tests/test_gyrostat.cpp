@@ -48,7 +48,10 @@ TEST_CASE("gyrostat matrices: M, D, K symmetric, G skew, det M closed form", "[g
         CHECK((M - M.transpose()).norm() == 0.0);
         CHECK((K - K.transpose()).norm() == 0.0);
         CHECK((G + G.transpose()).norm() == 0.0);
-        for (const auto& c : s.damping) CHECK((c.D.dense() - c.D.dense().transpose()).norm() == 0.0);
+        for (const auto& c : s.damping) {
+            CAPTURE(c);
+            CHECK((c.D.dense() - c.D.dense().transpose()).norm() == 0.0);
+        }
         // det M = A_G B_G A_R^2 m^2 (all other terms cancel); M positive definite.
         const double det = p.A_G * p.B_G * p.A_R * p.A_R * p.m * p.m;
         CHECK(M.determinant() == Approx(det).epsilon(1e-10));
@@ -105,7 +108,10 @@ TEST_CASE("translation damping pervades iff s != 0", "[gyrostat][pervasive]") {
         const std::set<double> at(lost.begin(), lost.end());
         std::set<int> modes;
         for (const auto& l : rep.losses) modes.insert(l.mode);
-        for (double w : speeds) CHECK(at.count(w) == 1);
+        for (double w : speeds) {
+            CAPTURE(w);
+            CHECK(at.count(w) == 1);
+        }
         CHECK(modes.size() == 4);   // the cage and rotor-tilt modes; only translation is damped
     }
 }
@@ -208,7 +214,10 @@ TEST_CASE("rigid shaft and rigid housing limits", "[gyrostat][limits]") {
         const double L = p.C_R * w, r = std::sqrt(L * L + 4 * p.A_R * p.c_R), wT = std::sqrt(p.c_T / p.m);
         std::vector<double> expect{(r - L) / (2 * p.A_R), wT, wT, (r + L) / (2 * p.A_R)};
         std::sort(expect.begin(), expect.end());
-        for (size_t i = 0; i < 4; ++i) CHECK(sp.modes[i].frequency() == Approx(expect[i]).epsilon(1e-12));
+        for (size_t i = 0; i < 4; ++i) {
+            CAPTURE(i);
+            CHECK(sp.modes[i].frequency() == Approx(expect[i]).epsilon(1e-12));
+        }
     }
 }
 
@@ -218,7 +227,10 @@ TEST_CASE("symmetric cage: response magnitudes pairwise equal, (alpha,beta), (x,
     for (double w : {5.0, 12.0, 31.0, 50.0}) {
         CAPTURE(w);
         const Eigen::VectorXcd Z = unbalance_response(s, w);
-        for (int k = 0; k < 6; k += 2) CHECK(std::abs(Z(k)) == Approx(std::abs(Z(k + 1))).epsilon(1e-12));
+        for (int k = 0; k < 6; k += 2) {
+            CAPTURE(k);
+            CHECK(std::abs(Z(k)) == Approx(std::abs(Z(k + 1))).epsilon(1e-12));
+        }
     }
 }
 

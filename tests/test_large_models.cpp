@@ -181,7 +181,10 @@ TEST_CASE("sparse Campbell diagram agrees with dense QZ on the finite-element ro
     const auto cd = critical_speeds(dense_solver(sc.system), dense, {1});
     const auto cs = critical_speeds(sparse_solver(sc.system, so), sparse1, {1});
     REQUIRE(cd.size() >= 2);
-    for (size_t i = 0; i < 2; ++i) CHECK(cs.at(i).speed == Approx(cd[i].speed).epsilon(1e-9));
+    for (size_t i = 0; i < 2; ++i) {
+        CAPTURE(i);
+        CHECK(cs.at(i).speed == Approx(cd[i].speed).epsilon(1e-9));
+    }
 }
 
 TEST_CASE("dense Campbell on two threads equals one thread, bit for bit", "[campbell]") {
@@ -343,12 +346,18 @@ TEST_CASE("critical speeds refined on two workers equal the serial ones", "[crit
     const auto s2 = critical_speeds(sparse_solver(sc.system, so), sparse, {1}, 2);
     REQUIRE(s1.size() >= 5);
     REQUIRE(s2.size() == s1.size());
-    for (size_t i = 0; i < s1.size(); ++i) CHECK(s2[i].speed == Approx(s1[i].speed).epsilon(1e-10));
+    for (size_t i = 0; i < s1.size(); ++i) {
+        CAPTURE(i);
+        CHECK(s2[i].speed == Approx(s1[i].speed).epsilon(1e-10));
+    }
     // Stability changes use the same workers.
     const auto u1 = stability_changes(dense_solver(cf.system), dense, 1);
     const auto u2 = stability_changes(dense_solver(cf.system), dense, 2);
     REQUIRE(u2.size() == u1.size());
-    for (size_t i = 0; i < u1.size(); ++i) CHECK(u2[i].speed == u1[i].speed);
+    for (size_t i = 0; i < u1.size(); ++i) {
+        CAPTURE(i);
+        CHECK(u2[i].speed == u1[i].speed);
+    }
 }
 
 TEST_CASE("a worker process that dies is reaped and reported with the speed it was solving", "[workers][reliability]") {

@@ -71,7 +71,10 @@ TEST_CASE("ROSS example: dense eigenvalues against the exporter and a long-doubl
             CHECK((p.K * r.right).norm() <= 1e-6 * p.K.norm());
             // They move only the axial (z) and torsional (t) DOFs.
             for (int node = 0; node < 7; ++node)
-                for (int local : {0, 1, 3, 4}) CHECK(std::abs(r.right(6 * node + local)) <= 1e-6);
+                for (int local : {0, 1, 3, 4}) {
+                    CAPTURE(local);
+                    CHECK(std::abs(r.right(6 * node + local)) <= 1e-6);
+                }
         }
         CHECK(s.modes.size() == 42 - 2);   // 84 eigenvalues: 4 rigid, 80 in 40 conjugate pairs
         for (const Mode& m : s.modes) {
@@ -81,7 +84,10 @@ TEST_CASE("ROSS example: dense eigenvalues against the exporter and a long-doubl
             CHECK(newton_correction(p, m) <= 1e-11L * std::abs(m.lambda));
         }
         if (w == 500.0)
-            for (size_t k = 0; k < 8; ++k) CHECK(std::abs(s.modes[k].frequency() - reference[k]) <= 5e-4);
+            for (size_t k = 0; k < 8; ++k) {
+                CAPTURE(k);
+                CHECK(std::abs(s.modes[k].frequency() - reference[k]) <= 5e-4);
+            }
         // The axial and torsional modes do not whirl; the bending modes do (or are planar at standstill).
         int none = 0;
         for (const Mode& m : s.modes) none += m.whirl == Whirl::None;

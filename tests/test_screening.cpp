@@ -368,7 +368,10 @@ TEST_CASE("shards merge to the unsharded table, jobs do not change the rows", "[
         ro.shard = Shard{k, 3};
         ro.out = (d.path / ("shard" + std::to_string(k) + ".csv")).string();
         const RunResult r = run_screening(s, ro);
-        for (const auto& row : r.rows) CHECK(static_cast<int>(row.index % 3) == k);
+        for (const auto& row : r.rows) {
+            CAPTURE(row);
+            CHECK(static_cast<int>(row.index % 3) == k);
+        }
         files.push_back(ro.out);
     }
     const auto merged = merge_results(s, files, true);

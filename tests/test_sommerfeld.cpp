@@ -141,7 +141,10 @@ TEST_CASE("Stationary states solve (16) and (36)/(37), middle branch unstable", 
     const SommerfeldAnalysis a = analyse_sommerfeld(p);
     const auto st = stationary_states(a, 300.0);
     REQUIRE(st.size() == 3);
-    for (const auto& q : st) CHECK(nominal(p, q.rotor_speed) == Approx(300.0).epsilon(1e-10));
+    for (const auto& q : st) {
+        CAPTURE(q);
+        CHECK(nominal(p, q.rotor_speed) == Approx(300.0).epsilon(1e-10));
+    }
     CHECK(st[0].branch == "resonance");
     CHECK(st[0].stable);
     CHECK(st[1].branch == "unstable");

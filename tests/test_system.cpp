@@ -12,23 +12,7 @@
 
 using namespace gyrokit;
 
-namespace {
-
-GyrostatParameters centrifuge() {
-    GyrostatParameters p;
-    p.A_G = p.B_G = 1.2;
-    p.A_R = 0.05;
-    p.C_R = 0.08;
-    p.m = 10.0;
-    p.s = 0.3;
-    p.c_G = 5e4;
-    p.c_T = 2e5;
-    p.c_R = 1e4;
-    p.d_G = 20.0;
-    return p;
-}
-
-}  // namespace
+using test::centrifuge;
 
 TEST_CASE("system: dense and sparse pencils are the same matrices", "[system]") {
     const GyroscopicSystem s = fe_uniform_shaft(1.0, 10, 0.05, 0.0, 2.1e11, 0.3, 7800).assemble().to_system();

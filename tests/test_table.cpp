@@ -142,7 +142,10 @@ TEST_CASE("Text is aligned: numbers right, strings left, 6 significant digits") 
         for (unsigned char c : s) n += (c & 0xC0) != 0x80;
         return n;
     };
-    for (std::size_t i = 2; i < ls.size(); ++i) CHECK(width(ls[i]) == width(ls[1]));
+    for (std::size_t i = 2; i < ls.size(); ++i) {
+        CAPTURE(i);
+        CHECK(width(ls[i]) == width(ls[1]));
+    }
 
     CHECK(ls[1] == "mode        f (Hz)  whirl    ω    ");
     CHECK(ls[2] == "----  ------------  -------  -----");

@@ -102,7 +102,10 @@ TEST_CASE("rigid rotor: closed-form Campbell diagram and critical speed", "[text
     CHECK(cs[0].mode.whirl == Whirl::Backward);
     CHECK(cs[1].speed == Approx(std::sqrt(kt / (It - Ip))).epsilon(1e-12));
     CHECK(cs[1].mode.whirl == Whirl::Forward);
-    for (size_t i = 0; i < 2; ++i) CHECK(direct[i].speed == Approx(cs[i].speed).epsilon(1e-12));
+    for (size_t i = 0; i < 2; ++i) {
+        CAPTURE(i);
+        CHECK(direct[i].speed == Approx(cs[i].speed).epsilon(1e-12));
+    }
     // Second harmonic: (4 It -+ 2 Ip) w^2 = kt.
     const auto h2 = critical_speeds(s, cd, {2});
     REQUIRE(h2.size() == 2);
