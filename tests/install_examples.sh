@@ -42,4 +42,12 @@ export PKG_CONFIG_PATH="$libdir/pkgconfig"
 c++ -O1 -o "$dir/own_matrices_pc" "$src/examples/own_matrices.cpp" $(pkg-config --define-prefix --cflags --libs gyrokit) \
     || fail "pkg-config build"
 run "$dir/own_matrices_pc"
+# The Python package from the installed prefix alone (when the build has it).
+if [ -f "$build/python/gyrokit/__init__.py" ]; then
+    site=$(dirname "$(find "$dir/prefix" -path '*/gyrokit/__init__.py' | head -1)")
+    [ -n "$site" ] && [ "$site" != "." ] || fail "the Python package is not installed"
+    PYTHONPATH=$(dirname "$site") /usr/bin/python3 -c "import gyrokit; print('python', gyrokit.__version__, gyrokit.eig(gyrokit.load_scene('$src/data/centrifuge.toml'), 20.0).eigenvalues.size, 'modes')" \
+        > "$dir/out" 2>&1 || { cat "$dir/out"; fail "import gyrokit from the prefix"; }
+    cat "$dir/out"
+fi
 echo "install and examples: ok"

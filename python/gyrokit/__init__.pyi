@@ -1,0 +1,113 @@
+# Type hints of the package gyrokit (see docs/python.md).
+from os import PathLike
+from typing import Any, Mapping, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+class Error(Exception): ...
+class InputError(Error): ...
+class SolverError(Error): ...
+
+Matrix = Any  # a 2-D NumPy array (or anything np.asarray takes) or a SciPy sparse matrix
+
+class System:
+    def __init__(self, M: Matrix, K: Matrix, D: Optional[Matrix] = ..., G: Optional[Matrix] = ...,
+                 N: Optional[Matrix] = ..., K2: Optional[Matrix] = ..., damping: Mapping[str, Matrix] = ...,
+                 unbalance: Optional[npt.ArrayLike] = ..., dof_names: Optional[Sequence[str]] = ...,
+                 whirl_pairs: Optional[Sequence[tuple[int, int]]] = ...) -> None: ...
+    @property
+    def size(self) -> int: ...
+    @property
+    def dof_names(self) -> list[str]: ...
+    @property
+    def whirl_pairs(self) -> list[tuple[int, int]]: ...
+    @property
+    def damping_names(self) -> list[str]: ...
+    @property
+    def M(self) -> Any: ...  # scipy.sparse.csc_matrix
+    @property
+    def K(self) -> Any: ...
+    @property
+    def G(self) -> Any: ...
+    @property
+    def unbalance(self) -> npt.NDArray[np.complex128]: ...
+    def damping_matrix(self, speed: float = ...) -> Any: ...
+
+class Scene:
+    path: str
+    title: str
+    model_type: str
+    system: System
+    modes: int
+    harmonics: list[int]
+    target_order: float
+    @property
+    def target(self) -> Optional[float]: ...
+    @property
+    def solver(self) -> str: ...
+    @property
+    def speeds(self) -> Optional[npt.NDArray[np.float64]]: ...
+
+Model = Union[System, Scene]
+
+class EigResult:
+    speed: float
+    eigenvalues: npt.NDArray[np.complex128]
+    frequencies: npt.NDArray[np.float64]
+    damping_ratios: npt.NDArray[np.float64]
+    backward_errors: npt.NDArray[np.float64]
+    error_bounds: npt.NDArray[np.float64]
+    whirl: list[str]
+    stability: list[str]
+    vectors: npt.NDArray[np.complex128]
+    rigid_body: npt.NDArray[np.complex128]
+    method: str
+    notes: list[str]
+    def to_pandas(self) -> Any: ...
+
+class CampbellResult:
+    speeds: npt.NDArray[np.float64]
+    eigenvalues: npt.NDArray[np.complex128]
+    frequencies: npt.NDArray[np.float64]
+    backward_errors: npt.NDArray[np.float64]
+    whirl: list[list[str]]
+    branches: npt.NDArray[np.int32]
+    inserted_speeds: int
+    ambiguous_steps: int
+    max_backward_error: float
+    rigid_body: int
+    notes: list[str]
+    def to_pandas(self) -> Any: ...
+    def plot(self, ax: Any = ..., harmonics: Sequence[int] = ...) -> Any: ...
+
+class CriticalSpeeds:
+    speeds: npt.NDArray[np.float64]
+    harmonic: npt.NDArray[np.int32]
+    branch: npt.NDArray[np.int32]
+    whirl: list[str]
+    damping_ratio: npt.NDArray[np.float64]
+    def to_pandas(self) -> Any: ...
+
+class StabilityChanges:
+    speeds: npt.NDArray[np.float64]
+    branch: npt.NDArray[np.int32]
+    becomes_unstable: npt.NDArray[np.bool_]
+    def to_pandas(self) -> Any: ...
+
+def load_scene(path: Union[str, PathLike[str]], overrides: Optional[Mapping[str, float]] = ...) -> Scene: ...
+def eig(model: Model, speed: float, *, solver: Optional[str] = ..., modes: Optional[int] = ...,
+        target: Optional[float] = ..., target_order: Optional[float] = ..., method: str = ...,
+        lanczos: int = ...) -> EigResult: ...
+def campbell(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, solver: Optional[str] = ...,
+             modes: Optional[int] = ..., target: Optional[float] = ..., target_order: Optional[float] = ...,
+             method: str = ..., lanczos: int = ..., jobs: int = ...) -> CampbellResult: ...
+def critical_speeds(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, harmonics: Optional[Sequence[int]] = ...,
+                    solver: Optional[str] = ..., modes: Optional[int] = ..., target: Optional[float] = ...,
+                    target_order: Optional[float] = ..., method: str = ..., lanczos: int = ...,
+                    jobs: int = ...) -> CriticalSpeeds: ...
+def stability(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, solver: Optional[str] = ...,
+              modes: Optional[int] = ..., target: Optional[float] = ..., target_order: Optional[float] = ...,
+              method: str = ..., lanczos: int = ..., jobs: int = ...) -> StabilityChanges: ...

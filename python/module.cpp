@@ -1,0 +1,330 @@
+// The compiled core of the Python package `gyrokit` (gyrokit/_core): the
+// library's system, scene and analyses with NumPy/SciPy arrays in and out.
+// The Python layer (gyrokit/__init__.py) adds keyword defaults from scenes,
+// result classes with to_pandas() and plot().
+#include <gyrokit/gyrokit.hpp>
+
+#include <pybind11/complex.h>
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <thread>
+#include <string>
+
+namespace py = pybind11;
+using namespace gyrokit;
+
+namespace {
+
+// A matrix argument: a SciPy sparse matrix (taken as CSC, one copy into Eigen)
+// or anything NumPy turns into a 2-D float array.
+SparseMatrix to_matrix(const py::object& A, const std::string& name) {
+    if (py::hasattr(A, "tocsc")) return A.attr("tocsc")().cast<SparseMatrix>();
+    py::array_t<double, py::array::c_style | py::array::forcecast> a;
+    try {
+        a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(A);
+    } catch (const py::error_already_set&) {
+    }
+    if (!a || a.ndim() != 2)
+        throw InputError(name + ": expected a 2-D array or a SciPy sparse matrix");
+    Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> m(a.data(), a.shape(0),
+                                                                                              a.shape(1));
+    return to_sparse(Eigen::MatrixXd(m));
+}
+
+GyroscopicSystem make_from_arrays(const py::object& M, const py::object& K, const py::object& D, const py::object& G,
+                                  const py::object& N, const py::object& K2, const py::dict& damping,
+                                  const py::object& unbalance, const py::object& dof_names,
+                                  const py::object& whirl_pairs) {
+    GyroscopicSystem s;
+    s.M = to_matrix(M, "M");
+    s.K = to_matrix(K, "K");
+    if (!D.is_none()) s.damping.push_back({"D", to_matrix(D, "D")});
+    for (const auto& [name, value] : damping) {
+        const std::string n = py::str(name);
+        s.damping.push_back({n, to_matrix(py::reinterpret_borrow<py::object>(value), "damping['" + n + "']")});
+    }
+    if (!G.is_none()) s.G = to_matrix(G, "G");
+    if (!N.is_none()) s.N = to_matrix(N, "N");
+    if (!K2.is_none()) s.K2 = to_matrix(K2, "K2");
+    if (!unbalance.is_none()) s.unbalance = unbalance.cast<Eigen::VectorXcd>();
+    const int n = s.size();
+    if (!dof_names.is_none()) {
+        s.dof_names = dof_names.cast<std::vector<std::string>>();
+    } else {
+        for (int i = 0; i < n; ++i) s.dof_names.push_back("q" + std::to_string(i));
+    }
+    if (!whirl_pairs.is_none()) {
+        s.whirl_pairs = whirl_pairs.cast<std::vector<std::pair<int, int>>>();
+    } else if (n % 2 == 0) {
+        for (int i = 0; i < n; i += 2) s.whirl_pairs.emplace_back(i, i + 1);   // (x, y) pairs, as a scene's default
+    }
+    s.validate("System");
+    return s;
+}
+
+SolverOptions solver_options(const std::string& solver, int modes, const py::object& target, double target_order,
+                             const std::string& method, int lanczos) {
+    SolverOptions o;
+    o.kind = parse_solver_kind(solver);
+    o.modes = modes;
+    if (!target.is_none()) o.target = target.cast<double>();
+    o.target_order = target_order;
+    o.eig.method = parse_eigen_method(method);
+    o.lanczos_vectors = lanczos;
+    return o;
+}
+
+std::vector<double> checked_speeds(const std::vector<double>& speeds) {
+    if (speeds.empty()) throw InputError("speeds: empty; allowed: one or more speeds >= 0 (rad/s)");
+    return speeds;
+}
+
+// One eigenvalue per conjugate pair (Im >= 0), as the CLI prints.
+py::dict spectrum_dict(const QuadraticSpectrum& s) {
+    const auto n = static_cast<py::ssize_t>(s.modes.size());
+    py::array_t<std::complex<double>> lambda(n);
+    py::array_t<double> eta(n), bound(n);
+    py::list whirl, stability;
+    Eigen::MatrixXcd X(s.modes.empty() ? 0 : s.modes.front().right.size(), n);
+    for (py::ssize_t k = 0; k < n; ++k) {
+        const Mode& m = s.modes[static_cast<size_t>(k)];
+        lambda.mutable_at(k) = m.lambda;
+        eta.mutable_at(k) = m.backward_error;
+        bound.mutable_at(k) = m.error_bound;
+        whirl.append(to_string(m.whirl));
+        stability.append(to_string(m.stability()));
+        X.col(k) = m.right;
+    }
+    py::array_t<std::complex<double>> rigid(static_cast<py::ssize_t>(s.rigid_body.size()));
+    for (size_t k = 0; k < s.rigid_body.size(); ++k) rigid.mutable_at(static_cast<py::ssize_t>(k)) = s.rigid_body[k].lambda;
+    py::dict d;
+    d["eigenvalues"] = lambda;
+    d["backward_errors"] = eta;
+    d["error_bounds"] = bound;
+    d["whirl"] = whirl;
+    d["stability"] = stability;
+    d["vectors"] = X;
+    d["rigid_body"] = rigid;
+    d["method"] = s.method;
+    d["notes"] = s.notes;
+    d["partial"] = s.partial;
+    return d;
+}
+
+py::dict campbell_dict(const CampbellDiagram& cd) {
+    const auto ns = static_cast<py::ssize_t>(cd.speeds.size()), nb = static_cast<py::ssize_t>(cd.branches.size());
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    py::array_t<std::complex<double>> lambda({ns, nb});
+    py::array_t<double> eta({ns, nb});
+    py::list whirl;
+    std::map<double, py::ssize_t> row;
+    for (py::ssize_t i = 0; i < ns; ++i) row[cd.speeds[static_cast<size_t>(i)]] = i;
+    std::vector<std::vector<std::string>> w(static_cast<size_t>(ns), std::vector<std::string>(static_cast<size_t>(nb)));
+    for (py::ssize_t i = 0; i < ns; ++i)
+        for (py::ssize_t b = 0; b < nb; ++b) lambda.mutable_at(i, b) = {nan, nan}, eta.mutable_at(i, b) = nan;
+    py::array_t<int> ids(nb);
+    for (py::ssize_t b = 0; b < nb; ++b) {
+        const Branch& br = cd.branches[static_cast<size_t>(b)];
+        ids.mutable_at(b) = br.id;
+        for (const BranchPoint& p : br.points) {
+            const py::ssize_t i = row.at(p.speed);
+            lambda.mutable_at(i, b) = p.mode.lambda;
+            eta.mutable_at(i, b) = p.mode.backward_error;
+            w[static_cast<size_t>(i)][static_cast<size_t>(b)] = to_string(p.mode.whirl);
+        }
+    }
+    py::dict d;
+    d["speeds"] = py::array_t<double>(static_cast<py::ssize_t>(cd.speeds.size()), cd.speeds.data());
+    d["eigenvalues"] = lambda;
+    d["backward_errors"] = eta;
+    d["whirl"] = w;
+    d["branches"] = ids;
+    d["inserted_speeds"] = cd.inserted_speeds;
+    d["ambiguous_steps"] = cd.ambiguous_steps;
+    d["max_backward_error"] = cd.max_backward_error;
+    d["rigid_body"] = cd.rigid_body;
+    d["notes"] = cd.notes;
+    return d;
+}
+
+// Speeds solved in parallel on threads: a Python host must not fork.
+Workers threads(int jobs) {
+    if (jobs < 0) throw InputError("jobs = " + std::to_string(jobs) + ": allowed: 0 (all cores) or a count");
+    const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    return Workers{jobs == 0 ? cores : std::min(jobs, cores), WorkerKind::Threads};
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+    m.doc() = "gyrokit's compiled core; use the package gyrokit";
+    static py::exception<Error> error(m, "Error");
+    static py::exception<InputError> input_error(m, "InputError", error.ptr());
+    static py::exception<SolverError> solver_error(m, "SolverError", error.ptr());
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const InputError& e) {
+            PyErr_SetString(input_error.ptr(), e.what());
+        } catch (const SolverError& e) {
+            PyErr_SetString(solver_error.ptr(), e.what());
+        } catch (const Error& e) {
+            PyErr_SetString(error.ptr(), e.what());
+        }
+    });
+
+    py::class_<GyroscopicSystem>(m, "System", "A gyroscopic system M z'' + (D + w G) z' + (K + w N + w^2 K2) z = w^2 u")
+        .def(py::init(&make_from_arrays), py::arg("M"), py::arg("K"), py::arg("D") = py::none(),
+             py::arg("G") = py::none(), py::arg("N") = py::none(), py::arg("K2") = py::none(),
+             py::arg("damping") = py::dict(), py::arg("unbalance") = py::none(), py::arg("dof_names") = py::none(),
+             py::arg("whirl_pairs") = py::none())
+        .def_property_readonly("size", &GyroscopicSystem::size)
+        .def_property_readonly("dof_names", [](const GyroscopicSystem& s) { return s.dof_names; })
+        .def_property_readonly("whirl_pairs", [](const GyroscopicSystem& s) { return s.whirl_pairs; })
+        .def_property_readonly("damping_names", &GyroscopicSystem::damping_names)
+        .def_property_readonly("M", [](const GyroscopicSystem& s) { return SparseMatrix(s.M); })
+        .def_property_readonly("K", [](const GyroscopicSystem& s) { return SparseMatrix(s.K); })
+        .def_property_readonly("G", [](const GyroscopicSystem& s) { return SparseMatrix(s.G); })
+        .def_property_readonly("unbalance", [](const GyroscopicSystem& s) { return s.unbalance; })
+        .def("damping_matrix", &GyroscopicSystem::damping_matrix, py::arg("speed") = 0.0)
+        .def("__repr__", [](const GyroscopicSystem& s) {
+            return "<gyrokit.System: " + std::to_string(s.size()) + " DOFs, " + std::to_string(s.damping.size()) +
+                   " damping components, " + std::to_string(s.bearings.size()) + " bearing tables>";
+        });
+
+    py::class_<Scene>(m, "Scene", "A scene file: a model with its analysis settings")
+        .def_readonly("path", &Scene::path)
+        .def_readonly("title", &Scene::title)
+        .def_readonly("model_type", &Scene::model_type)
+        .def_readonly("system", &Scene::system)
+        .def_readonly("modes", &Scene::modes)
+        .def_readonly("harmonics", &Scene::harmonics)
+        .def_readonly("target_order", &Scene::target_order)
+        .def_property_readonly("target", [](const Scene& s) { return s.target; })
+        .def_property_readonly("solver", [](const Scene& s) { return to_string(s.solver); })
+        .def_property_readonly("speeds", [](const Scene& s) -> py::object {
+            if (!s.speeds) return py::none();
+            const std::vector<double> p = s.speeds->points();
+            return py::array_t<double>(static_cast<py::ssize_t>(p.size()), p.data());
+        });
+
+    m.def("load_scene", [](const std::string& path, const std::map<std::string, double>& overrides) {
+        return load_scene(path, overrides);
+    }, py::arg("path"), py::arg("overrides") = std::map<std::string, double>{});
+
+    m.def("eig", [](const GyroscopicSystem& s, double speed, const std::string& solver, int modes,
+                    const py::object& target, double target_order, const std::string& method, int lanczos) {
+        if (!(std::isfinite(speed) && speed >= 0))
+            throw InputError("speed = " + std::to_string(speed) + ": allowed: a finite number >= 0 (rad/s)");
+        const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
+        QuadraticSpectrum sp;
+        {
+            py::gil_scoped_release free;
+            sp = choose_solver(s, o).make()(speed);
+        }
+        return spectrum_dict(sp);
+    }, py::arg("system"), py::arg("speed"), py::arg("solver"), py::arg("modes"), py::arg("target"),
+          py::arg("target_order"), py::arg("method"), py::arg("lanczos"));
+
+    m.def("campbell", [](const GyroscopicSystem& s, const std::vector<double>& speeds, const std::string& solver,
+                         int modes, const py::object& target, double target_order, const std::string& method,
+                         int lanczos, int jobs) {
+        const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
+        const std::vector<double> w = checked_speeds(speeds);
+        CampbellDiagram cd;
+        {
+            py::gil_scoped_release free;
+            const SolverChoice c = choose_solver(s, o);
+            CampbellOptions co;
+            co.eig = o.eig;
+            co.modes = c.modes;
+            co.threads = threads(jobs);
+            cd = campbell(c.make, w, co);
+            cd.notes.insert(cd.notes.begin(), c.notes.begin(), c.notes.end());
+        }
+        return campbell_dict(cd);
+    }, py::arg("system"), py::arg("speeds"), py::arg("solver"), py::arg("modes"), py::arg("target"),
+          py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
+
+    m.def("critical_speeds", [](const GyroscopicSystem& s, const std::vector<double>& speeds,
+                                const std::vector<int>& harmonics, const std::string& solver, int modes,
+                                const py::object& target, double target_order, const std::string& method, int lanczos,
+                                int jobs) {
+        const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
+        const std::vector<double> w = checked_speeds(speeds);
+        for (int h : harmonics)
+            if (h < 1) throw InputError("harmonics: " + std::to_string(h) + " is not allowed; allowed: whole numbers >= 1");
+        std::vector<CriticalSpeed> cs;
+        {
+            py::gil_scoped_release free;
+            const SolverChoice c = choose_solver(s, o);
+            CampbellOptions co;
+            co.eig = o.eig;
+            co.modes = c.modes;
+            co.threads = threads(jobs);
+            const CampbellDiagram cd = campbell(c.make, w, co);
+            cs = critical_speeds(c.make, cd, harmonics, threads(jobs));
+        }
+        const auto n = static_cast<py::ssize_t>(cs.size());
+        py::array_t<double> speed(n), damping(n);
+        py::array_t<int> harmonic(n), branch(n);
+        py::list whirl;
+        for (py::ssize_t k = 0; k < n; ++k) {
+            const CriticalSpeed& c = cs[static_cast<size_t>(k)];
+            speed.mutable_at(k) = c.speed;
+            damping.mutable_at(k) = c.mode.damping_ratio();
+            harmonic.mutable_at(k) = c.harmonic;
+            branch.mutable_at(k) = c.branch;
+            whirl.append(to_string(c.mode.whirl));
+        }
+        py::dict d;
+        d["speeds"] = speed;
+        d["harmonic"] = harmonic;
+        d["branch"] = branch;
+        d["whirl"] = whirl;
+        d["damping_ratio"] = damping;
+        return d;
+    }, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"), py::arg("modes"),
+          py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
+
+    m.def("stability", [](const GyroscopicSystem& s, const std::vector<double>& speeds, const std::string& solver,
+                          int modes, const py::object& target, double target_order, const std::string& method,
+                          int lanczos, int jobs) {
+        const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
+        const std::vector<double> w = checked_speeds(speeds);
+        std::vector<StabilityChange> ch;
+        {
+            py::gil_scoped_release free;
+            const SolverChoice c = choose_solver(s, o);
+            CampbellOptions co;
+            co.eig = o.eig;
+            co.modes = c.modes;
+            co.threads = threads(jobs);
+            ch = stability_changes(c.make, campbell(c.make, w, co), threads(jobs));
+        }
+        const auto n = static_cast<py::ssize_t>(ch.size());
+        py::array_t<double> speed(n);
+        py::array_t<int> branch(n);
+        py::array_t<bool> unstable(n);
+        for (py::ssize_t k = 0; k < n; ++k) {
+            speed.mutable_at(k) = ch[static_cast<size_t>(k)].speed;
+            branch.mutable_at(k) = ch[static_cast<size_t>(k)].branch;
+            unstable.mutable_at(k) = ch[static_cast<size_t>(k)].becomes_unstable;
+        }
+        py::dict d;
+        d["speeds"] = speed;
+        d["branch"] = branch;
+        d["becomes_unstable"] = unstable;
+        return d;
+    }, py::arg("system"), py::arg("speeds"), py::arg("solver"), py::arg("modes"), py::arg("target"),
+          py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
+
+    m.attr("__version__") = GYROKIT_VERSION;
+}

@@ -1,0 +1,171 @@
+"""The Python module against the C++ command-line tool on the example scenes, closed
+forms, and its errors. Run by ctest (test python_module) with PYTHONPATH=build/python,
+GYROKIT_CLI (the gyrokit binary) and GYROKIT_DATA (data/)."""
+import csv
+import io
+import os
+import subprocess
+import threading
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+import gyrokit as gk
+
+CLI = os.environ["GYROKIT_CLI"]
+DATA = os.environ["GYROKIT_DATA"]
+# The CLI's CSV has 12 significant digits: agreement to rounding is 1e-10 relative.
+RTOL = 1e-10
+
+
+def cli(*args):
+    out = subprocess.run([CLI, *args, "--format", "csv"], check=True, capture_output=True, text=True).stdout
+    return list(csv.DictReader(io.StringIO(out)))
+
+
+def scene(name):
+    return os.path.join(DATA, name)
+
+
+def test_eig_matches_the_cli():
+    s = gk.load_scene(scene("centrifuge.toml"))
+    ev = gk.eig(s, speed=20.0)
+    rows = cli("eig", scene("centrifuge.toml"), "--speed", "20")
+    assert len(rows) == len(ev.eigenvalues) == 6
+    for k, r in enumerate(rows):
+        assert ev.eigenvalues[k] == pytest.approx(complex(float(r["re"]), float(r["im"])), rel=RTOL)
+        assert ev.whirl[k] == r["whirl"]
+    assert ev.eigenvalues.dtype == np.complex128
+    assert ev.backward_errors.max() < 1e-14
+    assert ev.vectors.shape == (6, 6)
+    assert ev.method == "scaled QZ"
+
+
+def test_campbell_matches_the_cli():
+    s = gk.load_scene(scene("centrifuge.toml"))
+    cd = gk.campbell(s, speeds=np.linspace(0, 60, 241), modes=6)
+    assert cd.eigenvalues.shape == (len(cd.speeds), len(cd.branches))
+    rows = cli("campbell", scene("centrifuge.toml"), "--speeds", "0:60:241", "--modes", "6")
+    got = {(round(float(r["speed"]), 9), int(r["mode"])): complex(float(r["re"]), float(r["im"])) for r in rows}
+    n = 0
+    for i, w in enumerate(cd.speeds):
+        for b, branch in enumerate(cd.branches):
+            lam = cd.eigenvalues[i, b]
+            if np.isnan(lam.real):
+                continue
+            assert lam == pytest.approx(got[(round(w, 9), int(branch))], rel=RTOL, abs=1e-12)
+            n += 1
+    assert n == len(rows)
+    df_rows = cd.to_pandas() if _has("pandas") else None
+    if df_rows is not None:
+        assert len(df_rows) == len(rows)
+
+
+def test_critical_speeds_match_the_cli():
+    s = gk.load_scene(scene("centrifuge.toml"))
+    cs = gk.critical_speeds(s, speeds=np.linspace(0, 60, 241))
+    rows = cli("critical", scene("centrifuge.toml"), "--speeds", "0:60:241")
+    assert len(rows) == len(cs.speeds) == 5
+    for k, r in enumerate(rows):
+        assert cs.speeds[k] == pytest.approx(float(r["speed"]), rel=RTOL)
+        assert cs.whirl[k] == r["whirl"]
+        assert cs.harmonic[k] == int(r["harmonic"])
+
+
+def test_stability_and_sparse_solver_on_the_fe_scene_match_the_cli():
+    s = gk.load_scene(scene("fe_rotor.toml"))
+    st = gk.stability(s)   # the scene's speeds, modes and solver choice
+    rows = cli("stability", scene("fe_rotor.toml"))
+    assert len(rows) == len(st.speeds) >= 1
+    for k, r in enumerate(rows):
+        assert st.speeds[k] == pytest.approx(float(r["speed"]), rel=RTOL)
+        assert st.becomes_unstable[k] == (r["change"] == "unstable")
+    ev = gk.eig(s, 500.0, solver="sparse", modes=4, target=400.0)
+    rows = cli("eig", scene("fe_rotor.toml"), "--speed", "500", "--solver", "sparse", "--modes", "4", "--target", "400")
+    assert len(rows) == 4
+    for k, r in enumerate(rows):
+        assert ev.eigenvalues[k] == pytest.approx(complex(float(r["re"]), float(r["im"])), rel=1e-9)
+    assert ev.method == "ARPACK shift-invert"
+
+
+def jeffcott_with_disk():
+    m, Id, Ip, k, kt = 5.0, 0.02, 0.04, 2e5, 4e3
+    M = np.diag([m, m, Id, Id])
+    K = np.diag([k, k, kt, kt])
+    G = np.zeros((4, 4))
+    G[2, 3], G[3, 2] = Ip, -Ip
+    w = 100.0
+    root = np.sqrt(Ip**2 * w**2 + 4 * Id * kt)
+    expected = [np.sqrt(k / m), np.sqrt(k / m), (root - Ip * w) / (2 * Id), (root + Ip * w) / (2 * Id)]
+    return M, K, G, w, expected
+
+
+def test_system_from_numpy_and_scipy_matrices_closed_form():
+    M, K, G, w, expected = jeffcott_with_disk()
+    for system in (gk.System(M=M, K=K, G=G), gk.System(M=sp.csc_matrix(M), K=sp.csr_matrix(K), G=sp.coo_matrix(G))):
+        ev = gk.eig(system, w)
+        np.testing.assert_allclose(ev.eigenvalues.imag, expected, rtol=1e-12)
+        assert ev.whirl[2:] == ["backward", "forward"]
+    s = gk.System(M=M, K=K, G=G, dof_names=["x", "y", "tx", "ty"])
+    assert s.size == 4 and s.dof_names == ["x", "y", "tx", "ty"]
+    assert sp.issparse(s.M) and s.M.nnz == 4
+
+
+def test_damping_components_and_unbalance():
+    M, K, G, w, _ = jeffcott_with_disk()
+    s = gk.System(M=M, K=K, G=G, damping={"bearings": np.diag([40.0, 40.0, 0, 0])},
+                  unbalance=np.array([1e-4, -1e-4j, 0, 0]))
+    assert s.damping_names == ["bearings"]
+    ev = gk.eig(s, w)
+    assert np.all(ev.eigenvalues.real < 0) or np.any(np.isclose(ev.eigenvalues.real, 0, atol=1e-9))
+
+
+def test_bad_input_raises_gyrokit_errors():
+    M, K, G, w, _ = jeffcott_with_disk()
+    with pytest.raises(gk.InputError, match="matrix K is 3x3, expected 4x4"):
+        gk.System(M=M, K=np.eye(3))
+    bad = K.copy()
+    bad[0, 0] = np.nan
+    with pytest.raises(gk.InputError, match="NaN"):
+        gk.System(M=M, K=bad)
+    with pytest.raises(gk.InputError, match="not symmetric"):
+        gk.System(M=M + np.triu(np.ones((4, 4)), 1), K=K)
+    s = gk.System(M=M, K=K, G=G)
+    with pytest.raises(gk.InputError, match="modes"):
+        gk.campbell(s, [0.0, 1.0], modes=-1)
+    with pytest.raises(gk.InputError, match="speeds"):
+        gk.campbell(s, [0.0, -1.0])
+    with pytest.raises(gk.InputError, match="speed"):
+        gk.eig(s, float("nan"))
+    with pytest.raises(gk.InputError, match="allowed: auto, dense, sparse"):
+        gk.eig(s, 1.0, solver="qr")
+    with pytest.raises(gk.InputError, match="not found"):
+        gk.load_scene(os.path.join(DATA, "no_such_scene.toml"))
+    assert issubclass(gk.InputError, gk.Error) and issubclass(gk.SolverError, gk.Error)
+
+
+def test_threads_release_the_interpreter():
+    s = gk.load_scene(scene("fe_rotor.toml"))
+    speeds = np.linspace(0, 2000, 21)
+    ref = gk.campbell(s, speeds, solver="sparse", modes=4).eigenvalues
+    out = [None, None]
+
+    def run(k):
+        out[k] = gk.campbell(s, speeds, solver="sparse", modes=4).eigenvalues
+
+    threads = [threading.Thread(target=run, args=(k,)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for o in out:
+        np.testing.assert_allclose(o, ref, rtol=1e-10)
+
+
+def _has(module):
+    try:
+        __import__(module)
+        return True
+    except ImportError:
+        return False
