@@ -326,5 +326,52 @@ PYBIND11_MODULE(_core, m) {
     }, py::arg("system"), py::arg("speeds"), py::arg("solver"), py::arg("modes"), py::arg("target"),
           py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
 
+    m.def("screen", [](const std::string& path, const py::object& names, const py::object& designs, int jobs,
+                       const py::object& progress) {
+        Sweep s = read_sweep(path);
+        if (!designs.is_none()) {
+            // The sweep's criteria and operating range on the given designs.
+            s.parameters.clear();
+            s.plot_axes.clear();
+            s.sampling = Sampling::List;
+            s.designs = designs.cast<std::vector<std::vector<double>>>();
+            for (const auto& n : names.cast<std::vector<std::string>>()) {
+                SweepParameter p;
+                p.name = n;
+                s.parameters.push_back(p);
+            }
+            for (std::size_t j = 0; j < s.parameters.size(); ++j)
+                for (const auto& d : s.designs)
+                    if (j < d.size()) s.parameters[j].values.push_back(d[j]);
+            finalize_sweep(s);
+            for (auto& p : s.parameters) p.values.clear();
+        }
+        RunOptions o;
+        o.jobs = threads(jobs).count;
+        if (!progress.is_none())
+            o.progress = [progress](std::size_t done, std::size_t total) {
+                py::gil_scoped_acquire hold;
+                progress(done, total);
+            };
+        RunResult r;
+        {
+            py::gil_scoped_release free;
+            r = run_screening(s, o);
+        }
+        std::vector<std::vector<std::string>> rows;
+        for (const auto& row : r.rows) rows.push_back(row.cells);
+        py::dict d;
+        d["columns"] = r.columns;
+        d["rows"] = rows;
+        d["parameters"] = [&] {
+            std::vector<std::string> p;
+            for (const auto& x : s.parameters) p.push_back(x.name);
+            return p;
+        }();
+        d["quantities"] = quantity_columns(s);
+        d["unit"] = s.unit.name;
+        return d;
+    }, py::arg("sweep"), py::arg("names"), py::arg("designs"), py::arg("jobs"), py::arg("progress"));
+
     m.attr("__version__") = GYROKIT_VERSION;
 }

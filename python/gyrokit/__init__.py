@@ -14,7 +14,8 @@ from ._core import Error, InputError, Scene, SolverError, System, __version__
 from . import _core
 
 __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene", "eig", "campbell",
-           "critical_speeds", "stability", "EigResult", "CampbellResult", "CriticalSpeeds", "StabilityChanges"]
+           "critical_speeds", "stability", "screen", "EigResult", "CampbellResult", "CriticalSpeeds",
+           "StabilityChanges", "ScreenResult"]
 
 
 def load_scene(path, overrides=None) -> Scene:
@@ -201,3 +202,62 @@ def stability(model, speeds=None, *, solver=None, modes=None, target=None, targe
     system, o = _options(model, solver, modes, target, target_order)
     return StabilityChanges(_core.stability(system, _speeds(model, speeds), method=method, lanczos=int(lanczos),
                                             jobs=int(jobs), **o))
+
+
+class ScreenResult(_Result):
+    """Verdicts of a design study: one entry per design, in design order, as `gyrokit screen` writes them."""
+
+    def __init__(self, d):
+        self.columns = list(d["columns"])
+        rows = d["rows"]
+        col = {name: [r[k] for r in rows] for k, name in enumerate(self.columns)}
+        number = lambda cells: _np.array([float(c) if c != "" else _np.nan for c in cells], dtype=float)
+        self.design = _np.array([int(c) for c in col["design"]], dtype=int)
+        self.parameters = {p: number(col[p]) for p in d["parameters"]}
+        self.quantities = {q: number(col[q]) for q in d["quantities"]}
+        self.verdict = col["verdict"]
+        self.failed = [c.split(";") if c else [] for c in col["failed"]]
+        self.reason = col["reason"]
+        self.unit = d["unit"]
+
+    @property
+    def passed(self):
+        return _np.array([v == "pass" for v in self.verdict])
+
+    def to_pandas(self):
+        columns = {"design": self.design, **self.parameters, **self.quantities, "verdict": self.verdict,
+                   "failed": [";".join(f) for f in self.failed], "reason": self.reason}
+        return self._frame(columns)
+
+    def plot(self, x=None, y=None, ax=None):
+        """The designs over two parameters, coloured by verdict (the safe region)."""
+        plt = self._pyplot()
+        names = list(self.parameters)
+        x = x or names[0]
+        y = y or names[1]
+        ax = ax or plt.subplots()[1]
+        for verdict, colour in (("pass", "tab:green"), ("fail", "tab:red"), ("error", "tab:gray")):
+            sel = _np.array([v == verdict for v in self.verdict])
+            if sel.any():
+                ax.scatter(self.parameters[x][sel], self.parameters[y][sel], c=colour, label=verdict, s=12)
+        ax.set_xlabel(x)
+        ax.set_ylabel(y)
+        ax.legend(fontsize="small")
+        return ax
+
+
+def screen(sweep, designs=None, *, jobs=0, progress=None) -> ScreenResult:
+    """A design study: the criteria of the sweep file `sweep` on its own designs, or on `designs`, a list of
+    dicts {parameter: value} (e.g. {"model.c_G": 400.0}). Designs run on `jobs` threads (0 = all cores) with
+    the interpreter released; `progress(done, total)` is called after each design."""
+    names = values = None
+    if designs is not None:
+        designs = list(designs)
+        if not designs:
+            raise InputError("designs: empty; allowed: a list of dicts {parameter: value}")
+        names = list(designs[0])
+        for i, d in enumerate(designs):
+            if list(d) != names:
+                raise InputError(f"designs[{i}]: parameters {sorted(d)} differ from those of designs[0] {sorted(names)}")
+        values = [[float(d[n]) for n in names] for d in designs]
+    return ScreenResult(_core.screen(str(sweep), names, values, int(jobs), progress))

@@ -111,3 +111,20 @@ def critical_speeds(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, harm
 def stability(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, solver: Optional[str] = ...,
               modes: Optional[int] = ..., target: Optional[float] = ..., target_order: Optional[float] = ...,
               method: str = ..., lanczos: int = ..., jobs: int = ...) -> StabilityChanges: ...
+
+class ScreenResult:
+    columns: list[str]
+    design: npt.NDArray[np.int_]
+    parameters: dict[str, npt.NDArray[np.float64]]
+    quantities: dict[str, npt.NDArray[np.float64]]
+    verdict: list[str]
+    failed: list[list[str]]
+    reason: list[str]
+    unit: str
+    @property
+    def passed(self) -> npt.NDArray[np.bool_]: ...
+    def to_pandas(self) -> Any: ...
+    def plot(self, x: Optional[str] = ..., y: Optional[str] = ..., ax: Any = ...) -> Any: ...
+
+def screen(sweep: Union[str, PathLike[str]], designs: Optional[Sequence[Mapping[str, float]]] = ..., *,
+           jobs: int = ..., progress: Optional[Any] = ...) -> ScreenResult: ...

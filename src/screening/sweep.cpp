@@ -139,6 +139,7 @@ std::vector<double> latin_hypercube(std::size_t n, std::size_t d, std::uint64_t 
 
 std::size_t Sweep::design_count() const {
     if (sampling == Sampling::LatinHypercube) return static_cast<std::size_t>(samples);
+    if (sampling == Sampling::List) return designs.size();
     std::size_t n = 1;
     for (const auto& p : parameters) n *= p.values.empty() ? static_cast<std::size_t>(p.count) : p.values.size();
     return n;
@@ -146,6 +147,7 @@ std::size_t Sweep::design_count() const {
 
 std::vector<double> Sweep::design(std::size_t i) const {
     const std::size_t d = parameters.size();
+    if (sampling == Sampling::List) return designs.at(i);
     std::vector<double> x(d);
     if (sampling == Sampling::LatinHypercube) {
         for (std::size_t j = 0; j < d; ++j) x[j] = map_unit(parameters[j], lhs.at(i * d + j));
@@ -196,6 +198,18 @@ void finalize_sweep(Sweep& s) {
             throw InputError(fmt::format("{}: parameter '{}' appears twice", s.path, p.name));
     if (s.sampling == Sampling::LatinHypercube && s.parameters.empty())
         throw InputError(s.path + ": Latin hypercube sampling needs at least one [[parameter]]");
+    if (s.sampling == Sampling::List) {
+        if (s.designs.size() > max_designs)
+            throw InputError(fmt::format("{}: {} designs; allowed: at most {}", s.path, s.designs.size(), max_designs));
+        for (std::size_t i = 0; i < s.designs.size(); ++i) {
+            if (s.designs[i].size() != s.parameters.size())
+                throw InputError(fmt::format("{}: design {} has {} values for {} parameters", s.path, i,
+                                             s.designs[i].size(), s.parameters.size()));
+            for (double v : s.designs[i])
+                if (!std::isfinite(v))
+                    throw InputError(fmt::format("{}: design {} has a value that is not a finite number", s.path, i));
+        }
+    }
     // Guard the grid size before it overflows.
     long double n = 1;
     for (const auto& p : s.parameters) n *= p.values.empty() ? p.count : static_cast<long double>(p.values.size());

@@ -24,7 +24,8 @@ struct SweepParameter {
     bool log_scale = false;        // points equally spaced in log(value)
 };
 
-enum class Sampling { Grid, LatinHypercube };
+// List: the designs are given one by one (`Sweep::designs`), e.g. from a script.
+enum class Sampling { Grid, LatinHypercube, List };
 
 // Critical speeds must keep `margin_percent` (API 684 style) from the operating
 // range: below it SM = 100 (from - w_c)/from, above it SM = 100 (w_c - to)/to,
@@ -82,8 +83,9 @@ struct Sweep {
     std::vector<std::string> dof_names;   // of the base scene
     SceneLoader loader;               // default: load_scene(scene, overrides)
     std::vector<double> lhs;          // Latin hypercube points, samples x parameters
+    std::vector<std::vector<double>> designs;   // List: each design's values, in the order of `parameters`
 
-    // Number of designs: product of grid counts, or `samples`.
+    // Number of designs: product of grid counts, `samples`, or the listed designs.
     std::size_t design_count() const;
     // Parameter values of design i (0-based), in the order of `parameters`.
     std::vector<double> design(std::size_t i) const;
