@@ -10,7 +10,8 @@ $sudo apt-get install -y -qq --no-install-recommends \
     libeigen3-dev liblapack-dev liblapacke-dev libblas-dev libarpack2-dev libgsl-dev \
     libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfmt-dev \
     catch2 gnuplot-nox \
-    python3-dev python3-pybind11 python3-numpy python3-scipy python3-pytest > /dev/null
+    python3-dev python3-pybind11 python3-numpy python3-scipy python3-pytest python3-pandas python3-matplotlib \
+    > /dev/null
 # BLIS (serial build) as the libblas.so.3 alternative: vectorized kernels for the
 # matrix-vector products of ARPACK's Arnoldi iteration, and safe to call from
 # several threads at once (gyrokit solves speeds in parallel). Reference LAPACK

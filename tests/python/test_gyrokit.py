@@ -205,3 +205,23 @@ def test_screen_refuses_bad_designs():
     assert mixed.verdict[1] in ("pass", "fail")
     with pytest.raises(gk.InputError, match="c_G = -5"):
         gk.screen(sweep, [{"model.c_G": -5.0}])
+
+
+def test_the_tour_in_docs_python_md_runs():
+    import re
+    import matplotlib
+    matplotlib.use("Agg")
+    root = os.path.dirname(os.path.abspath(DATA))
+    text = open(os.path.join(root, "docs", "python.md")).read()
+    tour = text[text.index("## A five-minute tour"):text.index("## API reference")]
+    blocks = re.findall(r"```python\n(.*?)```", tour, re.S)
+    assert len(blocks) == 3
+    cwd = os.getcwd()
+    os.chdir(root)
+    try:
+        namespace = {}
+        for block in blocks:
+            exec(compile(block, "docs/python.md", "exec"), namespace)
+    finally:
+        os.chdir(cwd)
+    assert len(namespace["df"]) == 30 and set(namespace["df"].verdict) <= {"pass", "fail", "error"}
