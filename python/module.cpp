@@ -326,6 +326,59 @@ PYBIND11_MODULE(_core, m) {
     }, py::arg("system"), py::arg("speeds"), py::arg("solver"), py::arg("modes"), py::arg("target"),
           py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
 
+    m.def("parse_scene", &parse_scene, py::arg("text"), py::arg("origin"), py::arg("dir") = ".");
+
+    m.def("pervasive", [](const GyroscopicSystem& s, const std::vector<double>& speeds, double tolerance,
+                          const std::string& solver, int modes, const py::object& target, double target_order,
+                          const std::string& method, int lanczos, int jobs) {
+        if (!(tolerance > 0.0 && tolerance < 1.0))
+            throw InputError("tolerance = " + std::to_string(tolerance) + ": allowed: 0 < tolerance < 1");
+        PervasiveOptions po;
+        po.tolerance = tolerance;
+        po.modes = modes;
+        po.solver = solver_options(solver, modes, target, target_order, method, lanczos);
+        po.threads = threads(jobs);
+        const std::vector<double> w = checked_speeds(speeds);
+        PervasiveReport rep;
+        {
+            py::gil_scoped_release free;
+            rep = pervasive_damping(s, w, po);
+        }
+        py::list damping, whirl;
+        std::vector<double> speed, frequency, residual;
+        std::vector<int> mode;
+        for (const auto& l : rep.losses) {
+            damping.append(l.damping);
+            whirl.append(to_string(l.lost.whirl));
+            speed.push_back(l.speed);
+            frequency.push_back(l.lost.frequency());
+            residual.push_back(l.residual);
+            mode.push_back(l.mode);
+        }
+        py::dict d;
+        d["checked"] = rep.checked;
+        d["damping"] = damping;
+        d["speeds"] = py::array_t<double>(static_cast<py::ssize_t>(speed.size()), speed.data());
+        d["mode"] = py::array_t<int>(static_cast<py::ssize_t>(mode.size()), mode.data());
+        d["frequency"] = py::array_t<double>(static_cast<py::ssize_t>(frequency.size()), frequency.data());
+        d["whirl"] = whirl;
+        d["residual"] = py::array_t<double>(static_cast<py::ssize_t>(residual.size()), residual.data());
+        return d;
+    }, py::arg("system"), py::arg("speeds"), py::arg("tolerance"), py::arg("solver"), py::arg("modes"),
+          py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
+
+    m.def("response", [](const GyroscopicSystem& s, const std::vector<double>& speeds, const std::string& solver) {
+        const std::vector<double> w = checked_speeds(speeds);
+        const SolverKind kind = parse_solver_kind(solver);
+        Eigen::MatrixXcd Z(static_cast<Eigen::Index>(w.size()), s.size());
+        {
+            py::gil_scoped_release free;
+            s.validate("response: the system");
+            for (std::size_t i = 0; i < w.size(); ++i) Z.row(static_cast<Eigen::Index>(i)) = unbalance_response(s, w[i], kind).transpose();
+        }
+        return Z;
+    }, py::arg("system"), py::arg("speeds"), py::arg("solver"));
+
     m.def("screen", [](const std::string& path, const py::object& names, const py::object& designs, int jobs,
                        const py::object& progress) {
         Sweep s = read_sweep(path);

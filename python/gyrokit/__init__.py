@@ -15,7 +15,8 @@ from . import _core
 
 __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene", "eig", "campbell",
            "critical_speeds", "stability", "screen", "EigResult", "CampbellResult", "CriticalSpeeds",
-           "StabilityChanges", "ScreenResult"]
+           "StabilityChanges", "ScreenResult", "pervasive", "response", "PervasiveLosses", "Response", "gyrostat",
+           "fe_rotor", "fluid_rotor", "matrices_scene"]
 
 
 def load_scene(path, overrides=None) -> Scene:
@@ -261,3 +262,132 @@ def screen(sweep, designs=None, *, jobs=0, progress=None) -> ScreenResult:
                 raise InputError(f"designs[{i}]: parameters {sorted(d)} differ from those of designs[0] {sorted(names)}")
         values = [[float(d[n]) for n in names] for d in designs]
     return ScreenResult(_core.screen(str(sweep), names, values, int(jobs), progress))
+
+
+class PervasiveLosses(_Result):
+    """Speeds where a damping set (a component alone, or "total") does not reach a mode (Hautus test)."""
+
+    def __init__(self, d):
+        self.checked = list(d["checked"])
+        self.damping = list(d["damping"])
+        self.speeds = d["speeds"]
+        self.mode = d["mode"]
+        self.frequency = d["frequency"]
+        self.whirl = list(d["whirl"])
+        self.residual = d["residual"]
+
+    def to_pandas(self):
+        return self._frame({"damping": self.damping, "speed": self.speeds, "mode": self.mode,
+                            "frequency": self.frequency, "whirl": self.whirl, "residual": self.residual})
+
+
+class Response(_Result):
+    """Steady unbalance response: complex amplitudes Z[i, k] of DOF dofs[k] at speeds[i]; amplitude, phase (deg)."""
+
+    def __init__(self, speeds, dofs, Z):
+        self.speeds = _np.asarray(speeds, dtype=float)
+        self.dofs = list(dofs)
+        self.amplitudes = Z
+        self.amplitude = _np.abs(Z)
+        self.phase = _np.degrees(_np.angle(Z))   # degrees, as the CLI prints
+
+    def to_pandas(self):
+        rows = {"speed": _np.repeat(self.speeds, len(self.dofs)), "dof": self.dofs * len(self.speeds),
+                "amplitude": self.amplitude.ravel(), "phase": self.phase.ravel()}
+        return self._frame(rows)
+
+    def plot(self, ax=None):
+        """Amplitude over speed, one line per DOF."""
+        plt = self._pyplot()
+        ax = ax or plt.subplots()[1]
+        for k, name in enumerate(self.dofs):
+            ax.semilogy(self.speeds, self.amplitude[:, k], label=name)
+        ax.set_xlabel("speed (rad/s)")
+        ax.set_ylabel("amplitude")
+        ax.legend(fontsize="small")
+        return ax
+
+
+def pervasive(model, speeds=None, *, tolerance=1e-8, solver=None, modes=None, target=None, target_order=None,
+              method="qz", lanczos=0, jobs=1) -> PervasiveLosses:
+    """Hautus pervasive-damping check of each damping component alone and of the total damping."""
+    system, o = _options(model, solver, modes, target, target_order)
+    return PervasiveLosses(_core.pervasive(system, _speeds(model, speeds), float(tolerance), method=method,
+                                           lanczos=int(lanczos), jobs=int(jobs), **o))
+
+
+def response(model, speeds=None, *, dofs=None, solver=None) -> Response:
+    """Unbalance response at `speeds` of the named DOFs (default: all), by a dense or (solver "sparse";
+    "auto" above 200 DOFs) sparse LU of the dynamic stiffness."""
+    system, o = _options(model, solver, None, None, None)
+    Z = _core.response(system, _speeds(model, speeds), o["solver"])
+    names = system.dof_names
+    if dofs is None:
+        return Response(_speeds(model, speeds), names, Z)
+    missing = [d for d in dofs if d not in names]
+    if missing:
+        raise InputError(f"dofs: {missing[0]!r} is not a DOF of the model; allowed: names such as {names[0]!r}")
+    cols = [names.index(d) for d in dofs]
+    return Response(_speeds(model, speeds), list(dofs), Z[:, cols])
+
+
+# Models from keyword parameters, with the key names, checks and messages of scene files
+# (docs/scene_format.md): the keywords become the [model] table of a scene.
+def _toml_value(v, where):
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, _np.integer)):
+        return str(int(v))
+    if isinstance(v, (float, _np.floating)):
+        v = float(v)
+        if not _np.isfinite(v):
+            raise InputError(f"{where} = {v}: allowed: a finite number")
+        return repr(v)
+    if isinstance(v, str):
+        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(v, (list, tuple, _np.ndarray)):
+        return "[" + ", ".join(_toml_value(x, where) for x in v) + "]"
+    raise InputError(f"{where}: {type(v).__name__} is not a number, string or list")
+
+
+def _model_scene(kind, keys, speeds=None, analysis=None, directory="."):
+    lines = ["[model]", f'type = "{kind}"']
+    tables = []
+    for k, v in keys.items():
+        if isinstance(v, (list, tuple)) and v and all(isinstance(x, dict) for x in v):
+            tables.append((k, v))
+        else:
+            lines.append(f"{k} = {_toml_value(v, k)}")
+    for k, items in tables:
+        for item in items:
+            lines.append(f"[[model.{k}]]")
+            lines += [f"{kk} = {_toml_value(vv, k + '.' + kk)}" for kk, vv in item.items()]
+    for name, table in (("speeds", speeds), ("analysis", analysis)):
+        if table:
+            lines.append(f"[{name}]")
+            lines += [f"{k} = {_toml_value(v, name + '.' + k)}" for k, v in table.items()]
+    return _core.parse_scene("\n".join(lines) + "\n", f"{kind}(...)", str(directory))
+
+
+def gyrostat(*, speeds=None, analysis=None, **keys) -> Scene:
+    """The gyrostat with elastic shaft from its [model] keys: A_G, B_G, A_R, C_R, m, s, eps, c_G, c_T, c_R,
+    d_G, d_T, d_R, shaft = "rigid", housing = "rigid" (docs/scene_format.md). speeds: {"from": .., "to": ..,
+    "count": ..}; analysis: {"modes": .., "solver": ..}."""
+    return _model_scene("gyrostat", keys, speeds, analysis)
+
+
+def fe_rotor(*, speeds=None, analysis=None, directory=".", **keys) -> Scene:
+    """A finite-element rotor from its [model] keys: E, poisson, density, shaft=[{length, elements,
+    outer_diameter, ...}], disk=[{z, mass, Id, Ip, unbalance}], bearing=[{z, k, c, kxx, ..., table}],
+    support=[{z, type}] (docs/scene_format.md); bearing tables are found relative to `directory`."""
+    return _model_scene("fe_rotor", keys, speeds, analysis, directory)
+
+
+def fluid_rotor(*, speeds=None, analysis=None, **keys) -> Scene:
+    """The liquid-filled rotor from its [model] keys (docs/fluid_rotor.md)."""
+    return _model_scene("fluid_rotor", keys, speeds, analysis)
+
+
+def matrices_scene(directory, *, speeds=None, analysis=None, **keys) -> Scene:
+    """A matrices model whose Matrix Market files (M, K, D, G, N, unbalance) lie in `directory`."""
+    return _model_scene("matrices", keys, speeds, analysis, directory)

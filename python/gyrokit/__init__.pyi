@@ -128,3 +128,37 @@ class ScreenResult:
 
 def screen(sweep: Union[str, PathLike[str]], designs: Optional[Sequence[Mapping[str, float]]] = ..., *,
            jobs: int = ..., progress: Optional[Any] = ...) -> ScreenResult: ...
+
+class PervasiveLosses:
+    checked: list[str]
+    damping: list[str]
+    speeds: npt.NDArray[np.float64]
+    mode: npt.NDArray[np.int32]
+    frequency: npt.NDArray[np.float64]
+    whirl: list[str]
+    residual: npt.NDArray[np.float64]
+    def to_pandas(self) -> Any: ...
+
+class Response:
+    speeds: npt.NDArray[np.float64]
+    dofs: list[str]
+    amplitudes: npt.NDArray[np.complex128]
+    amplitude: npt.NDArray[np.float64]
+    phase: npt.NDArray[np.float64]  # degrees
+    def to_pandas(self) -> Any: ...
+    def plot(self, ax: Any = ...) -> Any: ...
+
+def pervasive(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, tolerance: float = ...,
+              solver: Optional[str] = ..., modes: Optional[int] = ..., target: Optional[float] = ...,
+              target_order: Optional[float] = ..., method: str = ..., lanczos: int = ...,
+              jobs: int = ...) -> PervasiveLosses: ...
+def response(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, dofs: Optional[Sequence[str]] = ...,
+             solver: Optional[str] = ...) -> Response: ...
+def gyrostat(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
+             **keys: Any) -> Scene: ...
+def fe_rotor(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
+             directory: str = ..., **keys: Any) -> Scene: ...
+def fluid_rotor(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
+                **keys: Any) -> Scene: ...
+def matrices_scene(directory: str, *, speeds: Optional[Mapping[str, float]] = ...,
+                   analysis: Optional[Mapping[str, Any]] = ..., **keys: Any) -> Scene: ...

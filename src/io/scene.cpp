@@ -156,10 +156,13 @@ void apply_overrides(toml::table& root, const std::string& path, const std::map<
 
 }  // namespace
 
-Scene load_scene(const std::string& path, const std::map<std::string, double>& overrides) {
+namespace {
+
+// A parsed scene document: `path` names it in messages, `dir` resolves its relative files.
+Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
+                 const std::map<std::string, double>& overrides) {
     Scene sc;
     sc.path = path;
-    toml::table root = parse_scene_file(path);
     apply_overrides(root, path, overrides);
     TomlKeys top(path, "top level", root);
     top.only({"title", "model", "speeds", "analysis"});
@@ -170,7 +173,7 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
     TomlKeys mk(path, "model", *model);
     sc.model_type = mk.choice("type", "", model_types());
     if (sc.model_type.empty()) throw InputError(mk.where("type") + " is missing; allowed: " + types);
-    model_readers().at(sc.model_type)(mk, fs::path(path).parent_path(), sc);
+    model_readers().at(sc.model_type)(mk, dir, sc);
     sc.system.validate(path);
 
     if (const toml::table* sp = root.get_as<toml::table>("speeds")) {
@@ -205,6 +208,23 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
         }
     }
     return sc;
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& path, const std::map<std::string, double>& overrides) {
+    return scene_from(parse_scene_file(path), path, fs::path(path).parent_path(), overrides);
+}
+
+Scene parse_scene(const std::string& text, const std::string& origin, const std::string& dir) {
+    toml::table root;
+    try {
+        root = toml::parse(text, origin);
+    } catch (const toml::parse_error& e) {
+        const auto& b = e.source().begin;
+        throw InputError(fmt::format("{}: line {}, column {}: {}", origin, b.line, b.column, e.description()));
+    }
+    return scene_from(std::move(root), origin, dir, {});
 }
 
 SolverOptions Scene::solver_options() const {

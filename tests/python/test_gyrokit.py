@@ -225,3 +225,48 @@ def test_the_tour_in_docs_python_md_runs():
     finally:
         os.chdir(cwd)
     assert len(namespace["df"]) == 30 and set(namespace["df"].verdict) <= {"pass", "fail", "error"}
+
+
+def test_pervasive_and_response_match_the_cli():
+    s = gk.load_scene(scene("centrifuge.toml"))
+    p = gk.pervasive(s)
+    rows = cli("pervasive", scene("centrifuge.toml"))
+    assert len(rows) == len(p.speeds) >= 1
+    for k, r in enumerate(rows):
+        assert p.damping[k] == r["damping"] and p.mode[k] == int(r["mode"]) and p.whirl[k] == r["whirl"]
+        assert p.speeds[k] == pytest.approx(float(r["speed"]), rel=RTOL)
+    f = gk.load_scene(scene("fe_rotor.toml"))
+    resp = gk.response(f, np.linspace(10, 600, 3), dofs=["x12", "y12"])
+    rows = cli("response", scene("fe_rotor.toml"), "--speeds", "10:600:3", "--dofs", "x12,y12")
+    assert len(rows) == resp.amplitude.size
+    for k, r in enumerate(rows):
+        i, j = divmod(k, 2)
+        assert r["dof"] == resp.dofs[j]
+        assert resp.amplitude[i, j] == pytest.approx(float(r["amplitude"]), rel=RTOL)
+        assert resp.phase[i, j] == pytest.approx(float(r["phase"]), rel=1e-9, abs=1e-9)
+    with pytest.raises(gk.InputError, match="not a DOF"):
+        gk.response(f, [100.0], dofs=["x99"])
+
+
+def test_models_from_keywords_equal_their_scenes():
+    keys = dict(A_G=2.0, B_G=2.0, A_R=0.09, C_R=0.10, m=8.0, s=0.25, eps=1.0e-3, c_G=306.862, c_T=2112.19,
+                c_R=74.1333, d_G=4.0, d_T=5.0, d_R=0.02)
+    made = gk.gyrostat(**keys)
+    read = gk.load_scene(scene("centrifuge.toml"))
+    w = np.linspace(0, 60, 241)
+    np.testing.assert_array_equal(gk.critical_speeds(made, w).speeds, gk.critical_speeds(read, w).speeds)
+    with pytest.raises(gk.InputError, match=r"\[model\] A_G = -1"):
+        gk.gyrostat(**{**keys, "A_G": -1.0})
+    with pytest.raises(gk.InputError, match="unknown key"):
+        gk.gyrostat(**keys, c_X=1.0)
+    rotor = gk.fe_rotor(E=211e9, poisson=0.3, density=7810,
+                        shaft=[dict(length=1.5, elements=24, outer_diameter=0.05)],
+                        disk=[dict(z=0.5, mass=33.657, Id=0.17831, Ip=0.32985, unbalance=1e-4),
+                              dict(z=1.0, mass=33.657, Id=0.17831, Ip=0.32985)],
+                        bearing=[dict(z=0.0, table="bearings/drive_end.csv"),
+                                 dict(z=1.5, table="bearings/non_drive_end.csv")],
+                        directory=DATA, analysis=dict(modes=6))
+    assert rotor.system.size == 100
+    a = gk.eig(rotor, 700.0, solver="dense").eigenvalues
+    b = gk.eig(gk.load_scene(scene("fe_rotor.toml")), 700.0, solver="dense").eigenvalues
+    np.testing.assert_allclose(a, b, rtol=1e-13)

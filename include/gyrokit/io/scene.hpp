@@ -38,4 +38,8 @@ struct Scene {
 // design study varies a base scene.
 Scene load_scene(const std::string& path, const std::map<std::string, double>& overrides = {});
 
+// The same from the text of a scene: `origin` names it in messages, `dir`
+// resolves the files it refers to (Matrix Market, bearing tables).
+Scene parse_scene(const std::string& text, const std::string& origin, const std::string& dir = ".");
+
 }  // namespace gyrokit
