@@ -16,7 +16,7 @@ from . import _core
 __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene", "eig", "campbell",
            "critical_speeds", "stability", "screen", "EigResult", "CampbellResult", "CriticalSpeeds",
            "StabilityChanges", "ScreenResult", "pervasive", "response", "PervasiveLosses", "Response", "gyrostat",
-           "fe_rotor", "fluid_rotor", "matrices_scene"]
+           "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "Sommerfeld"]
 
 
 def load_scene(path, overrides=None) -> Scene:
@@ -391,3 +391,49 @@ def fluid_rotor(*, speeds=None, analysis=None, **keys) -> Scene:
 def matrices_scene(directory, *, speeds=None, analysis=None, **keys) -> Scene:
     """A matrices model whose Matrix Market files (M, K, D, G, N, unbalance) lie in `directory`."""
     return _model_scene("matrices", keys, speeds, analysis, directory)
+
+
+class BalancerStates(_Result):
+    """Synchronous states of a two-roller auto-balancer and their stability per speed range (Tabellen 1-3)."""
+
+    def __init__(self, d):
+        self.state = list(d["state"])
+        self.alpha_deg = [_np.degrees(a) for a in d["alpha"]]
+        self.range = list(d["range"])
+        self.range_from = d["range_from"]
+        self.range_to = d["range_to"]
+        self.stable = list(d["stable"])
+        self.stable_eigen = list(d["stable_eigen"])
+        self.max_real_eigenvalue = d["max_real_eigenvalue"]
+        self.compensating = [bool(c) for c in d["compensating"]]
+
+    def to_pandas(self):
+        return self._frame({"state": self.state, "range": self.range, "from": self.range_from, "to": self.range_to,
+                            "stable": self.stable, "stable_eigen": self.stable_eigen,
+                            "max_re_lambda": self.max_real_eigenvalue, "compensating": self.compensating})
+
+
+class Sommerfeld(_Result):
+    """Sommerfeld effect of a rotor driven by a limited motor: limit speed estimate, folds, jump speeds (rad/s)."""
+
+    def __init__(self, d):
+        self.limit_speed_estimate = d["limit_speed_estimate"]
+        self.has_jump = d["has_jump"]
+        self.folds = list(d["folds"])
+        self.jump_up = d.get("jump_up")
+        self.jump_up_rotor_speed = d.get("jump_up_rotor_speed")
+        self.jump_down = d.get("jump_down")
+        self.jump_down_rotor_speed = d.get("jump_down_rotor_speed")
+
+    def to_pandas(self):
+        return self._frame(self.folds)
+
+
+def balancer(scene) -> BalancerStates:
+    """The auto-balancer scene's synchronous states and their stability (as `gyrokit balancer`)."""
+    return BalancerStates(_core.balancer(str(scene)))
+
+
+def sommerfeld(scene) -> Sommerfeld:
+    """The Sommerfeld analysis of an auto-balancer scene with a motor (as `gyrokit sommerfeld`)."""
+    return Sommerfeld(_core.sommerfeld(str(scene)))

@@ -162,3 +162,28 @@ def fluid_rotor(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Option
                 **keys: Any) -> Scene: ...
 def matrices_scene(directory: str, *, speeds: Optional[Mapping[str, float]] = ...,
                    analysis: Optional[Mapping[str, Any]] = ..., **keys: Any) -> Scene: ...
+
+class BalancerStates:
+    state: list[str]
+    alpha_deg: list[npt.NDArray[np.float64]]
+    range: list[str]
+    range_from: npt.NDArray[np.float64]
+    range_to: npt.NDArray[np.float64]
+    stable: list[bool]
+    stable_eigen: list[bool]
+    max_real_eigenvalue: npt.NDArray[np.float64]
+    compensating: list[bool]
+    def to_pandas(self) -> Any: ...
+
+class Sommerfeld:
+    limit_speed_estimate: float
+    has_jump: bool
+    folds: list[dict[str, Any]]
+    jump_up: Optional[float]
+    jump_up_rotor_speed: Optional[float]
+    jump_down: Optional[float]
+    jump_down_rotor_speed: Optional[float]
+    def to_pandas(self) -> Any: ...
+
+def balancer(scene: Union[str, PathLike[str]]) -> BalancerStates: ...
+def sommerfeld(scene: Union[str, PathLike[str]]) -> Sommerfeld: ...

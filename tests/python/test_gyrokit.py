@@ -270,3 +270,23 @@ def test_models_from_keywords_equal_their_scenes():
     a = gk.eig(rotor, 700.0, solver="dense").eigenvalues
     b = gk.eig(gk.load_scene(scene("fe_rotor.toml")), 700.0, solver="dense").eigenvalues
     np.testing.assert_allclose(a, b, rtol=1e-13)
+
+
+def test_balancer_and_sommerfeld_match_the_cli():
+    b = gk.balancer(scene("balancer_table1.toml"))
+    rows = cli("balancer", scene("balancer_table1.toml"))
+    assert len(rows) == len(b.state) >= 4
+    for k, r in enumerate(rows):
+        assert b.state[k] == r["state"] and b.range[k] == r["range"]
+        assert b.stable[k] == (r["stable"] == "true") and b.stable_eigen[k] == (r["stable_eigen"] == "true")
+        assert b.max_real_eigenvalue[k] == pytest.approx(float(r["max_re_lambda"]), rel=RTOL, abs=1e-12)
+        assert b.alpha_deg[k][0] == pytest.approx(float(r["alpha1_deg"]), rel=RTOL)
+    s = gk.sommerfeld(scene("sommerfeld_rotor.toml"))
+    text = subprocess.run([CLI, "sommerfeld", scene("sommerfeld_rotor.toml")], check=True, capture_output=True,
+                          text=True).stdout
+    summary = dict(line.split()[:2] for line in text.splitlines()
+                   if line.split()[:1] and line.split()[0] in ("jump_up", "jump_down", "limit_speed_estimate"))
+    assert s.has_jump
+    assert s.jump_up == pytest.approx(float(summary["jump_up"]), rel=1e-5)         # the table prints 6 digits
+    assert s.jump_down == pytest.approx(float(summary["jump_down"]), rel=1e-5)
+    assert s.limit_speed_estimate == pytest.approx(float(summary["limit_speed_estimate"]), rel=1e-5)
