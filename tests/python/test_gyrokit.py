@@ -290,3 +290,18 @@ def test_balancer_and_sommerfeld_match_the_cli():
     assert s.jump_up == pytest.approx(float(summary["jump_up"]), rel=1e-5)         # the table prints 6 digits
     assert s.jump_down == pytest.approx(float(summary["jump_down"]), rel=1e-5)
     assert s.limit_speed_estimate == pytest.approx(float(summary["limit_speed_estimate"]), rel=1e-5)
+
+
+def test_large_sparse_system_round_trips_through_scipy():
+    rotor = gk.fe_rotor(E=211e9, poisson=0.3, density=7810,
+                        shaft=[dict(length=1.5, elements=768, outer_diameter=0.05)],
+                        disk=[dict(z=0.5, mass=33.657, Id=0.17831, Ip=0.32985)],
+                        bearing=[dict(z=0.0, k=1e7, c=400.0), dict(z=1.5, k=1e7, c=400.0)])
+    s = rotor.system
+    assert s.size == 3076 and sp.issparse(s.M) and s.M.nnz < 20 * s.size   # sparse out, never dense
+    again = gk.System(M=s.M, K=s.K, G=s.G, damping={"bearings": s.damping_matrix(0.0)},
+                      dof_names=s.dof_names, whirl_pairs=s.whirl_pairs)
+    a = gk.eig(rotor, 300.0, modes=4)        # auto: sparse above 200 DOFs
+    b = gk.eig(again, 300.0, modes=4)
+    assert a.method == b.method == "ARPACK shift-invert"
+    np.testing.assert_allclose(b.eigenvalues, a.eigenvalues, rtol=1e-10)
