@@ -161,6 +161,22 @@ Workers threads(int jobs) {
     return Workers{jobs == 0 ? cores : std::min(jobs, cores), WorkerKind::Threads};
 }
 
+// The solver the options choose and the Campbell diagram it tracks over w (without the interpreter).
+struct Tracked {
+    SolverChoice solver;
+    CampbellDiagram diagram;
+};
+Tracked track(const GyroscopicSystem& s, const SolverOptions& o, const std::vector<double>& w, int jobs) {
+    Tracked t;
+    t.solver = choose_solver(s, o);
+    CampbellOptions co;
+    co.eig = o.eig;
+    co.modes = t.solver.modes;
+    co.threads = threads(jobs);
+    t.diagram = campbell(t.solver.make, w, co);
+    return t;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -241,13 +257,9 @@ PYBIND11_MODULE(_core, m) {
         CampbellDiagram cd;
         {
             py::gil_scoped_release free;
-            const SolverChoice c = choose_solver(s, o);
-            CampbellOptions co;
-            co.eig = o.eig;
-            co.modes = c.modes;
-            co.threads = threads(jobs);
-            cd = campbell(c.make, w, co);
-            cd.notes.insert(cd.notes.begin(), c.notes.begin(), c.notes.end());
+            Tracked t = track(s, o, w, jobs);
+            cd = std::move(t.diagram);
+            cd.notes.insert(cd.notes.begin(), t.solver.notes.begin(), t.solver.notes.end());
         }
         return campbell_dict(cd);
     }, py::arg("system"), py::arg("speeds"), py::arg("solver"), py::arg("modes"), py::arg("target"),
@@ -264,13 +276,8 @@ PYBIND11_MODULE(_core, m) {
         std::vector<CriticalSpeed> cs;
         {
             py::gil_scoped_release free;
-            const SolverChoice c = choose_solver(s, o);
-            CampbellOptions co;
-            co.eig = o.eig;
-            co.modes = c.modes;
-            co.threads = threads(jobs);
-            const CampbellDiagram cd = campbell(c.make, w, co);
-            cs = critical_speeds(c.make, cd, harmonics, threads(jobs));
+            const Tracked t = track(s, o, w, jobs);
+            cs = critical_speeds(t.solver.make, t.diagram, harmonics, threads(jobs));
         }
         const auto n = static_cast<py::ssize_t>(cs.size());
         py::array_t<double> speed(n), damping(n);
@@ -302,12 +309,8 @@ PYBIND11_MODULE(_core, m) {
         std::vector<StabilityChange> ch;
         {
             py::gil_scoped_release free;
-            const SolverChoice c = choose_solver(s, o);
-            CampbellOptions co;
-            co.eig = o.eig;
-            co.modes = c.modes;
-            co.threads = threads(jobs);
-            ch = stability_changes(c.make, campbell(c.make, w, co), threads(jobs));
+            const Tracked t = track(s, o, w, jobs);
+            ch = stability_changes(t.solver.make, t.diagram, threads(jobs));
         }
         const auto n = static_cast<py::ssize_t>(ch.size());
         py::array_t<double> speed(n);
