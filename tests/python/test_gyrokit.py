@@ -305,3 +305,22 @@ def test_large_sparse_system_round_trips_through_scipy():
     b = gk.eig(again, 300.0, modes=4)
     assert a.method == b.method == "ARPACK shift-invert"
     np.testing.assert_allclose(b.eigenvalues, a.eigenvalues, rtol=1e-10)
+
+
+def test_fluid_rotor_from_keywords_and_bad_arguments():
+    keys = dict(R=0.6, R0=0.4, a=0.5, l=2.5, rho=1000.0, nu=1.0e-6, c1=6.0e8, c2=2.0e8, c11=3.0e6, m0=400.0,
+                I0=133.0, J0=75.0, e=1.0e-4, modes=5)
+    made = gk.fluid_rotor(**keys)
+    read = gk.load_scene(scene("fluid_N1.toml"))
+    assert made.system.size == read.system.size
+    np.testing.assert_array_equal(gk.eig(made, 50.0).eigenvalues, gk.eig(read, 50.0).eigenvalues)
+    M, K, G, w, _ = jeffcott_with_disk()
+    with pytest.raises(gk.InputError, match="2-D"):
+        gk.System(M=np.ones(4), K=K)
+    with pytest.raises(gk.InputError, match="unbalance has 3 entries"):
+        gk.System(M=M, K=K, unbalance=np.ones(3))
+    with pytest.raises(gk.InputError, match="jobs"):
+        gk.campbell(gk.System(M=M, K=K), [0.0, 1.0], jobs=-2)
+    with pytest.raises(gk.InputError, match="finite number"):
+        gk.gyrostat(A_G=float("inf"))
+    assert "Campbell diagram" in gk.campbell.__doc__
