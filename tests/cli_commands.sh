@@ -60,5 +60,14 @@ a=$("$cli" critical "$dir/undamped.toml" --format csv | cut -d, -f1 | tail -n +2
 b=$("$cli" critical "$dir/undamped.toml" --critical-method direct --format csv | cut -d, -f1 | tail -n +2 | cut -c1-9)
 [ -n "$a" ] && [ "$a" = "$b" ] || { echo "FAIL: direct vs branch: '$a' vs '$b'"; fail=1; }
 
+# The first screen of campbell (table format): the summary and the critical speeds, exactly as
+# docs/cli.md shows it (trailing blanks aside); --rows gives the rows.
+docs=$(dirname "$0")/../docs/cli.md
+awk '/^\$ gyrokit campbell data\/centrifuge.toml$/{on=1; next} on && /^```/{exit} on' "$docs" | sed 's/ *$//' > "$dir/docs_summary"
+(cd "$(dirname "$0")/.." && "$cli" campbell data/centrifuge.toml) | sed 's/ *$//' > "$dir/summary"
+[ -s "$dir/docs_summary" ] && cmp -s "$dir/docs_summary" "$dir/summary" ||
+    { echo "FAIL: campbell's first screen differs from docs/cli.md"; diff "$dir/docs_summary" "$dir/summary"; fail=1; }
+"$cli" campbell "$scene" --rows | grep -q "^Campbell diagram$" || { echo "FAIL: campbell --rows"; fail=1; }
+
 [ "$fail" -eq 0 ] && echo "all CLI commands OK"
 exit $fail

@@ -23,7 +23,7 @@ struct Options {
     std::string speed, dir, harmonics, critical_method = "branches", dofs;
     int modes = -1;
     double tolerance = 1e-8;
-    bool extrema = false, rigid_body = false;
+    bool extrema = false, rigid_body = false, rows = false;
 };
 
 int wanted_modes(const Context& c, int modes) { return modes >= 0 ? modes : c.scene.modes; }
@@ -121,15 +121,25 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
                                           "the K nearest --target, default 6)");
     camp->add_option("--plot", o->common.plot, "draw the diagram into FILE.svg or FILE.png");
     camp->add_option("--harmonics", o->harmonics, "harmonic lines drawn, e.g. 1,2 (default: the scene's, else 1)");
+    camp->add_flag("--rows", o->rows, "table format: every row of the diagram instead of the summary");
     cmds.push_back({camp, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
         const auto h = parse_harmonics(o->harmonics, c.scene.harmonics);
         const SolverChoice plan = plan_solver(c, wanted_modes(c, o->modes));
         note_extrapolation(c);
         const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
-        write_table(out, campbell_table(cd, c.unit), c.format);
-        if (!o->common.plot.empty())
-            plot_if(o->common.plot, campbell_figure(cd, critical_speeds(plan.make, cd, h, c.jobs), h, c.unit, c.scene.title));
+        // The first screen (table format): a summary and the critical speeds; the rows on request.
+        const bool summary = c.format == TableFormat::Text && !o->rows;
+        std::vector<CriticalSpeed> cs;
+        if (summary || !o->common.plot.empty()) cs = critical_speeds(plan.make, cd, h, c.jobs);
+        if (summary) {
+            write_table(out, campbell_summary(cd, cs, c.unit, o->common.plot), c.format);
+            out << "\n";
+            write_table(out, critical_table(cs, c.unit), c.format);
+        } else {
+            write_table(out, campbell_table(cd, c.unit), c.format);
+        }
+        if (!o->common.plot.empty()) plot_if(o->common.plot, campbell_figure(cd, cs, h, c.unit, c.scene.title));
         note_diagram(cd, c);
     }});
 

@@ -1,5 +1,7 @@
 #include <gyrokit/io/reports.hpp>
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
 
@@ -83,6 +85,48 @@ Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u) {
                 ++next[b];
             }
         }
+    return t;
+}
+
+Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& critical, const SpeedUnit& u,
+                       const std::string& plot_file) {
+    Table t({"quantity", "value"});
+    t.title = "Campbell diagram: summary (all rows: --rows, or --format csv|json)";
+    const auto speed = [&](double w) { return fmt::format("{:.6g} {}", u.factor * w, u.name); };
+    t.add_row({std::string("modes tracked"), std::to_string(cd.branches.size())});
+    if (!cd.speeds.empty())
+        t.add_row({std::string("speed range"), fmt::format("{} to {} ({} speeds, {} inserted by refinement)",
+                                                            speed(cd.speeds.front()), speed(cd.speeds.back()),
+                                                            cd.speeds.size(), cd.inserted_speeds)});
+    std::size_t forward = 0;
+    for (const auto& c : critical) forward += c.mode.whirl == Whirl::Forward;
+    t.add_row({std::string("critical speeds"),
+               critical.empty() ? std::string("none in the range")
+                                : fmt::format("{} in the range, {} of them forward whirl (table below)", critical.size(),
+                                              forward)});
+    // The least damped oscillating mode over the range.
+    const BranchPoint* least = nullptr;
+    int least_branch = 0;
+    for (const auto& b : cd.branches)
+        for (const auto& p : b.points)
+            if (p.mode.frequency() > 0 && (!least || p.mode.damping_ratio() < least->mode.damping_ratio()))
+                least = &p, least_branch = b.id;
+    if (least)
+        t.add_row({std::string("least damping"), fmt::format("damping ratio {:.4g}: mode {} ({}) at {}",
+                                                              least->mode.damping_ratio(), least_branch,
+                                                              to_string(least->mode.whirl), speed(least->speed))});
+    const auto unstable = unstable_ranges(cd);
+    std::string verdict = unstable.empty() ? "stable over the range (no mode's real part beyond its error bound)" : "";
+    for (const auto& r : unstable)
+        verdict += fmt::format("{}mode {} unstable from {} to {}", verdict.empty() ? "" : "; ", r.branch, speed(r.from),
+                               speed(r.to));
+    t.add_row({std::string("stability"), verdict});
+    if (cd.rigid_body > 0)
+        t.add_row({std::string("rigid-body eigenvalues"), fmt::format("{} (not modes, not tracked)", cd.rigid_body)});
+    t.add_row({std::string("largest backward error"), fmt::format("{:.2g}", cd.max_backward_error)});
+    if (cd.ambiguous_steps > 0)
+        t.add_row({std::string("ambiguous steps"), fmt::format("{} (use a finer --speeds grid)", cd.ambiguous_steps)});
+    t.add_row({std::string("plot"), plot_file.empty() ? std::string("none (--plot FILE.svg draws one)") : plot_file});
     return t;
 }
 

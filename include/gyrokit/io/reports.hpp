@@ -20,6 +20,11 @@ std::string rigid_body_note(const std::vector<Mode>& rigid, const std::vector<st
 // One warning line per unstable range of the diagram (empty: none).
 std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const SpeedUnit& u);
 Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u);
+// What a person reads of a Campbell diagram in ten seconds: modes tracked, the
+// speed range, critical speeds in it (count; the table is critical_table), the
+// least damped mode and where, the stability verdict, accuracy, the plot file.
+Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& critical, const SpeedUnit& u,
+                       const std::string& plot_file);
 Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u);
 Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u);
 Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u);
