@@ -324,3 +324,20 @@ def test_fluid_rotor_from_keywords_and_bad_arguments():
     with pytest.raises(gk.InputError, match="finite number"):
         gk.gyrostat(A_G=float("inf"))
     assert "Campbell diagram" in gk.campbell.__doc__
+
+
+def test_exported_rotor_rigid_body_modes_apart_and_eigenvalues_as_the_cli():
+    # data/ross_rotor_example: 42 DOFs from another package, singular K (free axial and torsional
+    # motion), no damping. Rigid-body eigenvalues are listed apart, never as modes.
+    s = gk.load_scene(scene("ross_rotor_example/scene.toml"))
+    ev = gk.eig(s, 500.0)
+    rows = cli("eig", scene("ross_rotor_example/scene.toml"), "--speed", "500")
+    assert len(ev.eigenvalues) == len(rows) == 40
+    assert len(ev.rigid_body) == 4 and np.all(np.abs(ev.rigid_body) < 1e-6 * 500)
+    for k, r in enumerate(rows):
+        assert ev.frequencies[k] == pytest.approx(float(r["frequency"]), rel=RTOL)
+        assert ev.whirl[k] == r["whirl"]
+    assert ev.backward_errors.max() < 1e-14
+    assert set(ev.stability) == {"neutral"}   # undamped: never unstable by rounding
+    cd = gk.campbell(s, np.linspace(0, 1000, 21), modes=6)
+    assert cd.rigid_body == 4 and len(cd.branches) >= 6
