@@ -113,7 +113,8 @@ double parse_order(const std::string& text, const std::string& option) {
     throw InputError(fmt::format("{} '{}': allowed: a finite number >= 0 (a multiple of the speed)", option, text));
 }
 
-std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>& fallback) {
+std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>& fallback,
+                                 const std::string& option) {
     if (text.empty()) return fallback;
     std::vector<int> h;
     size_t start = 0;
@@ -126,7 +127,7 @@ std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>
             if (pos != item.size() || v < 1 || v > 1000) throw std::out_of_range(item);
             h.push_back(static_cast<int>(v));
         } catch (const std::exception&) {
-            throw InputError(fmt::format("--harmonics '{}': allowed: whole numbers in [1, 1000] separated by commas",
+            throw InputError(fmt::format("{} '{}': allowed: whole numbers in [1, 1000] separated by commas", option,
                                          text));
         }
         start = end + 1;

@@ -63,7 +63,9 @@ TableFormat parse_format(const Common& o);
 double parse_speed(const std::string& text, const std::string& option, const SpeedUnit& u);
 // A dimensionless multiple of the speed (>= 0), e.g. --target-order.
 double parse_order(const std::string& text, const std::string& option);
-std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>& fallback);
+// Whole numbers in [1, 1000] separated by commas (harmonics, mode numbers); empty: `fallback`.
+std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>& fallback,
+                                 const std::string& option = "--harmonics");
 // Throws InputError unless the extension is .svg or .png (empty: no plot).
 void check_plot_path(const std::string& path);
 void plot_if(const std::string& path, const Figure& f);

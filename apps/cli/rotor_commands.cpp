@@ -20,7 +20,7 @@ namespace {
 // Option values of the rotor commands; one instance lives as long as the app.
 struct Options {
     Common common;
-    std::string speed, dir, harmonics, critical_method = "branches", dofs;
+    std::string speed, dir, harmonics, critical_method = "branches", dofs, select, per = "node";
     int modes = -1;
     double tolerance = 1e-8;
     bool extrema = false, rigid_body = false, rows = false;
@@ -112,6 +112,47 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         if (!o->rigid_body && !s.rigid_body.empty())
             std::cerr << "note: " << rigid_body_note(s.rigid_body, c.scene.dof_names()) << " (--rigid-body lists them)\n";
         write_table(out, eig_table(s, w, c.unit, o->rigid_body), c.format);
+    }});
+
+    auto* modes = app.add_subcommand("modes", "mode shapes at one speed: orbits per node (or entries per DOF)");
+    add_common(modes, o->common, false);
+    add_solver_options(modes, o->common);
+    modes->add_option("--speed", o->speed, "spin speed (in --units); default 0")->default_str("0");
+    modes->add_option("--modes", o->modes, "number of modes (the lowest, or the sparse window; default: the "
+                                           "scene's, else all dense / 6 sparse)");
+    modes->add_option("--mode", o->select, "only these modes, by number from 1: K or K,L,...");
+    modes->add_option("--per", o->per, "node: one row per whirl pair (orbit); dof: one row per DOF")
+        ->capture_default_str();
+    modes->add_option("--plot", o->common.plot, "draw the shapes along the axis (or the orbits) into FILE.svg|.png");
+    cmds.push_back({modes, [o](std::ostream& out) {
+        const Context c = open_scene(o->common, false);
+        if (o->per != "node" && o->per != "dof")
+            throw InputError("--per '" + o->per + "': allowed: node, dof");
+        const double w = o->speed.empty() ? 0.0 : parse_speed(o->speed, "--speed", c.unit);
+        SolverOptions so = c.solver;
+        so.modes = wanted_modes(c, o->modes);
+        std::vector<std::string> notes;
+        std::vector<ModeShape> shapes = mode_shapes(c.scene.system, w, so, &notes);
+        for (const auto& n : notes) std::cerr << "note: " << n << "\n";
+        if (!o->select.empty()) {
+            std::vector<ModeShape> chosen;
+            for (const int k : parse_harmonics(o->select, {}, "--mode")) {
+                if (k > static_cast<int>(shapes.size()))
+                    throw InputError(fmt::format("--mode {}: allowed: 1 to {} (the modes computed)", k, shapes.size()));
+                chosen.push_back(shapes[static_cast<size_t>(k - 1)]);
+            }
+            shapes = std::move(chosen);
+        }
+        const auto& sys = c.scene.system;
+        const bool per_dof = o->per == "dof" || sys.whirl_pairs.empty();
+        Table detail = per_dof ? mode_dof_table(shapes, sys.dof_names, sys.dof_units, w, c.unit)
+                               : mode_orbit_table(shapes, w, c.unit);
+        // A person reads the list first; a script gets one table.
+        if (c.format == TableFormat::Text)
+            write_tables(out, {mode_list_table(shapes, sys.dof_names, w, c.unit), detail}, c.format);
+        else
+            write_table(out, detail, c.format);
+        plot_if(o->common.plot, mode_shape_figure(shapes, w, c.unit, c.scene.title));
     }});
 
     auto* camp = app.add_subcommand("campbell", "modes tracked over speed (Campbell diagram)");

@@ -172,6 +172,16 @@ void GyroscopicSystem::validate(const std::string& origin) const {
             throw InputError(fmt::format("{}: whirl pair ({}, {}) is out of range; allowed: two distinct "
                                          "DOF indices in [0, {}]",
                                          origin, u, v, n - 1));
+    if (!dof_units.empty() && static_cast<int>(dof_units.size()) != n)
+        throw InputError(fmt::format("{}: {} DOF units for {} DOFs", origin, dof_units.size(), n));
+    if (!node_of_dof.empty() && static_cast<int>(node_of_dof.size()) != n)
+        throw InputError(fmt::format("{}: {} DOF nodes for {} DOFs", origin, node_of_dof.size(), n));
+    for (const int k : node_of_dof)
+        if (k < -1 || k >= static_cast<int>(node_z.size()))
+            throw InputError(fmt::format("{}: DOF node {} is out of range; allowed: -1 (none) or a node in [0, {}]",
+                                         origin, k, static_cast<int>(node_z.size()) - 1));
+    for (const double z : node_z)
+        if (!std::isfinite(z)) throw InputError(fmt::format("{}: a node position is NaN or infinite", origin));
 }
 
 }  // namespace gyrokit

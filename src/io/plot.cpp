@@ -142,10 +142,11 @@ std::string make_script(const Figure& fig, const std::string& terminal, const fs
     script += "set grid\nset format y '%g'\nset key outside top center horizontal\nset lmargin 12\n";
     for (std::size_t k = 0; k < fig.panels.size(); ++k) {
         const Panel& p = fig.panels[k];
-        script += "unset logscale\nset autoscale\n";   // settings carry over between panels
+        script += "unset logscale\nset autoscale\nset size noratio\n";   // settings carry over between panels
         script += "set xlabel " + gp_quote(p.xlabel) + "\nset ylabel " + gp_quote(p.ylabel) + "\n";
         script += "set title " + gp_quote(p.title) + "\n";
         if (p.logy) script += "set logscale y\n";
+        if (p.equal_axes) script += "set size ratio -1\n";
         if (plots[k].empty()) {
             script += "set xrange " + empty_range(p.xmin, p.xmax, false) + "\n";
             script += "set yrange " + empty_range(p.ymin, p.ymax, p.logy) + "\nplot NaN notitle\n";

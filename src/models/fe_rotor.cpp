@@ -275,6 +275,9 @@ GyroscopicSystem FeRotorMatrices::to_system() const {
     if (D.nonZeros() > 0) s.damping.push_back({"bearings", D});
     if (unbalance.size() > 0 && unbalance.cwiseAbs().maxCoeff() > 0) s.unbalance = unbalance;
     s.whirl_pairs = whirl_pairs;
+    s.node_of_dof = node_of_dof;
+    s.node_z = node_z;
+    for (const auto& name : dof_names) s.dof_units.push_back(name[0] == 't' ? "rad" : "m");   // tx, ty: rotations
     return s;
 }
 

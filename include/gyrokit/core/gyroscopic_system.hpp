@@ -99,6 +99,11 @@ public:
     // DOF pairs (u, v) whose complex coordinate u + i v turns forward when the
     // motion turns in the sense of the spin; used to classify whirl.
     std::vector<std::pair<int, int>> whirl_pairs;
+    // Optional description of the DOFs for reading results (mode shapes, response
+    // by position, plots per unit); empty: not known.
+    std::vector<std::string> dof_units;       // physical unit of each DOF: "m", "rad", ...
+    std::vector<int> node_of_dof;             // node of each DOF on the rotor's axis (-1: none)
+    std::vector<double> node_z;               // axial position of each node (m)
 
     int size() const { return static_cast<int>(M.rows()); }
     // Total damping at speed w (speed matters for speed-dependent components and bearing tables).
@@ -120,8 +125,8 @@ public:
     GyroscopicSystem with_damping_only(const std::vector<std::string>& names) const;
 
     // Checks dimensions, finiteness and the structural properties (M symmetric
-    // and not zero, G skew), the unbalance, DOF names, bearing tables and whirl
-    // pairs. Throws InputError naming `origin` on violation.
+    // and not zero, G skew), the unbalance, DOF names, bearing tables, whirl
+    // pairs and the optional DOF units and nodes. Throws InputError naming `origin` on violation.
     void validate(const std::string& origin) const;
 };
 

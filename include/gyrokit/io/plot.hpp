@@ -20,6 +20,7 @@ struct Panel {
     bool logy = false;
     std::vector<Series> series;
     std::optional<double> ymin, ymax, xmin, xmax;   // unset = autoscale
+    bool equal_axes = false;     // one unit is as long on x as on y (orbits are drawn true to shape)
 };
 
 struct Figure {

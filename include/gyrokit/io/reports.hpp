@@ -4,6 +4,7 @@
 
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/mode_shapes.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/core/speed_range.hpp>
@@ -29,6 +30,20 @@ Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u);
 Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u);
 Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u);
 Table response_table(const std::vector<std::string>& dof_names, const ResponseCurve& c, const SpeedUnit& u);
+// Mode shapes at one speed: one row per mode and whirl pair (the orbit: semi-axes
+// in the pair's unit, angle and phase in degrees, whirl), in axial order.
+Table mode_orbit_table(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u);
+// One row per mode and DOF: the scaled eigenvector entry (re, im, amplitude, phase).
+Table mode_dof_table(const std::vector<ModeShape>& shapes, const std::vector<std::string>& dof_names,
+                     const std::vector<std::string>& dof_units, double speed, const SpeedUnit& u);
+// The modes listed (frequency, damping, whirl, where the largest motion is).
+Table mode_list_table(const std::vector<ModeShape>& shapes, const std::vector<std::string>& dof_names,
+                      double speed, const SpeedUnit& u);
+// Rotor with nodes on its axis: the deflected shape at t = 0 (in the plane, u or v,
+// of the reference entry, each translational pair) and the orbit's major semi-axis along z, one line per
+// mode. Otherwise: each mode's orbits (ellipses of the pairs in metres, else all).
+Figure mode_shape_figure(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u,
+                         const std::string& title);
 Table extrema_table(const std::vector<std::string>& dof_names, const std::vector<ResponseExtremum>& e,
                     const SpeedUnit& u);
 

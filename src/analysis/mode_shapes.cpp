@@ -1,0 +1,97 @@
+#include <gyrokit/analysis/mode_shapes.hpp>
+
+#include <gyrokit/core/error.hpp>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+
+namespace gyrokit {
+
+Orbit orbit_of(std::complex<double> u, std::complex<double> v) {
+    const std::complex<double> i(0.0, 1.0);
+    const std::complex<double> f = 0.5 * (u + i * v), b = 0.5 * (std::conj(u) + i * std::conj(v));
+    Orbit o;
+    o.major = std::abs(f) + std::abs(b);
+    o.minor = std::abs(std::abs(f) - std::abs(b));
+    o.phase = std::abs(u) > 0.0 ? std::arg(u) : 0.0;
+    if (o.major == 0.0) return o;
+    // |f e^{it} + b e^{-it}| is largest where both circles point the same way:
+    // arg f + t = arg b - t. A circle has no major axis: angle 0.
+    const double small = kWhirlTolerance * o.major;
+    double a = std::abs(f) > small && std::abs(b) > small ? 0.5 * (std::arg(f) + std::arg(b)) : 0.0;
+    const double pi = std::acos(-1.0);
+    while (a > pi / 2) a -= pi;
+    while (a <= -pi / 2) a += pi;
+    o.angle = a;
+    if (o.minor <= kWhirlTolerance * o.major)
+        o.whirl = Whirl::Planar;
+    else
+        o.whirl = std::abs(f) > std::abs(b) ? Whirl::Forward : Whirl::Backward;
+    return o;
+}
+
+ModeShape mode_shape(const Mode& m, const GyroscopicSystem& sys) {
+    const int n = sys.size();
+    if (m.right.size() != n)
+        throw Error("mode_shape: the eigenvector has " + std::to_string(m.right.size()) + " entries, the system " +
+                    std::to_string(n) + " DOFs");
+    ModeShape s;
+    s.mode = m;
+    // Reference: the largest entry among the DOFs in metres, else among all.
+    const bool by_unit = static_cast<int>(sys.dof_units.size()) == n &&
+                         std::find(sys.dof_units.begin(), sys.dof_units.end(), "m") != sys.dof_units.end();
+    double largest = -1.0;
+    for (int i = 0; i < n; ++i)
+        if ((!by_unit || sys.dof_units[static_cast<size_t>(i)] == "m") && std::abs(m.right(i)) > largest)
+            largest = std::abs(m.right(i)), s.reference = i;
+    s.shape = largest > 0.0 ? Eigen::VectorXcd(m.right / m.right(s.reference)) : m.right;
+    const bool has_nodes = static_cast<int>(sys.node_of_dof.size()) == n;
+    for (const auto& [u, v] : sys.whirl_pairs) {
+        PairOrbit p;
+        p.u = u;
+        p.v = v;
+        p.name = sys.dof_names[static_cast<size_t>(u)] + "/" + sys.dof_names[static_cast<size_t>(v)];
+        if (!sys.dof_units.empty()) p.unit = sys.dof_units[static_cast<size_t>(u)];
+        if (has_nodes) {
+            p.node = sys.node_of_dof[static_cast<size_t>(u)];
+            if (p.node >= 0) p.z = sys.node_z[static_cast<size_t>(p.node)];
+        }
+        p.orbit = orbit_of(s.shape(u), s.shape(v));
+        s.orbits.push_back(p);
+    }
+    // Along the axis: by node (pairs without a node last), the model's order within a node.
+    std::stable_sort(s.orbits.begin(), s.orbits.end(), [](const PairOrbit& a, const PairOrbit& b) {
+        const int na = a.node < 0 ? INT_MAX : a.node, nb = b.node < 0 ? INT_MAX : b.node;
+        return na < nb;
+    });
+    return s;
+}
+
+std::vector<ModeShape> mode_shapes(const QuadraticSpectrum& s, const GyroscopicSystem& sys) {
+    std::vector<ModeShape> out;
+    out.reserve(s.modes.size());
+    for (const auto& m : s.modes) {
+        out.push_back(mode_shape(m, sys));
+        out.back().number = static_cast<int>(out.size());
+    }
+    return out;
+}
+
+std::vector<ModeShape> mode_shapes(const GyroscopicSystem& sys, double w, const SolverOptions& options,
+                                   std::vector<std::string>* notes) {
+    if (!std::isfinite(w) || w < 0.0)
+        throw InputError("mode shapes: speed = " + std::to_string(w) + " rad/s; allowed: a finite number >= 0");
+    const SolverChoice plan = choose_solver(sys, options);
+    const QuadraticSpectrum spectrum = plan.make()(w);
+    if (notes) {
+        notes->insert(notes->end(), plan.notes.begin(), plan.notes.end());
+        notes->insert(notes->end(), spectrum.notes.begin(), spectrum.notes.end());
+    }
+    std::vector<ModeShape> shapes = mode_shapes(spectrum, sys);
+    if (options.modes > 0 && static_cast<int>(shapes.size()) > options.modes)
+        shapes.resize(static_cast<size_t>(options.modes));
+    return shapes;
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer, in a
+# second build folder (default build-sanitize). Python is off (the interpreter is
+# not instrumented); fuzz_smoke and install_examples are left to the main build.
+# A sanitizer report makes the test that hit it fail. Usage: sanitize.sh [BUILD_DIR]
+set -euo pipefail
+src=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:-$src/build-sanitize}
+cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGYROKIT_SANITIZE=ON -DGYROKIT_BUILD_PYTHON=OFF
+cmake --build "$build" -j2
+export ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+ctest --test-dir "$build" --output-on-failure -j2
