@@ -90,7 +90,7 @@ expect "--simulate" balancer "$dir/ok.toml" --speed 100
 expect "--speed" balancer "$dir/ok.toml" --simulate --speed -5
 expect "--abs-tol" balancer "$dir/ok.toml" --simulate --abs-tol 0
 expect "plot" balancer "$dir/ok.toml" --simulate --plot out.pdf
-expect "rk8pd" balancer "$dir/ok.toml" --simulate --method euler
+expect "rk8pd" balancer "$dir/ok.toml" --simulate --integrator euler
 
 # Good runs: the state table and a short simulation end with finite numbers only.
 if ! "$cli" balancer "$data/balancer_table3.toml" --format csv > "$dir/t.csv" 2> "$dir/err" ||

@@ -71,7 +71,7 @@ got=$("$cli" fluid "$data/fluid_N2.toml" --fill 0.05:0.55:11 --format csv | head
 if "$cli" fluid "$data/fluid_N2.toml" --fill 0.05:0.55:51 --format csv | grep -qiE "nan|inf"; then
     echo "FAIL: NaN/Inf in the fill sweep"; fail=1
 fi
-"$cli" fluid "$data/fluid_N4.toml" --table modes --format csv | head -n 1 | grep -q "^n,sigma_over_omega,lambda,mu,tau" ||
+"$cli" fluid "$data/fluid_N4.toml" --table sloshing_modes --format csv | head -n 1 | grep -q "^n,sigma_over_omega,lambda,mu,tau" ||
     { echo "FAIL: modes table"; fail=1; }
 "$cli" fluid "$data/fluid_N1.toml" > /dev/null || { echo "FAIL: text output"; fail=1; }
 # The core commands on a fluid scene.

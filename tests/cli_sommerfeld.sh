@@ -75,23 +75,28 @@ expect "xml" sommerfeld "$dir/ok.toml" --format xml
 expect "--speeds" sommerfeld "$dir/ok.toml" --speeds 10:5:3
 expect "--speeds" sommerfeld "$dir/ok.toml" --speeds abc
 expect "--speeds" sommerfeld "$dir/ok.toml" --runup --speeds 0:10:3
-expect "need --runup" sommerfeld "$dir/ok.toml" --method rkf45
-expect "rk8pd" sommerfeld "$dir/ok.toml" --runup --method euler
+expect "need --runup" sommerfeld "$dir/ok.toml" --integrator rkf45
+expect "rk8pd" sommerfeld "$dir/ok.toml" --runup --integrator euler
 expect "--abs-tol" sommerfeld "$dir/ok.toml" --runup --abs-tol 0
 expect "--max-speed" sommerfeld "$dir/ok.toml" --runup --max-speed -1
 expect "plot" sommerfeld "$dir/ok.toml" --plot out.pdf
 
 # Good runs: the summary rows exist and the output holds finite numbers only.
-if ! "$cli" sommerfeld "$data/sommerfeld_rotor.toml" --format csv > "$dir/s.csv" 2> "$dir/err" ||
+if ! "$cli" sommerfeld "$data/sommerfeld_rotor.toml" --format csv --table summary > "$dir/s.csv" 2> "$dir/err" ||
    grep -qiE '(^|,)-?(nan|inf)(,|$)' "$dir/s.csv"; then
     echo "FAIL: sommerfeld stationary"; cat "$dir/err"; fail=1
 fi
 for q in omega_krit limit_speed_estimate jump_up jump_down; do
     grep -q "^$q,[0-9]" "$dir/s.csv" || { echo "FAIL: sommerfeld csv lacks $q"; fail=1; }
 done
-if ! "$cli" sommerfeld "$dir/ok.toml" --runup --format csv > "$dir/r.csv" 2> "$dir/err" ||
+if ! "$cli" sommerfeld "$dir/ok.toml" --runup --format csv --table summary > "$dir/r.csv" 2> "$dir/err" ||
    grep -qiE '(^|,)-?(nan|inf)(,|$)' "$dir/r.csv" || ! tail -1 "$dir/r.csv" | grep -qE '^captured,(true|false)$' ||
    ! grep -q '^held_rotor_speed,[0-9]' "$dir/r.csv"; then
     echo "FAIL: sommerfeld --runup"; cat "$dir/err"; tail -5 "$dir/r.csv"; fail=1
 fi
+# Without --table, CSV holds the first table and a note names the others.
+"$cli" sommerfeld "$data/sommerfeld_rotor.toml" --format csv > "$dir/first.csv" 2> "$dir/err"
+head -1 "$dir/first.csv" | grep -q '^nominal' && grep -q "note: CSV holds one table (stationary_states); the others with --table folds, summary" "$dir/err" ||
+    { echo "FAIL: sommerfeld CSV without --table"; head -2 "$dir/first.csv"; cat "$dir/err"; fail=1; }
+expect "--table 'all': allowed: stationary_states, folds, summary" sommerfeld "$data/sommerfeld_rotor.toml" --table all
 exit $fail

@@ -186,21 +186,24 @@ TEST_CASE("a NaN cell throws naming the column and writes nothing") {
     }
 }
 
-TEST_CASE("write_tables joins several tables") {
+TEST_CASE("write_tables joins several tables, CSV holds one, write_result selects by key") {
     Table a({"x"}), b({"y"}), c({"z"});
-    a.title = "first";
+    a.title = "first table";
+    a.key = "first";
     a.add_row({1LL});
     b.add_row({2.5});
-    c.title = "third";
+    c.title = "third (at w = 3.5)";
+    c.key = "third";
     const std::vector<Table> ts{a, b, c};
 
     std::ostringstream text, csv, json;
     write_tables(text, ts, TableFormat::Text);
-    write_tables(csv, ts, TableFormat::Csv);
+    CHECK_THROWS_AS(write_tables(csv, ts, TableFormat::Csv), Error);
+    CHECK(csv.str().empty());
     write_tables(json, ts, TableFormat::Json);
-    CHECK(text.str() == "first\nx\n-\n1\n\n  y\n---\n2.5\n\nthird\nz\n-\n");
-    CHECK(csv.str() == "x\n1\n\ny\n2.5\n\nz\n");
+    CHECK(text.str() == "first table\nx\n-\n1\n\n  y\n---\n2.5\n\nthird (at w = 3.5)\nz\n-\n");
 
+    // JSON keys are the stable keys, never the human titles.
     const auto j = nlohmann::ordered_json::parse(json.str());
     REQUIRE(j.is_object());
     std::vector<std::string> keys;
@@ -212,4 +215,21 @@ TEST_CASE("write_tables joins several tables") {
 
     std::ostringstream dup;
     CHECK_THROWS_AS(write_tables(dup, {a, a}, TableFormat::Json), Error);
+
+    // write_result: CSV writes the first table and names the others; a key selects one.
+    std::ostringstream one, chosen, bad;
+    std::vector<std::string> left;
+    write_result(one, ts, TableFormat::Csv, "", "--table", left);
+    CHECK(one.str() == "x\n1\n");
+    CHECK(left == std::vector<std::string>{"", "third"});
+    left.clear();
+    write_result(chosen, ts, TableFormat::Csv, "third", "--table", left);
+    CHECK(chosen.str() == "z\n");
+    CHECK(left.empty());
+    try {
+        write_result(bad, ts, TableFormat::Json, "fourth", "--table", left);
+        FAIL("no exception");
+    } catch (const InputError& e) {
+        CHECK(std::string(e.what()) == "--table 'fourth': allowed: first, , third");
+    }
 }

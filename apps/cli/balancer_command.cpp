@@ -20,7 +20,7 @@ constexpr double kPi = 3.14159265358979323846;
 double deg(double rad) { return rad * 180.0 / kPi; }
 
 struct Options {
-    std::string scene, format = "table", plot, method;
+    std::string scene, format = "table", plot, method, table;
     double speed = 0.0, duration = 0.0, abs_tol = 0.0, rel_tol = 0.0;
     // Which of them were given on the command line.
     CLI::Option *speed_opt = nullptr, *duration_opt = nullptr, *abs_opt = nullptr, *rel_opt = nullptr;
@@ -35,6 +35,7 @@ Table state_table(const AutobalancerParameters& p) {
     for (const char* c : {"range", "from", "to", "stable", "stable_eigen", "max_re_lambda", "compensating"})
         cols.push_back(c);
     Table t(cols);
+    t.key = "synchronous_states";
     t.title = "Synchronous states and their stability (undamped slow equations; speeds in rad/s)";
     for (const auto& e : stability_table(p)) {
         std::vector<Cell> row{e.state.label};
@@ -115,6 +116,7 @@ void run_simulation(const Options& o, BalancerScene& sc, TableFormat fmt, std::o
         cols.push_back("speed_rad_s");
         cols.push_back("radius_m");
         Table h(cols);
+        h.key = "history";
         h.title = "history";
         const std::size_t step = std::max<std::size_t>(1, r.t.size() / 200);
         for (std::size_t k = 0; k < r.t.size(); k += step) {
@@ -132,6 +134,7 @@ void run_simulation(const Options& o, BalancerScene& sc, TableFormat fmt, std::o
     for (std::size_t i = 0; i < nr; ++i) cols.push_back("predicted_" + alpha_col(i));
     for (std::size_t i = 0; i < nr; ++i) cols.push_back(alpha_col(i));
     Table f(cols);
+    f.key = "final_state";
     f.title = "final state (relative phases: means over the last revolutions)";
     std::vector<Cell> row{std::string(o.averaged ? "averaged" : "full"), ode_method_name(s.ode.method), s.duration,
                           r.revolutions, r.final_speed, r.residual_rms, r.residual_max,
@@ -143,7 +146,7 @@ void run_simulation(const Options& o, BalancerScene& sc, TableFormat fmt, std::o
     for (std::size_t i = 0; i < nr; ++i) row.push_back(deg(r.final_alpha[i]));
     f.add_row(row);
     tables.push_back(f);
-    write_tables(out, tables, fmt);
+    write_result(out, tables, fmt, o.table);
 
     if (!o.plot.empty()) {
         Figure fig;
@@ -183,7 +186,9 @@ std::vector<Command> add_balancer_commands(CLI::App& app) {
     c->add_flag("--history", o->history, "with --simulate: also print the phase histories (about 200 rows)");
     o->speed_opt = c->add_option("--speed", o->speed, "with --simulate: prescribed rotor speed in rad/s (overrides the scene)");
     o->duration_opt = c->add_option("--duration", o->duration, "with --simulate: simulated time in s (overrides the scene)");
-    c->add_option("--method", o->method, "with --simulate: ODE method (rk8pd, rkf45, rkck, rk4, rk2, msadams, "
+    c->add_option("--table", o->table, "with --simulate: only this table: final_state or history (with --history); "
+                                       "CSV holds the first unless one is named");
+    c->add_option("--integrator", o->method, "with --simulate: ODE method (rk8pd, rkf45, rkck, rk4, rk2, msadams, "
                                          "rk4imp, bsimp, msbdf)");
     o->abs_opt = c->add_option("--abs-tol", o->abs_tol, "with --simulate: absolute tolerance");
     o->rel_opt = c->add_option("--rel-tol", o->rel_tol, "with --simulate: relative tolerance");
@@ -192,8 +197,9 @@ std::vector<Command> add_balancer_commands(CLI::App& app) {
         const TableFormat fmt = parse_table_format(o->format);
         check_plot_path(o->plot);
         if (!o->simulate && (o->averaged || o->history || o->speed_opt->count() || o->duration_opt->count() ||
-                             !o->method.empty() || o->abs_opt->count() || o->rel_opt->count() || !o->plot.empty()))
-            throw InputError("--averaged, --history, --speed, --duration, --method, --abs-tol, --rel-tol and --plot "
+                             !o->method.empty() || o->abs_opt->count() || o->rel_opt->count() || !o->plot.empty() ||
+                             !o->table.empty()))
+            throw InputError("--averaged, --history, --speed, --duration, --integrator, --abs-tol, --rel-tol, --table and --plot "
                              "need --simulate");
         BalancerScene sc = load_balancer_scene(o->scene);
         if (o->simulate)

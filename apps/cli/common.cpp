@@ -148,6 +148,15 @@ void plot_if(const std::string& path, const Figure& f) {
     std::cerr << "wrote " << path << "\n";
 }
 
+void write_result(std::ostream& out, const std::vector<Table>& ts, TableFormat f, const std::string& table) {
+    std::vector<std::string> left_out;
+    gyrokit::write_result(out, ts, f, table, "--table", left_out);
+    if (left_out.empty()) return;
+    std::string keys;
+    for (const auto& k : left_out) keys += (keys.empty() ? "" : ", ") + k;
+    std::cerr << "note: CSV holds one table (" << ts.front().key << "); the others with --table " << keys << "\n";
+}
+
 std::function<void(size_t, size_t)> progress_bar(const std::string& what) {
     if (!isatty(STDERR_FILENO)) return {};
     return [what](size_t done, size_t total) {

@@ -69,6 +69,8 @@ std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>
 // Throws InputError unless the extension is .svg or .png (empty: no plot).
 void check_plot_path(const std::string& path);
 void plot_if(const std::string& path, const Figure& f);
+// write_result, and a note on stderr naming the tables a CSV left out.
+void write_result(std::ostream& out, const std::vector<Table>& ts, TableFormat f, const std::string& table);
 // A progress bar on stderr when stderr is a terminal; otherwise nothing.
 std::function<void(size_t, size_t)> progress_bar(const std::string& what);
 

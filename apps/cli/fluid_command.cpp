@@ -34,6 +34,7 @@ void add_speed_rows(Table& t, const FluidCriticalSpeeds& cs, const SpeedUnit& u,
 
 Table liquid_table(const FluidRotor& f, const FluidCriticalSpeeds& cs) {
     Table t({"quantity", "value", "unit"});
+    t.key = "liquid";
     t.title = "liquid and rotor";
     const auto& L = f.liquid;
     t.add_row({std::string("m_star"), L.m_star, std::string("kg")});
@@ -51,6 +52,7 @@ Table liquid_table(const FluidRotor& f, const FluidCriticalSpeeds& cs) {
 
 Table modes_table(const FluidRotor& f, double w, const SpeedUnit& u) {
     Table t({"n", "sigma_over_omega", "lambda", "mu", "tau"});
+    t.key = "sloshing_modes";
     t.title = fmt::format("sloshing modes (lambda kg m, mu kg, tau 1/s at w = {:.6g} {})", u.factor * w, u.name);
     for (const auto& m : f.liquid.modes)
         t.add_row({static_cast<long long>(m.n), m.sigma_over_omega(), m.lambda, m.mu, m.tau(w)});
@@ -75,12 +77,9 @@ std::vector<Command> add_fluid_commands(CLI::App& app) {
     add_common(fl, o->common, false);
     fl->add_option("--fill", o->fill, "sweep the free-surface radius R0 over FROM:TO:N (m)");
     fl->add_option("--table", o->table,
-                   "what to print: critical, modes, liquid or all (default: all as text, critical as csv/json)");
+                   "only this table: critical_speeds, sloshing_modes or liquid (default: all; CSV holds the first)");
     fl->add_option("--plot", o->common.plot, "with --fill: critical speeds against R0 into FILE.svg or FILE.png");
     cmds.push_back({fl, [o](std::ostream& out) {
-        const std::string which = o->table.empty() ? "" : o->table;
-        if (!which.empty() && which != "critical" && which != "modes" && which != "liquid" && which != "all")
-            throw InputError("--table '" + which + "': allowed: critical, modes, liquid, all");
         if (!o->common.plot.empty() && o->fill.empty()) throw InputError("--plot: only together with --fill");
         const Context c = open_scene(o->common, false);
         if (!c.scene.fluid)
@@ -90,6 +89,7 @@ std::vector<Command> add_fluid_commands(CLI::App& app) {
         if (!o->fill.empty()) {
             const std::vector<double> fills = parse_fill(o->fill, p0.R);
             Table t({"fill", "model", "index", "speed"});
+            t.key = "critical_speeds_vs_fill";
             t.title = fmt::format("critical speeds ({}) against the free-surface radius R0 (m)", c.unit.name);
             Figure fig;
             Panel pan;
@@ -122,7 +122,7 @@ std::vector<Command> add_fluid_commands(CLI::App& app) {
                         s[i].y.push_back(c.unit.factor * w);
                     }
             }
-            write_table(out, t, c.format);
+            write_result(out, {t}, c.format, o->table);
             if (skipped) std::cerr << "note: " << skipped << " fill levels lie exactly at a sloshing resonance\n";
             for (auto& x : s) pan.series.push_back(x);
             fig.panels.push_back(pan);
@@ -133,14 +133,11 @@ std::vector<Command> add_fluid_commands(CLI::App& app) {
         const FluidRotor f = build_fluid_rotor(p0);
         const FluidCriticalSpeeds cs = fluid_critical_speeds(f);
         Table crit({"model", "index", "speed"});
+        crit.key = "critical_speeds";
         crit.title = fmt::format("critical speeds ({})", c.unit.name);
         add_speed_rows(crit, cs, c.unit, {});
         const double w1 = !cs.moving_undamped.empty() ? cs.moving_undamped.front() : std::sqrt(f.k.gamma / f.m);
-        const std::string w = which.empty() ? (c.format == TableFormat::Text ? "all" : "critical") : which;
-        if (w == "critical") write_table(out, crit, c.format);
-        else if (w == "modes") write_table(out, modes_table(f, w1, c.unit), c.format);
-        else if (w == "liquid") write_table(out, liquid_table(f, cs), c.format);
-        else write_tables(out, {crit, modes_table(f, w1, c.unit), liquid_table(f, cs)}, c.format);
+        write_result(out, {crit, modes_table(f, w1, c.unit), liquid_table(f, cs)}, c.format, o->table);
     }});
     return cmds;
 }

@@ -22,7 +22,7 @@ constexpr double kPi = 3.14159265358979323846;
 double deg(double rad) { return rad * 180.0 / kPi; }
 
 struct Options {
-    std::string scene, format = "table", plot, method, speeds;
+    std::string scene, format = "table", plot, method, speeds, table;
     double abs_tol = 0.0, rel_tol = 0.0, max_speed = 0.0;
     CLI::Option *abs_opt = nullptr, *rel_opt = nullptr, *max_opt = nullptr;
     bool runup = false;
@@ -30,6 +30,7 @@ struct Options {
 
 Table summary_table() {
     Table t({"quantity", "value"});
+    t.key = "summary";
     t.title = "summary (speeds in rad/s)";
     return t;
 }
@@ -79,6 +80,7 @@ void run_stationary(const Options& o, const BalancerScene& sc, TableFormat fmt, 
     if (s.n > 0) cols.push_back("roller_speed_rad_s");
     cols.push_back("stable");
     Table curves(cols);
+    curves.key = "stationary_states";
     curves.title = "stationary states (Omega = L0 / beta0; rotor speed omega0, roller speed omega_e)";
     for (double W : range.points())
         for (const auto& q : stationary_states(a, W)) {
@@ -88,6 +90,7 @@ void run_stationary(const Options& o, const BalancerScene& sc, TableFormat fmt, 
             curves.add_row(row);
         }
     Table f({"fold", "nominal_rad_s", "rotor_speed_rad_s", "roller_speed_rad_s"});
+    f.key = "folds";
     f.title = "folds of the stationary curve (local extrema of Omega)";
     for (const auto& x : a.folds)
         f.add_row({std::string(x.maximum ? "maximum" : "minimum"), x.point.nominal, x.point.rotor_speed,
@@ -112,7 +115,7 @@ void run_stationary(const Options& o, const BalancerScene& sc, TableFormat fmt, 
         add(sum, "jump_down", std::string("none"));
     }
     if (s.compensating) add(sum, "synchronous_speed_at_nominal", synchronous_point(s, nominal).rotor_speed);
-    write_tables(out, {curves, f, sum}, fmt);
+    write_result(out, {curves, f, sum}, fmt, o.table);
 
     if (!o.plot.empty()) {
         Figure fig;
@@ -166,6 +169,7 @@ void run_runup(const Options& o, const BalancerScene& sc, TableFormat fmt, std::
     for (const char* c : {"amplitude_m", "torque_rotor_Nm", "torque_rollers_Nm"}) cols.push_back(c);
     if (nr == 2) cols.push_back("phase_difference_deg");
     Table h(cols);
+    h.key = "runup_history";
     h.title = "run-up history";
     const std::size_t step = std::max<std::size_t>(1, r.t.size() / 200);
     for (std::size_t k = 0; k < r.t.size(); k += step) {
@@ -196,7 +200,7 @@ void run_runup(const Options& o, const BalancerScene& sc, TableFormat fmt, std::
     add(sum, "seconds", r.stats.seconds);
     add(sum, "outcome", sm.outcome);
     add(sum, "captured", sm.captured);
-    write_tables(out, {h, sum}, fmt);
+    write_result(out, {h, sum}, fmt, o.table);
 
     if (!o.plot.empty()) {
         Figure fig;
@@ -232,7 +236,9 @@ std::vector<Command> add_sommerfeld_commands(CLI::App& app) {
     c->add_option("--format", o->format, "output format: table, csv or json")->capture_default_str();
     c->add_option("--speeds", o->speeds, "nominal speeds FROM:TO:N of the stationary curves, rad/s");
     c->add_flag("--runup", o->runup, "simulate the scene's [runup] through the full equations of motion (7)");
-    c->add_option("--method", o->method, "with --runup: ODE method (rk8pd, rkf45, rkck, rk4, rk2, msadams, rk4imp, "
+    c->add_option("--table", o->table, "only this table: stationary_states, folds, summary (--runup: runup_history, "
+                                       "summary); CSV holds the first unless one is named");
+    c->add_option("--integrator", o->method, "with --runup: ODE method (rk8pd, rkf45, rkck, rk4, rk2, msadams, rk4imp, "
                                          "bsimp, msbdf)");
     o->abs_opt = c->add_option("--abs-tol", o->abs_tol, "with --runup: absolute tolerance");
     o->rel_opt = c->add_option("--rel-tol", o->rel_tol, "with --runup: relative tolerance");
@@ -242,7 +248,7 @@ std::vector<Command> add_sommerfeld_commands(CLI::App& app) {
         const TableFormat fmt = parse_table_format(o->format);
         check_plot_path(o->plot);
         if (!o->runup && (!o->method.empty() || o->abs_opt->count() || o->rel_opt->count() || o->max_opt->count()))
-            throw InputError("--method, --abs-tol, --rel-tol and --max-speed need --runup");
+            throw InputError("--integrator, --abs-tol, --rel-tol and --max-speed need --runup");
         if (o->runup && !o->speeds.empty()) throw InputError("--speeds sets the stationary curves; not with --runup");
         if (!o->speeds.empty()) SpeedRange::parse(o->speeds, "--speeds").validate("--speeds");
         if (!o->method.empty()) parse_ode_method(o->method);

@@ -24,6 +24,7 @@ std::string speed_label(const SpeedUnit& u) { return "speed [" + u.name + "]"; }
 
 Table eig_table(const QuadraticSpectrum& s, double speed, const SpeedUnit& u, bool rigid_body) {
     Table t({"speed", "index", "re", "im", "frequency", "whirl", "damping_ratio", "log_dec", "backward_error"});
+    t.key = "eigenvalues";
     t.title = "eigenvalues at " + std::to_string(u.factor * speed) + " " + u.name +
               (s.infinite_count ? " (" + std::to_string(s.infinite_count) + " infinite eigenvalues omitted)" : "");
     int index = 0;
@@ -74,6 +75,7 @@ std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const S
 
 Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u) {
     Table t({"speed", "mode", "re", "im", "frequency", "whirl", "damping_ratio", "log_dec"});
+    t.key = "campbell";
     t.title = "Campbell diagram";
     // Rows by speed, then mode.
     std::vector<size_t> next(cd.branches.size(), 0);
@@ -93,6 +95,7 @@ Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u) {
 Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& critical, const SpeedUnit& u,
                        const std::string& plot_file) {
     Table t({"quantity", "value"});
+    t.key = "summary";
     t.title = "Campbell diagram: summary (all rows: --rows, or --format csv|json)";
     const auto speed = [&](double w) { return fmt::format("{:.6g} {}", u.factor * w, u.name); };
     t.add_row({std::string("modes tracked"), std::to_string(cd.branches.size())});
@@ -134,6 +137,7 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
 
 Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u) {
     Table t({"speed", "mode", "whirl", "harmonic", "frequency", "damping_ratio"});
+    t.key = "critical_speeds";
     t.title = "critical speeds";
     for (const auto& c : cs)
         t.add_row({u.factor * c.speed, ll(c.branch), to_string(c.mode.whirl), ll(c.harmonic),
@@ -143,6 +147,7 @@ Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u) {
 
 Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u) {
     Table t({"speed", "mode", "change", "frequency"});
+    t.key = "stability_changes";
     t.title = "stability changes (a mode's real part passes its error bound)";
     for (const auto& c : sc)
         t.add_row({u.factor * c.speed, ll(c.branch), std::string(c.becomes_unstable ? "unstable" : "stable"),
@@ -154,6 +159,7 @@ Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u) {
     Table t({"damping", "speed", "mode", "frequency", "whirl", "residual"});
     std::string checked;
     for (const auto& c : r.checked) checked += (checked.empty() ? "" : ", ") + c;
+    t.key = "pervasive_damping";
     t.title = "speeds where damping does not pervade (checked: " + (checked.empty() ? "no damping" : checked) + ")";
     for (const auto& l : r.losses)
         t.add_row({l.damping, u.factor * l.speed, ll(l.mode), u.factor * l.lost.frequency(), to_string(l.lost.whirl),
@@ -163,6 +169,7 @@ Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u) {
 
 Table response_table(const std::vector<std::string>& names, const ResponseCurve& c, const SpeedUnit& u) {
     Table t({"speed", "dof", "amplitude", "phase"});
+    t.key = "response";
     t.title = "unbalance response z = Re(Z e^{i w t}); amplitude |Z| in the DOF's unit, phase arg Z in degrees";
     for (size_t i = 0; i < c.speeds.size(); ++i)
         for (size_t k = 0; k < c.dofs.size(); ++k) {
@@ -176,6 +183,7 @@ Table response_table(const std::vector<std::string>& names, const ResponseCurve&
 Table extrema_table(const std::vector<std::string>& names, const std::vector<ResponseExtremum>& e,
                     const SpeedUnit& u) {
     Table t({"dof", "kind", "speed", "amplitude"});
+    t.key = "response_peaks";
     t.title = "response peaks and antiresonances";
     for (const auto& x : e)
         t.add_row({names[static_cast<size_t>(x.dof)], std::string(x.peak ? "peak" : "antiresonance"),
@@ -282,6 +290,7 @@ std::vector<const PairOrbit*> shown_pairs(const ModeShape& s) {
 Table mode_list_table(const std::vector<ModeShape>& shapes, const std::vector<std::string>& names, double speed,
                       const SpeedUnit& u) {
     Table t({"speed", "mode", "frequency", "whirl", "damping_ratio", "largest", "error_bound"});
+    t.key = "modes";
     t.title = mode_title(shapes, speed, u);
     for (const auto& s : shapes)
         t.add_row({u.factor * speed, ll(s.number), u.factor * s.mode.frequency(), to_string(s.mode.whirl),
@@ -296,6 +305,7 @@ Table mode_orbit_table(const std::vector<ModeShape>& shapes, double speed, const
     if (nodes) columns.insert(columns.end(), {"node", "z_m"});
     columns.insert(columns.end(), {"unit", "major", "minor", "angle_deg", "phase_deg", "whirl"});
     Table t(columns);
+    t.key = "mode_orbits";
     t.title = mode_title(shapes, speed, u) + ": orbits, scaled to 1 at the largest entry";
     for (const auto& s : shapes) {
         for (const auto& p : s.orbits) {
@@ -312,6 +322,7 @@ Table mode_orbit_table(const std::vector<ModeShape>& shapes, double speed, const
 Table mode_dof_table(const std::vector<ModeShape>& shapes, const std::vector<std::string>& names,
                      const std::vector<std::string>& units, double speed, const SpeedUnit& u) {
     Table t({"speed", "mode", "frequency", "dof", "unit", "re", "im", "amplitude", "phase_deg"});
+    t.key = "mode_entries";
     t.title = mode_title(shapes, speed, u) + ": eigenvector entries, scaled to 1 at the largest";
     for (const auto& s : shapes) {
         for (Eigen::Index i = 0; i < s.shape.size(); ++i) {

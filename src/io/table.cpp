@@ -172,15 +172,35 @@ void write_tables(std::ostream& os, const std::vector<Table>& ts, TableFormat f)
         Json all = Json::object();
         for (std::size_t i = 0; i < ts.size(); ++i) {
             check_no_nan(ts[i]);
-            const std::string key = ts[i].title.empty() ? fmt::format("table{}", i + 1) : ts[i].title;
+            const std::string key = ts[i].key.empty() ? fmt::format("table{}", i + 1) : ts[i].key;
             if (all.contains(key)) throw Error(fmt::format("two output tables share the key '{}'", key));
             all[key] = table_json(ts[i]);
         }
         return put(os, dump(all));
     }
+    // A CSV reader sees one header and rows of one shape: several tables would be one broken table.
+    if (f == TableFormat::Csv && ts.size() > 1)
+        throw Error(fmt::format("CSV holds one table; {} given (select one)", ts.size()));
     std::string out;
     for (std::size_t i = 0; i < ts.size(); ++i) out += (i ? "\n" : "") + render(ts[i], f);
     put(os, out);
+}
+
+void write_result(std::ostream& os, const std::vector<Table>& ts, TableFormat f, const std::string& key,
+                  const std::string& option, std::vector<std::string>& left_out) {
+    if (!key.empty()) return write_table(os, select_table(ts, key, option), f);
+    if (f != TableFormat::Csv || ts.size() <= 1) return write_tables(os, ts, f);
+    for (std::size_t i = 1; i < ts.size(); ++i) left_out.push_back(ts[i].key);
+    write_table(os, ts.front(), f);
+}
+
+const Table& select_table(const std::vector<Table>& ts, const std::string& key, const std::string& option) {
+    std::string keys;
+    for (const Table& t : ts) {
+        if (t.key == key) return t;
+        keys += (keys.empty() ? "" : ", ") + t.key;
+    }
+    throw InputError(fmt::format("{} '{}': allowed: {}", option, key, keys));
 }
 
 }  // namespace gyrokit

@@ -325,6 +325,7 @@ Table summary_table(const Sweep& s, const std::vector<ResultRow>& rows) {
         }
     }
     Table t({"outcome", "designs"});
+    t.key = "summary";
     t.title = "summary" + (s.title.empty() ? std::string() : " of " + s.title);
     t.add_row({std::string("designs"), static_cast<long long>(rows.size())});
     for (const auto& v : {"pass", "fail", "error"}) t.add_row({std::string(v), verdicts[v]});

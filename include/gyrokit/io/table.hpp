@@ -32,6 +32,7 @@ public:
     const std::vector<Cell>& row(std::size_t i) const { return rows_.at(i); }
 
     std::string title;   // optional; printed as a heading line in Text format only
+    std::string key;     // stable snake_case identifier: the JSON key among several tables, --table NAME
 
 private:
     std::vector<std::string> columns_;
@@ -50,9 +51,20 @@ private:
 void write_table(std::ostream& os, const Table& t, TableFormat f);
 
 // Several tables in one output. Text: each with its title, a blank line between.
-// Csv: tables separated by one blank line. Json: one object mapping each title
-// (or "table<i>", i counted from 1, for an untitled table) to its array;
-// two tables with the same key throw gyrokit::Error.
+// Json: one object mapping each table's key (or "table<i>", i counted from 1, for
+// a table without one) to its array; two tables with the same key throw
+// gyrokit::Error. Csv holds one table: more than one throws gyrokit::Error
+// (select one with select_table).
 void write_tables(std::ostream& os, const std::vector<Table>& ts, TableFormat f);
+
+// What a command writes: with `key`, the table of that key alone (`option` names
+// it in the error); otherwise every table (Text, Json) or the first (Csv holds one
+// table), the keys of the tables left out in `left_out`.
+void write_result(std::ostream& os, const std::vector<Table>& ts, TableFormat f, const std::string& key,
+                  const std::string& option, std::vector<std::string>& left_out);
+
+// The table whose key is `key`; an InputError naming `option`, the value and the
+// keys there are otherwise.
+const Table& select_table(const std::vector<Table>& ts, const std::string& key, const std::string& option);
 
 }  // namespace gyrokit
