@@ -25,7 +25,7 @@ header "speed,index,re,im" eig "$scene" --speed 30
 header "speed,mode,re,im" campbell "$scene"
 header "speed,mode,whirl,harmonic" critical "$scene"
 header "damping,speed,mode" pervasive "$scene"
-header "speed,dof,amplitude,phase" response "$scene"
+header "speed,dof,unit,amplitude,phase" response "$scene"
 header "speed,mode,change" stability "$scene"
 
 # The eig table carries the whirl and backward-error columns the docs promise.

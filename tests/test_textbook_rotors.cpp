@@ -67,6 +67,32 @@ TEST_CASE("Jeffcott rotor: unbalance response closed form", "[textbook][response
     CHECK(ex.front().speed == Approx(wn / std::sqrt(1 - 2 * zeta * zeta)).epsilon(1e-7));
 }
 
+TEST_CASE("Jeffcott rotor: the largest response is the refined peak, not the largest grid value",
+          "[textbook][response]") {
+    // A lightly damped rotor on a grid whose points miss the resonance by far.
+    const double m = 3.0, k = 1.2e4, c = 0.6, eps = 2e-4;
+    const GyroscopicSystem s = jeffcott(m, k, c, 0.0, eps);
+    const double zeta = c / (2 * std::sqrt(k * m));
+    const double peak = eps / (2 * zeta * std::sqrt(1 - zeta * zeta)), at = std::sqrt(k / m) / std::sqrt(1 - 2 * zeta * zeta);
+    const ResponseCurve rc = unbalance_response(s, SpeedRange{0.0, 130.0, 14}.points());   // step 10: 60.03 is missed
+    const double grid_max = rc.Z.col(0).cwiseAbs().maxCoeff();
+    REQUIRE(grid_max < 0.05 * peak);
+    const auto maxima = response_maxima(rc, response_extrema(s, rc));
+    REQUIRE(maxima.size() == 2);
+    for (const auto& mx : maxima) {
+        CHECK(mx.refined);
+        // The peak is flat: amplitude to rounding, speed to sqrt(eps) of the flat top.
+        CHECK(mx.amplitude == Approx(peak).epsilon(1e-12));
+        CHECK(mx.speed == Approx(at).epsilon(1e-7));
+    }
+    // No interior peak on an increasing curve: the range end.
+    const ResponseCurve low = unbalance_response(s, SpeedRange{0.0, 30.0, 7}.points());
+    const auto end = response_maxima(low, response_extrema(s, low));
+    CHECK(!end[0].refined);
+    CHECK(end[0].speed == 30.0);
+    CHECK(end[0].amplitude == Approx(std::abs(low.Z(6, 0))).epsilon(1e-15));
+}
+
 TEST_CASE("Jeffcott rotor with internal damping: instability threshold w_n (1 + c_e/c_i)", "[textbook][stability]") {
     const double m = 2.0, k = 5e3, ce = 4.0, ci = 10.0;
     const GyroscopicSystem s = jeffcott(m, k, ce, ci, 0.0);

@@ -20,10 +20,10 @@ namespace {
 // Option values of the rotor commands; one instance lives as long as the app.
 struct Options {
     Common common;
-    std::string speed, dir, harmonics, critical_method = "branches", dofs, select, per = "node";
+    std::string speed, dir, harmonics, critical_method = "branches", dofs, nodes, at, select, per = "node";
     int modes = -1;
     double tolerance = 1e-8;
-    bool extrema = false, rigid_body = false, rows = false;
+    bool extrema = false, rigid_body = false, rows = false, polar = false;
 };
 
 int wanted_modes(const Context& c, int modes) { return modes >= 0 ? modes : c.scene.modes; }
@@ -43,6 +43,22 @@ void note_extrapolation(const Context& c) {
     for (const auto& n : extrapolation_notes(b, c.speeds.front(), c.speeds.back())) std::cerr << "note: " << n << "\n";
 }
 
+// The items of a comma-separated list.
+std::vector<std::string> split_list(const std::string& text) {
+    std::vector<std::string> out;
+    size_t start = 0;
+    while (!text.empty() && start <= text.size()) {
+        const size_t end = std::min(text.find(',', start), text.size());
+        out.push_back(text.substr(start, end - start));
+        start = end + 1;
+    }
+    return out;
+}
+
+// The response outputs: DOFs by name (--dofs), the DOFs in metres of nodes
+// (--nodes) and of the nodes nearest axial positions (--at, m); empty: all.
+std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys);
+
 // DOF indices from a list of names (empty: all).
 std::vector<int> parse_dofs(const std::string& text, const std::vector<std::string>& names) {
     std::vector<int> out;
@@ -56,6 +72,42 @@ std::vector<int> parse_dofs(const std::string& text, const std::vector<std::stri
                                          names.empty() ? std::string("-") : names.front()));
         out.push_back(static_cast<int>(it - names.begin()));
         start = end + 1;
+    }
+    return out;
+}
+
+std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys) {
+    std::vector<int> out = parse_dofs(o.dofs, sys.dof_names);
+    const auto add_node = [&](int node) {
+        for (const int k : sys.node_dofs(node, sys.dof_units.empty() ? "" : "m"))
+            if (std::find(out.begin(), out.end(), k) == out.end()) out.push_back(k);
+    };
+    for (const std::string& item : split_list(o.nodes)) {
+        try {
+            size_t pos = 0;
+            const int node = std::stoi(item, &pos);
+            if (pos != item.size()) throw std::invalid_argument(item);
+            add_node(node);
+        } catch (const InputError& e) {
+            throw InputError("--nodes " + item + ": " + e.what());
+        } catch (const std::exception&) {
+            throw InputError("--nodes '" + o.nodes + "': allowed: node numbers separated by commas");
+        }
+    }
+    for (const std::string& item : split_list(o.at)) {
+        double z = 0.0;
+        try {
+            size_t pos = 0;
+            z = std::stod(item, &pos);
+            if (pos != item.size()) throw std::invalid_argument(item);
+        } catch (const std::exception&) {
+            throw InputError("--at '" + o.at + "': allowed: axial positions in m separated by commas");
+        }
+        try {
+            add_node(sys.nearest_node(z));
+        } catch (const InputError& e) {
+            throw InputError("--at " + item + ": " + e.what());
+        }
     }
     return out;
 }
@@ -259,26 +311,46 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     auto* resp = app.add_subcommand("response", "unbalance response: amplitude and phase per DOF");
     add_common(resp, o->common, true);
     add_solver_options(resp, o->common);
-    resp->add_option("--plot", o->common.plot, "draw amplitude and phase into FILE.svg or FILE.png");
+    resp->add_option("--plot", o->common.plot, "draw amplitude (one panel per unit) and phase into FILE.svg or FILE.png");
+    resp->add_flag("--polar", o->polar, "with --plot: a polar plot (Im Z against Re Z) instead of amplitude and phase");
     resp->add_option("--dofs", o->dofs, "DOFs reported, by name, e.g. x3,y3 (default: all)");
+    resp->add_option("--nodes", o->nodes, "DOFs reported: the translations of these nodes, e.g. 12,20");
+    resp->add_option("--at", o->at, "DOFs reported: the translations of the nodes nearest these axial positions (m)");
     resp->add_flag("--extrema", o->extrema, "print the peaks and antiresonances instead of the curve");
+    resp->add_flag("--rows", o->rows, "table format: every row of the curve instead of the summary");
     resp->add_option("--modes", o->modes, "modes checked for stability over the range (0 = all; default: the scene's)")
         ->check(CLI::Range(0, 100000000));
     cmds.push_back({resp, [o](std::ostream& out) {
+        if (o->polar && o->common.plot.empty()) throw InputError("--polar: only together with --plot FILE");
         const Context c = open_scene(o->common, true);
         const Scene& sc = c.scene;
+        const std::vector<int> outputs = response_outputs(*o, sc.system);
         // The sparse LU of the dynamic stiffness where the solver choice is sparse.
         const SolverKind kind = use_sparse(c) ? SolverKind::Sparse : SolverKind::Dense;
         const std::vector<std::string>& names = sc.system.dof_names;
+        const std::vector<std::string>& units = sc.system.dof_units;
         const ResponseSolver solve = [&](double w) { return unbalance_response(sc.system, w, kind); };
         note_extrapolation(c);
-        const ResponseCurve rc = unbalance_response(solve, sc.dofs(), c.speeds, parse_dofs(o->dofs, names));
+        const ResponseCurve rc = unbalance_response(solve, sc.dofs(), c.speeds, outputs);
         warn_unstable_response(c, wanted_modes(c, o->modes));
+        const bool summary = c.format == TableFormat::Text && !o->rows && !o->extrema;
+        // Peaks refined between grid speeds: the summary, --extrema, and the choice of curves to draw.
+        std::vector<ResponseExtremum> extrema;
+        if (summary || o->extrema || (!o->common.plot.empty() && outputs.empty()))
+            extrema = response_extrema(solve, rc, !o->extrema);
         if (o->extrema)
-            write_table(out, extrema_table(names, response_extrema(solve, rc), c.unit), c.format);
+            write_table(out, extrema_table(names, extrema, c.unit), c.format);
+        else if (summary)
+            write_table(out, response_summary(names, units, response_maxima(rc, extrema), c.unit, 8), c.format);
         else
-            write_table(out, response_table(names, rc, c.unit), c.format);
-        plot_if(o->common.plot, response_figure(names, rc, c.unit, sc.title));
+            write_table(out, response_table(names, units, rc, c.unit), c.format);
+        if (o->common.plot.empty()) return;
+        // Many DOFs: the six largest of each unit, so the legend stays readable.
+        const std::vector<int> shown =
+            !outputs.empty() || rc.dofs.size() <= 6 ? std::vector<int>{}
+                                                    : largest_responses(units, response_maxima(rc, extrema), 6);
+        plot_if(o->common.plot, o->polar ? response_polar_figure(names, units, rc, c.unit, sc.title, shown)
+                                         : response_figure(names, units, rc, c.unit, sc.title, shown));
     }});
 
     auto* exp = app.add_subcommand("export", "M, D, G, K, N and the state matrices as Matrix Market");

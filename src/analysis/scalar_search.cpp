@@ -6,6 +6,7 @@
 #include <mutex>
 #include <fmt/format.h>
 #include <gsl/gsl_errno.h>
+#include <gsl/gsl_min.h>
 #include <gsl/gsl_roots.h>
 
 namespace gyrokit {
@@ -63,6 +64,28 @@ double find_minimum(const std::function<double(double)>& f, double a, double b, 
         }
     }
     return fc <= fd ? c : d;
+}
+
+double find_smooth_minimum(const std::function<double(double)>& f, double a, double m, double b, double rel_tol) {
+    const double fa = f(a), fm = f(m), fb = f(b);
+    if (!(fm < fa && fm < fb) || !std::isfinite(fm)) return find_minimum(f, a, b, rel_tol);
+    static std::once_flag quiet;
+    std::call_once(quiet, [] { gsl_set_error_handler_off(); });
+    gsl_function F{&trampoline, const_cast<std::function<double(double)>*>(&f)};
+    gsl_min_fminimizer* s = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
+    int status = gsl_min_fminimizer_set_with_values(s, &F, m, fm, a, fa, b, fb);
+    double x = m;
+    for (int it = 0; it < 200 && status == GSL_SUCCESS; ++it) {
+        if (gsl_min_fminimizer_iterate(s) != GSL_SUCCESS) {
+            status = GSL_FAILURE;
+            break;
+        }
+        x = gsl_min_fminimizer_x_minimum(s);
+        const double lo = gsl_min_fminimizer_x_lower(s), hi = gsl_min_fminimizer_x_upper(s);
+        if (hi - lo <= rel_tol * std::max(1.0, std::fabs(x))) break;
+    }
+    gsl_min_fminimizer_free(s);
+    return status == GSL_SUCCESS ? x : find_minimum(f, a, b, rel_tol);
 }
 
 }  // namespace gyrokit

@@ -5,6 +5,8 @@
 
 #include <Eigen/SparseLU>
 #include <fmt/format.h>
+#include <limits>
+#include <map>
 #include <numeric>
 
 namespace gyrokit {
@@ -81,11 +83,45 @@ ResponseCurve unbalance_response(const GyroscopicSystem& sys, const std::vector<
     return unbalance_response([&](double w) { return unbalance_response(sys, w); }, sys.size(), speeds);
 }
 
+std::vector<ResponseMaximum> response_maxima(const ResponseCurve& c, const std::vector<ResponseExtremum>& extrema) {
+    std::vector<ResponseMaximum> out;
+    const Eigen::Index last = c.Z.rows() - 1;
+    for (Eigen::Index col = 0; col < c.Z.cols(); ++col) {
+        ResponseMaximum m;
+        m.dof = c.dofs[static_cast<size_t>(col)];
+        for (const Eigen::Index i : {Eigen::Index(0), last}) {
+            if (i < 0) continue;
+            const double a = std::abs(c.Z(i, col));
+            if (a > m.amplitude || (i == 0 && m.amplitude == 0.0))
+                m.amplitude = a, m.speed = c.speeds[static_cast<size_t>(i)];
+        }
+        for (const auto& e : extrema)
+            if (e.dof == m.dof && e.peak && e.amplitude > m.amplitude)
+                m.amplitude = e.amplitude, m.speed = e.speed, m.refined = true;
+        out.push_back(m);
+    }
+    return out;
+}
+
 std::vector<ResponseExtremum> response_extrema(const GyroscopicSystem& sys, const ResponseCurve& c) {
     return response_extrema([&](double w) { return unbalance_response(sys, w); }, c);
 }
 
-std::vector<ResponseExtremum> response_extrema(const ResponseSolver& solve, const ResponseCurve& c) {
+std::vector<ResponseExtremum> response_extrema(const ResponseSolver& solve, const ResponseCurve& c, bool peaks_only) {
+    // |Z| of the curve's DOFs at each speed solved (empty: singular there).
+    std::map<double, Eigen::VectorXd> solved;
+    const auto amplitudes = [&](double w) -> const Eigen::VectorXd& {
+        auto it = solved.find(w);
+        if (it != solved.end()) return it->second;
+        Eigen::VectorXd a;
+        try {
+            const Eigen::VectorXcd Z = solve(w);
+            a.resize(static_cast<Eigen::Index>(c.dofs.size()));
+            for (size_t k = 0; k < c.dofs.size(); ++k) a(static_cast<Eigen::Index>(k)) = std::abs(Z(c.dofs[k]));
+        } catch (const SolverError&) {   // exactly on an undamped resonance
+        }
+        return solved.emplace(w, std::move(a)).first->second;
+    };
     std::vector<ResponseExtremum> out;
     const Eigen::Index ns = c.Z.rows();
     for (Eigen::Index col = 0; col < c.Z.cols(); ++col) {
@@ -93,17 +129,16 @@ std::vector<ResponseExtremum> response_extrema(const ResponseSolver& solve, cons
         for (Eigen::Index i = 1; i + 1 < ns; ++i) {
             const double a0 = std::abs(c.Z(i - 1, col)), a1 = std::abs(c.Z(i, col)), a2 = std::abs(c.Z(i + 1, col));
             const bool peak = a1 > a0 && a1 >= a2, dip = a1 < a0 && a1 <= a2;
-            if (!peak && !dip) continue;
+            if (!peak && !(dip && !peaks_only)) continue;
             const double s = peak ? -1.0 : 1.0;
             const auto f = [&](double w) {
-                try {
-                    return s * std::abs(solve(w)(k));
-                } catch (const SolverError&) {   // exactly on an undamped resonance
-                    return s * std::numeric_limits<double>::infinity();
-                }
+                const Eigen::VectorXd& a = amplitudes(w);
+                return a.size() ? s * a(col) : s * std::numeric_limits<double>::infinity();
             };
-            const double w = find_minimum(f, c.speeds[static_cast<size_t>(i - 1)],
-                                          c.speeds[static_cast<size_t>(i + 1)], 1e-12);
+            // A peak is smooth (Brent); an antiresonance may be a V-shaped kink at zero (golden section).
+            const double lo = c.speeds[static_cast<size_t>(i - 1)], hi = c.speeds[static_cast<size_t>(i + 1)];
+            const double w = peak ? find_smooth_minimum(f, lo, c.speeds[static_cast<size_t>(i)], hi, 1e-12)
+                                  : find_minimum(f, lo, hi, 1e-12);
             out.push_back({k, peak, w, s * f(w)});
         }
     }

@@ -103,6 +103,30 @@ Eigen::VectorXcd GyroscopicSystem::unbalance_force(double w) const {
     return (w * w) * unbalance;
 }
 
+int GyroscopicSystem::nearest_node(double z) const {
+    if (node_z.empty()) throw InputError("this model has no nodes on an axis; allowed: DOFs by name");
+    const auto [lo, hi] = std::minmax_element(node_z.begin(), node_z.end());
+    const double slack = 1e-9 * std::max(1.0, *hi - *lo);
+    if (!std::isfinite(z) || z < *lo - slack || z > *hi + slack)
+        throw InputError(fmt::format("axial position {} m is off the shaft; allowed: [{}, {}] m", z, *lo, *hi));
+    int best = 0;
+    for (int k = 1; k < static_cast<int>(node_z.size()); ++k)
+        if (std::abs(node_z[static_cast<size_t>(k)] - z) < std::abs(node_z[static_cast<size_t>(best)] - z)) best = k;
+    return best;
+}
+
+std::vector<int> GyroscopicSystem::node_dofs(int node, const std::string& unit) const {
+    if (node < 0 || node >= static_cast<int>(node_z.size()))
+        throw InputError(node_z.empty() ? std::string("this model has no nodes on an axis; allowed: DOFs by name")
+                                        : fmt::format("node {} does not exist; allowed: 0 to {}", node,
+                                                      static_cast<int>(node_z.size()) - 1));
+    std::vector<int> out;
+    for (int i = 0; i < static_cast<int>(node_of_dof.size()); ++i)
+        if (node_of_dof[static_cast<size_t>(i)] == node && (unit.empty() || dof_units[static_cast<size_t>(i)] == unit))
+            out.push_back(i);
+    return out;
+}
+
 GyroscopicSystem GyroscopicSystem::with_damping_only(const std::vector<std::string>& names) const {
     GyroscopicSystem s = *this;
     s.damping.clear();

@@ -167,17 +167,89 @@ Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u) {
     return t;
 }
 
-Table response_table(const std::vector<std::string>& names, const ResponseCurve& c, const SpeedUnit& u) {
-    Table t({"speed", "dof", "amplitude", "phase"});
+namespace {
+
+std::string unit_of(const std::vector<std::string>& units, int dof) {
+    return units.empty() ? std::string() : units[static_cast<size_t>(dof)];
+}
+
+// The units of the DOFs: metres first (displacements are what one reads first), then in first-seen order.
+std::vector<std::string> units_in(const std::vector<std::string>& units, const std::vector<int>& dofs) {
+    std::vector<std::string> out;
+    for (const int k : dofs)
+        if (std::find(out.begin(), out.end(), unit_of(units, k)) == out.end()) out.push_back(unit_of(units, k));
+    std::stable_partition(out.begin(), out.end(), [](const std::string& u) { return u == "m"; });
+    return out;
+}
+
+}  // namespace
+
+Table response_table(const std::vector<std::string>& names, const std::vector<std::string>& units,
+                     const ResponseCurve& c, const SpeedUnit& u) {
+    Table t({"speed", "dof", "unit", "amplitude", "phase"});
     t.key = "response";
     t.title = "unbalance response z = Re(Z e^{i w t}); amplitude |Z| in the DOF's unit, phase arg Z in degrees";
     for (size_t i = 0; i < c.speeds.size(); ++i)
         for (size_t k = 0; k < c.dofs.size(); ++k) {
             const auto z = c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k));
-            t.add_row({u.factor * c.speeds[i], names[static_cast<size_t>(c.dofs[k])], std::abs(z),
-                       std::abs(z) == 0.0 ? 0.0 : std::arg(z) * 180.0 / M_PI});
+            t.add_row({u.factor * c.speeds[i], names[static_cast<size_t>(c.dofs[k])], unit_of(units, c.dofs[k]),
+                       std::abs(z), std::abs(z) == 0.0 ? 0.0 : std::arg(z) * 180.0 / M_PI});
         }
     return t;
+}
+
+namespace {
+
+// Maxima by unit (first-seen order), then by amplitude, largest first.
+std::vector<ResponseMaximum> by_unit_and_size(const std::vector<std::string>& units,
+                                              std::vector<ResponseMaximum> m) {
+    std::vector<int> dofs;
+    for (const auto& x : m) dofs.push_back(x.dof);
+    const std::vector<std::string> order = units_in(units, dofs);
+    const auto rank = [&](int dof) {
+        return std::find(order.begin(), order.end(), unit_of(units, dof)) - order.begin();
+    };
+    // Amplitudes equal to 9 digits (x and y of an isotropic rotor) keep the model's DOF order, whatever rounding says.
+    const auto size = [](double a) { return std::stod(fmt::format("{:.9g}", a)); };
+    std::stable_sort(m.begin(), m.end(), [&](const ResponseMaximum& a, const ResponseMaximum& b) {
+        if (rank(a.dof) != rank(b.dof)) return rank(a.dof) < rank(b.dof);
+        return size(a.amplitude) != size(b.amplitude) ? size(a.amplitude) > size(b.amplitude) : a.dof < b.dof;
+    });
+    return m;
+}
+
+}  // namespace
+
+Table response_summary(const std::vector<std::string>& names, const std::vector<std::string>& units,
+                       const std::vector<ResponseMaximum>& maxima, const SpeedUnit& u, std::size_t limit) {
+    Table t({"dof", "unit", "max_amplitude", "speed", "where"});
+    t.key = "response_maxima";
+    std::size_t left_out = 0, in_unit = 0;
+    std::string unit;
+    for (const auto& m : by_unit_and_size(units, maxima)) {
+        if (unit_of(units, m.dof) != unit) unit = unit_of(units, m.dof), in_unit = 0;
+        if (limit > 0 && in_unit++ >= limit) {
+            ++left_out;
+            continue;
+        }
+        t.add_row({names[static_cast<size_t>(m.dof)], unit_of(units, m.dof), m.amplitude, u.factor * m.speed,
+                   std::string(m.refined ? "peak (refined)" : "range end")});
+    }
+    t.title = "largest unbalance response per DOF (peaks refined between grid speeds)" +
+              (left_out ? fmt::format("; {} smaller ones left out", left_out) : std::string());
+    return t;
+}
+
+std::vector<int> largest_responses(const std::vector<std::string>& units, const std::vector<ResponseMaximum>& maxima,
+                                   std::size_t per_unit) {
+    std::vector<int> out;
+    std::size_t in_unit = 0;
+    std::string unit;
+    for (const auto& m : by_unit_and_size(units, maxima)) {
+        if (unit_of(units, m.dof) != unit) unit = unit_of(units, m.dof), in_unit = 0;
+        if (in_unit++ < per_unit) out.push_back(m.dof);
+    }
+    return out;
 }
 
 Table extrema_table(const std::vector<std::string>& names, const std::vector<ResponseExtremum>& e,
@@ -243,26 +315,79 @@ Figure campbell_figure(const CampbellDiagram& cd, const std::vector<CriticalSpee
     return f;
 }
 
-Figure response_figure(const std::vector<std::string>& names, const ResponseCurve& c, const SpeedUnit& u,
-                       const std::string& title) {
+namespace {
+
+// Columns of the curve to draw: `shown` (model DOFs), or all.
+std::vector<size_t> columns_shown(const ResponseCurve& c, const std::vector<int>& shown) {
+    std::vector<size_t> cols;
+    for (size_t k = 0; k < c.dofs.size(); ++k)
+        if (shown.empty() || std::find(shown.begin(), shown.end(), c.dofs[k]) != shown.end()) cols.push_back(k);
+    return cols;
+}
+
+std::string amplitude_label(const std::string& unit, const char* what) {
+    return unit.empty() ? std::string(what) : std::string(what) + " [" + unit + "]";
+}
+
+}  // namespace
+
+Figure response_figure(const std::vector<std::string>& names, const std::vector<std::string>& units,
+                       const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
+                       const std::vector<int>& shown) {
     Figure f;
     f.title = title.empty() ? "Unbalance response" : title;
-    Panel amp{speed_label(u), "amplitude |Z|", "", true, {}, {}, {}, {}, {}};
+    const std::vector<size_t> cols = columns_shown(c, shown);
+    std::vector<int> dofs;
+    for (const size_t k : cols) dofs.push_back(c.dofs[k]);
     Panel ph{speed_label(u), "phase [deg]", "", false, {}, -180.0, 180.0, {}, {}};
-    for (size_t k = 0; k < c.dofs.size(); ++k) {
-        Series a, p;
-        a.label = names[static_cast<size_t>(c.dofs[k])];
-        for (size_t i = 0; i < c.speeds.size(); ++i) {
-            const auto z = c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k));
-            a.x.push_back(u.factor * c.speeds[i]);
-            a.y.push_back(std::abs(z));
-            p.x.push_back(a.x.back());
-            p.y.push_back(std::abs(z) == 0.0 ? 0.0 : std::arg(z) * 180.0 / M_PI);
+    for (const std::string& unit : units_in(units, dofs)) {
+        Panel amp{speed_label(u), amplitude_label(unit, "amplitude |Z|"), "", true, {}, {}, {}, {}, {}};
+        for (const size_t k : cols) {
+            if (unit_of(units, c.dofs[k]) != unit) continue;
+            Series a, p;
+            a.label = p.label = names[static_cast<size_t>(c.dofs[k])];
+            for (size_t i = 0; i < c.speeds.size(); ++i) {
+                const auto z = c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k));
+                a.x.push_back(u.factor * c.speeds[i]);
+                a.y.push_back(std::abs(z));
+                p.x.push_back(a.x.back());
+                p.y.push_back(std::abs(z) == 0.0 ? 0.0 : std::arg(z) * 180.0 / M_PI);
+            }
+            amp.series.push_back(std::move(a));
+            ph.series.push_back(std::move(p));
         }
-        amp.series.push_back(std::move(a));
-        ph.series.push_back(std::move(p));
+        f.panels.push_back(std::move(amp));
     }
-    f.panels = {std::move(amp), std::move(ph)};
+    f.panels.push_back(std::move(ph));
+    return f;
+}
+
+Figure response_polar_figure(const std::vector<std::string>& names, const std::vector<std::string>& units,
+                             const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
+                             const std::vector<int>& shown) {
+    Figure f;
+    f.title = (title.empty() ? std::string("Unbalance response") : title) +
+              fmt::format(" (polar, {:.6g} to {:.6g} {})", u.factor * c.speeds.front(), u.factor * c.speeds.back(),
+                          u.name);
+    const std::vector<size_t> cols = columns_shown(c, shown);
+    std::vector<int> dofs;
+    for (const size_t k : cols) dofs.push_back(c.dofs[k]);
+    for (const std::string& unit : units_in(units, dofs)) {
+        Panel p{amplitude_label(unit, "Re Z"), amplitude_label(unit, "Im Z"), "", false, {}, {}, {}, {}, {}};
+        p.equal_axes = true;
+        for (const size_t k : cols) {
+            if (unit_of(units, c.dofs[k]) != unit) continue;
+            Series s;
+            s.label = names[static_cast<size_t>(c.dofs[k])];
+            for (size_t i = 0; i < c.speeds.size(); ++i) {
+                const auto z = c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k));
+                s.x.push_back(z.real());
+                s.y.push_back(z.imag());
+            }
+            p.series.push_back(std::move(s));
+        }
+        f.panels.push_back(std::move(p));
+    }
     return f;
 }
 

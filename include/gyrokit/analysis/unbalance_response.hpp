@@ -37,8 +37,23 @@ struct ResponseExtremum {
     double amplitude = 0;
 };
 
-// Interior local maxima and minima of |Z_k| on the grid, refined by golden section.
-std::vector<ResponseExtremum> response_extrema(const ResponseSolver& solve, const ResponseCurve& curve);
+// The largest amplitude of each DOF of a curve over its range: the largest of its
+// refined peaks (`extrema`) and of the grid values at the range ends. A grid maximum
+// can be far below the true one (a sharp resonance between grid points), so no
+// grid value inside the range counts unrefined.
+struct ResponseMaximum {
+    int dof = 0;
+    double speed = 0;
+    double amplitude = 0;
+    bool refined = false;   // an interior peak, refined; false: a range end
+};
+std::vector<ResponseMaximum> response_maxima(const ResponseCurve& curve, const std::vector<ResponseExtremum>& extrema);
+
+// Interior local maxima and minima (only maxima with `peaks_only`) of |Z_k| on the
+// grid, refined by golden section. The DOFs of one resonance peak at nearly one
+// speed and their searches visit the same speeds: each speed is solved once.
+std::vector<ResponseExtremum> response_extrema(const ResponseSolver& solve, const ResponseCurve& curve,
+                                               bool peaks_only = false);
 std::vector<ResponseExtremum> response_extrema(const GyroscopicSystem& sys, const ResponseCurve& curve);
 
 }  // namespace gyrokit

@@ -106,6 +106,12 @@ public:
     std::vector<double> node_z;               // axial position of each node (m)
 
     int size() const { return static_cast<int>(M.rows()); }
+    // The node nearest the axial position z (m); InputError if the model has no
+    // nodes or z lies off the shaft (outside its first and last node).
+    int nearest_node(double z) const;
+    // The DOFs of a node, those in `unit` only if one is given; InputError if the
+    // model has no such node.
+    std::vector<int> node_dofs(int node, const std::string& unit = "") const;
     // Total damping at speed w (speed matters for speed-dependent components and bearing tables).
     SparseMatrix damping_matrix(double w = 0.0) const;
     // Names of the damping components: `damping`, then bearing tables with damping.

@@ -29,7 +29,17 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
 Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u);
 Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u);
 Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u);
-Table response_table(const std::vector<std::string>& dof_names, const ResponseCurve& c, const SpeedUnit& u);
+// Every row of the curve; `unit` is the DOF's unit ("" if the model names none).
+Table response_table(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
+                     const ResponseCurve& c, const SpeedUnit& u);
+// What a person reads of a response: the largest amplitude of each DOF (refined
+// peaks, response_maxima), by unit and then amplitude, at most `limit` per unit
+// (0: all); the title says how many were left out.
+Table response_summary(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
+                       const std::vector<ResponseMaximum>& maxima, const SpeedUnit& u, std::size_t limit);
+// The DOFs a plot of many shows: those with the `per_unit` largest maxima in each unit.
+std::vector<int> largest_responses(const std::vector<std::string>& dof_units,
+                                   const std::vector<ResponseMaximum>& maxima, std::size_t per_unit);
 // Mode shapes at one speed: one row per mode and whirl pair (the orbit: semi-axes
 // in the pair's unit, angle and phase in degrees, whirl), in axial order.
 Table mode_orbit_table(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u);
@@ -51,8 +61,14 @@ Table extrema_table(const std::vector<std::string>& dof_names, const std::vector
 // whirl solid red, backward dashed blue; damping ratio in a second panel.
 Figure campbell_figure(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& cs,
                        const std::vector<int>& harmonics, const SpeedUnit& u, const std::string& title);
-// Amplitude (log) and phase per DOF against speed.
-Figure response_figure(const std::vector<std::string>& dof_names, const ResponseCurve& c, const SpeedUnit& u,
-                       const std::string& title);
+// Bode plot of the DOFs `shown` (empty: every DOF of the curve): amplitude (log)
+// against speed, one panel per physical unit, then the phase in degrees.
+Figure response_figure(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
+                       const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
+                       const std::vector<int>& shown = {});
+// Polar plot: Im Z against Re Z over the speed range, one panel per unit, true to shape.
+Figure response_polar_figure(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
+                             const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
+                             const std::vector<int>& shown = {});
 
 }  // namespace gyrokit
