@@ -29,6 +29,35 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
     return row[b.size()];
 }
 
+// The nearest of `candidates` to `given` if at most two letters away (a typo), else "".
+std::string nearest_name(const std::string& given, const std::vector<std::string>& candidates) {
+    std::string nearest;
+    std::size_t best = 3;
+    for (const auto& c : candidates) {
+        const std::size_t d = edit_distance(given, c);
+        if (d < best) best = d, nearest = c;
+    }
+    return nearest;
+}
+
+// A mistyped option of the chosen command: name the nearest one it has.
+std::string option_hint(const CLI::App& app, int argc, char** argv) {
+    for (const CLI::App* sub : app.get_subcommands()) {
+        std::vector<std::string> flags;
+        for (const CLI::Option* opt : sub->get_options())
+            for (const auto& name : opt->get_lnames()) flags.push_back("--" + name);
+        for (int i = 2; i < argc; ++i) {
+            std::string arg = argv[i];
+            if (arg.rfind("--", 0) != 0) continue;
+            arg = arg.substr(0, arg.find('='));
+            if (std::find(flags.begin(), flags.end(), arg) != flags.end()) continue;
+            const std::string near = nearest_name(arg, flags);
+            if (!near.empty()) return "; did you mean '" + near + "'?";
+        }
+    }
+    return "";
+}
+
 // The library names its option fields; the command line calls them by its flags.
 std::string with_flags(std::string m) {
     static const std::pair<const char*, const char*> fields[] = {
@@ -70,15 +99,12 @@ int main(int argc, char** argv) {
     // A mistyped command: name the nearest one.
     if (argv[1][0] != '-') {
         const std::string given = argv[1];
-        std::string nearest;
-        std::size_t best = std::string::npos;
-        for (const auto& c : commands) {
-            const std::size_t d = edit_distance(given, c.app->get_name());
-            if (d < best) best = d, nearest = c.app->get_name();
-        }
-        if (best != 0) {
+        std::vector<std::string> names;
+        for (const auto& c : commands) names.push_back(c.app->get_name());
+        if (std::find(names.begin(), names.end(), given) == names.end()) {
+            const std::string near = nearest_name(given, names);
             std::cerr << "error: unknown command '" << given << "'"
-                      << (best <= 2 ? "; did you mean '" + nearest + "'?" : "") << " (see --help)\n";
+                      << (near.empty() ? "" : "; did you mean '" + near + "'?") << " (see --help)\n";
             return 2;
         }
     }
@@ -91,7 +117,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::cerr << "error: " << e.what() << " (see --help)\n";
+        std::cerr << "error: " << e.what() << option_hint(app, argc, argv) << " (see --help)\n";
         return 2;
     }
     try {

@@ -66,6 +66,9 @@ expect "no unbalance" response "$dir/nounbalance.toml"
 expect "scene file not found" eig "$dir/absent.toml" --speed 1
 expect "FROM = 10 is greater than TO = 5" campbell "$dir/ok.toml" --speeds 10:5:11
 expect "expected FROM:TO:N" campbell "$dir/ok.toml" --speeds 0:10
+expect "did you mean '--speeds'" campbell "$dir/ok.toml" --speds 0:10:3
+expect "did you mean '--units'" eig "$dir/ok.toml" --speed 1 --unit Hz
+expect "did you mean 'campbell'" campbel "$dir/ok.toml"
 expect "--speed '-3'" eig "$dir/ok.toml" --speed -3
 expect "table format 'xml'" eig "$dir/ok.toml" --speed 1 --format xml
 expect "--units" eig "$dir/ok.toml" --speed 1 --units furlong
