@@ -81,6 +81,8 @@ with open(sweep, "w") as f:
 c, fe = f"{data}/centrifuge.toml", f"{data}/fe_rotor.toml"
 cases = [
     ["eig", c, "--speed", "20"],
+    ["model", c],
+    ["model", fe],
     ["modes", c, "--speed", "100"],
     ["modes", fe, "--speed", "100", "--modes", "2"],
     ["modes", c, "--speed", "100", "--per", "dof"],

@@ -166,6 +166,21 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         write_table(out, eig_table(s, w, c.unit, o->rigid_body), c.format);
     }});
 
+    auto* model = app.add_subcommand("model", "what the scene's model is: DOFs, mass, nodes, damping, bearings; "
+                                              "--plot draws an FE rotor");
+    model->add_option("scene", o->common.scene, "scene file (TOML)")->required();
+    model->add_option("--format", o->common.format, "output format: table, csv or json")->capture_default_str();
+    model->add_option("--plot", o->common.plot, "FE rotors: draw the shaft, disks and bearings into FILE.svg|.png");
+    cmds.push_back({model, [o](std::ostream& out) {
+        const TableFormat format = parse_format(o->common);
+        check_plot_path(o->common.plot);
+        const Scene sc = load_scene(o->common.scene);
+        if (!o->common.plot.empty() && !sc.fe_rotor)
+            throw InputError("--plot: draws finite-element rotors; this model is " + sc.model_type);
+        write_table(out, model_summary(sc), format);
+        if (sc.fe_rotor) plot_if(o->common.plot, fe_rotor_figure(*sc.fe_rotor, sc.system, sc.title));
+    }});
+
     auto* modes = app.add_subcommand("modes", "mode shapes at one speed: orbits per node (or entries per DOF)");
     add_common(modes, o->common, false);
     add_solver_options(modes, o->common);

@@ -49,7 +49,7 @@ int node_at(const TomlKeys& e, const std::vector<double>& z) {
 
 }  // namespace
 
-GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir) {
+GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRotor* rotor) {
     k.only({"type", "shaft", "disk", "bearing", "support", "E", "poisson", "density", "shear_deformation",
             "rotary_inertia"});
     FeRotor r;
@@ -156,6 +156,7 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir) {
         };
         sys.bearings.push_back(read_bearing_csv(t.path, sys.size(), dof("x"), dof("y")));
     }
+    if (rotor) *rotor = r;
     return sys;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <gyrokit/core/gyroscopic_system.hpp>
+#include <gyrokit/models/fe_rotor.hpp>
 
 #include "io/toml_keys.hpp"
 
@@ -14,6 +15,7 @@ namespace gyrokit {
 // supports must fall on a node (section ends and their subdivisions); bearing
 // tables are read relative to `dir`. Every error names the table entry, key,
 // value and allowed range.
-GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir);
+// The rotor's description goes to `rotor` if given.
+GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRotor* rotor = nullptr);
 
 }  // namespace gyrokit

@@ -524,4 +524,164 @@ Figure mode_shape_figure(const std::vector<ModeShape>& shapes, double speed, con
     return f;
 }
 
+namespace {
+
+// A solid cylinder of mass m with the inertias Ip = m r^2 / 2 and Id = m (3 r^2 + w^2) / 12:
+// the radius and width a disk given by (m, Id, Ip) would have.
+std::pair<double, double> disk_cylinder(const FeDisk& d) {
+    if (d.mass <= 0.0) return {0.0, 0.0};
+    const double r = std::sqrt(2.0 * d.polar_inertia / d.mass);
+    const double w2 = 12.0 * d.diametral_inertia / d.mass - 3.0 * r * r;
+    return {r, w2 > 0.0 ? std::sqrt(w2) : 0.0};
+}
+
+}  // namespace
+
+Table model_summary(const Scene& sc) {
+    Table t({"quantity", "value", "unit"});
+    t.key = "model";
+    t.title = "model " + sc.path + (sc.title.empty() ? std::string() : ": " + sc.title);
+    const GyroscopicSystem& s = sc.system;
+    const auto add = [&](const std::string& q, const Cell& v, const std::string& unit = "") {
+        t.add_row({q, v, unit});
+    };
+    add("type", sc.model_type);
+    add("dofs", ll(s.size()));
+    if (!s.dof_units.empty()) {
+        std::vector<std::string> seen;
+        for (const auto& u : s.dof_units)
+            if (std::find(seen.begin(), seen.end(), u) == seen.end()) seen.push_back(u);
+        for (const auto& u : seen)
+            add("dofs_in_" + u, ll(static_cast<int>(std::count(s.dof_units.begin(), s.dof_units.end(), u))));
+    }
+    add("whirl_pairs", ll(static_cast<int>(s.whirl_pairs.size())));
+    if (!s.node_z.empty()) {
+        add("nodes", ll(static_cast<int>(s.node_z.size())));
+        add("length", *std::max_element(s.node_z.begin(), s.node_z.end()) -
+                          *std::min_element(s.node_z.begin(), s.node_z.end()), "m");
+    }
+    // Mass that a unit translation along u of every translational pair moves: r^T M r.
+    if (!s.dof_units.empty()) {
+        Eigen::VectorXd r = Eigen::VectorXd::Zero(s.size());
+        for (const auto& [u, v] : s.whirl_pairs)
+            if (s.dof_units[static_cast<size_t>(u)] == "m") r(u) = 1.0;
+        if (r.sum() > 0) add("translating_mass", r.dot(SparseMatrix(s.M) * r), "kg");
+    }
+    add("nonzeros_M_K", ll(static_cast<int>(s.M.nonZeros() + s.K.nonZeros())));
+    add("gyroscopic", std::string(s.G.nonZeros() > 0 && s.G.norm() > 0 ? "yes" : "no"));
+    add("circulatory", std::string(s.has_circulatory() ? "yes" : "no"));
+    add("speed_squared_stiffness", std::string(s.has_speed_squared_stiffness() ? "yes" : "no"));
+    std::string damping;
+    for (const auto& n : s.damping_names()) damping += (damping.empty() ? "" : ", ") + n;
+    add("damping", damping.empty() ? std::string("none") : damping);
+    add("bearing_tables", ll(static_cast<int>(s.bearings.size())));
+    add("unbalance", std::string(s.unbalance.size() > 0 && s.unbalance.norm() > 0 ? "yes" : "no"));
+    if (s.size() <= kAutoSparseDofs) {
+        const QuadraticSpectrum sp = solve_at_speed(s, 0.0);
+        add("rigid_body_eigenvalues_at_rest", ll(static_cast<int>(sp.rigid_body.size())));
+        if (!sp.modes.empty()) add("lowest_frequency_at_rest", sp.modes.front().frequency(), "rad/s");
+    } else {
+        add("rigid_body_eigenvalues_at_rest", std::string("not computed (sparse model)"));
+    }
+    if (sc.fe_rotor) {
+        const FeRotor& r = *sc.fe_rotor;
+        add("elements", ll(static_cast<int>(r.elements.size())));
+        double shaft = 0.0, dmin = 1e300, dmax = 0.0;
+        for (const auto& e : r.elements) {
+            shaft += e.density * M_PI * (e.outer_diameter * e.outer_diameter - e.inner_diameter * e.inner_diameter) /
+                     4.0 * e.length;
+            dmin = std::min(dmin, e.outer_diameter);
+            dmax = std::max(dmax, e.outer_diameter);
+        }
+        add("shaft_mass", shaft, "kg");
+        add("shaft_outer_diameter_min", dmin, "m");
+        add("shaft_outer_diameter_max", dmax, "m");
+        add("shear_deformation", std::string(r.shear_deformation ? "yes" : "no"));
+        add("rotary_inertia", std::string(r.rotary_inertia ? "yes" : "no"));
+        int k = 0;
+        for (const auto& d : r.disks) {
+            const std::string p = fmt::format("disk{}_", ++k);
+            add(p + "z", s.node_z[static_cast<size_t>(d.node)], "m");
+            add(p + "mass", d.mass, "kg");
+            add(p + "Id", d.diametral_inertia, "kg m^2");
+            add(p + "Ip", d.polar_inertia, "kg m^2");
+        }
+        k = 0;
+        for (const auto& b : r.bearings)
+            add(fmt::format("bearing{}_z", ++k), s.node_z[static_cast<size_t>(b.node)], "m");
+        for (const auto& b : s.bearings)
+            add(fmt::format("bearing{}_z", ++k), s.node_z[static_cast<size_t>(s.node_of_dof[static_cast<size_t>(b.dof_x)])],
+                "m");
+        k = 0;
+        for (const auto& sp : r.supports)
+            add(fmt::format("support{}_z", ++k), s.node_z[static_cast<size_t>(sp.node)], "m");
+    }
+    return t;
+}
+
+Figure fe_rotor_figure(const FeRotor& r, const GyroscopicSystem& sys, const std::string& title) {
+    Figure f;
+    f.title = title.empty() ? std::string("Finite-element rotor") : title;
+    Panel p{"z [m]", "radius [m]", "", false, {}, {}, {}, {}, {}};
+    std::vector<double> z(static_cast<size_t>(r.node_count()), 0.0);
+    for (size_t e = 0; e < r.elements.size(); ++e) z[e + 1] = z[e] + r.elements[e].length;
+    // Shaft outline: outer radius above and below the axis, the bore dashed.
+    Series top, bottom, bore_top, bore_bottom;
+    top.label = "shaft";
+    top.color = bottom.color = "#1f77b4";
+    bore_top.color = bore_bottom.color = "#1f77b4";
+    bore_top.style = bore_bottom.style = "dashed";
+    for (size_t e = 0; e < r.elements.size(); ++e) {
+        const double ro = r.elements[e].outer_diameter / 2, ri = r.elements[e].inner_diameter / 2;
+        for (const double x : {z[e], z[e + 1]}) {
+            top.x.push_back(x), top.y.push_back(ro);
+            bottom.x.push_back(x), bottom.y.push_back(-ro);
+            bore_top.x.push_back(x), bore_top.y.push_back(ri > 0 ? ri : NAN);
+            bore_bottom.x.push_back(x), bore_bottom.y.push_back(ri > 0 ? -ri : NAN);
+        }
+    }
+    p.series = {top, bottom, bore_top, bore_bottom};
+    Series disks;
+    disks.label = "disks (solid cylinders of their m, Id, Ip)";
+    disks.color = "#d62728";
+    for (const auto& d : r.disks) {
+        const auto [rad, width] = disk_cylinder(d);
+        const double zc = z[static_cast<size_t>(d.node)], h = std::max(width, 1e-3 * z.back()) / 2;
+        for (const auto& [x, y] : std::vector<std::pair<double, double>>{
+                 {zc - h, -rad}, {zc - h, rad}, {zc + h, rad}, {zc + h, -rad}, {zc - h, -rad}})
+            disks.x.push_back(x), disks.y.push_back(y);
+        disks.x.push_back(NAN), disks.y.push_back(NAN);
+    }
+    if (!r.disks.empty()) p.series.push_back(disks);
+    // Bearings and supports below the shaft at their nodes.
+    const auto marks = [&](const std::vector<int>& nodes, const std::string& label, const std::string& color) {
+        Series m;
+        m.label = label;
+        m.style = "points";
+        m.color = color;
+        for (const int n : nodes) {
+            double ro = 0.0;
+            if (n > 0) ro = std::max(ro, r.elements[static_cast<size_t>(n - 1)].outer_diameter / 2);
+            if (n < static_cast<int>(r.elements.size())) ro = std::max(ro, r.elements[static_cast<size_t>(n)].outer_diameter / 2);
+            m.x.push_back(z[static_cast<size_t>(n)]);
+            m.y.push_back(-1.5 * ro);
+        }
+        if (!nodes.empty()) p.series.push_back(m);
+    };
+    std::vector<int> bearing_nodes, support_nodes, nodes;
+    for (const auto& b : r.bearings) bearing_nodes.push_back(b.node);
+    for (const auto& b : sys.bearings) bearing_nodes.push_back(sys.node_of_dof[static_cast<size_t>(b.dof_x)]);
+    for (const auto& s : r.supports) support_nodes.push_back(s.node);
+    marks(bearing_nodes, "bearings", "#2ca02c");
+    marks(support_nodes, "rigid supports", "#000000");
+    Series axis;
+    axis.label = "nodes";
+    axis.style = "points";
+    axis.color = "#7f7f7f";
+    for (const double x : z) axis.x.push_back(x), axis.y.push_back(0.0);
+    p.series.push_back(axis);
+    f.panels = {p};
+    return f;
+}
+
 }  // namespace gyrokit

@@ -115,7 +115,11 @@ GyroscopicSystem matrices_from(const TomlKeys& k, const fs::path& dir) {
 using ModelReader = std::function<void(const TomlKeys&, const fs::path& dir, Scene&)>;
 const std::map<std::string, ModelReader>& model_readers() {
     static const std::map<std::string, ModelReader> readers = {
-        {"fe_rotor", [](const TomlKeys& k, const fs::path& dir, Scene& sc) { sc.system = fe_rotor_from(k, dir.string()); }},
+        {"fe_rotor",
+         [](const TomlKeys& k, const fs::path& dir, Scene& sc) {
+             sc.fe_rotor.emplace();
+             sc.system = fe_rotor_from(k, dir.string(), &*sc.fe_rotor);
+         }},
         {"fluid_rotor",
          [](const TomlKeys& k, const fs::path&, Scene& sc) {
              sc.fluid = fluid_rotor_from(k);

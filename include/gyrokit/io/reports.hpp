@@ -9,6 +9,7 @@
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/io/plot.hpp>
+#include <gyrokit/io/scene.hpp>
 #include <gyrokit/io/table.hpp>
 
 namespace gyrokit {
@@ -70,5 +71,16 @@ Figure response_figure(const std::vector<std::string>& dof_names, const std::vec
 Figure response_polar_figure(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
                              const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
                              const std::vector<int>& shown = {});
+
+// What a model is, for checking one's own: DOFs by unit, nodes and length, mass
+// of a rigid translation, the speed-dependent terms, damping components, bearing
+// tables, unbalance, rigid-body eigenvalues at standstill (models up to
+// kAutoSparseDofs DOFs; larger ones say "not computed"); for FE rotors the
+// elements, sections, disks, bearings and supports. Rows: quantity, value, unit.
+Table model_summary(const Scene& scene);
+// An FE rotor's geometry along z: the shaft sections (outer and inner radius),
+// the disks (radius and width of the solid cylinder with their mass, Id and Ip),
+// bearings and supports at their nodes, the nodes on the axis.
+Figure fe_rotor_figure(const FeRotor& rotor, const GyroscopicSystem& system, const std::string& title);
 
 }  // namespace gyrokit

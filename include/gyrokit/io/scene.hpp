@@ -4,6 +4,7 @@
 #include <gyrokit/analysis/spectrum_solver.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/core/speed_range.hpp>
+#include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/fluid_rotor.hpp>
 
 #include <map>
@@ -25,6 +26,7 @@ struct Scene {
     int modes = 0;                     // [analysis] modes (0 = all)
     std::vector<int> harmonics{1};     // [analysis] harmonics
     std::optional<FluidRotorParameters> fluid;   // set for [model] type = "fluid_rotor"
+    std::optional<FeRotor> fe_rotor;   // set for [model] type = "fe_rotor": its geometry (tabulated bearings in system)
 
     int dofs() const { return system.size(); }
     // [analysis] solver, modes, target and target_order as solver options.

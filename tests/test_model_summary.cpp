@@ -1,0 +1,51 @@
+// The model summary: its numbers against the model's own description.
+#include <gyrokit/io/reports.hpp>
+#include <gyrokit/io/scene.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+using namespace gyrokit;
+
+namespace {
+
+const Cell& value(const Table& t, const std::string& quantity) {
+    for (std::size_t i = 0; i < t.rows(); ++i)
+        if (std::get<std::string>(t.row(i)[0]) == quantity) return t.row(i)[1];
+    FAIL("no row " << quantity);
+    throw;
+}
+
+}  // namespace
+
+TEST_CASE("model summary of the FE rotor: translating mass = shaft + disks, rigid-body count", "[model]") {
+    const Scene sc = load_scene(std::string(GYROKIT_DATA_DIR) + "/fe_rotor.toml");
+    const Table t = model_summary(sc);
+    // Hermite beam elements move their full mass in a rigid translation: r^T M r is the total mass.
+    const double shaft = 7810 * M_PI * 0.05 * 0.05 / 4 * 1.5;
+    CHECK(std::get<double>(value(t, "shaft_mass")) == Approx(shaft).epsilon(1e-14));
+    CHECK(std::get<double>(value(t, "translating_mass")) == Approx(shaft + 2 * 33.657).epsilon(1e-13));
+    CHECK(std::get<long long>(value(t, "dofs")) == 100);
+    CHECK(std::get<long long>(value(t, "nodes")) == 25);
+    CHECK(std::get<double>(value(t, "length")) == Approx(1.5).epsilon(1e-15));
+    CHECK(std::get<long long>(value(t, "rigid_body_eigenvalues_at_rest")) == 0);
+    CHECK(std::get<double>(value(t, "bearing2_z")) == Approx(1.5).epsilon(1e-15));
+    // The disks of 280 mm diameter and 70 mm width come back from their m, Id, Ip (given to
+    // five digits). The width comes from w^2 = 12 Id/m - 3 r^2 = 0.0636 - 0.0588, a difference
+    // that turns the data's 1e-4 rounding into about 1 % of w.
+    const Figure f = fe_rotor_figure(*sc.fe_rotor, sc.system, sc.title);
+    for (const auto& s : f.panels.front().series)
+        if (s.label.rfind("disks", 0) == 0) {
+            CHECK(s.y[1] == Approx(0.14).epsilon(2e-4));
+            CHECK(s.x[2] - s.x[0] == Approx(0.07).epsilon(2e-2));
+        }
+}
+
+TEST_CASE("model summary of the exported ROSS rotor counts its four rigid-body eigenvalues", "[model]") {
+    const Scene sc = load_scene(std::string(GYROKIT_DATA_DIR) + "/ross_rotor_example/scene.toml");
+    const Table t = model_summary(sc);
+    CHECK(std::get<long long>(value(t, "dofs")) == 42);
+    CHECK(std::get<long long>(value(t, "rigid_body_eigenvalues_at_rest")) == 4);
+}
