@@ -249,6 +249,69 @@ PYBIND11_MODULE(_core, m) {
     }, py::arg("system"), py::arg("speed"), py::arg("solver"), py::arg("modes"), py::arg("target"),
           py::arg("target_order"), py::arg("method"), py::arg("lanczos"));
 
+    m.def("mode_shapes", [](const GyroscopicSystem& s, double speed, const std::string& solver, int modes,
+                            const py::object& target, double target_order, const std::string& method, int lanczos) {
+        if (!(std::isfinite(speed) && speed >= 0))
+            throw InputError("speed = " + std::to_string(speed) + ": allowed: a finite number >= 0 (rad/s)");
+        const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
+        std::vector<ModeShape> shapes;
+        std::vector<std::string> notes;
+        {
+            py::gil_scoped_release free;
+            shapes = mode_shapes(s, speed, o, &notes);
+        }
+        const auto k = static_cast<Eigen::Index>(shapes.size());
+        Eigen::VectorXcd lambda(k);
+        Eigen::MatrixXcd vectors(s.size(), k);
+        std::vector<int> number, reference;
+        std::vector<std::string> whirl;
+        // Orbits: one row per mode and whirl pair, as the CLI's --per node table.
+        std::vector<int> orbit_mode, orbit_node;
+        std::vector<std::string> orbit_pair, orbit_unit, orbit_whirl;
+        std::vector<double> orbit_z, major, minor, angle, phase;
+        for (Eigen::Index j = 0; j < k; ++j) {
+            const ModeShape& m = shapes[static_cast<size_t>(j)];
+            lambda(j) = m.mode.lambda;
+            vectors.col(j) = m.shape;
+            number.push_back(m.number);
+            reference.push_back(m.reference);
+            whirl.push_back(to_string(m.mode.whirl));
+            for (const PairOrbit& p : m.orbits) {
+                orbit_mode.push_back(m.number);
+                orbit_pair.push_back(p.name);
+                orbit_unit.push_back(p.unit);
+                orbit_node.push_back(p.node);
+                orbit_z.push_back(p.z);
+                major.push_back(p.orbit.major);
+                minor.push_back(p.orbit.minor);
+                angle.push_back(p.orbit.angle);
+                phase.push_back(p.orbit.phase);
+                orbit_whirl.push_back(to_string(p.orbit.whirl));
+            }
+        }
+        py::dict d;
+        d["eigenvalues"] = lambda;
+        d["shapes"] = vectors;
+        d["numbers"] = number;
+        d["reference"] = reference;
+        d["whirl"] = whirl;
+        d["notes"] = notes;
+        py::dict orbits;
+        orbits["mode"] = orbit_mode;
+        orbits["pair"] = orbit_pair;
+        orbits["unit"] = orbit_unit;
+        orbits["node"] = orbit_node;
+        orbits["z"] = orbit_z;
+        orbits["major"] = major;
+        orbits["minor"] = minor;
+        orbits["angle"] = angle;
+        orbits["phase"] = phase;
+        orbits["whirl"] = orbit_whirl;
+        d["orbits"] = orbits;
+        return d;
+    }, py::arg("system"), py::arg("speed"), py::arg("solver"), py::arg("modes"), py::arg("target"),
+          py::arg("target_order"), py::arg("method"), py::arg("lanczos"));
+
     m.def("campbell", [](const GyroscopicSystem& s, const std::vector<double>& speeds, const std::string& solver,
                          int modes, const py::object& target, double target_order, const std::string& method,
                          int lanczos, int jobs) {

@@ -16,7 +16,8 @@ from . import _core
 __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene", "eig", "campbell",
            "critical_speeds", "stability", "screen", "EigResult", "CampbellResult", "CriticalSpeeds",
            "StabilityChanges", "ScreenResult", "pervasive", "response", "PervasiveLosses", "Response", "gyrostat",
-           "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "Sommerfeld"]
+           "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "Sommerfeld",
+           "modes", "ModeShapes"]
 
 
 def load_scene(path, overrides=None) -> Scene:
@@ -177,6 +178,37 @@ def eig(model, speed, *, solver=None, modes=None, target=None, target_order=None
     """Eigenvalues at one speed (rad/s). solver: "auto" | "dense" | "sparse"; modes: 0 = all (dense)."""
     system, o = _options(model, solver, modes, target, target_order)
     return EigResult(_core.eig(system, float(speed), method=method, lanczos=int(lanczos), **o), float(speed))
+
+
+class ModeShapes(_Result):
+    """Mode shapes at one speed: shapes[:, j] is mode numbers[j]'s eigenvector scaled to 1 at its
+    reference entry (the largest in metres); orbits: one entry per mode and whirl pair (semi-axes
+    major/minor in the pair's unit, angle and phase in rad, whirl), as `gyrokit modes` prints."""
+
+    def __init__(self, d, speed, dof_names):
+        self.speed = speed
+        self.eigenvalues = d["eigenvalues"]
+        self.frequencies = self.eigenvalues.imag
+        self.shapes = d["shapes"]
+        self.numbers = list(d["numbers"])
+        self.reference = [dof_names[i] for i in d["reference"]]
+        self.whirl = list(d["whirl"])
+        self.dof_names = list(dof_names)
+        self.orbits = {k: (list(v) if k in ("pair", "unit", "whirl") else _np.asarray(v))
+                       for k, v in d["orbits"].items()}
+        self.notes = list(d["notes"])
+
+    def to_pandas(self):
+        """One row per mode and whirl pair: the orbit table."""
+        return self._frame(self.orbits)
+
+
+def modes(model, speed, *, solver=None, modes=None, target=None, target_order=None, method="qz",
+          lanczos=0) -> ModeShapes:
+    """Mode shapes at one speed (rad/s): the `modes` lowest (None: the scene's, 0: all)."""
+    system, o = _options(model, solver, modes, target, target_order)
+    return ModeShapes(_core.mode_shapes(system, float(speed), method=method, lanczos=int(lanczos), **o),
+                      float(speed), system.dof_names)
 
 
 def campbell(model, speeds=None, *, solver=None, modes=None, target=None, target_order=None, method="qz",

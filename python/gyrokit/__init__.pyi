@@ -53,6 +53,19 @@ class Scene:
 
 Model = Union[System, Scene]
 
+class ModeShapes:
+    speed: float
+    eigenvalues: npt.NDArray[np.complex128]
+    frequencies: npt.NDArray[np.float64]
+    shapes: npt.NDArray[np.complex128]
+    numbers: list[int]
+    reference: list[str]
+    whirl: list[str]
+    dof_names: list[str]
+    orbits: dict[str, Any]
+    notes: list[str]
+    def to_pandas(self) -> Any: ...
+
 class EigResult:
     speed: float
     eigenvalues: npt.NDArray[np.complex128]
@@ -98,6 +111,9 @@ class StabilityChanges:
     def to_pandas(self) -> Any: ...
 
 def load_scene(path: Union[str, PathLike[str]], overrides: Optional[Mapping[str, float]] = ...) -> Scene: ...
+def modes(model: Model, speed: float, *, solver: Optional[str] = ..., modes: Optional[int] = ...,
+          target: Optional[float] = ..., target_order: Optional[float] = ..., method: str = ...,
+          lanczos: int = ...) -> ModeShapes: ...
 def eig(model: Model, speed: float, *, solver: Optional[str] = ..., modes: Optional[int] = ...,
         target: Optional[float] = ..., target_order: Optional[float] = ..., method: str = ...,
         lanczos: int = ...) -> EigResult: ...

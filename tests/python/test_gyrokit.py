@@ -341,3 +341,25 @@ def test_exported_rotor_rigid_body_modes_apart_and_eigenvalues_as_the_cli():
     assert set(ev.stability) == {"neutral"}   # undamped: never unstable by rounding
     cd = gk.campbell(s, np.linspace(0, 1000, 21), modes=6)
     assert cd.rigid_body == 4 and len(cd.branches) >= 6
+
+
+def test_mode_shapes_match_the_cli_and_the_eigenvectors():
+    s = gk.load_scene(scene("fe_rotor.toml"))
+    ms = gk.modes(s, 100.0, modes=4)
+    assert ms.numbers == [1, 2, 3, 4]
+    rows = cli("modes", scene("fe_rotor.toml"), "--speed", "100", "--modes", "4")
+    assert len(rows) == len(ms.orbits["pair"])
+    for k, r in enumerate(rows):
+        assert ms.orbits["pair"][k] == r["pair"]
+        assert ms.orbits["whirl"][k] == r["whirl"]
+        assert ms.orbits["major"][k] == pytest.approx(float(r["major"]), rel=RTOL, abs=1e-14)
+        assert np.degrees(ms.orbits["angle"][k]) == pytest.approx(float(r["angle_deg"]), rel=RTOL, abs=1e-9)
+    # Each shape is the eigenvector eig returns, scaled to 1 at its reference DOF (MAC = 1).
+    ev = gk.eig(s, 100.0)
+    for j, lam in enumerate(ms.eigenvalues):
+        x, v = ms.shapes[:, j], ev.vectors[:, j]
+        assert x[ms.dof_names.index(ms.reference[j])] == pytest.approx(1.0, abs=1e-14)
+        assert lam == pytest.approx(ev.eigenvalues[j], rel=1e-12)
+        assert abs(np.vdot(x, v)) ** 2 / (np.vdot(x, x).real * np.vdot(v, v).real) == pytest.approx(1.0, abs=1e-12)
+    frame = ms.to_pandas()
+    assert list(frame.columns)[:3] == ["mode", "pair", "unit"]
