@@ -33,5 +33,6 @@
 #include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/fluid_rotor.hpp>
 #include <gyrokit/models/gyrostat.hpp>
+#include <gyrokit/models/materials.hpp>
 #include <gyrokit/screening/screening.hpp>
 #include <gyrokit/screening/sweep.hpp>

@@ -3,6 +3,7 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/bearing_csv.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
+#include <gyrokit/models/materials.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -50,8 +51,8 @@ int node_at(const TomlKeys& e, const std::vector<double>& z) {
 }  // namespace
 
 GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRotor* rotor) {
-    k.only({"type", "shaft", "disk", "bearing", "support", "E", "poisson", "density", "shear_deformation",
-            "rotary_inertia"});
+    k.only({"type", "shaft", "disk", "bearing", "support", "E", "poisson", "density", "material", "materials",
+            "shear_deformation", "rotary_inertia"});
     FeRotor r;
     const auto flag = [&](const char* key) {
         const toml::node* n = k.table().get(key);
@@ -61,15 +62,44 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
     };
     r.shear_deformation = flag("shear_deformation");
     r.rotary_inertia = flag("rotary_inertia");
-    const std::optional<double> E0 = k.has("E") ? std::optional(k.number("E", std::nullopt, 0, true, "Pa")) : std::nullopt;
-    const std::optional<double> rho0 =
-        k.has("density") ? std::optional(k.number("density", std::nullopt, 0, true, "kg/m^3")) : std::nullopt;
-    const double nu0 = k.has("poisson") ? k.number("poisson", std::nullopt, -1, true, "1") : 0.3;
+    // The scene's own materials, then the model's material: E, poisson and density
+    // where the keys do not give them.
+    std::vector<Material> own;
+    for_each_entry(k, "materials", false, [&](const TomlKeys& e) {
+        e.only({"name", "E", "poisson", "density"});
+        Material m;
+        m.name = e.choice("name", "", {});
+        if (m.name.empty()) throw InputError(e.where("name") + " is missing; required: the material's name");
+        m.youngs_modulus = e.number("E", std::nullopt, 0, true, "Pa");
+        m.poisson_ratio = e.number("poisson", 0.3, -1, true, "1");
+        if (m.poisson_ratio > 0.5)
+            throw InputError(fmt::format("{} = {}: out of range; allowed: -1 < poisson <= 0.5", e.where("poisson"),
+                                         m.poisson_ratio));
+        m.density = e.number("density", std::nullopt, 0, true, "kg/m^3");
+        m.source = "scene";
+        own.push_back(m);
+    });
+    const auto material_of = [&](const TomlKeys& e) -> std::optional<Material> {
+        if (!e.has("material")) return std::nullopt;
+        return find_material(e.choice("material", "", {}), own, e.where("material"));
+    };
+    const std::optional<Material> mat0 = material_of(k);
+    const std::optional<double> E0 = k.has("E") ? std::optional(k.number("E", std::nullopt, 0, true, "Pa"))
+                                     : mat0     ? std::optional(mat0->youngs_modulus)
+                                                : std::nullopt;
+    const std::optional<double> rho0 = k.has("density")
+                                           ? std::optional(k.number("density", std::nullopt, 0, true, "kg/m^3"))
+                                       : mat0 ? std::optional(mat0->density)
+                                              : std::nullopt;
+    const double nu0 = k.has("poisson") ? k.number("poisson", std::nullopt, -1, true, "1")
+                       : mat0           ? mat0->poisson_ratio
+                                        : 0.3;
     if (nu0 > 0.5) throw InputError(fmt::format("{} = {}: out of range; allowed: -1 < poisson <= 0.5", k.where("poisson"), nu0));
 
     std::vector<double> z{0.0};
     for_each_entry(k, "shaft", true, [&](const TomlKeys& e) {
-        e.only({"length", "elements", "outer_diameter", "inner_diameter", "E", "poisson", "density"});
+        e.only({"length", "elements", "outer_diameter", "inner_diameter", "E", "poisson", "density", "material"});
+        const std::optional<Material> mat = material_of(e);
         FeShaftElement el;
         const double length = e.number("length", std::nullopt, 0, true, "m");
         const int count = static_cast<int>(e.integer("elements", 1, 1, 10000000));
@@ -79,9 +109,11 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         if (el.inner_diameter >= el.outer_diameter)
             throw InputError(fmt::format("{} = {} is not below outer_diameter = {}; allowed: 0 <= inner < outer",
                                          e.where("inner_diameter"), el.inner_diameter, el.outer_diameter));
-        el.youngs_modulus = e.number("E", E0, 0, true, "Pa");
-        el.density = e.number("density", rho0, 0, true, "kg/m^3");
-        el.poisson_ratio = e.has("poisson") ? e.number("poisson", std::nullopt, -1, true, "1") : nu0;
+        el.youngs_modulus = e.number("E", mat ? std::optional(mat->youngs_modulus) : E0, 0, true, "Pa");
+        el.density = e.number("density", mat ? std::optional(mat->density) : rho0, 0, true, "kg/m^3");
+        el.poisson_ratio = e.has("poisson") ? e.number("poisson", std::nullopt, -1, true, "1")
+                           : mat            ? mat->poisson_ratio
+                                            : nu0;
         if (el.poisson_ratio > 0.5)
             throw InputError(fmt::format("{} = {}: out of range; allowed: -1 < poisson <= 0.5", e.where("poisson"),
                                          el.poisson_ratio));
@@ -92,12 +124,37 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
     });
 
     for_each_entry(k, "disk", false, [&](const TomlKeys& e) {
-        e.only({"z", "mass", "Id", "Ip", "unbalance", "phase"});
+        e.only({"z", "mass", "Id", "Ip", "unbalance", "phase", "outer_diameter", "inner_diameter", "width",
+                "material", "density"});
         FeDisk d;
         d.node = node_at(e, z);
-        d.mass = e.number("mass", std::nullopt, 0, false, "kg");
-        d.diametral_inertia = e.number("Id", 0.0, 0, false, "kg m^2");
-        d.polar_inertia = e.number("Ip", 0.0, 0, false, "kg m^2");
+        if (e.has("outer_diameter")) {
+            // From its geometry: a hollow cylinder of the disk's (or the model's) material.
+            for (const char* key : {"mass", "Id", "Ip"})
+                if (e.has(key))
+                    throw InputError(e.where(key) + " is given together with outer_diameter; allowed: either mass, "
+                                                    "Id, Ip or the geometry outer_diameter, inner_diameter, width");
+            const double Do = e.number("outer_diameter", std::nullopt, 0, true, "m");
+            const double Di = e.number("inner_diameter", 0.0, 0, false, "m");
+            if (Di >= Do)
+                throw InputError(fmt::format("{} = {} is not below outer_diameter = {}; allowed: 0 <= inner < outer",
+                                             e.where("inner_diameter"), Di, Do));
+            const double w = e.number("width", std::nullopt, 0, true, "m");
+            const std::optional<Material> mat = material_of(e);
+            const double rho = e.number("density", mat ? std::optional(mat->density) : rho0, 0, true, "kg/m^3");
+            const DiskInertia di = disk_inertia(Do, Di, w, rho);
+            d.mass = di.mass;
+            d.diametral_inertia = di.diametral_inertia;
+            d.polar_inertia = di.polar_inertia;
+        } else {
+            for (const char* key : {"inner_diameter", "width", "material", "density"})
+                if (e.has(key))
+                    throw InputError(e.where(key) + " needs outer_diameter; allowed: the geometry outer_diameter, "
+                                                    "inner_diameter, width (and material or density), or mass, Id, Ip");
+            d.mass = e.number("mass", std::nullopt, 0, false, "kg");
+            d.diametral_inertia = e.number("Id", 0.0, 0, false, "kg m^2");
+            d.polar_inertia = e.number("Ip", 0.0, 0, false, "kg m^2");
+        }
         d.unbalance = e.number("unbalance", 0.0, 0, false, "kg m");
         d.unbalance_phase = e.has("phase") ? e.any_number("phase", "deg") * std::acos(-1.0) / 180.0 : 0.0;
         r.disks.push_back(d);

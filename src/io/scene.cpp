@@ -182,10 +182,18 @@ Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
 
     if (const toml::table* sp = root.get_as<toml::table>("speeds")) {
         TomlKeys k(path, "speeds", *sp);
-        k.only({"from", "to", "count"});
+        k.only({"from", "to", "count", "units"});
+        // from and to in `units` (rad/s, Hz or rpm, any case); rad/s inside.
+        SpeedUnit unit;
+        const std::string unit_name = k.choice("units", "rad/s", {});
+        try {
+            unit = SpeedUnit::parse(unit_name);
+        } catch (const InputError&) {
+            throw InputError(k.where("units") + " = '" + unit_name + "': allowed: rad/s, Hz, rpm");
+        }
         SpeedRange r;
-        r.from = k.number("from", std::nullopt, 0, false, "rad/s");
-        r.to = k.number("to", std::nullopt, 0, false, "rad/s");
+        r.from = k.number("from", std::nullopt, 0, false, unit.name.c_str()) / unit.factor;
+        r.to = k.number("to", std::nullopt, 0, false, unit.name.c_str()) / unit.factor;
         r.count = static_cast<int>(k.integer("count", 201, 1, 10000000));
         r.validate(path + ": [speeds]");
         sc.speeds = r;
