@@ -267,10 +267,23 @@ TEST_CASE("hostile size lines are refused before any arithmetic on the sizes", "
                                             std::string("%%MatrixMarket matrix coordinate real ") + sym +
                                                 "\n4000000000 4000000000 1\n2 1 1.0\n");
         CHECK(input_error([&] { gyrokit::read_matrix_market_sparse(path); }).find("line 2: size 4000000000x4000000000 is too "
-                                                                         "large; allowed at most 2147483647") !=
+                                                                         "large; allowed at most 20000000") !=
               std::string::npos);
     }
     const std::string path = write_file("huge_cols.mtx", "%%MatrixMarket matrix coordinate real general\n"
                                                          "1 9223372036854775807 1\n1 1 1.0\n");
     CHECK(input_error([&] { gyrokit::read_matrix_market_sparse(path); }).find("is too large") != std::string::npos);
+    // Found by fuzz_matrix_market: a size line with no entries made the sparse result
+    // allocate index arrays for 506 million rows (2 GB) before anything else.
+    const std::string empty = write_file("tall_empty.mtx", "%%MatrixMarket matrix coordinate real general\n"
+                                                           "0000000000000000506234049 42 0\n");
+    CHECK(input_error([&] { gyrokit::read_matrix_market_sparse(empty); }).find("size 506234049x42 is too large") !=
+          std::string::npos);
+    CHECK(input_error([&] { gyrokit::read_matrix_market_vector(empty); }).find("is too large") != std::string::npos);
+    // The dense result: at most 25 million cells, whatever the entry count says.
+    const std::string wide = write_file("dense_wide.mtx", "%%MatrixMarket matrix coordinate real general\n"
+                                                          "6000 6000 1\n1 1 1.0\n");
+    CHECK(input_error([&] { gyrokit::read_matrix_market(wide); }).find("too large for a dense matrix") !=
+          std::string::npos);
+    CHECK(gyrokit::read_matrix_market_sparse(wide).nonZeros() == 1);
 }

@@ -23,8 +23,13 @@ namespace gyrokit {
 namespace {
 
 constexpr std::string_view kBanner = "%%MatrixMarket matrix <format> <field> <symmetry>";
-// Guards the dense allocation (and rows*cols overflow) against absurd size lines.
-constexpr long long kMaxCells = 1LL << 31;
+// The size line alone decides allocations: the sparse result's index arrays
+// grow with rows + columns, a dense result with rows * columns, however few
+// entries follow. Bounds far beyond any model the solvers can take (the largest
+// tested has 10^5 DOFs; the dense solver stops at 3,000), so a hostile header
+// costs at most a few hundred megabytes before it is refused.
+constexpr long long kMaxSide = 20'000'000;
+constexpr long long kMaxCells = 25'000'000;
 
 enum class Symmetry { general, symmetric, skew };
 
@@ -204,13 +209,13 @@ Entries<Scalar> read(const std::string& path, bool vector, bool dense) {
     const long long rows = r.integer(t[0], "rows"), cols = r.integer(t[1], "columns");
     if (rows < 1) r.fail("rows {} is not positive; allowed 1 or more", rows);
     if (cols < 1) r.fail("columns {} is not positive; allowed 1 or more", cols);
-    // Before any arithmetic on the sizes: with both at most INT_MAX (Eigen's index),
-    // rows * cols and the cell keys j * rows + i stay below 2^62.
-    constexpr long long kMaxSide = std::numeric_limits<int>::max();
+    // Before any arithmetic on the sizes: with both at most kMaxSide (below INT_MAX,
+    // Eigen's index), rows * cols and the cell keys j * rows + i stay below 2^49.
     if (rows > kMaxSide || cols > kMaxSide)
         r.fail("size {}x{} is too large; allowed at most {} rows and columns", rows, cols, kMaxSide);
     if ((dense || !h.coordinate) && rows > kMaxCells / cols)
-        r.fail("size {}x{} is too large for a dense matrix; allowed at most {} entries", rows, cols, kMaxCells);
+        r.fail("size {}x{} is too large for a dense matrix; allowed at most {} entries (coordinate files are "
+               "read sparse at any size up to {} rows)", rows, cols, kMaxCells, kMaxSide);
     if (h.symmetry != Symmetry::general && rows != cols)
         r.fail("a {} matrix must be square, got {}x{}; allowed rows equal to columns", name(h.symmetry), rows, cols);
     if (vector && rows != 1 && cols != 1) r.fail("size {}x{} is not a vector; allowed n x 1 or 1 x n", rows, cols);
