@@ -48,7 +48,7 @@ std::string option_hint(const CLI::App& app, int argc, char** argv) {
             for (const auto& name : opt->get_lnames()) flags.push_back("--" + name);
         for (int i = 2; i < argc; ++i) {
             std::string arg = argv[i];
-            if (arg.rfind("--", 0) != 0) continue;
+            if (arg.rfind("--", 0) != 0 || arg == "--") continue;
             arg = arg.substr(0, arg.find('='));
             if (std::find(flags.begin(), flags.end(), arg) != flags.end()) continue;
             const std::string near = nearest_name(arg, flags);

@@ -107,4 +107,33 @@ done
 printf 'scene = "%s"\n[operating]\nfrom = 0\nto = 0\n[criteria.stability]\n' "$dir/ok.toml" > "$dir/zero_sweep.toml"
 expect "[criteria.stability] up_to is missing" screen "$dir/zero_sweep.toml"
 cli=$real_cli
+
+# Response outputs by node or position: a node a support holds has no translation to report.
+cat > "$dir/pinned.toml" <<'END'
+[model]
+type = "fe_rotor"
+material = "steel"
+[[model.shaft]]
+length = 1.0
+elements = 4
+outer_diameter = 0.05
+[[model.disk]]
+z = 0.5
+outer_diameter = 0.2
+width = 0.03
+unbalance = 1e-4
+[[model.support]]
+z = 0.0
+[[model.support]]
+z = 1.0
+[speeds]
+from = 0
+to = 1000
+count = 11
+END
+expect "node 0 has no free translation" response "$dir/pinned.toml" --nodes 0
+expect "--at 0: node 0 has no free translation" response "$dir/pinned.toml" --at 0
+expect "--at 1.5: axial position 1.5 m is off the shaft; allowed: [0, 1] m" response "$dir/pinned.toml" --at 1.5
+"$cli" response "$dir/pinned.toml" --at 0.5 --format csv | cut -d, -f2 | sort -u | tr '\n' ' ' | grep -qx "dof x2 y2 " ||
+    { echo "FAIL: --at 0.5 gives x2, y2"; fail=1; }
 exit $fail

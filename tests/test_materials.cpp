@@ -126,8 +126,21 @@ TEST_CASE("materials, disk geometry and speed units: bad input names the key, va
           std::string::npos);
     CHECK(message(rotor("material = \"steel\"", disk, "[speeds]\nfrom = 0\nto = 10\ncount = 3\nunits = \"deg/s\"")) ==
           "bad.toml: [speeds] units = 'deg/s': allowed: rad/s, Hz, rpm");
+    const std::string twice = "material = \"a\"\n[[model.materials]]\nname = \"a\"\nE = 1e11\ndensity = 5000\n"
+                              "[[model.materials]]\nname = \"a\"\nE = 2e11\ndensity = 6000";
+    CHECK(message(rotor(twice, disk)) == "bad.toml: [model.materials[2]] name = 'a' names a material twice; allowed: "
+                                         "each name once");
+    // A range in rpm is checked in rpm.
+    CHECK(message(rotor("material = \"steel\"", disk, "[speeds]\nfrom = 3000\nto = 1000\ncount = 3\nunits = \"rpm\""))
+              .find("FROM = 3000 is greater than TO = 1000") != std::string::npos);
     // A disk off the shaft (the rotor is 1.2 m long).
     std::string off = rotor("material = \"steel\"", disk);
     off.replace(off.find("z = 0.6\n"), 8, "z = 1.9\n");
     CHECK(message(off).find("[model.disk[1]] z = 1.9 is not a node of the mesh") != std::string::npos);
+    // Hostile sizes: sections whose elements add up past the limit are refused before any is stored.
+    const std::string big = "[model]\ntype = \"fe_rotor\"\nmaterial = \"steel\"\n"
+                            "[[model.shaft]]\nlength = 1\nelements = 2\nouter_diameter = 0.05\n"
+                            "[[model.shaft]]\nlength = 1\nelements = 4999998\nouter_diameter = 0.05\n";
+    CHECK(message(big) == "bad.toml: [model.shaft[2]] elements = 4999998 makes 5000000 elements in all; allowed: at "
+                          "most 4999999 (20,000,000 DOFs)");
 }

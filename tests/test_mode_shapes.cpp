@@ -146,6 +146,25 @@ TEST_CASE("pinned-pinned beam: shapes along the axis are sin(k pi z / L), circul
         }
 }
 
+TEST_CASE("a pure tilt mode (s = 0: translation and tilt uncoupled) is scaled by its tilt, not by rounding in x",
+          "[modes]") {
+    GyrostatParameters p = test::centrifuge();
+    p.s = 0.0;
+    const GyroscopicSystem sys = make_system(p);
+    int tilt_modes = 0;
+    for (const ModeShape& m : mode_shapes(sys, 50.0)) {
+        CHECK(m.shape.allFinite());
+        CHECK(m.shape.cwiseAbs().maxCoeff() <= 1e3);
+        const double x = std::max(std::abs(m.mode.right(2)), std::abs(m.mode.right(3)));
+        if (x < 1e-10 * m.mode.right.cwiseAbs().maxCoeff()) {
+            ++tilt_modes;
+            CHECK(sys.dof_units[static_cast<size_t>(m.reference)] == "rad");
+            CHECK(m.shape.cwiseAbs().maxCoeff() == Approx(1.0).epsilon(1e-14));
+        }
+    }
+    CHECK(tilt_modes >= 2);
+}
+
 TEST_CASE("mode shapes of a model without units or nodes: every DOF counts, no axis", "[modes]") {
     GyroscopicSystem sys = make_system(test::centrifuge());
     sys.dof_units.clear();

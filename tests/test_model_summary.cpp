@@ -27,6 +27,7 @@ TEST_CASE("model summary of the FE rotor: translating mass = shaft + disks, rigi
     const double shaft = 7810 * M_PI * 0.05 * 0.05 / 4 * 1.5;
     CHECK(std::get<double>(value(t, "shaft_mass")) == Approx(shaft).epsilon(1e-14));
     CHECK(std::get<double>(value(t, "translating_mass")) == Approx(shaft + 2 * 33.657).epsilon(1e-13));
+    CHECK(std::get<double>(value(t, "total_mass")) == Approx(shaft + 2 * 33.657).epsilon(1e-14));
     CHECK(std::get<long long>(value(t, "dofs")) == 100);
     CHECK(std::get<long long>(value(t, "nodes")) == 25);
     CHECK(std::get<double>(value(t, "length")) == Approx(1.5).epsilon(1e-15));

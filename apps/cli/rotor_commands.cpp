@@ -79,7 +79,13 @@ std::vector<int> parse_dofs(const std::string& text, const std::vector<std::stri
 std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys) {
     std::vector<int> out = parse_dofs(o.dofs, sys.dof_names);
     const auto add_node = [&](int node) {
-        for (const int k : sys.node_dofs(node, sys.dof_units.empty() ? "" : "m"))
+        const std::vector<int> dofs = sys.node_dofs(node, sys.dof_units.empty() ? "" : "m");
+        // Nothing would mean every DOF: a node held by a support is an error, not "all".
+        if (dofs.empty())
+            throw InputError(fmt::format("node {} has no free translation (a support holds it); allowed: a node "
+                                         "with free x or y",
+                                         node));
+        for (const int k : dofs)
             if (std::find(out.begin(), out.end(), k) == out.end()) out.push_back(k);
     };
     for (const std::string& item : split_list(o.nodes)) {
@@ -186,7 +192,8 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     add_solver_options(modes, o->common);
     modes->add_option("--speed", o->speed, "spin speed (in --units); default 0")->default_str("0");
     modes->add_option("--modes", o->modes, "number of modes (the lowest, or the sparse window; default: the "
-                                           "scene's, else all dense / 6 sparse)");
+                                           "scene's, else all dense / 6 sparse)")
+        ->check(CLI::Range(0, 100000000));
     modes->add_option("--mode", o->select, "only these modes, by number from 1: K or K,L,...");
     modes->add_option("--per", o->per, "node: one row per whirl pair (orbit); dof: one row per DOF")
         ->capture_default_str();
@@ -205,7 +212,9 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
             std::vector<ModeShape> chosen;
             for (const int k : parse_harmonics(o->select, {}, "--mode")) {
                 if (k > static_cast<int>(shapes.size()))
-                    throw InputError(fmt::format("--mode {}: allowed: 1 to {} (the modes computed)", k, shapes.size()));
+                    throw InputError(shapes.empty() ? fmt::format("--mode {}: no mode was computed at this speed", k)
+                                                    : fmt::format("--mode {}: allowed: 1 to {} (the modes computed)",
+                                                                  k, shapes.size()));
                 chosen.push_back(shapes[static_cast<size_t>(k - 1)]);
             }
             shapes = std::move(chosen);

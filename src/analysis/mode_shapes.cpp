@@ -38,13 +38,19 @@ ModeShape mode_shape(const Mode& m, const GyroscopicSystem& sys) {
                     std::to_string(n) + " DOFs");
     ModeShape s;
     s.mode = m;
-    // Reference: the largest entry among the DOFs in metres, else among all.
-    const bool by_unit = static_cast<int>(sys.dof_units.size()) == n &&
-                         std::find(sys.dof_units.begin(), sys.dof_units.end(), "m") != sys.dof_units.end();
+    // Reference: the largest entry among the DOFs in metres, unless those hold only
+    // rounding (a pure tilt mode), else the largest of all.
+    const double top = m.right.size() ? m.right.cwiseAbs().maxCoeff() : 0.0;
+    const auto largest_of = [&](bool metres_only) {
+        double largest = -1.0;
+        for (int i = 0; i < n; ++i)
+            if ((!metres_only || sys.dof_units[static_cast<size_t>(i)] == "m") && std::abs(m.right(i)) > largest)
+                largest = std::abs(m.right(i)), s.reference = i;
+        return largest;
+    };
     double largest = -1.0;
-    for (int i = 0; i < n; ++i)
-        if ((!by_unit || sys.dof_units[static_cast<size_t>(i)] == "m") && std::abs(m.right(i)) > largest)
-            largest = std::abs(m.right(i)), s.reference = i;
+    if (static_cast<int>(sys.dof_units.size()) == n) largest = largest_of(true);
+    if (largest < kWhirlTolerance * top) largest = largest_of(false);
     s.shape = largest > 0.0 ? Eigen::VectorXcd(m.right / m.right(s.reference)) : m.right;
     const bool has_nodes = static_cast<int>(sys.node_of_dof.size()) == n;
     for (const auto& [u, v] : sys.whirl_pairs) {

@@ -82,7 +82,8 @@ double find_smooth_minimum(const std::function<double(double)>& f, double a, dou
         }
         x = gsl_min_fminimizer_x_minimum(s);
         const double lo = gsl_min_fminimizer_x_lower(s), hi = gsl_min_fminimizer_x_upper(s);
-        if (hi - lo <= rel_tol * std::max(1.0, std::fabs(x))) break;
+        // Brent never steps closer than sqrt(eps) |x|: a tighter bracket is never reached.
+        if (hi - lo <= std::max(rel_tol, 4.0 * std::sqrt(2.2e-16)) * std::max(1.0, std::fabs(x))) break;
     }
     gsl_min_fminimizer_free(s);
     return status == GSL_SUCCESS ? x : find_minimum(f, a, b, rel_tol);

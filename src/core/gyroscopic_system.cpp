@@ -122,7 +122,8 @@ std::vector<int> GyroscopicSystem::node_dofs(int node, const std::string& unit) 
                                                       static_cast<int>(node_z.size()) - 1));
     std::vector<int> out;
     for (int i = 0; i < static_cast<int>(node_of_dof.size()); ++i)
-        if (node_of_dof[static_cast<size_t>(i)] == node && (unit.empty() || dof_units[static_cast<size_t>(i)] == unit))
+        if (node_of_dof[static_cast<size_t>(i)] == node &&
+            (unit.empty() || (!dof_units.empty() && dof_units[static_cast<size_t>(i)] == unit)))
             out.push_back(i);
     return out;
 }

@@ -77,6 +77,9 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
                                          m.poisson_ratio));
         m.density = e.number("density", std::nullopt, 0, true, "kg/m^3");
         m.source = "scene";
+        for (const Material& o : own)
+            if (o.name == m.name)
+                throw InputError(e.where("name") + " = '" + m.name + "' names a material twice; allowed: each name once");
         own.push_back(m);
     });
     const auto material_of = [&](const TomlKeys& e) -> std::optional<Material> {
@@ -102,7 +105,11 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         const std::optional<Material> mat = material_of(e);
         FeShaftElement el;
         const double length = e.number("length", std::nullopt, 0, true, "m");
-        const int count = static_cast<int>(e.integer("elements", 1, 1, 10000000));
+        const int count = static_cast<int>(e.integer("elements", 1, 1, kMaxFeElements));
+        // The sum over the sections, before any element is stored.
+        if (r.elements.size() + static_cast<std::size_t>(count) > static_cast<std::size_t>(kMaxFeElements))
+            throw InputError(fmt::format("{} = {} makes {} elements in all; allowed: at most {} (20,000,000 DOFs)",
+                                         e.where("elements"), count, r.elements.size() + count, kMaxFeElements));
         el.length = length / count;
         el.outer_diameter = e.number("outer_diameter", std::nullopt, 0, true, "m");
         el.inner_diameter = e.number("inner_diameter", 0.0, 0, false, "m");

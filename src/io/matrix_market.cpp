@@ -241,7 +241,8 @@ Entries<Scalar> read(const std::string& path, bool vector, bool dense) {
     Entries<Scalar> A;
     A.rows = rows;
     A.cols = cols;
-    A.values.reserve(static_cast<std::size_t>(std::min(expected, 1LL << 24)) * (h.symmetry == Symmetry::general ? 1 : 2));
+    // A small head start only: the entry count is the file's claim, not yet its content.
+    A.values.reserve(static_cast<std::size_t>(std::min(expected, 1LL << 16)) * (h.symmetry == Symmetry::general ? 1 : 2));
     // Coordinate files: the line that set each cell, to report duplicates with both lines.
     std::unordered_map<long long, std::size_t> set_on_line;
     // Array files: the next (0-based) position, column-major; skew starts below the diagonal.

@@ -560,7 +560,8 @@ Table model_summary(const Scene& sc) {
         add("length", *std::max_element(s.node_z.begin(), s.node_z.end()) -
                           *std::min_element(s.node_z.begin(), s.node_z.end()), "m");
     }
-    // Mass that a unit translation along u of every translational pair moves: r^T M r.
+    // Mass that a unit translation along u of every free translational pair moves: r^T M r
+    // (nodes a support holds are not in the system, so their share is not either).
     if (!s.dof_units.empty()) {
         Eigen::VectorXd r = Eigen::VectorXd::Zero(s.size());
         for (const auto& [u, v] : s.whirl_pairs)
@@ -594,6 +595,9 @@ Table model_summary(const Scene& sc) {
             dmax = std::max(dmax, e.outer_diameter);
         }
         add("shaft_mass", shaft, "kg");
+        double disks = 0.0;
+        for (const auto& d : r.disks) disks += d.mass;
+        add("total_mass", shaft + disks, "kg");
         add("shaft_outer_diameter_min", dmin, "m");
         add("shaft_outer_diameter_max", dmax, "m");
         add("shear_deformation", std::string(r.shear_deformation ? "yes" : "no"));

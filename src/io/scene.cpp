@@ -192,10 +192,12 @@ Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
             throw InputError(k.where("units") + " = '" + unit_name + "': allowed: rad/s, Hz, rpm");
         }
         SpeedRange r;
-        r.from = k.number("from", std::nullopt, 0, false, unit.name.c_str()) / unit.factor;
-        r.to = k.number("to", std::nullopt, 0, false, unit.name.c_str()) / unit.factor;
+        r.from = k.number("from", std::nullopt, 0, false, unit.name.c_str());
+        r.to = k.number("to", std::nullopt, 0, false, unit.name.c_str());
         r.count = static_cast<int>(k.integer("count", 201, 1, 10000000));
-        r.validate(path + ": [speeds]");
+        r.validate(path + ": [speeds]");   // in the scene's unit, as the user wrote them
+        r.from /= unit.factor;
+        r.to /= unit.factor;
         sc.speeds = r;
     } else if (root.contains("speeds")) {
         throw InputError(path + ": speeds must be a table [speeds] with from, to, count");

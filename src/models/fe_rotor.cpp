@@ -122,6 +122,9 @@ FeElementMatrices fe_shaft_element_matrices(const FeShaftElement& e, bool shear_
 void FeRotor::validate() const {
     if (elements.empty())
         throw InputError("fe rotor: elements: the shaft has no elements; allowed: at least one element");
+    if (elements.size() > static_cast<std::size_t>(kMaxFeElements))
+        throw InputError(fmt::format("fe rotor: elements: {} in all; allowed: at most {} (20,000,000 DOFs)",
+                                     elements.size(), kMaxFeElements));
     for (std::size_t e = 0; e < elements.size(); ++e) {
         const FeShaftElement& s = elements[e];
         const std::string w = where("element", e);

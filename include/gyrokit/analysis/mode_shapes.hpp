@@ -42,7 +42,7 @@ struct ModeShape {
     Mode mode;                 // eigenvalue, error bound, whirl of the whole mode
     // The right eigenvector scaled so that its reference entry is 1: the entry of
     // largest modulus among the DOFs in metres (all DOFs if the model names no
-    // units or none is in metres).
+    // units, or if its metre entries stay below kWhirlTolerance of the largest).
     Eigen::VectorXcd shape;
     int reference = 0;         // index of that entry
     std::vector<PairOrbit> orbits;   // one per whirl pair, by node then pair order

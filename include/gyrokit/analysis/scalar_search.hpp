@@ -18,8 +18,9 @@ double find_minimum(const std::function<double(double)>& f, double a, double b, 
                     const std::function<bool(double, double)>& give_up = {});
 
 // Minimizer of a smooth f on [a, b] from a point m inside with f(m) < f(a) and
-// f(m) < f(b), by GSL's Brent minimizer (golden section with parabolic steps:
-// a dozen evaluations where golden section needs fifty), to rel_tol * |x|.
+// f(m) < f(b), by GSL's Brent minimizer (golden section with parabolic steps),
+// to max(rel_tol, 4 sqrt(eps)) * max(1, |x|): Brent's steps stop at sqrt(eps) |x|,
+// where a smooth minimum's value is already exact to rounding.
 // Without such an m (equal values), or if GSL fails, golden section.
 double find_smooth_minimum(const std::function<double(double)>& f, double a, double m, double b,
                            double rel_tol = 1e-12);

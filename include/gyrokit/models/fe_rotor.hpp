@@ -84,6 +84,10 @@ struct FeRotorMatrices {
     GyroscopicSystem to_system() const;
 };
 
+// At most this many elements in all: 20,000,000 DOFs (the largest size a Matrix
+// Market file may declare), far beyond the solvers' reach, refused before assembly.
+constexpr int kMaxFeElements = 4'999'999;
+
 class FeRotor {
 public:
     std::vector<FeShaftElement> elements;   // element e joins node e and node e + 1
