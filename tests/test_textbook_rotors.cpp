@@ -93,6 +93,40 @@ TEST_CASE("Jeffcott rotor: the largest response is the refined peak, not the lar
     CHECK(end[0].amplitude == Approx(std::abs(low.Z(6, 0))).epsilon(1e-15));
 }
 
+TEST_CASE("Jeffcott rotor: a peak narrower than the search resolves is unbounded, not a number",
+          "[textbook][response]") {
+    // Half-power half-width zeta w_n against the search's 10 resolutions, 40 sqrt(eps) w_n = 6.0e-7 w_n.
+    const double m = 3.0, k = 1.2e4, eps = 2e-4, wn = std::sqrt(k / m);
+    const auto grid = SpeedRange{0.0, 130.0, 14}.points();   // misses w_n = 63.2456 by 3.2
+    for (const double zeta : {0.0, 1e-12, 1e-7}) {
+        CAPTURE(zeta);
+        const GyroscopicSystem s = jeffcott(m, k, 2 * zeta * std::sqrt(k * m), 0.0, eps);
+        const ResponseCurve rc = unbalance_response(s, grid);
+        const auto ex = response_extrema(s, rc);
+        REQUIRE(ex.size() == 2);
+        for (const auto& e : ex) {
+            CHECK(e.peak);
+            CHECK(!e.bounded);
+            CHECK(std::isinf(e.amplitude));
+            CHECK(e.speed == Approx(wn).epsilon(1e-6));
+        }
+        const auto maxima = response_maxima(rc, ex);
+        CHECK((!maxima[0].bounded && std::isinf(maxima[0].amplitude)));
+    }
+    for (const double zeta : {2e-6, 1e-5, 1e-3}) {
+        CAPTURE(zeta);
+        const GyroscopicSystem s = jeffcott(m, k, 2 * zeta * std::sqrt(k * m), 0.0, eps);
+        const ResponseCurve rc = unbalance_response(s, grid);
+        const auto maxima = response_maxima(rc, response_extrema(s, rc));
+        // Brent's speed is within 6e-8 w_n of the peak: the height within (1 + (6e-8/zeta)^2 / 2).
+        const double peak = eps / (2 * zeta * std::sqrt(1 - zeta * zeta));
+        for (const auto& mx : maxima) {
+            CHECK(mx.bounded);
+            CHECK(mx.amplitude == Approx(peak).epsilon(std::max(1e-12, 0.5 * std::pow(6e-8 / zeta, 2))));
+        }
+    }
+}
+
 TEST_CASE("Jeffcott rotor with internal damping: instability threshold w_n (1 + c_e/c_i)", "[textbook][stability]") {
     const double m = 2.0, k = 5e3, ce = 4.0, ci = 10.0;
     const GyroscopicSystem s = jeffcott(m, k, ce, ci, 0.0);

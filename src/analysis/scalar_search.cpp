@@ -66,6 +66,10 @@ double find_minimum(const std::function<double(double)>& f, double a, double b, 
     return fc <= fd ? c : d;
 }
 
+double smooth_minimum_resolution(double x, double rel_tol) {
+    return std::max(rel_tol, 4.0 * std::sqrt(2.2e-16)) * std::max(1.0, std::fabs(x));
+}
+
 double find_smooth_minimum(const std::function<double(double)>& f, double a, double m, double b, double rel_tol) {
     const double fa = f(a), fm = f(m), fb = f(b);
     if (!(fm < fa && fm < fb) || !std::isfinite(fm)) return find_minimum(f, a, b, rel_tol);
@@ -83,7 +87,7 @@ double find_smooth_minimum(const std::function<double(double)>& f, double a, dou
         x = gsl_min_fminimizer_x_minimum(s);
         const double lo = gsl_min_fminimizer_x_lower(s), hi = gsl_min_fminimizer_x_upper(s);
         // Brent never steps closer than sqrt(eps) |x|: a tighter bracket is never reached.
-        if (hi - lo <= std::max(rel_tol, 4.0 * std::sqrt(2.2e-16)) * std::max(1.0, std::fabs(x))) break;
+        if (hi - lo <= smooth_minimum_resolution(x, rel_tol)) break;
     }
     gsl_min_fminimizer_free(s);
     return status == GSL_SUCCESS ? x : find_minimum(f, a, b, rel_tol);

@@ -97,7 +97,7 @@ std::vector<ResponseMaximum> response_maxima(const ResponseCurve& c, const std::
         }
         for (const auto& e : extrema)
             if (e.dof == m.dof && e.peak && e.amplitude > m.amplitude)
-                m.amplitude = e.amplitude, m.speed = e.speed, m.refined = true;
+                m.amplitude = e.amplitude, m.speed = e.speed, m.refined = true, m.bounded = e.bounded;
         out.push_back(m);
     }
     return out;
@@ -106,6 +106,26 @@ std::vector<ResponseMaximum> response_maxima(const ResponseCurve& c, const std::
 std::vector<ResponseExtremum> response_extrema(const GyroscopicSystem& sys, const ResponseCurve& c) {
     return response_extrema([&](double w) { return unbalance_response(sys, w); }, c);
 }
+
+namespace {
+
+// Near a resonance |Z| ~ C / sqrt((w - w0)^2 + g^2) (g = zeta w0). Brent returns a
+// speed w within its resolution r of w0, so sqrt((w - w0)^2 + g^2) is what the peak
+// height says about g; with h = 10 r,
+//   (1/A(w+h)^2 + 1/A(w-h)^2) / 2 - 1/A(w)^2 = h^2 / C^2,
+// so the peak is resolved (its half-width above h) where that difference stays
+// below 1/A(w)^2. A singular solve within h: unresolved.
+template <class Amplitudes>
+bool peak_is_resolved(Amplitudes& amplitudes, Eigen::Index col, double w) {
+    const double h = 10.0 * smooth_minimum_resolution(w);
+    const Eigen::VectorXd a = amplitudes(w), lo = amplitudes(w - h), hi = amplitudes(w + h);
+    if (!a.size() || !lo.size() || !hi.size()) return false;
+    const double inv = 1.0 / (a(col) * a(col));
+    const double spread = 0.5 * (1.0 / (lo(col) * lo(col)) + 1.0 / (hi(col) * hi(col))) - inv;
+    return spread < inv;
+}
+
+}  // namespace
 
 std::vector<ResponseExtremum> response_extrema(const ResponseSolver& solve, const ResponseCurve& c, bool peaks_only) {
     // |Z| of the curve's DOFs at each speed solved (empty: singular there).
@@ -139,7 +159,10 @@ std::vector<ResponseExtremum> response_extrema(const ResponseSolver& solve, cons
             const double lo = c.speeds[static_cast<size_t>(i - 1)], hi = c.speeds[static_cast<size_t>(i + 1)];
             const double w = peak ? find_smooth_minimum(f, lo, c.speeds[static_cast<size_t>(i)], hi, 1e-12)
                                   : find_minimum(f, lo, hi, 1e-12);
-            out.push_back({k, peak, w, s * f(w)});
+            ResponseExtremum e{k, peak, w, s * f(w)};
+            if (peak) e.bounded = peak_is_resolved(amplitudes, col, w);
+            if (!e.bounded) e.amplitude = std::numeric_limits<double>::infinity();
+            out.push_back(e);
         }
     }
     return out;

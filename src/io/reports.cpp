@@ -233,10 +233,17 @@ Table response_summary(const std::vector<std::string>& names, const std::vector<
             continue;
         }
         t.add_row({names[static_cast<size_t>(m.dof)], unit_of(units, m.dof), m.amplitude, u.factor * m.speed,
-                   std::string(m.refined ? "peak (refined)" : "range end")});
+                   std::string(!m.bounded ? "undamped resonance (unbounded)"
+                               : m.refined ? "peak (refined)"
+                                           : "range end")});
     }
+    const auto unbounded = std::count_if(maxima.begin(), maxima.end(), [](const ResponseMaximum& m) { return !m.bounded; });
     t.title = "largest unbalance response per DOF (peaks refined between grid speeds)" +
-              (left_out ? fmt::format("; {} smaller ones left out", left_out) : std::string());
+              (left_out ? fmt::format("; {} smaller ones left out", left_out) : std::string()) +
+              (unbounded ? fmt::format("; {} DOF(s) pass an undamped resonance (damping ratio below 6e-7): "
+                                       "unbounded there, add damping to the model",
+                                       unbounded)
+                         : std::string());
     return t;
 }
 
@@ -258,7 +265,8 @@ Table extrema_table(const std::vector<std::string>& names, const std::vector<Res
     t.key = "response_peaks";
     t.title = "response peaks and antiresonances";
     for (const auto& x : e)
-        t.add_row({names[static_cast<size_t>(x.dof)], std::string(x.peak ? "peak" : "antiresonance"),
+        t.add_row({names[static_cast<size_t>(x.dof)],
+                   std::string(!x.bounded ? "unbounded peak" : x.peak ? "peak" : "antiresonance"),
                    u.factor * x.speed, x.amplitude});
     return t;
 }

@@ -25,4 +25,8 @@ double find_minimum(const std::function<double(double)>& f, double a, double b, 
 double find_smooth_minimum(const std::function<double(double)>& f, double a, double m, double b,
                            double rel_tol = 1e-12);
 
+// The bracket width at which find_smooth_minimum stops near x: the uncertainty
+// of the minimizer it returns.
+double smooth_minimum_resolution(double x, double rel_tol = 1e-12);
+
 }  // namespace gyrokit

@@ -34,7 +34,10 @@ struct ResponseExtremum {
     int dof = 0;           // model DOF index
     bool peak = true;      // false: antiresonance (local minimum)
     double speed = 0;
-    double amplitude = 0;
+    double amplitude = 0;  // +inf for an unbounded peak
+    // false: a peak narrower than the search resolves (an undamped or nearly
+    // undamped resonance): the amplitude there is unbounded for all the model says.
+    bool bounded = true;
 };
 
 // The largest amplitude of each DOF of a curve over its range: the largest of its
@@ -46,11 +49,15 @@ struct ResponseMaximum {
     double speed = 0;
     double amplitude = 0;
     bool refined = false;   // an interior peak, refined; false: a range end
+    bool bounded = true;    // false: an unbounded peak (amplitude +inf)
 };
 std::vector<ResponseMaximum> response_maxima(const ResponseCurve& curve, const std::vector<ResponseExtremum>& extrema);
 
 // Interior local maxima and minima (only maxima with `peaks_only`) of |Z_k| on the
-// grid, refined by golden section. The DOFs of one resonance peak at nearly one
+// grid, refined by Brent (peaks) and golden section (antiresonances). A peak whose
+// half-power points lie within 10 search resolutions (damping ratio below about
+// 6e-7) cannot be located well enough for its height to mean anything: it is
+// reported unbounded (amplitude +inf, bounded = false). The DOFs of one resonance peak at nearly one
 // speed and their searches visit the same speeds: each speed is solved once.
 std::vector<ResponseExtremum> response_extrema(const ResponseSolver& solve, const ResponseCurve& curve,
                                                bool peaks_only = false);
