@@ -80,6 +80,15 @@ expect "rk8pd" sommerfeld "$dir/ok.toml" --runup --integrator euler
 expect "--abs-tol" sommerfeld "$dir/ok.toml" --runup --abs-tol 0
 expect "--max-speed" sommerfeld "$dir/ok.toml" --runup --max-speed -1
 expect "plot" sommerfeld "$dir/ok.toml" --plot out.pdf
+expect "--rows" sommerfeld "$dir/ok.toml" --runup --rows
+
+# The first screen: summary and folds, no stationary rows; --rows adds them.
+first=$("$cli" sommerfeld "$data/sommerfeld_rotor.toml" --speeds 0:400:5)
+rows=$("$cli" sommerfeld "$data/sommerfeld_rotor.toml" --speeds 0:400:5 --rows)
+if ! grep -q "^quasi_static_runup  *passes the resonance" <<< "$first" || grep -q "resonance  *[0-9]" <<< "$first" ||
+   [ "$(grep -cE '^ +[0-9.]+ +(resonance|unstable|upper) ' <<< "$rows")" -ne 9 ]; then
+    echo "FAIL: sommerfeld first screen / --rows"; echo "$first"; echo "$rows"; fail=1
+fi
 
 # Good runs: the summary rows exist and the output holds finite numbers only.
 if ! "$cli" sommerfeld "$data/sommerfeld_rotor.toml" --format csv --table summary > "$dir/s.csv" 2> "$dir/err" ||

@@ -25,7 +25,7 @@ struct Options {
     std::string scene, format = "table", plot, method, speeds, table;
     double abs_tol = 0.0, rel_tol = 0.0, max_speed = 0.0;
     CLI::Option *abs_opt = nullptr, *rel_opt = nullptr, *max_opt = nullptr;
-    bool runup = false;
+    bool runup = false, rows = false;
 };
 
 Table summary_table() {
@@ -61,6 +61,23 @@ void add_curve(Panel& panel, const std::vector<StationaryPoint>& c, bool roller,
         panel.series.push_back(s);
         i = j;
     }
+}
+
+// "branch rotor_speed (stable|unstable)" of each state, rad/s.
+std::string states_text(const std::vector<StationaryPoint>& states) {
+    std::string t;
+    for (const auto& q : states)
+        t += fmt::format("{}{} {:.6g} ({})", t.empty() ? "" : "; ", q.branch, q.rotor_speed,
+                         q.stable ? "stable" : "unstable");
+    return t.empty() ? std::string("none") : t;
+}
+
+// Where a slow run-up from rest ends: it follows the resonance branch up to its fold.
+std::string runup_verdict(const SommerfeldAnalysis& a, double nominal) {
+    if (!a.has_jump) return "no fold: the rotor speed follows the nominal speed continuously";
+    if (nominal < a.jump_up.point.nominal)
+        return fmt::format("captured below the resonance (nominal speed below jump_up {:.6g})", a.jump_up.point.nominal);
+    return fmt::format("passes the resonance: jumps up at nominal {:.6g}", a.jump_up.point.nominal);
 }
 
 void run_stationary(const Options& o, const BalancerScene& sc, TableFormat fmt, std::ostream& out) {
@@ -115,7 +132,17 @@ void run_stationary(const Options& o, const BalancerScene& sc, TableFormat fmt, 
         add(sum, "jump_down", std::string("none"));
     }
     if (s.compensating) add(sum, "synchronous_speed_at_nominal", synchronous_point(s, nominal).rotor_speed);
-    write_result(out, {curves, f, sum}, fmt, o.table);
+    add(sum, "states_at_nominal", states_text(stationary_states(a, nominal)));
+    add(sum, "quasi_static_runup", runup_verdict(a, nominal));
+    // The first screen (table format): the summary and the folds; the rows on request.
+    if (fmt == TableFormat::Text && !o.rows && o.table.empty()) {
+        sum.title = fmt::format("Sommerfeld effect: summary (speeds in rad/s; the {} stationary states: --rows, "
+                                "or --format csv|json)",
+                                curves.rows());
+        write_result(out, {sum, f}, fmt, "");
+    } else {
+        write_result(out, {curves, f, sum}, fmt, o.table);
+    }
 
     if (!o.plot.empty()) {
         Figure fig;
@@ -236,6 +263,7 @@ std::vector<Command> add_sommerfeld_commands(CLI::App& app) {
     c->add_option("--format", o->format, "output format: table, csv or json")->capture_default_str();
     c->add_option("--speeds", o->speeds, "nominal speeds FROM:TO:N of the stationary curves, rad/s");
     c->add_flag("--runup", o->runup, "simulate the scene's [runup] through the full equations of motion (7)");
+    c->add_flag("--rows", o->rows, "table format: every stationary state too, not only the summary and folds");
     c->add_option("--table", o->table, "only this table: stationary_states, folds, summary (--runup: runup_history, "
                                        "summary); CSV holds the first unless one is named");
     c->add_option("--integrator", o->method, "with --runup: ODE method (rk8pd, rkf45, rkck, rk4, rk2, msadams, rk4imp, "
@@ -250,6 +278,7 @@ std::vector<Command> add_sommerfeld_commands(CLI::App& app) {
         if (!o->runup && (!o->method.empty() || o->abs_opt->count() || o->rel_opt->count() || o->max_opt->count()))
             throw InputError("--integrator, --abs-tol, --rel-tol and --max-speed need --runup");
         if (o->runup && !o->speeds.empty()) throw InputError("--speeds sets the stationary curves; not with --runup");
+        if (o->runup && o->rows) throw InputError("--rows prints the stationary states; not with --runup");
         if (!o->speeds.empty()) SpeedRange::parse(o->speeds, "--speeds").validate("--speeds");
         if (!o->method.empty()) parse_ode_method(o->method);
         const BalancerScene sc = load_balancer_scene(o->scene);
