@@ -87,6 +87,8 @@ expect "line 1" balancer "$dir/syntax.toml"
 expect "not found" balancer "$dir/missing.toml"
 expect "xml" balancer "$dir/ok.toml" --format xml
 expect "--simulate" balancer "$dir/ok.toml" --speed 100
+expect "--rows" balancer "$dir/ok.toml" --simulate --rows
+expect "balancing_ranges" balancer "$dir/ok.toml" --table nosuch
 expect "--speed" balancer "$dir/ok.toml" --simulate --speed -5
 expect "--abs-tol" balancer "$dir/ok.toml" --simulate --abs-tol 0
 expect "plot" balancer "$dir/ok.toml" --simulate --plot out.pdf

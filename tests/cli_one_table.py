@@ -97,6 +97,8 @@ cases = [
     ["fluid", f"{data}/fluid_N1.toml", "--table", "liquid"],
     ["fluid", f"{data}/fluid_N1.toml", "--fill", "0.05:0.08:3"],
     ["balancer", f"{data}/balancer_table1.toml"],
+    ["balancer", f"{data}/balancer_table1.toml", "--table", "balancing_ranges"],
+    ["sommerfeld", f"{data}/sommerfeld_rotor.toml", "--table", "summary"],
     ["balancer", f"{data}/balancer_bild7.toml", "--simulate", "--duration", "2"],
     ["balancer", f"{data}/balancer_bild7.toml", "--simulate", "--duration", "2", "--history"],
     ["balancer", f"{data}/balancer_bild7.toml", "--simulate", "--duration", "2", "--history", "--table", "final_state"],

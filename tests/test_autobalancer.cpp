@@ -244,3 +244,27 @@ TEST_CASE("Scene errors are one-line InputErrors", "[autobalancer]") {
           "m1 = 0.002\neps1 = 0.05\nR1 = 0.05\nmu1 = 0.4\nbeta1 = 3e-5\nspeed = 100.0\n");
     CHECK_THROWS_WITH(load_balancer_scene(f), Catch::Contains("R1"));
 }
+
+TEST_CASE("Range verdicts: Tabelle 1 balances above omega_x and above omega_y, Tabelle 2 nowhere",
+          "[autobalancer]") {
+    const auto v1 = range_verdicts(stability_table(load_balancer_scene(scene("table1")).params));
+    REQUIRE(v1.size() == 4);
+    const std::vector<std::vector<std::string>> comp{{}, {"43", "44"}, {}, {"43", "44"}}, other{{"45"}, {}, {"45"}, {}};
+    for (std::size_t k = 0; k < 4; ++k) {
+        CAPTURE(k);
+        CHECK(v1[k].compensating == comp[k]);
+        CHECK(v1[k].other == other[k]);
+        CHECK(v1[k].disputed.empty());
+    }
+    for (const auto& v : range_verdicts(stability_table(load_balancer_scene(scene("table2")).params)))
+        CHECK(v.compensating.empty());
+    // A state whose criterion and eigenvalues disagree is neither stable nor unstable.
+    StateStability a, b;
+    a.state.label = "x", a.state.compensating = true, a.range.name = "r", a.stable_criterion = true;
+    b.state.label = "y", b.range.name = "r", b.stable_criterion = b.stable_eigen = true;
+    const auto v = range_verdicts({a, b});
+    REQUIRE(v.size() == 1);
+    CHECK(v[0].compensating.empty());
+    CHECK(v[0].other == std::vector<std::string>{"y"});
+    CHECK(v[0].disputed == std::vector<std::string>{"x"});
+}

@@ -24,7 +24,7 @@ struct Options {
     double speed = 0.0, duration = 0.0, abs_tol = 0.0, rel_tol = 0.0;
     // Which of them were given on the command line.
     CLI::Option *speed_opt = nullptr, *duration_opt = nullptr, *abs_opt = nullptr, *rel_opt = nullptr;
-    bool simulate = false, averaged = false, history = false;
+    bool simulate = false, averaged = false, history = false, rows = false;
 };
 
 std::string alpha_col(std::size_t i) { return "alpha" + std::to_string(i + 1) + "_deg"; }
@@ -51,6 +51,38 @@ Table state_table(const AutobalancerParameters& p) {
         t.add_row(row);
     }
     return t;
+}
+
+std::string labels(const std::vector<std::string>& l) {
+    std::string t;
+    for (const auto& x : l) t += (t.empty() ? "" : ", ") + x;
+    return t.empty() ? std::string("none") : t;
+}
+
+Table range_table(const AutobalancerParameters& p) {
+    Table t({"range", "from", "to", "balances", "stable_compensating", "stable_other", "disputed"});
+    t.key = "balancing_ranges";
+    t.title = "Where the auto-balancer balances: stable synchronous states per speed range, speeds in rad/s";
+    for (const auto& v : range_verdicts(stability_table(p))) {
+        std::vector<Cell> row{v.range.name, v.range.from};
+        if (std::isfinite(v.range.to)) row.push_back(v.range.to); else row.push_back(std::string("inf"));
+        row.push_back(!v.compensating.empty());
+        for (const auto* l : {&v.compensating, &v.other, &v.disputed}) row.push_back(labels(*l));
+        t.add_row(row);
+    }
+    return t;
+}
+
+void run_states(const Options& o, const BalancerScene& sc, TableFormat fmt, std::ostream& out) {
+    const Table states = state_table(sc.params);
+    Table ranges = range_table(sc.params);
+    // The first screen (table format): the ranges; every state and range on request.
+    if (fmt == TableFormat::Text && !o.rows && o.table.empty()) {
+        ranges.title += fmt::format("; the {} state-range rows: --rows, or --format csv|json", states.rows());
+        write_result(out, {ranges}, fmt, "");
+    } else {
+        write_result(out, {states, ranges}, fmt, o.table);
+    }
 }
 
 // The stable state of the damped slow model nearest to the simulated phases.
@@ -186,8 +218,9 @@ std::vector<Command> add_balancer_commands(CLI::App& app) {
     c->add_flag("--history", o->history, "with --simulate: also print the phase histories (about 200 rows)");
     o->speed_opt = c->add_option("--speed", o->speed, "with --simulate: prescribed rotor speed in rad/s (overrides the scene)");
     o->duration_opt = c->add_option("--duration", o->duration, "with --simulate: simulated time in s (overrides the scene)");
-    c->add_option("--table", o->table, "with --simulate: only this table: final_state or history (with --history); "
-                                       "CSV holds the first unless one is named");
+    c->add_flag("--rows", o->rows, "table format: every state and range too, not only the ranges' verdicts");
+    c->add_option("--table", o->table, "only this table: synchronous_states or balancing_ranges (--simulate: final_state "
+                                       "or history with --history); CSV holds the first unless one is named");
     c->add_option("--integrator", o->method, "with --simulate: ODE method (rk8pd, rkf45, rkck, rk4, rk2, msadams, "
                                          "rk4imp, bsimp, msbdf)");
     o->abs_opt = c->add_option("--abs-tol", o->abs_tol, "with --simulate: absolute tolerance");
@@ -197,15 +230,15 @@ std::vector<Command> add_balancer_commands(CLI::App& app) {
         const TableFormat fmt = parse_table_format(o->format);
         check_plot_path(o->plot);
         if (!o->simulate && (o->averaged || o->history || o->speed_opt->count() || o->duration_opt->count() ||
-                             !o->method.empty() || o->abs_opt->count() || o->rel_opt->count() || !o->plot.empty() ||
-                             !o->table.empty()))
-            throw InputError("--averaged, --history, --speed, --duration, --integrator, --abs-tol, --rel-tol, --table and --plot "
+                             !o->method.empty() || o->abs_opt->count() || o->rel_opt->count() || !o->plot.empty()))
+            throw InputError("--averaged, --history, --speed, --duration, --integrator, --abs-tol, --rel-tol and --plot "
                              "need --simulate");
+        if (o->simulate && o->rows) throw InputError("--rows prints the synchronous states; not with --simulate");
         BalancerScene sc = load_balancer_scene(o->scene);
         if (o->simulate)
             run_simulation(*o, sc, fmt, out);
         else
-            write_table(out, state_table(sc.params), fmt);
+            run_states(*o, sc, fmt, out);
     }}};
 }
 

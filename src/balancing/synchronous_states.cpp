@@ -232,3 +232,20 @@ void slow_rhs(const AutobalancerParameters& p, double Omega, bool damped, const 
 }
 
 }  // namespace gyrokit
+
+namespace gyrokit {
+
+std::vector<RangeVerdict> range_verdicts(const std::vector<StateStability>& table) {
+    std::vector<RangeVerdict> out;
+    for (const auto& e : table) {
+        auto it = std::find_if(out.begin(), out.end(), [&](const RangeVerdict& v) { return v.range.name == e.range.name; });
+        if (it == out.end()) it = out.insert(out.end(), RangeVerdict{e.range, {}, {}, {}});
+        if (e.stable_criterion != e.stable_eigen)
+            it->disputed.push_back(e.state.label);
+        else if (e.stable_eigen)
+            (e.state.compensating ? it->compensating : it->other).push_back(e.state.label);
+    }
+    return out;
+}
+
+}  // namespace gyrokit

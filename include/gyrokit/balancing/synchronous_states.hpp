@@ -79,6 +79,16 @@ struct StateStability {
 // One entry per state and speed range (the paper's Tabellen 1-3), undamped model.
 std::vector<StateStability> stability_table(const AutobalancerParameters& p);
 
+// Per speed range, which synchronous states are stable (criterion (52) and the
+// eigenvalues agree): the engineer's question is whether a compensating one is.
+struct RangeVerdict {
+    SpeedInterval range;
+    std::vector<std::string> compensating;   // labels of stable compensating states
+    std::vector<std::string> other;          // labels of stable non-compensating states
+    std::vector<std::string> disputed;       // criterion and eigenvalues disagree
+};
+std::vector<RangeVerdict> range_verdicts(const std::vector<StateStability>& table);
+
 // The synchronous state of the damped slow model (V_i = 0 with complex H) near
 // `start`, by Newton's method; with c_x = c_y = 0 this is `start` itself for the
 // states (43)-(48). Throws SolverError if Newton does not converge.
