@@ -524,6 +524,19 @@ PYBIND11_MODULE(_core, m) {
         d["stable_eigen"] = stable_eigen;
         d["max_real_eigenvalue"] = arr(re);
         d["compensating"] = compensating;
+        py::list ranges;
+        for (const auto& v : range_verdicts(t)) {
+            py::dict x;
+            x["range"] = v.range.name;
+            x["from"] = v.range.from;
+            x["to"] = v.range.to;
+            x["balances"] = !v.compensating.empty();
+            x["stable_compensating"] = v.compensating;
+            x["stable_other"] = v.other;
+            x["disputed"] = v.disputed;
+            ranges.append(x);
+        }
+        d["ranges"] = ranges;
         return d;
     }, py::arg("path"));
 

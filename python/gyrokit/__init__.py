@@ -438,6 +438,8 @@ class BalancerStates(_Result):
         self.stable_eigen = list(d["stable_eigen"])
         self.max_real_eigenvalue = d["max_real_eigenvalue"]
         self.compensating = [bool(c) for c in d["compensating"]]
+        # Per speed range: does a compensating state stay stable (as the CLI's first screen)?
+        self.ranges = [dict(r) for r in d["ranges"]]
 
     def to_pandas(self):
         return self._frame({"state": self.state, "range": self.range, "from": self.range_from, "to": self.range_to,

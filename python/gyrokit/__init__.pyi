@@ -189,6 +189,7 @@ class BalancerStates:
     stable_eigen: list[bool]
     max_real_eigenvalue: npt.NDArray[np.float64]
     compensating: list[bool]
+    ranges: list[dict[str, Any]]   # range, from, to, balances, stable_compensating, stable_other, disputed
     def to_pandas(self) -> Any: ...
 
 class Sommerfeld:

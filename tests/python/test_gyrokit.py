@@ -281,6 +281,12 @@ def test_balancer_and_sommerfeld_match_the_cli():
         assert b.stable[k] == (r["stable"] == "true") and b.stable_eigen[k] == (r["stable_eigen"] == "true")
         assert b.max_real_eigenvalue[k] == pytest.approx(float(r["max_re_lambda"]), rel=RTOL, abs=1e-12)
         assert b.alpha_deg[k][0] == pytest.approx(float(r["alpha1_deg"]), rel=RTOL)
+    verdicts = cli("balancer", scene("balancer_table1.toml"), "--table", "balancing_ranges")
+    assert len(verdicts) == len(b.ranges) == 4
+    for r, v in zip(b.ranges, verdicts):
+        assert r["range"] == v["range"] and r["balances"] == (v["balances"] == "true")
+        assert (", ".join(r["stable_compensating"]) or "none") == v["stable_compensating"]
+    assert [r["balances"] for r in b.ranges] == [False, True, False, True]   # Tabelle 1
     s = gk.sommerfeld(scene("sommerfeld_rotor.toml"))
     text = subprocess.run([CLI, "sommerfeld", scene("sommerfeld_rotor.toml")], check=True, capture_output=True,
                           text=True).stdout
