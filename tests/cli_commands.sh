@@ -21,12 +21,12 @@ header() {   # header "expected,columns" command args...
     esac
 }
 
-header "speed,index,re,im" eig "$scene" --speed 30
-header "speed,mode,re,im" campbell "$scene"
-header "speed,mode,whirl,harmonic" critical "$scene"
-header "damping,speed,mode" pervasive "$scene"
-header "speed,dof,unit,amplitude,phase" response "$scene"
-header "speed,mode,change" stability "$scene"
+header "speed_rad_s,index,re_1_s,im_rad_s" eig "$scene" --speed 30
+header "speed_rad_s,mode,re_1_s,im_rad_s" campbell "$scene"
+header "speed_rad_s,mode,whirl,harmonic" critical "$scene"
+header "damping,speed_rad_s,mode" pervasive "$scene"
+header "speed_rad_s,dof,unit,amplitude,phase_deg" response "$scene"
+header "speed_rad_s,mode,change" stability "$scene"
 
 # The eig table carries the whirl and backward-error columns the docs promise.
 "$cli" eig "$scene" --speed 30 --format csv | head -n 1 | grep -q "whirl,damping_ratio,log_dec,backward_error" ||
@@ -35,11 +35,15 @@ header "speed,mode,change" stability "$scene"
 # Units: 60 rad/s is 572.958 rpm.
 "$cli" campbell "$scene" --units rpm --speeds 0:572.957795:3 --format csv | tail -n 1 | grep -q "^572.957795" ||
     { echo "FAIL: rpm output"; fail=1; }
+# The unit is in the column names, in CSV and JSON alike (case-insensitive --units).
+header "speed_rpm,mode,re_1_s,im_rad_s,frequency_rpm" campbell "$scene" --units RPM --speeds 0:60:3
+header "speed_hz,mode,whirl,harmonic,frequency_hz" critical "$scene" --units hz
+"$cli" eig "$scene" --speed 3 --units Hz --format json | grep -q '"frequency_hz":' || { echo "FAIL: Hz JSON keys"; fail=1; }
 
 # JSON parses.
 # JSON: an array of objects with the documented keys.
 "$cli" critical "$scene" --format json > "$dir/c.json" && head -c 1 "$dir/c.json" | grep -q '\[' &&
-    grep -q '"speed":' "$dir/c.json" && grep -q '"whirl": "forward"' "$dir/c.json" ||
+    grep -q '"speed_rad_s":' "$dir/c.json" && grep -q '"whirl": "forward"' "$dir/c.json" ||
     { echo "FAIL: critical JSON"; fail=1; }
 
 # Plots.

@@ -60,18 +60,18 @@ expect "needs type = \"fluid_rotor\"" fluid "$data/centrifuge.toml"
 # CSV columns and rows of the Tabelle 2 scenes.
 for n in 1 2 3 4; do
     got=$("$cli" fluid "$data/fluid_N$n.toml" --format csv 2> "$dir/err" | head -n 1)
-    [ "$got" = "model,index,speed" ] || { echo "FAIL: fluid N$n header '$got'"; cat "$dir/err"; fail=1; }
+    [ "$got" = "model,index,speed_rad_s" ] || { echo "FAIL: fluid N$n header '$got'"; cat "$dir/err"; fail=1; }
 done
 "$cli" fluid "$data/fluid_N2.toml" --format csv | grep -q "^moving_undamped,2," ||
     { echo "FAIL: N2 second critical speed missing"; fail=1; }
 "$cli" fluid "$data/fluid_N3.toml" --format csv | grep -q "^rigid,2," ||
     { echo "FAIL: N3 second rigid critical speed missing"; fail=1; }
 got=$("$cli" fluid "$data/fluid_N2.toml" --fill 0.05:0.55:11 --format csv | head -n 1)
-[ "$got" = "fill,model,index,speed" ] || { echo "FAIL: fill header '$got'"; fail=1; }
+[ "$got" = "fill_m,model,index,speed_rad_s" ] || { echo "FAIL: fill header '$got'"; fail=1; }
 if "$cli" fluid "$data/fluid_N2.toml" --fill 0.05:0.55:51 --format csv | grep -qiE "nan|inf"; then
     echo "FAIL: NaN/Inf in the fill sweep"; fail=1
 fi
-"$cli" fluid "$data/fluid_N4.toml" --table sloshing_modes --format csv | head -n 1 | grep -q "^n,sigma_over_omega,lambda,mu,tau" ||
+"$cli" fluid "$data/fluid_N4.toml" --table sloshing_modes --format csv | head -n 1 | grep -q "^n,sigma_over_omega,lambda_kg_m,mu_kg,tau_1_s" ||
     { echo "FAIL: modes table"; fail=1; }
 "$cli" fluid "$data/fluid_N1.toml" > /dev/null || { echo "FAIL: text output"; fail=1; }
 # The core commands on a fluid scene.

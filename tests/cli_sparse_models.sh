@@ -89,7 +89,7 @@ d = sys.argv[1]
 rows = {s: list(csv.DictReader(open(f"{d}/{s}.csv"))) for s in ("small_dense", "small_sparse", "large")}
 for s, tol in (("small_sparse", 1e-8), ("large", 1e-5)):
     for a, b in zip(rows["small_dense"], rows[s]):
-        x, y = float(a["critical_speed"]), float(b["critical_speed"])
+        x, y = float(a["critical_speed_rad_s"]), float(b["critical_speed_rad_s"])
         if abs(x - y) > tol * x:
             sys.exit(f"FAIL: {s} design {a['design']}: critical speed {y} vs dense {x}")
 PY

@@ -191,7 +191,7 @@ TEST_CASE("gyrostat: cage damping verdict from the closed form (29)", "[screenin
     ro.jobs = 2;
     const RunResult r = run_screening(s, ro);
     REQUIRE(r.rows.size() == 10);
-    const std::size_t cv = column(s, "verdict"), cl = column(s, "pervasive_loss");
+    const std::size_t cv = column(s, "verdict"), cl = column(s, "pervasive_loss_rad_s");
     int failing = 0;
     for (const auto& row : r.rows) {
         const double c_R = std::stod(row.cells[1]);
@@ -220,7 +220,7 @@ TEST_CASE("rigid rotor: separation margin verdicts from the closed-form critical
         ro.jobs = 2;
         const RunResult r = run_screening(s, ro);
         REQUIRE(r.rows.size() == 30);
-        const std::size_t cv = column(s, "verdict"), cc = column(s, "critical_speed"),
+        const std::size_t cv = column(s, "verdict"), cc = column(s, "critical_speed_rad_s"),
                           cm = column(s, "separation_percent");
         const double w_scan = to * (1 + margin / 100) * 1.05;
         for (const auto& row : r.rows) {
@@ -255,7 +255,7 @@ TEST_CASE("Jeffcott rotor: stability verdict at w_n (1 + c_e/c_i)", "[screening]
     s.criteria.stability = StabilityCriterion{up_to, 41};
     finalize_sweep(s);
     const RunResult r = run_screening(s, RunOptions{});
-    const std::size_t cv = column(s, "verdict"), co = column(s, "instability_onset");
+    const std::size_t cv = column(s, "verdict"), co = column(s, "instability_onset_rad_s");
     for (const auto& row : r.rows) {
         const double ci = std::stod(row.cells[1]);
         const double threshold = std::sqrt(k / m) * (1 + ce / ci);
@@ -285,6 +285,35 @@ TEST_CASE("Jeffcott rotor: maximum unbalance response against the closed form", 
         CHECK(std::stod(row.cells[ca]) == Approx(expected).epsilon(1e-7));
         if (std::abs(expected - limit) > 1e-3 * limit) CHECK(row.cells[cv] == (expected > limit ? "fail" : "pass"));
     }
+}
+
+TEST_CASE("Jeffcott rotor without damping: the response criterion fails as unbounded", "[screening][response]") {
+    // c_e = 0: every design whose w_n = sqrt(k/m) lies in 30..80 rad/s (k = 1800..12800) passes an
+    // undamped resonance; outside that range the response is finite.
+    Sweep s = jeffcott_sweep("model.k", 1e3, 2e4, 12);
+    s.op_from = 30.0;
+    s.op_to = 80.0;
+    s.op_count = 26;
+    s.criteria.response = ResponseCriterion{1.0, {"x"}};
+    const auto loader = s.loader;
+    s.loader = [loader](std::map<std::string, double> o) {
+        o["model.c_e"] = 0.0;
+        return loader(o);
+    };
+    finalize_sweep(s);
+    const RunResult r = run_screening(s, RunOptions{});
+    const std::size_t cv = column(s, "verdict"), ca = column(s, "max_amplitude");
+    int unbounded = 0;
+    for (const auto& row : r.rows) {
+        const double k = std::stod(row.cells[1]), wn = std::sqrt(k / 2.0);
+        INFO("k = " << k << ": " << row.cells.back());
+        const bool resonant = wn > 30.0 && wn < 80.0;
+        CHECK(std::isinf(std::stod(row.cells[ca])) == resonant);
+        CHECK(row.cells[cv] == (resonant ? "fail" : "pass"));
+        if (resonant) CHECK(row.cells.back().find("unbounded") != std::string::npos);
+        unbounded += resonant;
+    }
+    CHECK(unbounded >= 4);
 }
 
 TEST_CASE("invalid designs are reported with the reason and the sweep goes on", "[screening]") {

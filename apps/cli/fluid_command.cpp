@@ -51,9 +51,9 @@ Table liquid_table(const FluidRotor& f, const FluidCriticalSpeeds& cs) {
 }
 
 Table modes_table(const FluidRotor& f, double w, const SpeedUnit& u) {
-    Table t({"n", "sigma_over_omega", "lambda", "mu", "tau"});
+    Table t({"n", "sigma_over_omega", "lambda_kg_m", "mu_kg", "tau_1_s"});
     t.key = "sloshing_modes";
-    t.title = fmt::format("sloshing modes (lambda kg m, mu kg, tau 1/s at w = {:.6g} {})", u.factor * w, u.name);
+    t.title = fmt::format("sloshing modes (tau at w = {:.6g} {})", u.factor * w, u.name);
     for (const auto& m : f.liquid.modes)
         t.add_row({static_cast<long long>(m.n), m.sigma_over_omega(), m.lambda, m.mu, m.tau(w)});
     return t;
@@ -88,7 +88,7 @@ std::vector<Command> add_fluid_commands(CLI::App& app) {
         const FluidRotorParameters p0 = *c.scene.fluid;
         if (!o->fill.empty()) {
             const std::vector<double> fills = parse_fill(o->fill, p0.R);
-            Table t({"fill", "model", "index", "speed"});
+            Table t({"fill_m", "model", "index", c.unit.column("speed")});
             t.key = "critical_speeds_vs_fill";
             t.title = fmt::format("critical speeds ({}) against the free-surface radius R0 (m)", c.unit.name);
             Figure fig;
@@ -132,7 +132,7 @@ std::vector<Command> add_fluid_commands(CLI::App& app) {
         }
         const FluidRotor f = build_fluid_rotor(p0);
         const FluidCriticalSpeeds cs = fluid_critical_speeds(f);
-        Table crit({"model", "index", "speed"});
+        Table crit({"model", "index", c.unit.column("speed")});
         crit.key = "critical_speeds";
         crit.title = fmt::format("critical speeds ({})", c.unit.name);
         add_speed_rows(crit, cs, c.unit, {});

@@ -363,7 +363,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         if (summary || o->extrema || (!o->common.plot.empty() && outputs.empty()))
             extrema = response_extrema(solve, rc, !o->extrema);
         if (o->extrema)
-            write_table(out, extrema_table(names, extrema, c.unit), c.format);
+            write_table(out, extrema_table(names, units, extrema, c.unit), c.format);
         else if (summary)
             write_table(out, response_summary(names, units, response_maxima(rc, extrema), c.unit, 8), c.format);
         else

@@ -71,4 +71,10 @@ SpeedUnit SpeedUnit::parse(const std::string& name) {
     throw InputError(fmt::format("--units '{}' is unknown; allowed: rad/s, Hz, rpm", name));
 }
 
+std::string SpeedUnit::column(const std::string& base) const {
+    std::string suffix;
+    for (const char ch : name) suffix += ch == '/' ? '_' : static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return base + "_" + suffix;
+}
+
 }  // namespace gyrokit

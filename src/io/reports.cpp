@@ -23,7 +23,8 @@ std::string speed_label(const SpeedUnit& u) { return "speed [" + u.name + "]"; }
 }  // namespace
 
 Table eig_table(const QuadraticSpectrum& s, double speed, const SpeedUnit& u, bool rigid_body) {
-    Table t({"speed", "index", "re", "im", "frequency", "whirl", "damping_ratio", "log_dec", "backward_error"});
+    Table t({u.column("speed"), "index", "re_1_s", "im_rad_s", u.column("frequency"), "whirl", "damping_ratio", "log_dec",
+             "backward_error"});
     t.key = "eigenvalues";
     t.title = "eigenvalues at " + std::to_string(u.factor * speed) + " " + u.name +
               (s.infinite_count ? " (" + std::to_string(s.infinite_count) + " infinite eigenvalues omitted)" : "");
@@ -74,7 +75,7 @@ std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const S
 }
 
 Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u) {
-    Table t({"speed", "mode", "re", "im", "frequency", "whirl", "damping_ratio", "log_dec"});
+    Table t({u.column("speed"), "mode", "re_1_s", "im_rad_s", u.column("frequency"), "whirl", "damping_ratio", "log_dec"});
     t.key = "campbell";
     t.title = "Campbell diagram";
     // Rows by speed, then mode.
@@ -136,7 +137,7 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
 }
 
 Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u) {
-    Table t({"speed", "mode", "whirl", "harmonic", "frequency", "damping_ratio"});
+    Table t({u.column("speed"), "mode", "whirl", "harmonic", u.column("frequency"), "damping_ratio"});
     t.key = "critical_speeds";
     t.title = "critical speeds";
     for (const auto& c : cs)
@@ -146,7 +147,7 @@ Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u) {
 }
 
 Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u) {
-    Table t({"speed", "mode", "change", "frequency"});
+    Table t({u.column("speed"), "mode", "change", u.column("frequency")});
     t.key = "stability_changes";
     t.title = "stability changes (a mode's real part passes its error bound)";
     for (const auto& c : sc)
@@ -156,7 +157,7 @@ Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u
 }
 
 Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u) {
-    Table t({"damping", "speed", "mode", "frequency", "whirl", "residual"});
+    Table t({"damping", u.column("speed"), "mode", u.column("frequency"), "whirl", "residual"});
     std::string checked;
     for (const auto& c : r.checked) checked += (checked.empty() ? "" : ", ") + c;
     t.key = "pervasive_damping";
@@ -186,7 +187,7 @@ std::vector<std::string> units_in(const std::vector<std::string>& units, const s
 
 Table response_table(const std::vector<std::string>& names, const std::vector<std::string>& units,
                      const ResponseCurve& c, const SpeedUnit& u) {
-    Table t({"speed", "dof", "unit", "amplitude", "phase"});
+    Table t({u.column("speed"), "dof", "unit", "amplitude", "phase_deg"});
     t.key = "response";
     t.title = "unbalance response z = Re(Z e^{i w t}); amplitude |Z| in the DOF's unit, phase arg Z in degrees";
     for (size_t i = 0; i < c.speeds.size(); ++i)
@@ -222,7 +223,7 @@ std::vector<ResponseMaximum> by_unit_and_size(const std::vector<std::string>& un
 
 Table response_summary(const std::vector<std::string>& names, const std::vector<std::string>& units,
                        const std::vector<ResponseMaximum>& maxima, const SpeedUnit& u, std::size_t limit) {
-    Table t({"dof", "unit", "max_amplitude", "speed", "where"});
+    Table t({"dof", "unit", "max_amplitude", u.column("speed"), "where"});
     t.key = "response_maxima";
     std::size_t left_out = 0, in_unit = 0;
     std::string unit;
@@ -259,13 +260,13 @@ std::vector<int> largest_responses(const std::vector<std::string>& units, const 
     return out;
 }
 
-Table extrema_table(const std::vector<std::string>& names, const std::vector<ResponseExtremum>& e,
-                    const SpeedUnit& u) {
-    Table t({"dof", "kind", "speed", "amplitude"});
+Table extrema_table(const std::vector<std::string>& names, const std::vector<std::string>& units,
+                    const std::vector<ResponseExtremum>& e, const SpeedUnit& u) {
+    Table t({"dof", "unit", "kind", u.column("speed"), "amplitude"});
     t.key = "response_peaks";
     t.title = "response peaks and antiresonances";
     for (const auto& x : e)
-        t.add_row({names[static_cast<size_t>(x.dof)],
+        t.add_row({names[static_cast<size_t>(x.dof)], unit_of(units, x.dof),
                    std::string(!x.bounded ? "unbounded peak" : x.peak ? "peak" : "antiresonance"),
                    u.factor * x.speed, x.amplitude});
     return t;
@@ -422,7 +423,7 @@ std::vector<const PairOrbit*> shown_pairs(const ModeShape& s) {
 
 Table mode_list_table(const std::vector<ModeShape>& shapes, const std::vector<std::string>& names, double speed,
                       const SpeedUnit& u) {
-    Table t({"speed", "mode", "frequency", "whirl", "damping_ratio", "largest", "error_bound"});
+    Table t({u.column("speed"), "mode", u.column("frequency"), "whirl", "damping_ratio", "largest", "error_bound"});
     t.key = "modes";
     t.title = mode_title(shapes, speed, u);
     for (const auto& s : shapes)
@@ -434,7 +435,7 @@ Table mode_list_table(const std::vector<ModeShape>& shapes, const std::vector<st
 Table mode_orbit_table(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u) {
     // Node and axial position only for a model whose pairs sit on an axis.
     const bool nodes = !shapes.empty() && !shapes.front().orbits.empty() && shapes.front().orbits.front().node >= 0;
-    std::vector<std::string> columns{"speed", "mode", "frequency", "pair"};
+    std::vector<std::string> columns{u.column("speed"), "mode", u.column("frequency"), "pair"};
     if (nodes) columns.insert(columns.end(), {"node", "z_m"});
     columns.insert(columns.end(), {"unit", "major", "minor", "angle_deg", "phase_deg", "whirl"});
     Table t(columns);
@@ -454,7 +455,7 @@ Table mode_orbit_table(const std::vector<ModeShape>& shapes, double speed, const
 
 Table mode_dof_table(const std::vector<ModeShape>& shapes, const std::vector<std::string>& names,
                      const std::vector<std::string>& units, double speed, const SpeedUnit& u) {
-    Table t({"speed", "mode", "frequency", "dof", "unit", "re", "im", "amplitude", "phase_deg"});
+    Table t({u.column("speed"), "mode", u.column("frequency"), "dof", "unit", "re", "im", "amplitude", "phase_deg"});
     t.key = "mode_entries";
     t.title = mode_title(shapes, speed, u) + ": eigenvector entries, scaled to 1 at the largest";
     for (const auto& s : shapes) {

@@ -158,28 +158,24 @@ void check_response(const Sweep& s, const Scene& sc, const ResponseCriterion& c,
         if (c.dofs.empty() || std::find(c.dofs.begin(), c.dofs.end(), sys.dof_names.at(k)) != c.dofs.end())
             dofs.push_back(k);
     if (dofs.empty()) throw InputError("[criteria.response] dofs: none of them is a DOF of this design");
-    const ResponseCurve rc = unbalance_response(sys, s.operating_speeds());
+    // The largest amplitude of the chosen DOFs, peaks refined between grid speeds
+    // (as `gyrokit response`); an undamped resonance is unbounded (+inf) and fails.
+    const ResponseSolver solve = [&](double w) { return unbalance_response(sys, w); };
+    const ResponseCurve rc = unbalance_response(solve, sys.size(), s.operating_speeds(), dofs);
     double amax = -1, wmax = 0;
     int dmax = 0;
-    for (std::size_t i = 0; i < rc.speeds.size(); ++i)
-        for (int k : dofs)
-            if (std::abs(rc.Z(i, k)) > amax) amax = std::abs(rc.Z(i, k)), wmax = rc.speeds[i], dmax = k;
-    // Peaks between grid speeds, refined by golden section on the chosen DOFs only.
-    for (int k : dofs)
-        for (std::size_t i = 1; i + 1 < rc.speeds.size(); ++i) {
-            const double a0 = std::abs(rc.Z(i - 1, k)), a1 = std::abs(rc.Z(i, k)), a2 = std::abs(rc.Z(i + 1, k));
-            if (!(a1 >= a0 && a1 >= a2)) continue;
-            const auto neg = [&](double w) { return -std::abs(unbalance_response(sys, w)(k)); };
-            const double w = find_minimum(neg, rc.speeds[i - 1], rc.speeds[i + 1]);
-            const double a = -neg(w);
-            if (a > amax) amax = a, wmax = w, dmax = k;
-        }
+    for (const auto& m : response_maxima(rc, response_extrema(solve, rc, true)))
+        if (m.amplitude > amax) amax = m.amplitude, wmax = m.speed, dmax = m.dof;
     r.quantities[q] = amax;
     r.quantities[q + 1] = wmax * s.unit.factor;
     if (amax > c.max_amplitude) {
         r.failed.push_back("response");
-        r.reason += fmt::format("{}response: |{}| = {:.4g} at {:.6g} {} exceeds {:.4g}", r.reason.empty() ? "" : "; ",
-                                sys.dof_names.at(dmax), amax, wmax * s.unit.factor, s.unit.name, c.max_amplitude);
+        r.reason += std::isinf(amax)
+                        ? fmt::format("{}response: |{}| is unbounded at {:.6g} {} (an undamped resonance)",
+                                      r.reason.empty() ? "" : "; ", sys.dof_names.at(dmax), wmax * s.unit.factor,
+                                      s.unit.name)
+                        : fmt::format("{}response: |{}| = {:.4g} at {:.6g} {} exceeds {:.4g}", r.reason.empty() ? "" : "; ",
+                                      sys.dof_names.at(dmax), amax, wmax * s.unit.factor, s.unit.name, c.max_amplitude);
     }
     q += 2;
 }
@@ -202,10 +198,11 @@ std::string to_string(Verdict v) {
 
 std::vector<std::string> quantity_columns(const Sweep& s) {
     std::vector<std::string> c;
-    if (s.criteria.separation) c.insert(c.end(), {"critical_speed", "separation_percent"});
-    if (s.criteria.stability) c.push_back("instability_onset");
-    if (s.criteria.pervasive) c.push_back("pervasive_loss");
-    if (s.criteria.response) c.insert(c.end(), {"max_amplitude", "max_amplitude_speed"});
+    // Speeds in the sweep's unit, named with it (critical_speed_rad_s, ..._hz, ..._rpm).
+    if (s.criteria.separation) c.insert(c.end(), {s.unit.column("critical_speed"), "separation_percent"});
+    if (s.criteria.stability) c.push_back(s.unit.column("instability_onset"));
+    if (s.criteria.pervasive) c.push_back(s.unit.column("pervasive_loss"));
+    if (s.criteria.response) c.insert(c.end(), {"max_amplitude", s.unit.column("max_amplitude_speed")});
     return c;
 }
 
@@ -240,8 +237,10 @@ DesignResult evaluate_design(const Sweep& s, std::size_t i) {
         if (c.stability) check_stability(s, sc, *c.stability, q, r);
         if (c.pervasive) check_pervasive(s, sc, *c.pervasive, q, r);
         if (c.response) check_response(s, sc, *c.response, q, r);
+        // +inf only as the amplitude at an undamped resonance; anything else non-finite is a failure.
         for (std::size_t k = 0; k < qc.size(); ++k)
-            if (r.quantities[k] && !std::isfinite(*r.quantities[k]))
+            if (r.quantities[k] && !std::isfinite(*r.quantities[k]) &&
+                !(qc[k] == "max_amplitude" && *r.quantities[k] > 0.0))
                 throw SolverError(qc[k] + " is not finite");
     } catch (const std::exception& e) {
         r.verdict = Verdict::Error;

@@ -3,6 +3,7 @@
 #include <gyrokit/screening/screening.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <condition_variable>
 #include <filesystem>
@@ -287,7 +288,8 @@ void write_results(std::ostream& os, const Sweep& s, const std::vector<ResultRow
             for (std::size_t c = 0; c < cols.size(); ++c) {
                 const std::string& v = r.cells[c];
                 if (c == 0) o[cols[c]] = r.index;
-                else if (is_number_column(s, c)) o[cols[c]] = v.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(std::stod(v));
+                else if (is_number_column(s, c) && !v.empty() && std::isfinite(std::stod(v))) o[cols[c]] = std::stod(v);
+                else if (is_number_column(s, c)) o[cols[c]] = v.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(v);   // "inf": JSON has no infinity
                 else o[cols[c]] = v;
             }
             a.push_back(std::move(o));

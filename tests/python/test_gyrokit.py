@@ -34,7 +34,7 @@ def test_eig_matches_the_cli():
     rows = cli("eig", scene("centrifuge.toml"), "--speed", "20")
     assert len(rows) == len(ev.eigenvalues) == 6
     for k, r in enumerate(rows):
-        assert ev.eigenvalues[k] == pytest.approx(complex(float(r["re"]), float(r["im"])), rel=RTOL)
+        assert ev.eigenvalues[k] == pytest.approx(complex(float(r["re_1_s"]), float(r["im_rad_s"])), rel=RTOL)
         assert ev.whirl[k] == r["whirl"]
     assert ev.eigenvalues.dtype == np.complex128
     assert ev.backward_errors.max() < 1e-14
@@ -47,7 +47,7 @@ def test_campbell_matches_the_cli():
     cd = gk.campbell(s, speeds=np.linspace(0, 60, 241), modes=6)
     assert cd.eigenvalues.shape == (len(cd.speeds), len(cd.branches))
     rows = cli("campbell", scene("centrifuge.toml"), "--speeds", "0:60:241", "--modes", "6")
-    got = {(round(float(r["speed"]), 9), int(r["mode"])): complex(float(r["re"]), float(r["im"])) for r in rows}
+    got = {(round(float(r["speed_rad_s"]), 9), int(r["mode"])): complex(float(r["re_1_s"]), float(r["im_rad_s"])) for r in rows}
     n = 0
     for i, w in enumerate(cd.speeds):
         for b, branch in enumerate(cd.branches):
@@ -68,7 +68,7 @@ def test_critical_speeds_match_the_cli():
     rows = cli("critical", scene("centrifuge.toml"), "--speeds", "0:60:241")
     assert len(rows) == len(cs.speeds) == 5
     for k, r in enumerate(rows):
-        assert cs.speeds[k] == pytest.approx(float(r["speed"]), rel=RTOL)
+        assert cs.speeds[k] == pytest.approx(float(r["speed_rad_s"]), rel=RTOL)
         assert cs.whirl[k] == r["whirl"]
         assert cs.harmonic[k] == int(r["harmonic"])
 
@@ -79,13 +79,13 @@ def test_stability_and_sparse_solver_on_the_fe_scene_match_the_cli():
     rows = cli("stability", scene("fe_rotor.toml"))
     assert len(rows) == len(st.speeds) >= 1
     for k, r in enumerate(rows):
-        assert st.speeds[k] == pytest.approx(float(r["speed"]), rel=RTOL)
+        assert st.speeds[k] == pytest.approx(float(r["speed_rad_s"]), rel=RTOL)
         assert st.becomes_unstable[k] == (r["change"] == "unstable")
     ev = gk.eig(s, 500.0, solver="sparse", modes=4, target=400.0)
     rows = cli("eig", scene("fe_rotor.toml"), "--speed", "500", "--solver", "sparse", "--modes", "4", "--target", "400")
     assert len(rows) == 4
     for k, r in enumerate(rows):
-        assert ev.eigenvalues[k] == pytest.approx(complex(float(r["re"]), float(r["im"])), rel=1e-9)
+        assert ev.eigenvalues[k] == pytest.approx(complex(float(r["re_1_s"]), float(r["im_rad_s"])), rel=1e-9)
     assert ev.method == "ARPACK shift-invert"
 
 
@@ -234,7 +234,7 @@ def test_pervasive_and_response_match_the_cli():
     assert len(rows) == len(p.speeds) >= 1
     for k, r in enumerate(rows):
         assert p.damping[k] == r["damping"] and p.mode[k] == int(r["mode"]) and p.whirl[k] == r["whirl"]
-        assert p.speeds[k] == pytest.approx(float(r["speed"]), rel=RTOL)
+        assert p.speeds[k] == pytest.approx(float(r["speed_rad_s"]), rel=RTOL)
     f = gk.load_scene(scene("fe_rotor.toml"))
     resp = gk.response(f, np.linspace(10, 600, 3), dofs=["x12", "y12"])
     rows = cli("response", scene("fe_rotor.toml"), "--speeds", "10:600:3", "--dofs", "x12,y12")
@@ -243,7 +243,7 @@ def test_pervasive_and_response_match_the_cli():
         i, j = divmod(k, 2)
         assert r["dof"] == resp.dofs[j]
         assert resp.amplitude[i, j] == pytest.approx(float(r["amplitude"]), rel=RTOL)
-        assert resp.phase[i, j] == pytest.approx(float(r["phase"]), rel=1e-9, abs=1e-9)
+        assert resp.phase[i, j] == pytest.approx(float(r["phase_deg"]), rel=1e-9, abs=1e-9)
     with pytest.raises(gk.InputError, match="not a DOF"):
         gk.response(f, [100.0], dofs=["x99"])
 
@@ -341,7 +341,7 @@ def test_exported_rotor_rigid_body_modes_apart_and_eigenvalues_as_the_cli():
     assert len(ev.eigenvalues) == len(rows) == 40
     assert len(ev.rigid_body) == 4 and np.all(np.abs(ev.rigid_body) < 1e-6 * 500)
     for k, r in enumerate(rows):
-        assert ev.frequencies[k] == pytest.approx(float(r["frequency"]), rel=RTOL)
+        assert ev.frequencies[k] == pytest.approx(float(r["frequency_rad_s"]), rel=RTOL)
         assert ev.whirl[k] == r["whirl"]
     assert ev.backward_errors.max() < 1e-14
     assert set(ev.stability) == {"neutral"}   # undamped: never unstable by rounding

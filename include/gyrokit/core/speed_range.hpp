@@ -23,6 +23,8 @@ struct SpeedUnit {
     std::string name = "rad/s";
     double factor = 1.0;
     static SpeedUnit parse(const std::string& name);   // throws InputError
+    // A column name that records the unit: "speed" -> speed_rad_s, speed_hz, speed_rpm.
+    std::string column(const std::string& base) const;
 };
 
 }  // namespace gyrokit

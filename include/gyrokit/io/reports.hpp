@@ -55,7 +55,8 @@ Table mode_list_table(const std::vector<ModeShape>& shapes, const std::vector<st
 // mode. Otherwise: each mode's orbits (ellipses of the pairs in metres, else all).
 Figure mode_shape_figure(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u,
                          const std::string& title);
-Table extrema_table(const std::vector<std::string>& dof_names, const std::vector<ResponseExtremum>& e,
+Table extrema_table(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
+                    const std::vector<ResponseExtremum>& e,
                     const SpeedUnit& u);
 
 // Frequencies against speed with the harmonic lines and critical speeds, forward
