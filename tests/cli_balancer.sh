@@ -96,7 +96,7 @@ expect "rk8pd" balancer "$dir/ok.toml" --simulate --integrator euler
 
 # Good runs: the state table and a short simulation end with finite numbers only.
 if ! "$cli" balancer "$data/balancer_table3.toml" --format csv > "$dir/t.csv" 2> "$dir/err" ||
-   ! head -1 "$dir/t.csv" | grep -q '^state,alpha1_deg,alpha2_deg,range,from,to,stable' ||
+   ! head -1 "$dir/t.csv" | grep -q '^state,alpha1_deg,alpha2_deg,range,from_rad_s,to_rad_s,stable' ||
    grep -qiE 'nan' "$dir/t.csv"; then
     echo "FAIL: balancer state table"; cat "$dir/err"; fail=1
 fi

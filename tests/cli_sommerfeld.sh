@@ -99,7 +99,7 @@ for q in omega_krit limit_speed_estimate jump_up jump_down; do
     grep -q "^$q,[0-9]" "$dir/s.csv" || { echo "FAIL: sommerfeld csv lacks $q"; fail=1; }
 done
 if ! "$cli" sommerfeld "$dir/ok.toml" --runup --format csv --table summary > "$dir/r.csv" 2> "$dir/err" ||
-   grep -qiE '(^|,)-?(nan|inf)(,|$)' "$dir/r.csv" || ! tail -1 "$dir/r.csv" | grep -qE '^captured,(true|false)$' ||
+   grep -qiE '(^|,)-?(nan|inf)(,|$)' "$dir/r.csv" || ! tail -1 "$dir/r.csv" | grep -qE '^captured,(true|false),$' ||
    ! grep -q '^held_rotor_speed,[0-9]' "$dir/r.csv"; then
     echo "FAIL: sommerfeld --runup"; cat "$dir/err"; tail -5 "$dir/r.csv"; fail=1
 fi

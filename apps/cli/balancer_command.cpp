@@ -32,7 +32,7 @@ std::string alpha_col(std::size_t i) { return "alpha" + std::to_string(i + 1) + 
 Table state_table(const AutobalancerParameters& p) {
     std::vector<std::string> cols{"state"};
     for (std::size_t i = 0; i < p.rollers.size(); ++i) cols.push_back(alpha_col(i));
-    for (const char* c : {"range", "from", "to", "stable", "stable_eigen", "max_re_lambda", "compensating"})
+    for (const char* c : {"range", "from_rad_s", "to_rad_s", "stable", "stable_eigen", "max_re_lambda_1_s", "compensating"})
         cols.push_back(c);
     Table t(cols);
     t.key = "synchronous_states";
@@ -60,7 +60,7 @@ std::string labels(const std::vector<std::string>& l) {
 }
 
 Table range_table(const AutobalancerParameters& p) {
-    Table t({"range", "from", "to", "balances", "stable_compensating", "stable_other", "disputed"});
+    Table t({"range", "from_rad_s", "to_rad_s", "balances", "stable_compensating", "stable_other", "disputed"});
     t.key = "balancing_ranges";
     t.title = "Where the auto-balancer balances: stable synchronous states per speed range, speeds in rad/s";
     for (const auto& v : range_verdicts(stability_table(p))) {

@@ -29,13 +29,13 @@ struct Options {
 };
 
 Table summary_table() {
-    Table t({"quantity", "value"});
+    Table t({"quantity", "value", "unit"});
     t.key = "summary";
-    t.title = "summary (speeds in rad/s)";
+    t.title = "summary";
     return t;
 }
 
-void add(Table& t, const std::string& q, Cell v) { t.add_row({q, std::move(v)}); }
+void add(Table& t, const std::string& q, Cell v, const std::string& unit = "") { t.add_row({q, std::move(v), unit}); }
 
 // Splits a sampled curve into runs of equal stability, so that unstable parts can be drawn dashed.
 void add_curve(Panel& panel, const std::vector<StationaryPoint>& c, bool roller, const std::string& label) {
@@ -115,29 +115,28 @@ void run_stationary(const Options& o, const BalancerScene& sc, TableFormat fmt, 
 
     Table sum = summary_table();
     add(sum, "rollers", static_cast<long long>(s.n));
-    add(sum, "omega_krit", s.omega_krit);
-    add(sum, "nominal_speed", nominal);
-    add(sum, "limit_speed_estimate", a.estimate);
+    add(sum, "omega_krit", s.omega_krit, "rad/s");
+    add(sum, "nominal_speed", nominal, "rad/s");
+    add(sum, "limit_speed_estimate", a.estimate, "rad/s");
     add(sum, "estimate_equation", std::string(s.n == 0 ? "(17)" : s.n == 1 ? "(26)" : "(43) / (26) with factor 2"));
     if (a.has_jump) {
-        add(sum, "jump_up", a.jump_up.point.nominal);
-        add(sum, "jump_up_rotor_speed", a.jump_up.point.rotor_speed);
-        if (s.n > 0) add(sum, "jump_up_roller_speed", a.jump_up.point.roller_speed);
-        add(sum, "jump_down", a.jump_down.point.nominal);
-        add(sum, "jump_down_rotor_speed", a.jump_down.point.rotor_speed);
-        if (s.n > 0) add(sum, "jump_down_roller_speed", a.jump_down.point.roller_speed);
-        add(sum, "estimate_below_jump_up_percent", 100.0 * (a.jump_up.point.nominal - a.estimate) / a.jump_up.point.nominal);
+        add(sum, "jump_up", a.jump_up.point.nominal, "rad/s");
+        add(sum, "jump_up_rotor_speed", a.jump_up.point.rotor_speed, "rad/s");
+        if (s.n > 0) add(sum, "jump_up_roller_speed", a.jump_up.point.roller_speed, "rad/s");
+        add(sum, "jump_down", a.jump_down.point.nominal, "rad/s");
+        add(sum, "jump_down_rotor_speed", a.jump_down.point.rotor_speed, "rad/s");
+        if (s.n > 0) add(sum, "jump_down_roller_speed", a.jump_down.point.roller_speed, "rad/s");
+        add(sum, "estimate_below_jump_up_percent", 100.0 * (a.jump_up.point.nominal - a.estimate) / a.jump_up.point.nominal, "%");
     } else {
         add(sum, "jump_up", std::string("none"));
         add(sum, "jump_down", std::string("none"));
     }
-    if (s.compensating) add(sum, "synchronous_speed_at_nominal", synchronous_point(s, nominal).rotor_speed);
-    add(sum, "states_at_nominal", states_text(stationary_states(a, nominal)));
-    add(sum, "quasi_static_runup", runup_verdict(a, nominal));
+    if (s.compensating) add(sum, "synchronous_speed_at_nominal", synchronous_point(s, nominal).rotor_speed, "rad/s");
+    add(sum, "states_at_nominal", states_text(stationary_states(a, nominal)), "rad/s");
+    add(sum, "quasi_static_runup", runup_verdict(a, nominal), "rad/s");
     // The first screen (table format): the summary and the folds; the rows on request.
     if (fmt == TableFormat::Text && !o.rows && o.table.empty()) {
-        sum.title = fmt::format("Sommerfeld effect: summary (speeds in rad/s; the {} stationary states: --rows, "
-                                "or --format csv|json)",
+        sum.title = fmt::format("Sommerfeld effect: summary (the {} stationary states: --rows, or --format csv|json)",
                                 curves.rows());
         write_result(out, {sum, f}, fmt, "");
     } else {
@@ -212,19 +211,19 @@ void run_runup(const Options& o, const BalancerScene& sc, TableFormat fmt, std::
     add(sum, "method", ode_method_name(s.ode.method));
     add(sum, "abs_tol", s.ode.abs_tol);
     add(sum, "rel_tol", s.ode.rel_tol);
-    add(sum, "omega_krit", sm.omega_krit);
-    if (sm.jump_up > 0.0) add(sum, "jump_up", sm.jump_up); else add(sum, "jump_up", std::string("none"));
-    add(sum, "max_speed", s.max_speed);
-    add(sum, "held_rotor_speed", r.held_rotor_speed);
-    if (nr > 0) add(sum, "held_roller_speed", r.held_roller_speed);
+    add(sum, "omega_krit", sm.omega_krit, "rad/s");
+    if (sm.jump_up > 0.0) add(sum, "jump_up", sm.jump_up, "rad/s"); else add(sum, "jump_up", std::string("none"));
+    add(sum, "max_speed", s.max_speed, "rad/s");
+    add(sum, "held_rotor_speed", r.held_rotor_speed, "rad/s");
+    if (nr > 0) add(sum, "held_roller_speed", r.held_roller_speed, "rad/s");
     add(sum, "stationary_branch", sm.branch);
-    add(sum, "stationary_rotor_speed", sm.stationary_rotor_speed);
-    if (nr > 0) add(sum, "stationary_roller_speed", sm.stationary_roller_speed);
-    add(sum, "held_amplitude_m", r.held_amplitude);
-    if (nr == 2) add(sum, "held_phase_difference_deg", deg(r.held_phase_difference));
-    for (std::size_t i = 0; i < nr; ++i) add(sum, "held_alpha" + std::to_string(i + 1) + "_deg", deg(r.held_alpha[i]));
+    add(sum, "stationary_rotor_speed", sm.stationary_rotor_speed, "rad/s");
+    if (nr > 0) add(sum, "stationary_roller_speed", sm.stationary_roller_speed, "rad/s");
+    add(sum, "held_amplitude_m", r.held_amplitude, "m");
+    if (nr == 2) add(sum, "held_phase_difference_deg", deg(r.held_phase_difference), "deg");
+    for (std::size_t i = 0; i < nr; ++i) add(sum, "held_alpha" + std::to_string(i + 1) + "_deg", deg(r.held_alpha[i]), "deg");
     add(sum, "steps", static_cast<long long>(r.stats.steps));
-    add(sum, "seconds", r.stats.seconds);
+    add(sum, "seconds", r.stats.seconds, "s");
     add(sum, "outcome", sm.outcome);
     add(sum, "captured", sm.captured);
     write_result(out, {h, sum}, fmt, o.table);

@@ -279,7 +279,7 @@ def test_balancer_and_sommerfeld_match_the_cli():
     for k, r in enumerate(rows):
         assert b.state[k] == r["state"] and b.range[k] == r["range"]
         assert b.stable[k] == (r["stable"] == "true") and b.stable_eigen[k] == (r["stable_eigen"] == "true")
-        assert b.max_real_eigenvalue[k] == pytest.approx(float(r["max_re_lambda"]), rel=RTOL, abs=1e-12)
+        assert b.max_real_eigenvalue[k] == pytest.approx(float(r["max_re_lambda_1_s"]), rel=RTOL, abs=1e-12)
         assert b.alpha_deg[k][0] == pytest.approx(float(r["alpha1_deg"]), rel=RTOL)
     verdicts = cli("balancer", scene("balancer_table1.toml"), "--table", "balancing_ranges")
     assert len(verdicts) == len(b.ranges) == 4
