@@ -40,6 +40,12 @@ header "speed_rpm,mode,re_1_s,im_rad_s,frequency_rpm" campbell "$scene" --units 
 header "speed_hz,mode,whirl,harmonic,frequency_hz" critical "$scene" --units hz
 "$cli" eig "$scene" --speed 3 --units Hz --format json | grep -q '"frequency_hz":' || { echo "FAIL: Hz JSON keys"; fail=1; }
 
+# The summary's stability verdict covers every mode, also those --modes leaves untracked.
+"$cli" campbell "$data/fe_rotor.toml" --modes 1 2> /dev/null | grep -q "^stability  *mode 2 unstable from 300 rad/s to 4000 rad/s (not tracked: --modes 0 tracks it)" ||
+    { echo "FAIL: campbell verdict of untracked modes"; fail=1; }
+"$cli" campbell "$data/fe_rotor.toml" --modes 2 --solver sparse 2> /dev/null | grep -q "modes beyond the 2 tracked are not checked" ||
+    { echo "FAIL: campbell verdict of a sparse window"; fail=1; }
+
 # JSON parses.
 # JSON: an array of objects with the documented keys.
 "$cli" critical "$scene" --format json > "$dir/c.json" && head -c 1 "$dir/c.json" | grep -q '\[' &&

@@ -94,7 +94,7 @@ Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u) {
 }
 
 Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& critical, const SpeedUnit& u,
-                       const std::string& plot_file) {
+                       const std::string& plot_file, const StabilityScope& scope) {
     Table t({"quantity", "value"});
     t.key = "summary";
     t.title = "Campbell diagram: summary (all rows: --rows, or --format csv|json)";
@@ -121,11 +121,23 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
         t.add_row({std::string("least damping"), fmt::format("damping ratio {:.4g}: mode {} ({}) at {}",
                                                               least->mode.damping_ratio(), least_branch,
                                                               to_string(least->mode.whirl), speed(least->speed))});
-    const auto unstable = unstable_ranges(cd);
-    std::string verdict = unstable.empty() ? "stable over the range (no mode's real part beyond its error bound)" : "";
+    // The verdict covers every mode where the caller checked them all, else the tracked ones, and says so.
+    const auto unstable = scope.every_mode ? *scope.every_mode : unstable_ranges(cd);
+    const std::string which = scope.every_mode || !scope.partial
+                                  ? std::string("every mode")
+                                  : fmt::format("the {} tracked modes (the others are not checked)", cd.branches.size());
+    std::string verdict = unstable.empty() ? fmt::format("{} stable over the range (no real part beyond its error "
+                                                         "bound)",
+                                                         which)
+                                           : "";
+    // Modes are numbered by frequency at the first speed, so the lowest ones are the tracked ones.
     for (const auto& r : unstable)
-        verdict += fmt::format("{}mode {} unstable from {} to {}", verdict.empty() ? "" : "; ", r.branch, speed(r.from),
-                               speed(r.to));
+        verdict += fmt::format("{}mode {} unstable from {} to {}{}", verdict.empty() ? "" : "; ", r.branch,
+                               speed(r.from), speed(r.to),
+                               r.branch > static_cast<int>(cd.branches.size()) ? " (not tracked: --modes 0 tracks it)"
+                                                                                : "");
+    if (!unstable.empty() && !scope.every_mode && scope.partial)
+        verdict += fmt::format("; modes beyond the {} tracked are not checked", cd.branches.size());
     t.add_row({std::string("stability"), verdict});
     if (cd.rigid_body > 0)
         t.add_row({std::string("rigid-body eigenvalues"), fmt::format("{} (not modes, not tracked)", cd.rigid_body)});
