@@ -1,9 +1,13 @@
-// Shared fixtures of the tests: the centrifuge parameters and random gyrostats.
+// Shared fixtures of the tests: the centrifuge parameters, random gyrostats and
+// the message a scene text is refused with.
 #pragma once
 
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/scene.hpp>
 #include <gyrokit/models/gyrostat.hpp>
 
 #include <random>
+#include <string>
 
 namespace gyrokit::test {
 
@@ -44,6 +48,16 @@ inline GyrostatParameters random_gyrostat(std::mt19937& g, bool symmetric_cage) 
     p.d_T = uniform(g, 0.5, 20.0);
     p.d_R = uniform(g, 0.001, 0.1);
     return p;
+}
+
+// The InputError message parse_scene gives for `text` (origin "bad.toml"), or "no error".
+inline std::string scene_error(const std::string& text) {
+    try {
+        parse_scene(text, "bad.toml");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "no error";
 }
 
 }  // namespace gyrokit::test

@@ -6,6 +6,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "test_helpers.hpp"
+
 #include <cmath>
 #include <fmt/format.h>
 #include <string>
@@ -104,14 +106,7 @@ TEST_CASE("[speeds] in rpm or Hz are converted to rad/s", "[materials][speeds]")
 TEST_CASE("materials, disk geometry and speed units: bad input names the key, value and what is allowed",
           "[materials]") {
     const std::string disk = "mass = 20.0\nId = 0.1\nIp = 0.2";
-    const auto message = [](const std::string& text) {
-        try {
-            parse_scene(text, "bad.toml");
-        } catch (const InputError& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
+    const auto message = test::scene_error;
     CHECK(message(rotor("material = \"unobtainium\"", disk)) ==
           "bad.toml: [model] material = 'unobtainium' is unknown; allowed: steel, stainless, aluminium, titanium");
     CHECK(message(rotor("material = \"steel\"", "outer_diameter = 0.2\ninner_diameter = 0.2\nwidth = 0.05")) ==

@@ -9,6 +9,7 @@
 namespace gyrokit {
 
 BearingCoefficients BearingTable::at(double w) const {
+    if (model) return model(std::max(w, speeds.front()));
     if (w <= speeds.front()) return rows.front();
     if (w >= speeds.back()) return rows.back();
     const size_t j = static_cast<size_t>(std::upper_bound(speeds.begin(), speeds.end(), w) - speeds.begin());
@@ -19,15 +20,16 @@ BearingCoefficients BearingTable::at(double w) const {
     return c;
 }
 
-bool BearingTable::covers(double w) const { return w >= speeds.front() && w <= speeds.back(); }
+bool BearingTable::covers(double w) const { return w >= speeds.front() && (model || w <= speeds.back()); }
 
 bool BearingTable::has_damping() const {
+    if (model) return model(speeds.front()).C.cwiseAbs().maxCoeff() > 0.0;
     for (const auto& r : rows)
         if (r.C.cwiseAbs().maxCoeff() > 0.0) return true;
     return false;
 }
 
-void BearingTable::validate(int dofs) const {
+void BearingTable::validate_rows() const {
     if (speeds.size() < 2)
         throw InputError(fmt::format("bearing table {}: {} speed row(s); allowed: at least 2 rows to interpolate "
                                      "between",
@@ -48,6 +50,21 @@ void BearingTable::validate(int dofs) const {
                                          "finite numbers",
                                          name, i + 1));
     }
+}
+
+void BearingTable::validate(int dofs) const {
+    if (model) {
+        if (speeds.size() != 1 || !(speeds.front() > 0.0) || !std::isfinite(speeds.front()))
+            throw InputError(fmt::format("bearing {}: the model holds its values below {} rad/s; allowed: one "
+                                         "finite speed > 0",
+                                         name, speeds.empty() ? NAN : speeds.front()));
+        const BearingCoefficients c = model(speeds.front());
+        if (!c.K.allFinite() || !c.C.allFinite())
+            throw InputError(fmt::format("bearing {}: a NaN or infinite coefficient at {} rad/s", name,
+                                         speeds.front()));
+    } else {
+        validate_rows();
+    }
     for (const auto& [key, v] : {std::pair{"dof_x", dof_x}, std::pair{"dof_y", dof_y}})
         if (v < 0 || v >= dofs)
             throw InputError(fmt::format("bearing table {}: {} = {} is out of range; allowed: 0 to {} (0-based DOF "
@@ -61,7 +78,11 @@ void BearingTable::validate(int dofs) const {
 std::vector<std::string> extrapolation_notes(const std::vector<BearingTable>& tables, double from, double to) {
     std::vector<std::string> notes;
     for (const auto& t : tables)
-        if (!t.covers(from) || !t.covers(to))
+        if (t.model && !t.covers(from))
+            notes.push_back(fmt::format("bearing {}: below {:g} rad/s its coefficients at {:g} rad/s hold (the film "
+                                        "would be thinner than max_eccentricity allows; from {:g} rad/s requested)",
+                                        t.name, t.speeds.front(), t.speeds.front(), from));
+        else if (!t.model && (!t.covers(from) || !t.covers(to)))
             notes.push_back(fmt::format("bearing table {} covers {:g} to {:g} rad/s; the speeds {:g} to {:g} rad/s "
                                         "outside it use its end rows (held constant)",
                                         t.name, t.speeds.front(), t.speeds.back(), from, to));

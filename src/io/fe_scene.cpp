@@ -2,6 +2,7 @@
 
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/bearing_csv.hpp>
+#include <gyrokit/models/journal_bearing.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/materials.hpp>
 
@@ -167,20 +168,43 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         r.disks.push_back(d);
     });
 
+    // Speed-dependent bearings, attached once the constrained DOFs are known:
+    // a coefficient table (CSV) or a fluid-film bearing from its geometry.
     struct Tabulated {
         int node;
-        std::string path;
+        std::string path;                        // a table, or empty
+        std::optional<JournalBearing> journal;   // a fluid-film bearing
+        std::string where;
     };
     std::vector<Tabulated> tables;
     for_each_entry(k, "bearing", false, [&](const TomlKeys& e) {
-        e.only({"z", "k", "c", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy", "table"});
+        const std::string type = e.choice("type", "linear", {"linear", "fluid_film"});
+        if (type == "fluid_film") {
+            e.only({"type", "z", "diameter", "length", "clearance", "viscosity", "load", "load_angle",
+                    "max_eccentricity"});
+            JournalBearing j;
+            j.diameter = e.number("diameter", std::nullopt, 0.0, true, "m");
+            j.length = e.number("length", std::nullopt, 0.0, true, "m");
+            j.clearance = e.number("clearance", std::nullopt, 0.0, true, "m");
+            j.viscosity = e.number("viscosity", std::nullopt, 0.0, true, "Pa s");
+            j.load = e.number("load", std::nullopt, 0.0, true, "N");
+            if (e.has("load_angle")) j.load_angle = e.any_number("load_angle", "deg") * std::acos(-1.0) / 180.0;
+            j.max_eccentricity = e.number("max_eccentricity", 0.95, 0.0, true, "eccentricity ratio, < 1");
+            std::string origin = e.where("");   // "file: [table] "
+            origin.pop_back();
+            j.validate(origin);
+            tables.push_back({node_at(e, z), "", j, e.where("type")});
+            return;
+        }
+        e.only({"type", "z", "k", "c", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy", "table"});
         const int node = node_at(e, z);
         if (e.has("table")) {
             for (const char* key : {"k", "c", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"})
                 if (e.has(key))
                     throw InputError(e.where(key) + " is given together with table; allowed: either a table or "
                                                     "constant coefficients");
-            tables.push_back({node, (std::filesystem::path(dir) / e.choice("table", "", {})).string()});
+            tables.push_back({node, (std::filesystem::path(dir) / e.choice("table", "", {})).string(), std::nullopt,
+                              e.where("table")});
             return;
         }
         FeBearing b;
@@ -213,12 +237,16 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
             const std::string name = prefix + std::to_string(t.node);
             const auto it = std::find(m.dof_names.begin(), m.dof_names.end(), name);
             if (it == m.dof_names.end())
-                throw InputError(fmt::format("{}: bearing table {} at node {} acts on DOF {}, which a support holds; "
+                throw InputError(fmt::format("{}: the bearing at node {} acts on DOF {}, which a support holds; "
                                              "allowed: a bearing at a node whose x and y are free",
-                                             k.where("bearing"), t.path, t.node, name));
+                                             t.where, t.node, name));
             return static_cast<int>(it - m.dof_names.begin());
         };
-        sys.bearings.push_back(read_bearing_csv(t.path, sys.size(), dof("x"), dof("y")));
+        if (t.journal)
+            sys.bearings.push_back(journal_bearing_table(*t.journal, "fluid_film_" + std::to_string(t.node), dof("x"),
+                                                         dof("y")));
+        else
+            sys.bearings.push_back(read_bearing_csv(t.path, sys.size(), dof("x"), dof("y")));
     }
     if (rotor) *rotor = r;
     return sys;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,18 +24,25 @@ struct BearingTable {
     int dof_x = 0, dof_y = 0;     // 0-based DOF indices of the model
     std::vector<double> speeds;   // rad/s, strictly increasing, at least two
     std::vector<BearingCoefficients> rows;   // one per speed
+    // Instead of rows: coefficients computed at any speed (a fluid-film bearing
+    // from its geometry); `speeds` then holds one speed, below which the model's
+    // values there hold (its validity ends: at standstill a film carries nothing).
+    std::function<BearingCoefficients(double)> model = {};
     // false: only the stiffness acts (how a pervasive-damping check takes the
     // other damping components alone).
     bool damping_enabled = true;
 
     // Coefficients at speed w (linear interpolation, end rows held outside).
     BearingCoefficients at(double w) const;
-    // True if w lies inside [speeds.front(), speeds.back()].
+    // True if w lies inside [speeds.front(), speeds.back()] (a model: w >= speeds.front()).
     bool covers(double w) const;
     bool has_damping() const;
 
     // Throws InputError naming the table, the item, the value and the allowed range.
     void validate(int dofs) const;
+
+private:
+    void validate_rows() const;
 };
 
 // One line per table that the speed range leaves: "bearing table NAME covers A..B rad/s;

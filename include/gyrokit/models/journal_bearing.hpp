@@ -1,0 +1,58 @@
+// Plain cylindrical fluid-film journal bearing in the short-bearing (Ocvirk)
+// approximation with Gümbel (half-Sommerfeld) cavitation: the static
+// eccentricity under a steady load and the 8 speed-dependent stiffness and
+// damping coefficients of the oil film (docs/fe_rotor.md gives the equations).
+#pragma once
+
+#include <gyrokit/core/bearing_table.hpp>
+
+#include <Eigen/Dense>
+#include <string>
+
+namespace gyrokit {
+
+struct JournalBearing {
+    double diameter = 0.0;    // D, m
+    double length = 0.0;      // L, m
+    double clearance = 0.0;   // radial clearance c, m (c < D / 2)
+    double viscosity = 0.0;   // dynamic viscosity eta, Pa s
+    double load = 0.0;        // static load W carried by this bearing, N
+    // Direction of the load on the journal, rad from +x towards +y: -pi/2 is
+    // gravity along -y. The spin turns from +x towards +y.
+    double load_angle = -1.5707963267948966;
+    // Beyond this eccentricity ratio (at low speed) the coefficients of the speed
+    // where it is reached are held: the film is then thinner than the short-bearing
+    // solution's use, and at standstill the film carries no load at all.
+    double max_eccentricity = 0.95;
+
+    // Throws InputError naming `origin`, the key, the value and the allowed range.
+    void validate(const std::string& origin) const;
+};
+
+// Modified Sommerfeld number of the short bearing at eccentricity ratio e:
+// S_s = eta Omega R L^3 / (4 W c^2) = (1 - e^2)^2 / (e sqrt(16 e^2 + pi^2 (1 - e^2))).
+double short_bearing_sommerfeld(double eccentricity);
+
+struct JournalBearingState {
+    double sommerfeld = 0.0;        // S_s at this speed
+    double eccentricity = 0.0;      // e = journal offset / c, in (0, 1)
+    double attitude_angle = 0.0;    // rad, from the load line to the line of centres, with the spin
+    // Dimensionless coefficients in axes (u, v) where the load acts along -v and
+    // the spin turns u into v (a load along -y: u = x, v = y):
+    // K = (W / c) a, C = (W / (c Omega)) b.
+    Eigen::Matrix2d a = Eigen::Matrix2d::Zero(), b = Eigen::Matrix2d::Zero();
+    BearingCoefficients coefficients;   // N/m and N s/m in (x, y)
+};
+
+// The bearing at spin speed w > 0 (rad/s): eccentricity from S_s(e) = S_s(w)
+// by root finding, coefficients in closed form, turned into (x, y).
+JournalBearingState short_bearing(const JournalBearing& b, double w);
+
+// The speed (rad/s) at which the eccentricity ratio falls to e (S_s(e) = S_s(w)).
+double journal_bearing_speed_at(const JournalBearing& b, double eccentricity);
+
+// The bearing as a speed-dependent bearing between the DOF pair (dof_x, dof_y)
+// and the ground; below the speed of max_eccentricity its coefficients there hold.
+BearingTable journal_bearing_table(const JournalBearing& b, const std::string& name, int dof_x, int dof_y);
+
+}  // namespace gyrokit

@@ -1,0 +1,97 @@
+#include <gyrokit/models/journal_bearing.hpp>
+
+#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/core/error.hpp>
+
+#include <cmath>
+#include <fmt/format.h>
+
+namespace gyrokit {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// eta R L^3 / (4 W c^2): S_s per unit speed.
+double sommerfeld_per_speed(const JournalBearing& b) {
+    return b.viscosity * 0.5 * b.diameter * std::pow(b.length, 3) / (4.0 * b.load * b.clearance * b.clearance);
+}
+
+}  // namespace
+
+void JournalBearing::validate(const std::string& origin) const {
+    const auto positive = [&](const char* key, double v, const char* unit) {
+        if (!(v > 0.0) || !std::isfinite(v))
+            throw InputError(fmt::format("{}: {} = {}; allowed: a finite number > 0 ({})", origin, key, v, unit));
+    };
+    positive("diameter", diameter, "m");
+    positive("length", length, "m");
+    positive("clearance", clearance, "m");
+    positive("viscosity", viscosity, "Pa s");
+    positive("load", load, "N");
+    if (!(clearance < 0.5 * diameter))
+        throw InputError(fmt::format("{}: clearance = {} m with diameter = {} m; allowed: 0 < clearance < diameter / 2",
+                                     origin, clearance, diameter));
+    if (!std::isfinite(load_angle))
+        throw InputError(fmt::format("{}: load_angle = {}; allowed: a finite angle", origin, load_angle));
+    if (!(max_eccentricity > 0.0 && max_eccentricity < 1.0))
+        throw InputError(fmt::format("{}: max_eccentricity = {}; allowed: 0 < max_eccentricity < 1", origin,
+                                     max_eccentricity));
+}
+
+double short_bearing_sommerfeld(double e) {
+    const double s = 1.0 - e * e;
+    return s * s / (e * std::sqrt(16.0 * e * e + kPi * kPi * s));
+}
+
+double journal_bearing_speed_at(const JournalBearing& b, double e) {
+    return short_bearing_sommerfeld(e) / sommerfeld_per_speed(b);
+}
+
+JournalBearingState short_bearing(const JournalBearing& b, double w) {
+    JournalBearingState st;
+    st.sommerfeld = sommerfeld_per_speed(b) * w;
+    // S_s falls monotonically from infinity (e -> 0) to 0 (e -> 1): one root, in logarithms
+    // so that both ends keep their digits.
+    const double target = std::log(st.sommerfeld);
+    const auto f = [&](double e) { return std::log(short_bearing_sommerfeld(e)) - target; };
+    const double lo = 1e-12, hi = 1.0 - 1e-12;
+    if (!(w > 0.0) || !std::isfinite(target) || f(hi) > 0.0 || f(lo) < 0.0)
+        throw InputError(fmt::format("fluid-film bearing at {} rad/s: Sommerfeld number {} outside the range the "
+                                     "short-bearing solution covers (eccentricity 1e-12 to 1 - 1e-12)",
+                                     w, st.sommerfeld));
+    const double e = find_root(f, lo, hi, 1e-15);
+    st.eccentricity = e;
+    const double s = 1.0 - e * e, rs = std::sqrt(s), pi2 = kPi * kPi;
+    st.attitude_angle = std::atan2(kPi * rs, 4.0 * e);
+    const double h0 = 1.0 / std::pow(pi2 * s + 16.0 * e * e, 1.5);
+    st.a << h0 * 4.0 * (pi2 * (2.0 - e * e) + 16.0 * e * e),
+        h0 * kPi * (pi2 * s * s - 16.0 * std::pow(e, 4)) / (e * rs),
+        -h0 * kPi * (pi2 * s * (1.0 + 2.0 * e * e) + 32.0 * e * e * (1.0 + e * e)) / (e * rs),
+        h0 * 4.0 * (pi2 * (1.0 + 2.0 * e * e) + 32.0 * e * e * (1.0 + e * e) / s);
+    const double buv = -h0 * 8.0 * (pi2 * (1.0 + 2.0 * e * e) - 16.0 * e * e);
+    st.b << h0 * 2.0 * kPi * rs * (pi2 * (1.0 + 2.0 * e * e) - 16.0 * e * e) / e, buv,
+        buv, h0 * 2.0 * kPi * (pi2 * s * s + 48.0 * e * e) / (e * rs);
+    // The closed forms hold in axes (u, v) where the load acts along -v and the spin
+    // turns u into v (for a load along -y: u = x, v = y). (u, v) = T (x, y), K_xy = T^T K_uv T.
+    const double ca = std::cos(b.load_angle), sa = std::sin(b.load_angle);
+    Eigen::Matrix2d T;
+    T << -sa, ca, -ca, -sa;
+    const double kscale = b.load / b.clearance, cscale = b.load / (b.clearance * w);
+    st.coefficients.K = T.transpose() * (kscale * st.a) * T;
+    st.coefficients.C = T.transpose() * (cscale * st.b) * T;
+    return st;
+}
+
+BearingTable journal_bearing_table(const JournalBearing& b, const std::string& name, int dof_x, int dof_y) {
+    b.validate(name);
+    BearingTable t;
+    t.name = name;
+    t.dof_x = dof_x;
+    t.dof_y = dof_y;
+    t.speeds = {journal_bearing_speed_at(b, b.max_eccentricity)};
+    t.model = [b](double w) { return short_bearing(b, w).coefficients; };
+    return t;
+}
+
+}  // namespace gyrokit
