@@ -647,3 +647,27 @@ TEST_CASE("fe rotor: cross-coupled bearings: the stability threshold equals a bi
     CHECK(changes[0].speed == Approx(251.609).epsilon(2e-6));
     CHECK(unstable_ranges(cd).size() == 1);
 }
+
+TEST_CASE("fe rotor: a dense diagram of the K lowest modes keeps the others for a verdict over every mode",
+          "[fe_rotor][stability]") {
+    const Scene sc = load_scene(std::string(GYROKIT_DATA_DIR) + "/fe_rotor.toml");
+    std::vector<double> speeds;
+    for (int k = 0; k <= 40; ++k) speeds.push_back(100.0 * k);
+    CampbellOptions one, all;
+    one.modes = 1;
+    const CampbellDiagram low = campbell(sc.system, speeds, one), every = campbell(sc.system, speeds, all);
+    REQUIRE(low.branches.size() == 1);
+    CHECK(low.untracked.size() + 1 == every.branches.size());
+    // The tracked mode is stable; modes 2 and 4 are not (the bearings' cross-coupling), and the
+    // verdict over every mode finds them at the same speeds as the diagram of every mode.
+    CHECK(unstable_ranges(low).empty());
+    const auto a = unstable_ranges(low, true), b = unstable_ranges(every);
+    REQUIRE(a.size() == b.size());
+    REQUIRE(!a.empty());
+    for (size_t i = 0; i < a.size(); ++i) {
+        CHECK(a[i].branch == b[i].branch);
+        CHECK(a[i].from == b[i].from);
+        CHECK(a[i].to == b[i].to);
+    }
+    CHECK(low.untracked.front().points.front().mode.right.size() == 0);   // eigenvalues only
+}

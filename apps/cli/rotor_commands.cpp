@@ -250,14 +250,11 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         std::vector<CriticalSpeed> cs;
         if (summary || !o->common.plot.empty()) cs = critical_speeds(plan.make, cd, h, c.jobs);
         if (summary) {
-            // The verdict covers every mode: a dense solver has them all at each speed, so a diagram
-            // of every mode costs only the tracking; a sparse window says it covers its modes only.
+            // The verdict covers every mode: the dense solver tracks them all (the diagram keeps
+            // the untracked ones by eigenvalue); a sparse window says it covers its modes only.
             StabilityScope scope;
             scope.partial = plan.modes > 0 && plan.modes < c.scene.dofs();
-            if (scope.partial && plan.kind == SolverKind::Dense) {
-                const SolverChoice every = plan_solver(c, 0);
-                scope.every_mode = unstable_ranges(campbell(every.make, c.speeds, campbell_options(c, every)));
-            }
+            if (scope.partial && plan.kind == SolverKind::Dense) scope.every_mode = unstable_ranges(cd, true);
             write_table(out, campbell_summary(cd, cs, c.unit, o->common.plot, scope), c.format);
             out << "\n";
             write_table(out, critical_table(cs, c.unit), c.format);

@@ -193,7 +193,16 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
         }
         return false;
     });
-    if (opt.modes > 0 && !t.window && static_cast<int>(br.size()) > opt.modes) br.resize(static_cast<size_t>(opt.modes));
+    if (opt.modes > 0 && !t.window && static_cast<int>(br.size()) > opt.modes) {
+        // The others were tracked too (a dense spectrum is complete): kept by eigenvalue for a
+        // stability verdict over every mode, numbered on from K + 1.
+        for (size_t i = static_cast<size_t>(opt.modes); i < br.size(); ++i) {
+            for (auto& p : br[i].points) p.mode.right.resize(0), p.mode.left.resize(0);
+            br[i].id = static_cast<int>(i + 1);
+            out.untracked.push_back(std::move(br[i]));
+        }
+        br.resize(static_cast<size_t>(opt.modes));
+    }
     if (t.window) {   // the window's branches: those of the first speed, then the ones that entered later
         const auto first = std::stable_partition(br.begin(), br.end(), [&](const Branch& b) {
             return b.points.front().speed == speeds.front();

@@ -128,9 +128,14 @@ std::vector<StabilityChange> stability_changes(const SolverFactory& solver, cons
     return out;
 }
 
-std::vector<UnstableRange> unstable_ranges(const CampbellDiagram& cd) {
+std::vector<UnstableRange> unstable_ranges(const CampbellDiagram& cd, bool every_mode) {
     std::vector<UnstableRange> out;
-    for (const Branch& b : cd.branches) {
+    std::vector<const Branch*> branches;
+    for (const Branch& b : cd.branches) branches.push_back(&b);
+    if (every_mode)
+        for (const Branch& b : cd.untracked) branches.push_back(&b);
+    for (const Branch* bp : branches) {
+        const Branch& b = *bp;
         for (size_t i = 0; i < b.points.size(); ++i) {
             const Mode& m = b.points[i].mode;
             if (m.stability() != Stability::Unstable) continue;

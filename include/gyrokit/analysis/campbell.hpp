@@ -43,6 +43,10 @@ struct CampbellDiagram {
     double max_backward_error = 0;
     int rigid_body = 0;             // most rigid-body eigenvalues at one speed (not tracked)
     std::vector<std::string> notes; // the solvers' notes, each once
+    // Dense with opt.modes = K: the branches beyond the K reported, eigenvalues only
+    // (no vectors), ids K + 1 on; a dense spectrum is complete, so they cost nothing
+    // more and let a stability verdict cover every mode.
+    std::vector<Branch> untracked;
 };
 
 // Dense: every mode of the system, solved with opt.eig.

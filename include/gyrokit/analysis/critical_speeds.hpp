@@ -57,6 +57,7 @@ struct UnstableRange {
     double max_real = 0;       // largest Re lambda there
     size_t last_index = 0;
 };
-std::vector<UnstableRange> unstable_ranges(const CampbellDiagram& cd);
+// Of the reported branches, and with `every_mode` of the untracked ones too.
+std::vector<UnstableRange> unstable_ranges(const CampbellDiagram& cd, bool every_mode = false);
 
 }  // namespace gyrokit
