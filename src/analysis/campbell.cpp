@@ -36,6 +36,12 @@ const Mode& continue_branch(const Branch& branch, size_t i, double w, const Quad
 
 namespace {
 
+// Modes that vibrate by frequency, then the non-oscillating (real) eigenvalues by
+// modulus: an overdamped mode is no vibration mode, and "the K lowest" are K that vibrate.
+std::pair<int, double> frequency_rank(const Mode& m) {
+    return m.whirl == Whirl::Real ? std::pair{1, std::abs(m.lambda)} : std::pair{0, m.lambda.imag()};
+}
+
 struct Tracker {
     SpectrumSolver& solve;
     const CampbellOptions& opt;
@@ -172,7 +178,7 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
         std::vector<size_t> order(t.watched.size());
         for (size_t b = 0; b < order.size(); ++b) order[b] = b;
         std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-            return out.branches[a].points.front().mode.lambda.imag() < out.branches[b].points.front().mode.lambda.imag();
+            return frequency_rank(out.branches[a].points.front().mode) < frequency_rank(out.branches[b].points.front().mode);
         });
         std::fill(t.watched.begin(), t.watched.end(), 0);
         t.watch_new = 0;   // a branch that starts later is never among the K reported
@@ -188,7 +194,9 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
         if (a0 != b0) return a0;
         // Equal frequencies (a double eigenvalue at standstill): the order just after decides.
         for (size_t k = 0; k < std::min({a.points.size(), b.points.size(), size_t(2)}); ++k) {
-            const double fa = a.points[k].mode.lambda.imag(), fb = b.points[k].mode.lambda.imag();
+            const auto [ra, fa] = frequency_rank(a.points[k].mode);
+            const auto [rb, fb] = frequency_rank(b.points[k].mode);
+            if (ra != rb) return ra < rb;
             if (std::abs(fa - fb) > 1e-9 * std::max(std::abs(fa), std::abs(fb))) return fa < fb;
         }
         return false;

@@ -324,6 +324,11 @@ Figure campbell_figure(const CampbellDiagram& cd, const std::vector<CriticalSpee
         double fmax = 0.0;
         for (const Branch& b : cd.branches)
             for (const auto& p : b.points) fmax = std::max(fmax, u.factor * p.mode.frequency());
+        // Frequencies beyond twice the highest harmonic line cross none of them: the axis stops
+        // there, so that a stiff local mode (a journal on its oil film) does not flatten the rest.
+        int kmax = 1;
+        for (int k : harmonics) kmax = std::max(kmax, k);
+        fmax = std::min(fmax, 2.0 * kmax * u.factor * w1);
         if (fmax > 0.0) freq.ymax = 1.05 * fmax;
     }
     Series crit{{}, {}, "critical speeds", "points", "#2ca02c"};

@@ -15,7 +15,8 @@ namespace gyrokit {
 
 struct CampbellOptions {
     EigenOptions eig;
-    int modes = 0;            // keep the K lowest branches by frequency at the first speed; 0 = all.
+    int modes = 0;            // keep the K lowest branches by frequency at the first speed (oscillating
+                              // ones first, real eigenvalues after them); 0 = all.
                               // Dense: only these (and the next two) decide whether a step is ambiguous
     int max_refine = 8;       // bisection levels allowed between two grid speeds
     double mac_min = 0.9;     // a match with a lower MAC is ambiguous
