@@ -493,6 +493,26 @@ TEST_CASE("fluid: truncation by tolerance", "[fluid]") {
     CHECK(std::fabs(equivalent_inertia(f) - equivalent_inertia(g)) < 1e-6 * (g.I + g.J));
 }
 
+TEST_CASE("fluid: a series that misses its tolerance is refused; many modes assemble sparse", "[fluid]") {
+    // A cavity far longer than wide (found by fuzzing: a = 1.3e88 m): every mode contributes
+    // alike and the tolerance is never met; before, 5000 modes were kept silently and the
+    // model was assembled from dense matrices of 10,004^2 entries.
+    FluidRotorParameters p = table_case(3);
+    p.modes = 0;
+    p.a = 1.3e88;
+    try {
+        build_fluid_rotor(p);
+        FAIL("accepted");
+    } catch (const SolverError& e) {
+        CHECK(std::string(e.what()).find("do not reach tolerance = 1e-10 within 5000 modes") != std::string::npos);
+    }
+    FluidRotorParameters q = table_case(3);
+    q.modes = 20000;
+    const GyroscopicSystem s = make_system(build_fluid_rotor(q));
+    CHECK(s.size() == 40004);
+    CHECK(s.M.nonZeros() == 4 + 6 * 20000);
+}
+
 TEST_CASE("fluid: scenes of Tabelle 2 and bad input", "[fluid]") {
     for (int N = 1; N <= 4; ++N) {
         CAPTURE(N);

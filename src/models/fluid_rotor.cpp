@@ -259,6 +259,11 @@ LiquidCoefficients liquid_coefficients(const FluidRotorParameters& p) {
             const double contrib = m.lambda * m.lambda / (m.mu * std::fabs(m.detuning));
             below = contrib < p.tolerance * scale ? below + 1 : 0;
             if (below >= 2) break;
+            // A series that has not met its tolerance after `cap` modes is not a converged model.
+            if (j + 1 == cap)
+                throw SolverError(fmt::format("the sloshing modes do not reach tolerance = {} within {} modes "
+                                              "(R = {}, R0 = {}, a = {}); give modes = N, or a larger tolerance",
+                                              p.tolerance, cap, R, R0, a));
         }
     }
     if (!std::isfinite(c.J_star))
@@ -309,37 +314,43 @@ double fluid_delta(const FluidRotor& f, double J_eq, double w) {
 }
 
 GyroscopicSystem make_system(const FluidRotor& f) {
+    // Assembled sparse: two DOFs per sloshing mode, and up to 100,000 modes may be asked for.
     const int ns = static_cast<int>(f.liquid.modes.size());
     const int n = 4 + 2 * ns;
     GyroscopicSystem s;
-    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), K = M, G = M, K2 = M;
-    Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);   // per sqrt(w)
+    using T = Eigen::Triplet<double>;
+    std::vector<T> M, K, G, K2, D;   // D per sqrt(w)
     s.dof_names = {"x", "y", "alpha", "beta"};
-    M(0, 0) = M(1, 1) = f.m;
-    M(2, 2) = M(3, 3) = f.J;
-    K(0, 0) = K(1, 1) = f.k.gamma;
-    K(2, 2) = K(3, 3) = f.k.tilt;
-    K(0, 2) = K(2, 0) = K(1, 3) = K(3, 1) = -f.k.delta;
-    G(2, 3) = f.I;
-    G(3, 2) = -f.I;
+    M.insert(M.end(), {T(0, 0, f.m), T(1, 1, f.m), T(2, 2, f.J), T(3, 3, f.J)});
+    K.insert(K.end(), {T(0, 0, f.k.gamma), T(1, 1, f.k.gamma), T(2, 2, f.k.tilt), T(3, 3, f.k.tilt)});
+    for (const auto& [i, j] : {std::pair{0, 2}, std::pair{2, 0}, std::pair{1, 3}, std::pair{3, 1}})
+        K.emplace_back(i, j, -f.k.delta);
+    G.insert(G.end(), {T(2, 3, f.I), T(3, 2, -f.I)});
     s.whirl_pairs = {{0, 1}, {2, 3}};
+    bool damped = false;
     for (int j = 0; j < ns; ++j) {
-        const auto& m = f.liquid.modes[j];
+        const auto& m = f.liquid.modes[static_cast<size_t>(j)];
         const int q = 4 + 2 * j, r = q + 1;
         s.dof_names.push_back("q" + std::to_string(m.n));
         s.dof_names.push_back("s" + std::to_string(m.n));
-        M(q, q) = M(r, r) = m.mu;
-        M(2, q) = M(q, 2) = M(3, r) = M(r, 3) = m.lambda;
-        K2(q, q) = K2(r, r) = m.mu * m.ratio;   // mu_n sigma_n^2 = mu_n (sigma_n/w)^2 w^2
-        D(q, q) = D(r, r) = m.mu * m.tau(1.0);        // mu_n tau_n = mu_n tau_n(1) sqrt(w)
+        M.insert(M.end(), {T(q, q, m.mu), T(r, r, m.mu), T(2, q, m.lambda), T(q, 2, m.lambda), T(3, r, m.lambda),
+                           T(r, 3, m.lambda)});
+        K2.insert(K2.end(), {T(q, q, m.mu * m.ratio), T(r, r, m.mu * m.ratio)});   // mu_n (sigma_n/w)^2 w^2
+        D.insert(D.end(), {T(q, q, m.mu * m.tau(1.0)), T(r, r, m.mu * m.tau(1.0))});   // mu_n tau_n(1) sqrt(w)
+        damped = damped || m.mu * m.tau(1.0) != 0.0;
         s.whirl_pairs.emplace_back(q, r);
     }
-    s.M = to_sparse(M);
-    s.K = to_sparse(K);
-    s.G = to_sparse(G);
-    s.K2 = to_sparse(K2);
-    if (ns > 0 && D.norm() > 0.0) {
-        const SparseMatrix Ds = to_sparse(D);
+    const auto sparse = [n](const std::vector<T>& t) {
+        SparseMatrix A(n, n);
+        A.setFromTriplets(t.begin(), t.end());
+        return A;
+    };
+    s.M = sparse(M);
+    s.K = sparse(K);
+    s.G = sparse(G);
+    s.K2 = sparse(K2);
+    if (ns > 0 && damped) {
+        const SparseMatrix Ds = sparse(D);
         s.damping.push_back({"sloshing", Ds, [Ds](double w) { return SparseMatrix(Ds * std::sqrt(std::max(w, 0.0))); }});
     }
     if (f.p.e > 0) {
