@@ -46,6 +46,18 @@ header "speed_hz,mode,whirl,harmonic,frequency_hz" critical "$scene" --units hz
 "$cli" campbell "$data/fe_rotor.toml" --modes 2 --solver sparse 2> /dev/null | grep -q "modes beyond the 2 tracked are not checked" ||
     { echo "FAIL: campbell verdict of a sparse window"; fail=1; }
 
+# A dense diagram of fewer modes than DOFs still judges every mode: a divergent (real,
+# positive) eigenvalue ranks after the modes that vibrate but is not left out.
+mkdir -p "$dir/div"
+printf '%%%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 1\n2 2 1\n3 3 1\n' > "$dir/div/M.mtx"
+printf '%%%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 100\n2 2 -40000\n3 3 1\n' > "$dir/div/K.mtx"
+printf '%%%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 0.1\n2 2 0\n3 3 100\n' > "$dir/div/D.mtx"
+printf '[model]\ntype = "matrices"\nM = "M.mtx"\nK = "K.mtx"\nD = "D.mtx"\n[speeds]\nfrom = 0\nto = 10\ncount = 5\n' > "$dir/div/div.toml"
+for m in 1 3; do
+    "$cli" campbell "$dir/div/div.toml" --modes $m 2> /dev/null | grep -q "^stability  *mode 5 unstable from 0 rad/s to 10 rad/s" ||
+        { echo "FAIL: campbell --modes $m misses the divergent mode"; fail=1; }
+done
+
 # JSON parses.
 # JSON: an array of objects with the documented keys.
 "$cli" critical "$scene" --format json > "$dir/c.json" && head -c 1 "$dir/c.json" | grep -q '\[' &&

@@ -257,6 +257,13 @@ TEST_CASE("journal bearing in an fe_rotor scene: the bearings' coefficients at e
     REQUIRE(notes.size() == 2);
     CHECK(notes[0].find("below") != std::string::npos);
     CHECK(extrapolation_notes(sc.system.bearings, w95, 100.0).empty());
+    // Two at one node: distinct names (each one's damping is a component of its own).
+    std::string two = film_rotor();
+    two.replace(two.find("z = 1.0\ntype"), 7, "z = 0.0");
+    const Scene both = parse_scene(two, "two.toml");
+    REQUIRE(both.system.bearings.size() == 2);
+    CHECK(both.system.bearings[0].name == "fluid_film_0");
+    CHECK(both.system.bearings[1].name == "fluid_film_0_2");
 }
 
 TEST_CASE("journal bearing in a scene: bad input names the key, value and range", "[journal_bearing]") {
@@ -271,6 +278,12 @@ TEST_CASE("journal bearing in a scene: bad input names the key, value and range"
           std::string::npos);
     CHECK(message(film_rotor("max_eccentricity = 1.0\n")).find("max_eccentricity = 1") != std::string::npos);
     CHECK(message(film_rotor("k = 1e6\n")).find("unknown key 'k'") != std::string::npos);
+    CHECK(message(film_rotor("load_angle = 1e308\n")).find("load_angle = 1e+308; allowed: -360 to 360 (deg)") !=
+          std::string::npos);
+    CHECK(message(film_rotor("max_eccentricity = 0.9999999\n")).find("allowed: 0.01 to 0.999") != std::string::npos);
+    std::string thin = film_rotor();
+    thin.replace(thin.find("viscosity = 0.02"), 16, "viscosity = 1e-320");
+    CHECK(message(thin).find("give no usable film") != std::string::npos);
     CHECK(message(film_rotor().replace(film_rotor().find("load = 200"), 10, "load = 0")).find("load = 0") !=
           std::string::npos);
     CHECK(message(film_rotor().replace(film_rotor().find("\"fluid_film\""), 12, "\"magnetic\"")).find(

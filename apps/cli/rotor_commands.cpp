@@ -250,12 +250,9 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         std::vector<CriticalSpeed> cs;
         if (summary || !o->common.plot.empty()) cs = critical_speeds(plan.make, cd, h, c.jobs);
         if (summary) {
-            // The verdict covers every mode: the dense solver tracks them all (the diagram keeps
-            // the untracked ones by eigenvalue); a sparse window says it covers its modes only.
-            StabilityScope scope;
-            scope.partial = plan.modes > 0 && plan.modes < c.scene.dofs();
-            if (scope.partial && plan.kind == SolverKind::Dense) scope.every_mode = unstable_ranges(cd, true);
-            write_table(out, campbell_summary(cd, cs, c.unit, o->common.plot, scope), c.format);
+            // A sparse window's verdict covers its modes only (a dense diagram keeps every mode).
+            const bool window = plan.kind == SolverKind::Sparse;
+            write_table(out, campbell_summary(cd, cs, c.unit, o->common.plot, window), c.format);
             out << "\n";
             write_table(out, critical_table(cs, c.unit), c.format);
         } else {

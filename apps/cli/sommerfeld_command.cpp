@@ -75,8 +75,12 @@ std::string states_text(const std::vector<StationaryPoint>& states) {
 // Where a slow run-up from rest ends: it follows the resonance branch up to its fold.
 std::string runup_verdict(const SommerfeldAnalysis& a, double nominal) {
     if (!a.has_jump) return "no fold: the rotor speed follows the nominal speed continuously";
+    if (nominal < a.jump_down.point.nominal)
+        return fmt::format("below the resonance (nominal speed below jump_down {:.6g}: one state only)",
+                           a.jump_down.point.nominal);
     if (nominal < a.jump_up.point.nominal)
-        return fmt::format("captured below the resonance (nominal speed below jump_up {:.6g})", a.jump_up.point.nominal);
+        return fmt::format("captured below the resonance (nominal speed between jump_down {:.6g} and jump_up {:.6g})",
+                           a.jump_down.point.nominal, a.jump_up.point.nominal);
     return fmt::format("passes the resonance: jumps up at nominal {:.6g}", a.jump_up.point.nominal);
 }
 

@@ -442,9 +442,9 @@ class BalancerStates(_Result):
         self.ranges = [dict(r) for r in d["ranges"]]
 
     def to_pandas(self):
-        return self._frame({"state": self.state, "range": self.range, "from": self.range_from, "to": self.range_to,
+        return self._frame({"state": self.state, "range": self.range, "from_rad_s": self.range_from, "to_rad_s": self.range_to,
                             "stable": self.stable, "stable_eigen": self.stable_eigen,
-                            "max_re_lambda": self.max_real_eigenvalue, "compensating": self.compensating})
+                            "max_re_lambda_1_s": self.max_real_eigenvalue, "compensating": self.compensating})
 
 
 class Sommerfeld(_Result):

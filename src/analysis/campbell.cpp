@@ -36,12 +36,6 @@ const Mode& continue_branch(const Branch& branch, size_t i, double w, const Quad
 
 namespace {
 
-// Modes that vibrate by frequency, then the non-oscillating (real) eigenvalues by
-// modulus: an overdamped mode is no vibration mode, and "the K lowest" are K that vibrate.
-std::pair<int, double> frequency_rank(const Mode& m) {
-    return m.whirl == Whirl::Real ? std::pair{1, std::abs(m.lambda)} : std::pair{0, m.lambda.imag()};
-}
-
 struct Tracker {
     SpectrumSolver& solve;
     const CampbellOptions& opt;

@@ -120,6 +120,7 @@ bool peak_is_resolved(Amplitudes& amplitudes, Eigen::Index col, double w) {
     const double h = 10.0 * smooth_minimum_resolution(w);
     const Eigen::VectorXd a = amplitudes(w), lo = amplitudes(w - h), hi = amplitudes(w + h);
     if (!a.size() || !lo.size() || !hi.size()) return false;
+    if (!(lo(col) > 0.0 && hi(col) > 0.0)) return true;   // an exact zero beside it: no resonance
     const double inv = 1.0 / (a(col) * a(col));
     const double spread = 0.5 * (1.0 / (lo(col) * lo(col)) + 1.0 / (hi(col) * hi(col))) - inv;
     return spread < inv;
@@ -144,12 +145,15 @@ std::vector<ResponseExtremum> response_extrema(const ResponseSolver& solve, cons
     };
     std::vector<ResponseExtremum> out;
     const Eigen::Index ns = c.Z.rows();
+    // A DOF whose response is zero (by symmetry) shows rounding noise: its wiggles are no peaks.
+    const double floor = 1e-9 * (c.Z.size() ? c.Z.cwiseAbs().maxCoeff() : 0.0);
     for (Eigen::Index col = 0; col < c.Z.cols(); ++col) {
         const int k = c.dofs[static_cast<size_t>(col)];
         for (Eigen::Index i = 1; i + 1 < ns; ++i) {
             const double a0 = std::abs(c.Z(i - 1, col)), a1 = std::abs(c.Z(i, col)), a2 = std::abs(c.Z(i + 1, col));
             const bool peak = a1 > a0 && a1 >= a2, dip = a1 < a0 && a1 <= a2;
             if (!peak && !(dip && !peaks_only)) continue;
+            if (std::max({a0, a1, a2}) <= floor) continue;
             const double s = peak ? -1.0 : 1.0;
             const auto f = [&](double w) {
                 const Eigen::VectorXd& a = amplitudes(w);

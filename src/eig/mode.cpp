@@ -43,6 +43,10 @@ bool is_rigid_body(std::complex<double> lambda, const Eigen::VectorXcd& x, const
     return Kx.norm() <= kRigidBodyTolerance * pencil.norm_K * x.norm();
 }
 
+std::pair<int, double> frequency_rank(const Mode& m) {
+    return m.whirl == Whirl::Real ? std::pair{1, std::abs(m.lambda)} : std::pair{0, m.lambda.imag()};
+}
+
 double Mode::damping_ratio() const {
     const double a = std::abs(lambda);
     return a == 0.0 ? 0.0 : 0.0 - lambda.real() / a;   // 0.0 - x: no negative zero in the output

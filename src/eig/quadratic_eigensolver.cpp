@@ -72,7 +72,7 @@ void finish(QuadraticSpectrum& s, const QuadraticPencil& p, const std::vector<st
     split_rigid_body(kept, s.rigid_body, action, s.scale);
     separate_double_whirl(kept, pairs, s.real_tol, action);
     std::stable_sort(kept.begin(), kept.end(), [](const Mode& a, const Mode& b) {
-        if (a.lambda.imag() != b.lambda.imag()) return a.lambda.imag() < b.lambda.imag();
+        if (frequency_rank(a) != frequency_rank(b)) return frequency_rank(a) < frequency_rank(b);
         return a.lambda.real() < b.lambda.real();
     });
     s.modes = std::move(kept);

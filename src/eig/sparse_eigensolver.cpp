@@ -415,7 +415,8 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
     if (!opt.left_vectors)
         for (Mode& m : out.modes) m.left.resize(0);
     std::stable_sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) {
-        return a.lambda.imag() != b.lambda.imag() ? a.lambda.imag() < b.lambda.imag() : a.lambda.real() < b.lambda.real();
+        return frequency_rank(a) != frequency_rank(b) ? frequency_rank(a) < frequency_rank(b)
+                                                      : a.lambda.real() < b.lambda.real();
     });
     return out;
 }

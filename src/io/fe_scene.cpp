@@ -188,8 +188,13 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
             j.clearance = e.number("clearance", std::nullopt, 0.0, true, "m");
             j.viscosity = e.number("viscosity", std::nullopt, 0.0, true, "Pa s");
             j.load = e.number("load", std::nullopt, 0.0, true, "N");
-            if (e.has("load_angle")) j.load_angle = e.any_number("load_angle", "deg") * std::acos(-1.0) / 180.0;
-            j.max_eccentricity = e.number("max_eccentricity", 0.95, 0.0, true, "eccentricity ratio, < 1");
+            if (e.has("load_angle")) {
+                const double deg = e.any_number("load_angle", "deg");
+                if (!(std::fabs(deg) <= 360.0))
+                    throw InputError(fmt::format("{} = {}; allowed: -360 to 360 (deg)", e.where("load_angle"), deg));
+                j.load_angle = deg * std::acos(-1.0) / 180.0;
+            }
+            j.max_eccentricity = e.number("max_eccentricity", 0.95, 0.0, true, "eccentricity ratio, 0.01 to 0.999");
             std::string origin = e.where("");   // "file: [table] "
             origin.pop_back();
             j.validate(origin);
@@ -242,9 +247,16 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
                                              t.where, t.node, name));
             return static_cast<int>(it - m.dof_names.begin());
         };
-        if (t.journal)
-            sys.bearings.push_back(journal_bearing_table(*t.journal, "fluid_film_" + std::to_string(t.node), dof("x"),
-                                                         dof("y")));
+        if (t.journal) {
+            // Named by node; a second one at the same node gets a suffix (damping components need unique names).
+            std::string name = "fluid_film_" + std::to_string(t.node);
+            for (int k = 2; std::any_of(sys.bearings.begin(), sys.bearings.end(),
+                                        [&](const BearingTable& b) { return b.name == name; });
+                 ++k)
+                name = "fluid_film_" + std::to_string(t.node) + "_" + std::to_string(k);
+            const int dx = dof("x"), dy = dof("y");
+            sys.bearings.push_back(journal_bearing_table(*t.journal, name, dx, dy));
+        }
         else
             sys.bearings.push_back(read_bearing_csv(t.path, sys.size(), dof("x"), dof("y")));
     }

@@ -65,7 +65,7 @@ std::string rigid_body_note(const std::vector<Mode>& rigid, const std::vector<st
 
 std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const SpeedUnit& u) {
     std::vector<std::string> out;
-    for (const UnstableRange& r : unstable_ranges(cd)) {
+    for (const UnstableRange& r : unstable_ranges(cd, true)) {
         char line[256];
         std::snprintf(line, sizeof line, "mode %d is unstable from %.6g to %.6g %s (Re lambda up to %.4g 1/s)",
                       r.branch, u.factor * r.from, u.factor * r.to, u.name.c_str(), r.max_real);
@@ -94,7 +94,7 @@ Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u) {
 }
 
 Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& critical, const SpeedUnit& u,
-                       const std::string& plot_file, const StabilityScope& scope) {
+                       const std::string& plot_file, bool window) {
     Table t({"quantity", "value"});
     t.key = "summary";
     t.title = "Campbell diagram: summary (all rows: --rows, or --format csv|json)";
@@ -110,22 +110,25 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
                critical.empty() ? std::string("none in the range")
                                 : fmt::format("{} in the range, {} of them forward whirl (table below)", critical.size(),
                                               forward)});
-    // The least damped oscillating mode over the range.
+    // The least damped oscillating mode over the range, untracked ones included.
     const BranchPoint* least = nullptr;
     int least_branch = 0;
-    for (const auto& b : cd.branches)
-        for (const auto& p : b.points)
+    std::vector<const Branch*> all;
+    for (const auto* list : {&cd.branches, &cd.untracked})
+        for (const auto& b : *list) all.push_back(&b);
+    for (const Branch* bp : all)
+        for (const auto& p : bp->points)
             if (p.mode.frequency() > 0 && (!least || p.mode.damping_ratio() < least->mode.damping_ratio()))
-                least = &p, least_branch = b.id;
+                least = &p, least_branch = bp->id;
     if (least)
         t.add_row({std::string("least damping"), fmt::format("damping ratio {:.4g}: mode {} ({}) at {}",
                                                               least->mode.damping_ratio(), least_branch,
                                                               to_string(least->mode.whirl), speed(least->speed))});
-    // The verdict covers every mode where the caller checked them all, else the tracked ones, and says so.
-    const auto unstable = scope.every_mode ? *scope.every_mode : unstable_ranges(cd);
-    const std::string which = scope.every_mode || !scope.partial
-                                  ? std::string("every mode")
-                                  : fmt::format("the {} tracked modes (the others are not checked)", cd.branches.size());
+    // The verdict covers every mode: a dense diagram keeps the untracked ones by eigenvalue;
+    // a sparse window covers its tracked modes only, and says so.
+    const auto unstable = unstable_ranges(cd, true);
+    const std::string which =
+        window ? fmt::format("the {} tracked modes (the others are not checked)", cd.branches.size()) : "every mode";
     std::string verdict = unstable.empty() ? fmt::format("{} stable over the range (no real part beyond its error "
                                                          "bound)",
                                                          which)
@@ -136,7 +139,7 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
                                speed(r.from), speed(r.to),
                                r.branch > static_cast<int>(cd.branches.size()) ? " (not tracked: --modes 0 tracks it)"
                                                                                 : "");
-    if (!unstable.empty() && !scope.every_mode && scope.partial)
+    if (!unstable.empty() && window)
         verdict += fmt::format("; modes beyond the {} tracked are not checked", cd.branches.size());
     t.add_row({std::string("stability"), verdict});
     if (cd.rigid_body > 0)
@@ -326,9 +329,13 @@ Figure campbell_figure(const CampbellDiagram& cd, const std::vector<CriticalSpee
             for (const auto& p : b.points) fmax = std::max(fmax, u.factor * p.mode.frequency());
         // Frequencies beyond twice the highest harmonic line cross none of them: the axis stops
         // there, so that a stiff local mode (a journal on its oil film) does not flatten the rest.
+        // The lowest branch stays in view when it lies above every line.
         int kmax = 1;
         for (int k : harmonics) kmax = std::max(kmax, k);
-        fmax = std::min(fmax, 2.0 * kmax * u.factor * w1);
+        double lowest = 0.0;
+        if (!cd.branches.empty())
+            for (const auto& p : cd.branches.front().points) lowest = std::max(lowest, u.factor * p.mode.frequency());
+        fmax = std::min(fmax, std::max(2.0 * kmax * u.factor * w1, 1.1 * lowest));
         if (fmax > 0.0) freq.ymax = 1.05 * fmax;
     }
     Series crit{{}, {}, "critical speeds", "points", "#2ca02c"};

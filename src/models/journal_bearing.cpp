@@ -32,11 +32,20 @@ void JournalBearing::validate(const std::string& origin) const {
     if (!(clearance < 0.5 * diameter))
         throw InputError(fmt::format("{}: clearance = {} m with diameter = {} m; allowed: 0 < clearance < diameter / 2",
                                      origin, clearance, diameter));
-    if (!std::isfinite(load_angle))
-        throw InputError(fmt::format("{}: load_angle = {}; allowed: a finite angle", origin, load_angle));
-    if (!(max_eccentricity > 0.0 && max_eccentricity < 1.0))
-        throw InputError(fmt::format("{}: max_eccentricity = {}; allowed: 0 < max_eccentricity < 1", origin,
-                                     max_eccentricity));
+    if (!(std::fabs(load_angle) <= 2.0 * kPi))
+        throw InputError(fmt::format("{}: load_angle = {} rad; allowed: -360 to 360 deg", origin, load_angle));
+    if (!(max_eccentricity >= 0.01 && max_eccentricity <= 0.999))
+        throw InputError(fmt::format("{}: max_eccentricity = {}; allowed: 0.01 to 0.999", origin, max_eccentricity));
+    // The film's scales must be numbers: S_s per unit speed, the speed where max_eccentricity is
+    // reached, and the stiffness and damping scales W/c, W/(c w) there.
+    const double per_speed = sommerfeld_per_speed(*this), w_min = short_bearing_sommerfeld(max_eccentricity) / per_speed;
+    const double k_scale = load / clearance, c_scale = k_scale / w_min;
+    for (const double v : {per_speed, w_min, k_scale, c_scale})
+        if (!(std::isfinite(v) && v > 0.0 && v < 1e200 && v > 1e-200))
+            throw InputError(fmt::format("{}: diameter = {} m, length = {} m, clearance = {} m, viscosity = {} Pa s, "
+                                         "load = {} N give no usable film (Sommerfeld number per rad/s {:g}, film "
+                                         "stiffness scale {:g} N/m); allowed: values of a real bearing",
+                                         origin, diameter, length, clearance, viscosity, load, per_speed, k_scale));
 }
 
 double short_bearing_sommerfeld(double e) {
@@ -55,10 +64,10 @@ JournalBearingState short_bearing(const JournalBearing& b, double w) {
     // so that both ends keep their digits.
     const double target = std::log(st.sommerfeld);
     const auto f = [&](double e) { return std::log(short_bearing_sommerfeld(e)) - target; };
-    const double lo = 1e-12, hi = 1.0 - 1e-12;
+    const double lo = 1e-300, hi = 1.0 - 1e-12;
     if (!(w > 0.0) || !std::isfinite(target) || f(hi) > 0.0 || f(lo) < 0.0)
         throw InputError(fmt::format("fluid-film bearing at {} rad/s: Sommerfeld number {} outside the range the "
-                                     "short-bearing solution covers (eccentricity 1e-12 to 1 - 1e-12)",
+                                     "short-bearing solution covers (eccentricity 1e-300 to 1 - 1e-12)",
                                      w, st.sommerfeld));
     const double e = find_root(f, lo, hi, 1e-15);
     st.eccentricity = e;
@@ -90,7 +99,13 @@ BearingTable journal_bearing_table(const JournalBearing& b, const std::string& n
     t.dof_x = dof_x;
     t.dof_y = dof_y;
     t.speeds = {journal_bearing_speed_at(b, b.max_eccentricity)};
-    t.model = [b](double w) { return short_bearing(b, w).coefficients; };
+    t.model = [b, name](double w) {
+        try {
+            return short_bearing(b, w).coefficients;
+        } catch (const InputError& e) {
+            throw SolverError(fmt::format("bearing {}: {}", name, e.what()));
+        }
+    };
     return t;
 }
 

@@ -67,7 +67,8 @@ void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& 
                      DesignResult& r) {
     const SolverChoice solver = choose_solver(sc.system, sc.solver_options());
     CampbellOptions co;
-    co.modes = solver.modes;
+    // Stability is about every mode: a dense spectrum has them all, so all are tracked (and refined).
+    co.modes = solver.kind == SolverKind::Dense ? 0 : solver.modes;
     const CampbellDiagram cd = campbell(solver.make, SpeedRange{0.0, c.up_to, c.count}.points(), co);
     const std::vector<StabilityChange> changes = stability_changes(solver.make, cd);
     double onset = inf;

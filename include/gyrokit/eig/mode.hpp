@@ -122,4 +122,9 @@ void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil);
 // Modal assurance criterion |a^H b|^2 / (|a|^2 |b|^2), in [0, 1].
 double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);
 
+// The order of modes by frequency: modes that vibrate by frequency, then the
+// non-oscillating (real, overdamped) eigenvalues by modulus; an overdamped
+// eigenvalue is no vibration mode, so "the K lowest modes" are K that vibrate.
+std::pair<int, double> frequency_rank(const Mode& m);
+
 }  // namespace gyrokit

@@ -25,16 +25,10 @@ std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const S
 Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u);
 // What a person reads of a Campbell diagram in ten seconds: modes tracked, the
 // speed range, critical speeds in it (count; the table is critical_table), the
-// least damped mode and where, the stability verdict, accuracy, the plot file.
-// What the summary's stability verdict covers: `every_mode` holds the unstable
-// ranges of a diagram of every mode where the caller made one; else the
-// tracked modes' (`partial`: fewer than every mode, which the verdict says).
-struct StabilityScope {
-    std::optional<std::vector<UnstableRange>> every_mode;
-    bool partial = false;
-};
+// least damped mode and where, the stability verdict over every mode (`window`:
+// a sparse window's modes only, which it says), accuracy, the plot file.
 Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& critical, const SpeedUnit& u,
-                       const std::string& plot_file, const StabilityScope& scope = {});
+                       const std::string& plot_file, bool window = false);
 Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u);
 Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u);
 Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u);
