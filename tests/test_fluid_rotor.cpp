@@ -493,7 +493,7 @@ TEST_CASE("fluid: truncation by tolerance", "[fluid]") {
     CHECK(std::fabs(equivalent_inertia(f) - equivalent_inertia(g)) < 1e-6 * (g.I + g.J));
 }
 
-TEST_CASE("fluid: a series that misses its tolerance is refused; many modes assemble sparse", "[fluid]") {
+TEST_CASE("fluid: a series that misses its tolerance is refused, many modes assemble sparse", "[fluid]") {
     // A cavity far longer than wide (found by fuzzing: a = 1.3e88 m): every mode contributes
     // alike and the tolerance is never met; before, 5000 modes were kept silently and the
     // model was assembled from dense matrices of 10,004^2 entries.
