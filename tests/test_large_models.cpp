@@ -42,17 +42,6 @@ std::string input_error(const F& f) {
     return "";
 }
 
-// Relative difference of each eigenvalue of `a` to the nearest in `b`.
-double max_nearest(const std::vector<Mode>& a, const std::vector<Mode>& b) {
-    double worst = 0.0;
-    for (const Mode& m : a) {
-        double best = INFINITY;
-        for (const Mode& n : b) best = std::min(best, std::abs(m.lambda - n.lambda) / std::abs(n.lambda));
-        worst = std::max(worst, best);
-    }
-    return worst;
-}
-
 }  // namespace
 
 TEST_CASE("bearing table: linear interpolation, end rows held, extrapolation reported", "[bearings]") {
@@ -250,13 +239,20 @@ TEST_CASE("start-vector reuse gives the same modes", "[sparse]") {
         const QuadraticSpectrum a = fresh(w), b = reused(w);
         REQUIRE(a.modes.size() == b.modes.size());
         // Both runs converge to machine precision (backward errors up to ~1e-12
-        // for the highest of these modes); the eigenvalues agree to what those
-        // backward errors allow for well-separated modes.
+        // for the highest of these modes); the eigenvalues agree within the sum of
+        // their error bounds (condition times backward error: the x/y pairs of this
+        // nearly isotropic rotor are close, so a backward error alone is too tight).
         double eta = 0.0;
         for (const Mode& m : a.modes) eta = std::max(eta, m.backward_error);
         for (const Mode& m : b.modes) eta = std::max(eta, m.backward_error);
         CHECK(eta < 1e-11);
-        CHECK(max_nearest(a.modes, b.modes) < 100 * std::max(eta, 1e-14));
+        for (const Mode& m : a.modes) {
+            double gap = INFINITY, allowed = 0.0;
+            for (const Mode& n : b.modes)
+                if (std::abs(m.lambda - n.lambda) < gap)
+                    gap = std::abs(m.lambda - n.lambda), allowed = m.error_bound + n.error_bound;
+            CHECK(gap <= allowed + 1e-14 * std::abs(m.lambda));
+        }
     }
 }
 
