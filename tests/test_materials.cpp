@@ -110,7 +110,7 @@ TEST_CASE("materials, disk geometry and speed units: bad input names the key, va
     CHECK(message(rotor("material = \"unobtainium\"", disk)) ==
           "bad.toml: [model] material = 'unobtainium' is unknown; allowed: steel, stainless, aluminium, titanium");
     CHECK(message(rotor("material = \"steel\"", "outer_diameter = 0.2\ninner_diameter = 0.2\nwidth = 0.05")) ==
-          "bad.toml: [model.disk[1]] inner_diameter = 0.2 is not below outer_diameter = 0.2; allowed: 0 <= inner < outer");
+          "bad.toml: [model.disk[1]] inner_diameter = 0.2 is not below outer_diameter = 0.2; allowed: 0 <= inner < outer (m)");
     CHECK(message(rotor("material = \"steel\"", "outer_diameter = 0.2\nwidth = 0.05\nmass = 3")).find(
               "[model.disk[1]] mass is given together with outer_diameter") != std::string::npos);
     CHECK(message(rotor("material = \"steel\"", "outer_diameter = 0.2")).find("[model.disk[1]] key 'width' is missing") !=
@@ -131,7 +131,7 @@ TEST_CASE("materials, disk geometry and speed units: bad input names the key, va
     // A disk off the shaft (the rotor is 1.2 m long).
     std::string off = rotor("material = \"steel\"", disk);
     off.replace(off.find("z = 0.6\n"), 8, "z = 1.9\n");
-    CHECK(message(off).find("[model.disk[1]] z = 1.9 is not a node of the mesh") != std::string::npos);
+    CHECK(message(off).find("[model.disk[1]] z = 1.9 m is not a node of the mesh") != std::string::npos);
     // Hostile sizes: sections whose elements add up past the limit are refused before any is stored.
     const std::string big = "[model]\ntype = \"fe_rotor\"\nmaterial = \"steel\"\n"
                             "[[model.shaft]]\nlength = 1\nelements = 2\nouter_diameter = 0.05\n"

@@ -33,18 +33,29 @@ void for_each_entry(const TomlKeys& k, const std::string& name, bool required, c
     }
 }
 
+// Lengths as the scene writes them: `length_unit` = "m" (default) or "mm" in [model].
+struct LengthUnit {
+    double scale = 1.0;      // metres per scene unit
+    const char* name = "m";
+    // A length key with lower bound 0 (strict if `strict`), in metres.
+    double operator()(const TomlKeys& e, const char* key, std::optional<double> fallback, bool strict) const {
+        return e.number(key, fallback, 0.0, strict, name) * scale;
+    }
+};
+
 // The node at axial position z; the position must be a node within 1e-9 of the length.
-int node_at(const TomlKeys& e, const std::vector<double>& z) {
+int node_at(const TomlKeys& e, const std::vector<double>& z, const LengthUnit& unit) {
     const double L = z.back();
-    const double zi = e.number("z", std::nullopt, 0.0, false, "m");
+    const double zi = unit(e, "z", std::nullopt, false);
     const auto it = std::lower_bound(z.begin(), z.end(), zi - 1e-9 * L);
     if (it == z.end() || std::abs(*it - zi) > 1e-9 * L) {
         double nearest = z.front();
         for (double x : z)
             if (std::abs(x - zi) < std::abs(nearest - zi)) nearest = x;
-        throw InputError(fmt::format("{} = {} is not a node of the mesh; allowed: a section end or subdivision, "
-                                     "the nearest is {} (rotor length {})",
-                                     e.where("z"), zi, nearest, L));
+        throw InputError(fmt::format("{} = {} {} is not a node of the mesh; allowed: a section end or "
+                                     "subdivision, the nearest is {} (rotor length {})",
+                                     e.where("z"), zi / unit.scale, unit.name, nearest / unit.scale,
+                                     L / unit.scale));
     }
     return static_cast<int>(it - z.begin());
 }
@@ -53,8 +64,14 @@ int node_at(const TomlKeys& e, const std::vector<double>& z) {
 
 GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRotor* rotor) {
     k.only({"type", "shaft", "disk", "bearing", "support", "E", "poisson", "density", "material", "materials",
-            "shear_deformation", "rotary_inertia"});
+            "shear_deformation", "rotary_inertia", "dofs_per_node", "length_unit"});
     FeRotor r;
+    r.dofs_per_node = static_cast<int>(k.integer("dofs_per_node", 4, 4, 6));
+    if (r.dofs_per_node == 5)
+        throw InputError(k.where("dofs_per_node") + " = 5; allowed: 4 (lateral) or 6 (lateral, axial, torsion)");
+    const bool six = r.dofs_per_node == 6;
+    LengthUnit len;
+    if (k.choice("length_unit", "m", {"m", "mm"}) == "mm") len = {1e-3, "mm"};
     const auto flag = [&](const char* key) {
         const toml::node* n = k.table().get(key);
         if (!n) return true;
@@ -102,21 +119,32 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
 
     std::vector<double> z{0.0};
     for_each_entry(k, "shaft", true, [&](const TomlKeys& e) {
-        e.only({"length", "elements", "outer_diameter", "inner_diameter", "E", "poisson", "density", "material"});
+        e.only({"length", "elements", "outer_diameter", "inner_diameter", "outer_diameter_end", "inner_diameter_end",
+                "E", "poisson", "density", "material"});
         const std::optional<Material> mat = material_of(e);
         FeShaftElement el;
-        const double length = e.number("length", std::nullopt, 0, true, "m");
+        const double length = len(e, "length", std::nullopt, true);
         const int count = static_cast<int>(e.integer("elements", 1, 1, kMaxFeElements));
         // The sum over the sections, before any element is stored.
         if (r.elements.size() + static_cast<std::size_t>(count) > static_cast<std::size_t>(kMaxFeElements))
             throw InputError(fmt::format("{} = {} makes {} elements in all; allowed: at most {} (20,000,000 DOFs)",
                                          e.where("elements"), count, r.elements.size() + count, kMaxFeElements));
         el.length = length / count;
-        el.outer_diameter = e.number("outer_diameter", std::nullopt, 0, true, "m");
-        el.inner_diameter = e.number("inner_diameter", 0.0, 0, false, "m");
-        if (el.inner_diameter >= el.outer_diameter)
-            throw InputError(fmt::format("{} = {} is not below outer_diameter = {}; allowed: 0 <= inner < outer",
-                                         e.where("inner_diameter"), el.inner_diameter, el.outer_diameter));
+        // A conical section: the diameters vary linearly from its start to its end
+        // (outer_diameter_end, inner_diameter_end); each of its elements is tapered.
+        const double o0 = len(e, "outer_diameter", std::nullopt, true);
+        const double i0 = len(e, "inner_diameter", 0.0, false);
+        const bool tapered = e.has("outer_diameter_end") || e.has("inner_diameter_end");
+        const double o1 = e.has("outer_diameter_end") ? len(e, "outer_diameter_end", std::nullopt, true) : o0;
+        const double i1 = e.has("inner_diameter_end") ? len(e, "inner_diameter_end", std::nullopt, false) : i0;
+        if (i0 >= o0)
+            throw InputError(fmt::format("{} = {} is not below outer_diameter = {}; allowed: 0 <= inner < outer ({})",
+                                         e.where("inner_diameter"), i0 / len.scale, o0 / len.scale, len.name));
+        if (i1 >= o1)
+            throw InputError(fmt::format("{} = {} is not below the outer diameter {} there; allowed: 0 <= inner < "
+                                         "outer at the section's end ({})",
+                                         e.where(e.has("inner_diameter_end") ? "inner_diameter_end" : "inner_diameter"),
+                                         i1 / len.scale, o1 / len.scale, len.name));
         el.youngs_modulus = e.number("E", mat ? std::optional(mat->youngs_modulus) : E0, 0, true, "Pa");
         el.density = e.number("density", mat ? std::optional(mat->density) : rho0, 0, true, "kg/m^3");
         el.poisson_ratio = e.has("poisson") ? e.number("poisson", std::nullopt, -1, true, "1")
@@ -126,6 +154,16 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
             throw InputError(fmt::format("{} = {}: out of range; allowed: -1 < poisson <= 0.5", e.where("poisson"),
                                          el.poisson_ratio));
         for (int i = 0; i < count; ++i) {
+            if (tapered) {
+                const double a = static_cast<double>(i) / count, b = static_cast<double>(i + 1) / count;
+                el.outer_diameter = o0 + a * (o1 - o0);
+                el.inner_diameter = i0 + a * (i1 - i0);
+                el.outer_diameter_end = o0 + b * (o1 - o0);
+                el.inner_diameter_end = i0 + b * (i1 - i0);
+            } else {
+                el.outer_diameter = o0;
+                el.inner_diameter = i0;
+            }
             r.elements.push_back(el);
             z.push_back(z.back() + el.length);
         }
@@ -135,19 +173,19 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         e.only({"z", "mass", "Id", "Ip", "unbalance", "phase", "outer_diameter", "inner_diameter", "width",
                 "material", "density"});
         FeDisk d;
-        d.node = node_at(e, z);
+        d.node = node_at(e, z, len);
         if (e.has("outer_diameter")) {
             // From its geometry: a hollow cylinder of the disk's (or the model's) material.
             for (const char* key : {"mass", "Id", "Ip"})
                 if (e.has(key))
                     throw InputError(e.where(key) + " is given together with outer_diameter; allowed: either mass, "
                                                     "Id, Ip or the geometry outer_diameter, inner_diameter, width");
-            const double Do = e.number("outer_diameter", std::nullopt, 0, true, "m");
-            const double Di = e.number("inner_diameter", 0.0, 0, false, "m");
+            const double Do = len(e, "outer_diameter", std::nullopt, true);
+            const double Di = len(e, "inner_diameter", 0.0, false);
             if (Di >= Do)
-                throw InputError(fmt::format("{} = {} is not below outer_diameter = {}; allowed: 0 <= inner < outer",
-                                             e.where("inner_diameter"), Di, Do));
-            const double w = e.number("width", std::nullopt, 0, true, "m");
+                throw InputError(fmt::format("{} = {} is not below outer_diameter = {}; allowed: 0 <= inner < outer ({})",
+                                             e.where("inner_diameter"), Di / len.scale, Do / len.scale, len.name));
+            const double w = len(e, "width", std::nullopt, true);
             const std::optional<Material> mat = material_of(e);
             const double rho = e.number("density", mat ? std::optional(mat->density) : rho0, 0, true, "kg/m^3");
             const DiskInertia di = disk_inertia(Do, Di, w, rho);
@@ -181,11 +219,11 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         const std::string type = e.choice("type", "linear", {"linear", "fluid_film"});
         if (type == "fluid_film") {
             e.only({"type", "z", "diameter", "length", "clearance", "viscosity", "load", "load_angle",
-                    "max_eccentricity"});
+                    "max_eccentricity", "solution", "grid_circumferential", "grid_axial"});
             JournalBearing j;
-            j.diameter = e.number("diameter", std::nullopt, 0.0, true, "m");
-            j.length = e.number("length", std::nullopt, 0.0, true, "m");
-            j.clearance = e.number("clearance", std::nullopt, 0.0, true, "m");
+            j.diameter = len(e, "diameter", std::nullopt, true);
+            j.length = len(e, "length", std::nullopt, true);
+            j.clearance = len(e, "clearance", std::nullopt, true);
             j.viscosity = e.number("viscosity", std::nullopt, 0.0, true, "Pa s");
             j.load = e.number("load", std::nullopt, 0.0, true, "N");
             if (e.has("load_angle")) {
@@ -195,14 +233,33 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
                 j.load_angle = deg * std::acos(-1.0) / 180.0;
             }
             j.max_eccentricity = e.number("max_eccentricity", 0.95, 0.0, true, "eccentricity ratio, 0.01 to 0.999");
+            // The film's solution: the short-bearing closed form or the finite-difference Reynolds
+            // solution on a grid (intervals around the circumference and over the length).
+            if (e.choice("solution", "short", {"short", "finite_difference"}) == "finite_difference") {
+                j.solution = FilmSolution::finite_difference;
+                j.grid_circumferential =
+                    static_cast<int>(e.integer("grid_circumferential", j.grid_circumferential, 16, 2880));
+                j.grid_axial = static_cast<int>(e.integer("grid_axial", j.grid_axial, 4, 256));
+            } else {
+                for (const char* key : {"grid_circumferential", "grid_axial"})
+                    if (e.has(key))
+                        throw InputError(e.where(key) + " is given with solution = \"short\"; allowed: grid keys only "
+                                                        "with solution = \"finite_difference\"");
+            }
             std::string origin = e.where("");   // "file: [table] "
             origin.pop_back();
             j.validate(origin);
-            tables.push_back({node_at(e, z), "", j, e.where("type")});
+            tables.push_back({node_at(e, z, len), "", j, e.where("type")});
             return;
         }
-        e.only({"type", "z", "k", "c", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy", "table"});
-        const int node = node_at(e, z);
+        e.only({"type", "z", "k", "c", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy", "kzz", "czz",
+                "table"});
+        const int node = node_at(e, z, len);
+        if (!six)
+            for (const char* key : {"kzz", "czz"})
+                if (e.has(key))
+                    throw InputError(e.where(key) + " acts on the axial DOF z; allowed: with dofs_per_node = 6 "
+                                                    "in [model] (the model has 4 DOFs per node)");
         if (e.has("table")) {
             for (const char* key : {"k", "c", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"})
                 if (e.has(key))
@@ -223,15 +280,29 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         b.cyy = e.has("cyy") ? e.any_number("cyy", "N s/m") : cc;
         b.cxy = e.has("cxy") ? e.any_number("cxy", "N s/m") : 0.0;
         b.cyx = e.has("cyx") ? e.any_number("cyx", "N s/m") : 0.0;
+        b.kzz = e.number("kzz", 0.0, 0, false, "N/m");
+        b.czz = e.number("czz", 0.0, 0, false, "N s/m");
         r.bearings.push_back(b);
     });
 
     for_each_entry(k, "support", false, [&](const TomlKeys& e) {
-        e.only({"z", "type"});
+        e.only({"z", "type", "axial", "torsion"});
         FeSupport s;
-        s.node = node_at(e, z);
+        s.node = node_at(e, z, len);
         const std::string type = e.choice("type", "pinned", {"pinned", "clamped"});
         s.theta_x = s.theta_y = type == "clamped";
+        // Axial and torsional holds: a clamped end holds them too; a pinned one where it says so.
+        const auto hold = [&](const char* key) {
+            const toml::node* n = e.table().get(key);
+            if (!n) return six && type == "clamped";
+            if (!n->is_boolean()) throw InputError(e.where(key) + " must be true or false");
+            if (!six && *n->value<bool>())
+                throw InputError(e.where(key) + " = true holds a DOF the model does not have; allowed: with "
+                                                "dofs_per_node = 6 in [model] (the model has 4 DOFs per node)");
+            return *n->value<bool>();
+        };
+        s.z = hold("axial");
+        s.theta_z = hold("torsion");
         r.supports.push_back(s);
     });
 

@@ -66,6 +66,72 @@ PlaneMatrices plane_matrices(double L, double EI, double rhoA, double rhoI, doub
     return p;
 }
 
+// 6-point Gauss-Legendre rule on [0, 1]: exact for polynomials of degree 11, so for
+// every integrand of a conical element with linear diameters (A(z) of degree 2, I(z) of
+// degree 4, shape-function products of degree up to 6) except the shear coefficient's
+// rational dependence on di/do, which varies little along an element.
+constexpr double gauss_xi[6] = {0.5 - 0.4662347571015760, 0.5 - 0.3306046932331323, 0.5 - 0.1193095930415985,
+                                0.5 + 0.1193095930415985, 0.5 + 0.3306046932331323, 0.5 + 0.4662347571015760};
+constexpr double gauss_w[6] = {0.0856622461895852, 0.1803807865240693, 0.2339569672863455,
+                               0.2339569672863455, 0.1803807865240693, 0.0856622461895852};
+
+// Plane matrices of a tapered element by integrating the interdependent interpolation
+// (the shape functions whose exact integrals over a uniform section are the closed forms
+// above) over the varying section, xi = z / L:
+//   w   = N_w q,   N_w   = [1 - 3xi^2 + 2xi^3 + Phi(1 - xi),  L(xi - 2xi^2 + xi^3 + Phi(xi - xi^2)/2),
+//                           3xi^2 - 2xi^3 + Phi xi,           L(-xi^2 + xi^3 - Phi(xi - xi^2)/2)] / (1 + Phi)
+//   psi = N_psi q, N_psi = [6(xi^2 - xi)/L,  1 - 4xi + 3xi^2 + Phi(1 - xi),  6(xi - xi^2)/L,
+//                           -2xi + 3xi^2 + Phi xi] / (1 + Phi)
+//   K  = int EI N_psi'^T N_psi' + kappa G A g^T g dz, shear strain g = N_w' - N_psi (constant),
+//   Mt = int rho A N_w^T N_w dz,  Mr = int rho I N_psi^T N_psi dz,
+// with Phi from the section at mid-element.
+PlaneMatrices integrated_plane_matrices(const FeShaftElement& e, double Phi, bool shear_deformation,
+                                        bool rotary_inertia) {
+    const double L = e.length, d = 1.0 + Phi;
+    PlaneMatrices p;
+    p.K.setZero();
+    p.Mt.setZero();
+    p.Mr.setZero();
+    Eigen::RowVector4d g;
+    g << -1.0 / L, -0.5, 1.0 / L, -0.5;
+    g *= Phi / d;
+    for (int q = 0; q < 6; ++q) {
+        const double x = gauss_xi[q], wq = gauss_w[q] * L, x2 = x * x, x3 = x2 * x;
+        const FeSection s = fe_section(e, x);
+        Eigen::RowVector4d Nw, Np, dNp;
+        Nw << 1 - 3 * x2 + 2 * x3 + Phi * (1 - x), L * (x - 2 * x2 + x3 + Phi * (x - x2) / 2),
+            3 * x2 - 2 * x3 + Phi * x, L * (-x2 + x3 - Phi * (x - x2) / 2);
+        Np << 6 * (x2 - x) / L, 1 - 4 * x + 3 * x2 + Phi * (1 - x), 6 * (x - x2) / L, -2 * x + 3 * x2 + Phi * x;
+        dNp << 6 * (2 * x - 1) / (L * L), (-4 + 6 * x - Phi) / L, 6 * (1 - 2 * x) / (L * L), (-2 + 6 * x + Phi) / L;
+        Nw /= d;
+        Np /= d;
+        dNp /= d;
+        p.K += wq * e.youngs_modulus * s.second_moment * dNp.transpose() * dNp;
+        if (shear_deformation) p.K += wq * s.shear_coefficient * s.shear_modulus * s.area * g.transpose() * g;
+        p.Mt += wq * e.density * s.area * Nw.transpose() * Nw;
+        if (rotary_inertia) p.Mr += wq * e.density * s.second_moment * Np.transpose() * Np;
+    }
+    return p;
+}
+
+// A bar with linear shape functions (axial: EA, rho A; torsion: G J, rho J), integrated
+// over the section like the plane matrices: K = int s(z) dz / L^2 [1 -1; -1 1],
+// M = int m(z) N^T N dz (uniform: s/L [1 -1; -1 1] and m L/6 [2 1; 1 2]).
+template <class Stiffness, class MassPerLength>
+void bar_matrices(double L, const Stiffness& stiffness, const MassPerLength& mass, Eigen::Matrix2d& K,
+                  Eigen::Matrix2d& M) {
+    double s = 0.0;
+    M.setZero();
+    for (int q = 0; q < 6; ++q) {
+        const double x = gauss_xi[q], wq = gauss_w[q] * L;
+        const Eigen::Vector2d N(1 - x, x);
+        s += wq * stiffness(x);
+        M += wq * mass(x) * N * N.transpose();
+    }
+    K << 1, -1, -1, 1;
+    K *= s / (L * L);
+}
+
 }  // namespace
 
 double cowper_shear_coefficient(double nu, double m) {
@@ -73,9 +139,11 @@ double cowper_shear_coefficient(double nu, double m) {
     return 6 * (1 + nu) * q / ((7 + 6 * nu) * q + (20 + 12 * nu) * m * m);
 }
 
-FeSection fe_section(const FeShaftElement& e) {
+FeSection fe_section(const FeShaftElement& e, double xi) {
     FeSection s;
-    const double o = e.outer_diameter, i = e.inner_diameter;
+    const double o = e.outer_diameter + xi * (e.outer_diameter_end.value_or(e.outer_diameter) - e.outer_diameter);
+    const double i0 = e.inner_diameter, i1 = e.inner_diameter_end.value_or(e.inner_diameter);
+    const double i = i0 + xi * (i1 - i0);
     s.area = pi * (o * o - i * i) / 4;
     s.second_moment = pi * (o * o * o * o - i * i * i * i) / 64;
     s.shear_coefficient = cowper_shear_coefficient(e.poisson_ratio, i / o);
@@ -84,12 +152,14 @@ FeSection fe_section(const FeShaftElement& e) {
 }
 
 FeElementMatrices fe_shaft_element_matrices(const FeShaftElement& e, bool shear_deformation, bool rotary_inertia) {
-    const FeSection s = fe_section(e);
+    const bool tapered = e.outer_diameter_end.has_value() || e.inner_diameter_end.has_value();
+    const FeSection s = fe_section(e, tapered ? 0.5 : 0.0);
     const double L = e.length;
     const double EI = e.youngs_modulus * s.second_moment;
     const double Phi = shear_deformation ? 12 * EI / (s.shear_coefficient * s.shear_modulus * s.area * L * L) : 0.0;
     const double rhoI = rotary_inertia ? e.density * s.second_moment : 0.0;
-    const PlaneMatrices p = plane_matrices(L, EI, e.density * s.area, rhoI, Phi);
+    const PlaneMatrices p = tapered ? integrated_plane_matrices(e, Phi, shear_deformation, rotary_inertia)
+                                    : plane_matrices(L, EI, e.density * s.area, rhoI, Phi);
 
     // x-z plane: (x, theta_y) with theta_y = +dx/dz: the standard DOFs.
     // y-z plane: (y, theta_x) with theta_x = -dy/dz: standard DOFs (y, -theta_x),
@@ -116,6 +186,14 @@ FeElementMatrices fe_shaft_element_matrices(const FeShaftElement& e, bool shear_
             m.G(ix[a], iy[b]) = g;
             m.G(iy[b], ix[a]) = -g;
         }
+    // Axial bar (E A, rho A) and torsion bar (G J, rho J; J = 2 I, the polar second moment).
+    const auto section = [&](double x) { return fe_section(e, tapered ? x : 0.0); };
+    bar_matrices(
+        L, [&](double x) { return e.youngs_modulus * section(x).area; },
+        [&](double x) { return e.density * section(x).area; }, m.K_axial, m.M_axial);
+    bar_matrices(
+        L, [&](double x) { const FeSection q = section(x); return q.shear_modulus * 2 * q.second_moment; },
+        [&](double x) { return e.density * 2 * section(x).second_moment; }, m.K_torsion, m.M_torsion);
     return m;
 }
 
@@ -133,6 +211,13 @@ void FeRotor::validate() const {
                 "(0, inf) m");
         require(std::isfinite(s.inner_diameter) && s.inner_diameter >= 0 && s.inner_diameter < s.outer_diameter, w,
                 "inner_diameter", s.inner_diameter, fmt::format("[0, outer_diameter = {}) m", s.outer_diameter));
+        if (s.outer_diameter_end || s.inner_diameter_end) {
+            const double o1 = s.outer_diameter_end.value_or(s.outer_diameter);
+            const double i1 = s.inner_diameter_end.value_or(s.inner_diameter);
+            require(std::isfinite(o1) && o1 > 0, w, "outer_diameter_end", o1, "(0, inf) m");
+            require(std::isfinite(i1) && i1 >= 0 && i1 < o1, w, "inner_diameter_end", i1,
+                    fmt::format("[0, outer_diameter_end = {}) m", o1));
+        }
         require(std::isfinite(s.youngs_modulus) && s.youngs_modulus > 0, w, "youngs_modulus", s.youngs_modulus,
                 "(0, inf) Pa");
         require(std::isfinite(s.shear_modulus) && s.shear_modulus >= 0, w, "shear_modulus", s.shear_modulus,
@@ -141,6 +226,8 @@ void FeRotor::validate() const {
                 "poisson_ratio", s.poisson_ratio, "(-1, 0.5]");
         require(std::isfinite(s.density) && s.density > 0, w, "density", s.density, "(0, inf) kg/m^3");
     }
+    require(dofs_per_node == 4 || dofs_per_node == 6, "fe rotor", "dofs_per_node", dofs_per_node,
+            "4 (lateral) or 6 (lateral, axial, torsion)");
     const int nodes = node_count();
     const std::string node_range = fmt::format("an integer in [0, {}]", nodes - 1);
     for (std::size_t i = 0; i < disks.size(); ++i) {
@@ -163,40 +250,57 @@ void FeRotor::validate() const {
                                                          {"kyy", b.kyy}, {"cxx", b.cxx}, {"cxy", b.cxy},
                                                          {"cyx", b.cyx}, {"cyy", b.cyy}};
         for (const auto& [key, v] : coeffs) require_finite(w, key, v);
+        require_finite(w, "kzz", b.kzz);
+        require_finite(w, "czz", b.czz);
+        if (dofs_per_node == 4) {
+            require(b.kzz == 0.0, w, "kzz", b.kzz, "0 with 4 DOFs per node (an axial bearing needs dofs_per_node = 6)");
+            require(b.czz == 0.0, w, "czz", b.czz, "0 with 4 DOFs per node (an axial bearing needs dofs_per_node = 6)");
+        }
     }
-    for (std::size_t i = 0; i < supports.size(); ++i)
-        require(supports[i].node >= 0 && supports[i].node < nodes, where("support", i), "node", supports[i].node,
-                node_range);
+    for (std::size_t i = 0; i < supports.size(); ++i) {
+        const FeSupport& s = supports[i];
+        require(s.node >= 0 && s.node < nodes, where("support", i), "node", s.node, node_range);
+        if (dofs_per_node == 4 && (s.z || s.theta_z))
+            throw InputError(fmt::format("{}: holds {}, which a model of 4 DOFs per node does not have; allowed: "
+                                         "dofs_per_node = 6 for axial and torsional supports",
+                                         where("support", i), s.z ? "z" : "theta_z"));
+    }
 }
 
 FeRotorMatrices FeRotor::assemble() const {
     validate();
     const int nodes = node_count();
-    const int full = 4 * nodes;
+    const int per = dofs_per_node;
+    const int full = per * nodes;
+    const bool six = per == 6;
+    // Local DOF numbers within a node.
+    enum { X = 0, Y = 1, TX = 2, TY = 3, Z = 4, TZ = 5 };
 
     // Map full DOF -> assembled DOF (-1: constrained).
     std::vector<char> fixed(full, 0);
     for (const FeSupport& s : supports) {
-        const int b = 4 * s.node;
-        if (s.x) fixed[b] = 1;
-        if (s.y) fixed[b + 1] = 1;
-        if (s.theta_x) fixed[b + 2] = 1;
-        if (s.theta_y) fixed[b + 3] = 1;
+        const int b = per * s.node;
+        if (s.x) fixed[b + X] = 1;
+        if (s.y) fixed[b + Y] = 1;
+        if (s.theta_x) fixed[b + TX] = 1;
+        if (s.theta_y) fixed[b + TY] = 1;
+        if (six && s.z) fixed[b + Z] = 1;
+        if (six && s.theta_z) fixed[b + TZ] = 1;
     }
     std::vector<int> map(full, -1);
     FeRotorMatrices r;
-    static const char* prefix[4] = {"x", "y", "tx", "ty"};
+    static const char* prefix[6] = {"x", "y", "tx", "ty", "z", "tz"};
     int n = 0;
     for (int j = 0; j < full; ++j)
         if (!fixed[j]) {
             map[j] = n++;
-            r.dof_names.push_back(prefix[j % 4] + std::to_string(j / 4));
-            r.node_of_dof.push_back(j / 4);
+            r.dof_names.push_back(prefix[j % per] + std::to_string(j / per));
+            r.node_of_dof.push_back(j / per);
         }
     if (n == 0) throw InputError("fe rotor: supports: every DOF is constrained; allowed: at least one free DOF");
     for (int k = 0; k < nodes; ++k)
         for (int p = 0; p < 2; ++p) {
-            const int u = map[4 * k + 2 * p], v = map[4 * k + 2 * p + 1];
+            const int u = map[per * k + 2 * p], v = map[per * k + 2 * p + 1];
             if (u >= 0 && v >= 0) r.whirl_pairs.emplace_back(u, v);
         }
     r.node_z.resize(nodes);
@@ -205,10 +309,11 @@ FeRotorMatrices FeRotor::assemble() const {
 
     using T = Eigen::Triplet<double>;
     std::vector<T> tm, tk, tg, td;
-    tm.reserve(64 * elements.size() + 4 * disks.size());
-    tk.reserve(64 * elements.size() + 4 * bearings.size());
+    const std::size_t bars = six ? 8 : 0;
+    tm.reserve((64 + bars) * elements.size() + per * disks.size());
+    tk.reserve((64 + bars) * elements.size() + 5 * bearings.size());
     tg.reserve(32 * elements.size() + 2 * disks.size());
-    td.reserve(4 * bearings.size());
+    td.reserve(5 * bearings.size());
     auto add = [&](std::vector<T>& t, int i, int j, double v) {
         const int a = map[i], b = map[j];
         if (a >= 0 && b >= 0 && v != 0.0) t.emplace_back(a, b, v);
@@ -216,38 +321,56 @@ FeRotorMatrices FeRotor::assemble() const {
 
     for (std::size_t e = 0; e < elements.size(); ++e) {
         const FeElementMatrices em = fe_shaft_element_matrices(elements[e], shear_deformation, rotary_inertia);
-        const int base = 4 * static_cast<int>(e);
+        const int base = per * static_cast<int>(e);
+        // Element DOF a (0..7) is local DOF a % 4 of node e + a / 4.
+        const auto at = [&](int a) { return base + per * (a / 4) + a % 4; };
         for (int a = 0; a < 8; ++a)
             for (int b = 0; b < 8; ++b) {
-                add(tm, base + a, base + b, em.M(a, b));
-                add(tk, base + a, base + b, em.K(a, b));
-                add(tg, base + a, base + b, em.G(a, b));
+                add(tm, at(a), at(b), em.M(a, b));
+                add(tk, at(a), at(b), em.K(a, b));
+                add(tg, at(a), at(b), em.G(a, b));
             }
+        if (six)
+            for (int a = 0; a < 2; ++a)
+                for (int b = 0; b < 2; ++b) {
+                    add(tm, base + per * a + Z, base + per * b + Z, em.M_axial(a, b));
+                    add(tk, base + per * a + Z, base + per * b + Z, em.K_axial(a, b));
+                    add(tm, base + per * a + TZ, base + per * b + TZ, em.M_torsion(a, b));
+                    add(tk, base + per * a + TZ, base + per * b + TZ, em.K_torsion(a, b));
+                }
     }
     r.unbalance = Eigen::VectorXcd::Zero(n);
     for (const FeDisk& d : disks) {
-        const int b = 4 * d.node;
-        add(tm, b, b, d.mass);
-        add(tm, b + 1, b + 1, d.mass);
-        add(tm, b + 2, b + 2, d.diametral_inertia);
-        add(tm, b + 3, b + 3, d.diametral_inertia);
-        add(tg, b + 2, b + 3, d.polar_inertia);
-        add(tg, b + 3, b + 2, -d.polar_inertia);
+        const int b = per * d.node;
+        add(tm, b + X, b + X, d.mass);
+        add(tm, b + Y, b + Y, d.mass);
+        add(tm, b + TX, b + TX, d.diametral_inertia);
+        add(tm, b + TY, b + TY, d.diametral_inertia);
+        add(tg, b + TX, b + TY, d.polar_inertia);
+        add(tg, b + TY, b + TX, -d.polar_inertia);
+        if (six) {
+            add(tm, b + Z, b + Z, d.mass);
+            add(tm, b + TZ, b + TZ, d.polar_inertia);
+        }
         // Force w^2 m_e e (cos(w t + phi), sin(w t + phi)) = Re(w^2 m_e e e^{i phi} (1, -i) e^{i w t}).
         const std::complex<double> f = d.unbalance * std::polar(1.0, d.unbalance_phase);
-        if (map[b] >= 0) r.unbalance(map[b]) += f;
-        if (map[b + 1] >= 0) r.unbalance(map[b + 1]) += std::complex<double>(0, -1) * f;
+        if (map[b + X] >= 0) r.unbalance(map[b + X]) += f;
+        if (map[b + Y] >= 0) r.unbalance(map[b + Y]) += std::complex<double>(0, -1) * f;
     }
     for (const FeBearing& br : bearings) {
-        const int b = 4 * br.node;
-        add(tk, b, b, br.kxx);
-        add(tk, b, b + 1, br.kxy);
-        add(tk, b + 1, b, br.kyx);
-        add(tk, b + 1, b + 1, br.kyy);
-        add(td, b, b, br.cxx);
-        add(td, b, b + 1, br.cxy);
-        add(td, b + 1, b, br.cyx);
-        add(td, b + 1, b + 1, br.cyy);
+        const int b = per * br.node;
+        add(tk, b + X, b + X, br.kxx);
+        add(tk, b + X, b + Y, br.kxy);
+        add(tk, b + Y, b + X, br.kyx);
+        add(tk, b + Y, b + Y, br.kyy);
+        add(td, b + X, b + X, br.cxx);
+        add(td, b + X, b + Y, br.cxy);
+        add(td, b + Y, b + X, br.cyx);
+        add(td, b + Y, b + Y, br.cyy);
+        if (six) {
+            add(tk, b + Z, b + Z, br.kzz);
+            add(td, b + Z, b + Z, br.czz);
+        }
     }
     auto build = [n](Eigen::SparseMatrix<double>& S, const std::vector<T>& t) {
         S.resize(n, n);

@@ -6,7 +6,10 @@
 // Each node has four lateral DOFs [x, y, theta_x, theta_y]:
 //   x, y          displacements of the shaft centre line,
 //   theta_x       rotation of the cross-section about +x  (= -dy/dz for a slender beam),
-//   theta_y       rotation of the cross-section about +y  (= +dx/dz for a slender beam).
+//   theta_y       rotation of the cross-section about +y  (= +dx/dz for a slender beam);
+// with dofs_per_node = 6 also the axial displacement z and the torsion theta_z
+// (node DOFs [x, y, theta_x, theta_y, z, theta_z]; axial and torsional bars with
+// linear shape functions, uncoupled from the lateral motion at constant speed).
 // With this right-handed choice both (x, y) and (theta_x, theta_y) turn in the
 // positive sense for forward whirl, so every node contributes the whirl pairs
 // (x, y) and (theta_x, theta_y).
@@ -22,6 +25,7 @@
 #include <gyrokit/eig/sparse_eigensolver.hpp>
 
 #include <Eigen/Sparse>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,10 +33,14 @@
 namespace gyrokit {
 
 // One shaft element between node e and node e + 1 (elements form one chain).
+// Tapered (conical) when the diameters at node e + 1 are given: the section then
+// varies linearly from node e to node e + 1 (docs/fe_rotor.md, "Tapered elements").
 struct FeShaftElement {
     double length = 0.0;            // m, > 0
-    double outer_diameter = 0.0;    // m, > 0
-    double inner_diameter = 0.0;    // m, in [0, outer_diameter)
+    double outer_diameter = 0.0;    // m, > 0 (at node e)
+    double inner_diameter = 0.0;    // m, in [0, outer_diameter) (at node e)
+    std::optional<double> outer_diameter_end;   // m, > 0, at node e + 1; none: uniform
+    std::optional<double> inner_diameter_end;   // m, in [0, outer_diameter_end); none: inner_diameter
     double youngs_modulus = 0.0;    // E, Pa, > 0
     double shear_modulus = 0.0;     // G, Pa, > 0; 0 = E / (2 (1 + poisson_ratio))
     double poisson_ratio = 0.3;     // in (-1, 0.5]; used for G (if 0) and the shear coefficient
@@ -42,26 +50,31 @@ struct FeShaftElement {
 // Rigid disk attached at a node.
 struct FeDisk {
     int node = 0;
-    double mass = 0.0;              // kg, >= 0
+    double mass = 0.0;              // kg, >= 0 (lateral, and axial with 6 DOFs per node)
     double diametral_inertia = 0.0; // Id, kg m^2, >= 0
-    double polar_inertia = 0.0;     // Ip, kg m^2, >= 0
+    double polar_inertia = 0.0;     // Ip, kg m^2, >= 0 (gyroscopic, and torsional with 6 DOFs per node)
     double unbalance = 0.0;         // m_e e, kg m, >= 0 (mass times eccentricity)
     double unbalance_phase = 0.0;   // rad, angle of the unbalance at t = 0 from +x
 };
 
 // Linear bearing between a node and the ground, acting on (x, y):
-// force = -[kxx kxy; kyx kyy] (x, y) - [cxx cxy; cyx cyy] (x', y').
+// force = -[kxx kxy; kyx kyy] (x, y) - [cxx cxy; cyx cyy] (x', y'); with 6 DOFs per
+// node also a thrust stiffness and damping on z (kzz, czz; 0 otherwise).
 struct FeBearing {
     int node = 0;
     double kxx = 0.0, kxy = 0.0, kyx = 0.0, kyy = 0.0;   // N/m
     double cxx = 0.0, cxy = 0.0, cyx = 0.0, cyy = 0.0;   // N s/m
+    double kzz = 0.0;                                     // N/m, axial (6 DOFs per node)
+    double czz = 0.0;                                     // N s/m, axial (6 DOFs per node)
 };
 
 // Rigid support: the chosen DOFs of a node are held at zero and removed from
-// the assembled system (pinned: x and y; clamped: all four).
+// the assembled system (pinned: x and y; clamped: all of the node's DOFs).
+// z and theta_z exist with 6 DOFs per node only.
 struct FeSupport {
     int node = 0;
     bool x = true, y = true, theta_x = false, theta_y = false;
+    bool z = false, theta_z = false;
 };
 
 // The assembled matrices (constrained DOFs removed). Row/column order: node by
@@ -72,7 +85,7 @@ struct FeRotorMatrices {
     Eigen::SparseMatrix<double> G;   // gyroscopic per unit speed, skew
     Eigen::SparseMatrix<double> D;   // bearing damping; symmetric when cxy = cyx
     Eigen::VectorXcd unbalance;      // force amplitude per w^2 (forward-turning disk unbalance)
-    std::vector<std::string> dof_names;            // "x3", "y3", "tx3", "ty3"
+    std::vector<std::string> dof_names;            // "x3", "y3", "tx3", "ty3" (and "z3", "tz3")
     std::vector<std::pair<int, int>> whirl_pairs;  // (x, y) and (theta_x, theta_y) of each node, when both are free
     std::vector<int> node_of_dof;                  // node of each assembled DOF
     std::vector<double> node_z;                    // axial position of each node (m), z_0 = 0
@@ -96,6 +109,7 @@ public:
     std::vector<FeSupport> supports;
     bool shear_deformation = true;   // false: Euler-Bernoulli / Rayleigh beam (Phi = 0)
     bool rotary_inertia = true;      // false: no rotary inertia and no shaft gyroscopic moments
+    int dofs_per_node = 4;           // 4: lateral only; 6: also axial z and torsion theta_z
 
     int node_count() const { return elements.empty() ? 0 : static_cast<int>(elements.size()) + 1; }
 
@@ -116,15 +130,18 @@ struct FeSection {
     double shear_coefficient = 0.0; // kappa, Cowper (1966) for hollow circular sections
     double shear_modulus = 0.0;     // G actually used
 };
-FeSection fe_section(const FeShaftElement& e);
+// The section at node e (xi = 0) or, of a tapered element, at xi = (z - z_e) / length in [0, 1].
+FeSection fe_section(const FeShaftElement& e, double xi = 0.0);
 
 // Cowper's shear coefficient of a hollow circular section, m = di / do:
 // kappa = 6 (1 + nu) (1 + m^2)^2 / ((7 + 6 nu) (1 + m^2)^2 + (20 + 12 nu) m^2).
 double cowper_shear_coefficient(double poisson_ratio, double diameter_ratio);
 
-// Element matrices in the global element DOF order [x1 y1 tx1 ty1 x2 y2 tx2 ty2].
+// Element matrices: lateral in the element DOF order [x1 y1 tx1 ty1 x2 y2 tx2 ty2];
+// the axial (z1, z2) and torsional (tz1, tz2) bars, used with 6 DOFs per node.
 struct FeElementMatrices {
     Eigen::Matrix<double, 8, 8> M, K, G;
+    Eigen::Matrix2d M_axial, K_axial, M_torsion, K_torsion;
 };
 FeElementMatrices fe_shaft_element_matrices(const FeShaftElement& e, bool shear_deformation = true,
                                             bool rotary_inertia = true);
