@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <cmath>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_roots.h>
@@ -460,4 +461,123 @@ k = 1e7
         CHECK_THAT(test::scene_error(base + "length_unit = \"mm\"\n" + shaft + "[[model.disk]]\nz = 0.5\nmass = 1\n"),
                    Catch::Contains("z = 0.5 mm is not a node"));
     }
+}
+
+// A rigid rotor of mass m_s on two bearings k_b, each on a pedestal m_p on springs k_p:
+// the rotor's translation in x and the pedestals' (equal by symmetry) form the 2-DOF
+// system [m_s 0; 0 2m_p] q'' + [2k_b -2k_b; -2k_b 2k_b + 2k_p] q = 0. The shaft is one
+// element with E = 1e15 Pa: its bending stiffness 48EI/L^3 ~ 2e12 N/m against k_b = 1e7
+// moves the frequencies by about k_b / k_shaft ~ 5e-6, hence 1e-5.
+TEST_CASE("fe rotor pedestals: a rigid rotor on bearings on pedestal masses against the 2-DOF closed form",
+          "[fe_rotor][pedestal][validation]") {
+    FeRotor r = fe_uniform_shaft(0.5, 1, 0.1, 0.0, 1e15, 0.3, 7800);
+    r.shear_deformation = false;
+    const double kb = 1e7, kp = 3e7, mp = 25.0, cp = 0.0;
+    r.bearings.push_back({0, kb, 0, 0, kb, 0, 0, 0, 0});
+    r.bearings.push_back({1, kb, 0, 0, kb, 0, 0, 0, 0});
+    r.pedestals.push_back({0, mp, kp, kp, cp, cp});
+    r.pedestals.push_back({1, mp, kp, kp, cp, cp});
+    const FeRotorMatrices m = r.assemble();
+    REQUIRE(m.size() == 12);
+    CHECK(m.dof_names[8] == "px0");
+    CHECK(m.dof_names[11] == "py1");
+    CHECK(m.node_of_dof[8] == -1);
+    const double ms = 7800 * pi * 0.01 / 4 * 0.5;
+    // det([2kb - ms w2, -2kb; -2kb, 2kb + 2kp - 2mp w2]) = 0, a quadratic in w2.
+    const double a = ms * 2 * mp, b = -(ms * (2 * kb + 2 * kp) + 2 * mp * 2 * kb), c = 2 * kb * 2 * kp;
+    const double w1 = std::sqrt((-b - std::sqrt(b * b - 4 * a * c)) / (2 * a));
+    const double w2 = std::sqrt((-b + std::sqrt(b * b - 4 * a * c)) / (2 * a));
+    const std::vector<double> f = natural_frequencies(m.to_system());
+    const auto near = [&](double w) {
+        return std::count_if(f.begin(), f.end(), [&](double x) { return std::abs(x - w) <= 1e-5 * w; });
+    };
+    INFO("closed form " << w1 << " " << w2);
+    CHECK(near(w1) == 2);   // x and y
+    CHECK(near(w2) == 2);
+    // Symmetric: K and M; the pedestal blocks carry -kb off the diagonal.
+    const Eigen::MatrixXd K(m.K);
+    CHECK((K - K.transpose()).cwiseAbs().maxCoeff() == 0.0);
+    CHECK(K(0, 8) == -kb);
+    CHECK(K(8, 8) == kb + kp);
+}
+
+// Bearings of every kind on pedestals: a fluid-film bearing (evaluated per speed) on a
+// pedestal gives the eigenvalues of the same rotor with constant bearings equal to the
+// film's coefficients at that speed (the same matrices by two assembly paths: 1e-10).
+TEST_CASE("fe rotor pedestals: a fluid-film bearing on a pedestal equals its coefficients as a constant bearing",
+          "[fe_rotor][pedestal]") {
+    const std::string head = R"(
+[model]
+type = "fe_rotor"
+material = "steel"
+[[model.shaft]]
+length = 0.6
+elements = 6
+outer_diameter = 0.05
+[[model.disk]]
+z = 0.3
+outer_diameter = 0.25
+width = 0.04
+[[model.pedestal]]
+z = 0.0
+mass = 20
+k = 5e7
+c = 2e3
+[[model.pedestal]]
+z = 0.6
+mass = 30
+kxx = 4e7
+kyy = 6e7
+)";
+    const std::string film = R"(
+[[model.bearing]]
+z = 0.0
+type = "fluid_film"
+diameter = 0.05
+length = 0.02
+clearance = 5e-5
+viscosity = 0.02
+load = 70
+[[model.bearing]]
+z = 0.6
+k = 2e7
+c = 500
+)";
+    const Scene a = parse_scene(head + film, "film.toml");
+    REQUIRE(a.system.bearings.size() == 1);
+    const double w = 600.0;
+    const BearingCoefficients co = a.system.bearings[0].at(w);
+    const std::string constant = fmt::format(R"(
+[[model.bearing]]
+z = 0.0
+kxx = {}
+kxy = {}
+kyx = {}
+kyy = {}
+cxx = {}
+cxy = {}
+cyx = {}
+cyy = {}
+[[model.bearing]]
+z = 0.6
+k = 2e7
+c = 500
+)",
+                                             co.K(0, 0), co.K(0, 1), co.K(1, 0), co.K(1, 1), co.C(0, 0), co.C(0, 1),
+                                             co.C(1, 0), co.C(1, 1));
+    const Scene b = parse_scene(head + constant, "constant.toml");
+    const QuadraticPencil pa = a.system.at_speed(w), pb = b.system.at_speed(w);
+    CHECK((pa.K - pb.K).cwiseAbs().maxCoeff() <= 1e-12 * pa.K.cwiseAbs().maxCoeff());
+    CHECK((pa.C - pb.C).cwiseAbs().maxCoeff() <= 1e-12 * pa.C.cwiseAbs().maxCoeff());
+    const QuadraticSpectrum sa = solve_at_speed(a.system, w), sb = solve_at_speed(b.system, w);
+    REQUIRE(sa.modes.size() == sb.modes.size());
+    for (std::size_t i = 0; i < sa.modes.size(); ++i)
+        CHECK(std::abs(sa.modes[i].lambda - sb.modes[i].lambda) <= 1e-10 * std::abs(sb.modes[i].lambda));
+    // Bad input.
+    CHECK_THAT(test::scene_error(head + "[[model.bearing]]\nz = 0.1\nk = 1e6\n"),
+               Catch::Contains("where no bearing stands"));
+    CHECK_THAT(test::scene_error(head + film + "[[model.pedestal]]\nz = 0.0\nmass = 1\n"),
+               Catch::Contains("a second pedestal at node 0"));
+    CHECK_THAT(test::scene_error(head + film + "[[model.pedestal]]\nz = 0.3\nmass = 0\n"),
+               Catch::Contains("mass = 0"));
 }

@@ -73,6 +73,16 @@ void BearingTable::validate(int dofs) const {
     if (dof_x == dof_y)
         throw InputError(fmt::format("bearing table {}: dof_x = dof_y = {}; allowed: two distinct DOFs", name,
                                      dof_x));
+    if (pedestal_x >= 0 || pedestal_y >= 0) {
+        for (const auto& [key, v] : {std::pair{"pedestal_x", pedestal_x}, std::pair{"pedestal_y", pedestal_y}})
+            if (v < 0 || v >= dofs || v == dof_x || v == dof_y)
+                throw InputError(fmt::format("bearing table {}: {} = {} is out of range; allowed: 0 to {} (0-based "
+                                             "DOF index), not dof_x or dof_y",
+                                             name, key, v, dofs - 1));
+        if (pedestal_x == pedestal_y)
+            throw InputError(fmt::format("bearing table {}: pedestal_x = pedestal_y = {}; allowed: two distinct DOFs",
+                                         name, pedestal_x));
+    }
 }
 
 std::vector<std::string> extrapolation_notes(const std::vector<BearingTable>& tables, double from, double to) {

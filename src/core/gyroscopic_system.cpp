@@ -33,6 +33,22 @@ namespace {
 
 using Block = std::tuple<int, int, Eigen::Matrix2d>;
 
+// A bearing's 2x2 block: on its own pair, or between the pair and a pedestal's
+// (relative motion: +B on both diagonal pairs, -B off them). The off-diagonal blocks
+// go in `coupled` as (rows x, y; columns x, y) quadruples.
+struct CoupledBlock {
+    int ri, rj, ci, cj;
+    Eigen::Matrix2d B;
+};
+void add_bearing(std::vector<Block>& blocks, std::vector<CoupledBlock>& coupled, const BearingTable& b,
+                 const Eigen::Matrix2d& B) {
+    blocks.emplace_back(b.dof_x, b.dof_y, B);
+    if (b.pedestal_x < 0) return;
+    blocks.emplace_back(b.pedestal_x, b.pedestal_y, B);
+    coupled.push_back({b.dof_x, b.dof_y, b.pedestal_x, b.pedestal_y, -B});
+    coupled.push_back({b.pedestal_x, b.pedestal_y, b.dof_x, b.dof_y, -B});
+}
+
 // The n x n matrix of 2x2 blocks on the rows and columns (i, j).
 SparseMatrix blocks_matrix(int n, const std::vector<Block>& blocks) {
     std::vector<Eigen::Triplet<double>> t;
@@ -48,6 +64,22 @@ SparseMatrix blocks_matrix(int n, const std::vector<Block>& blocks) {
     return A;
 }
 
+SparseMatrix blocks_matrix(int n, const std::vector<Block>& blocks, const std::vector<CoupledBlock>& coupled) {
+    SparseMatrix A = blocks_matrix(n, blocks);
+    if (coupled.empty()) return A;
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(4 * coupled.size());
+    for (const CoupledBlock& c : coupled) {
+        t.emplace_back(c.ri, c.ci, c.B(0, 0));
+        t.emplace_back(c.ri, c.cj, c.B(0, 1));
+        t.emplace_back(c.rj, c.ci, c.B(1, 0));
+        t.emplace_back(c.rj, c.cj, c.B(1, 1));
+    }
+    SparseMatrix C(n, n);
+    C.setFromTriplets(t.begin(), t.end());
+    return A + C;
+}
+
 bool present(const SparseMatrix& A) { return A.rows() > 0 && A.nonZeros() > 0; }
 
 }  // namespace
@@ -57,9 +89,10 @@ SparseMatrix GyroscopicSystem::damping_matrix(double w) const {
     SparseMatrix D(n, n);
     for (const auto& c : damping) D += c.at(w);
     std::vector<Block> cb;
+    std::vector<CoupledBlock> cc;
     for (const auto& b : bearings)
-        if (b.damping_enabled) cb.emplace_back(b.dof_x, b.dof_y, b.at(w).C);
-    if (!cb.empty()) D += blocks_matrix(n, cb);
+        if (b.damping_enabled) add_bearing(cb, cc, b, b.at(w).C);
+    if (!cb.empty()) D += blocks_matrix(n, cb, cc);
     return D;
 }
 
@@ -85,8 +118,9 @@ SparsePencil GyroscopicSystem::sparse_at_speed(double w) const {
     if (present(N)) p.K += w * N;
     if (present(K2)) p.K += (w * w) * K2;
     std::vector<Block> kb;
-    for (const auto& b : bearings) kb.emplace_back(b.dof_x, b.dof_y, b.at(w).K);
-    if (!kb.empty()) p.K += blocks_matrix(size(), kb);
+    std::vector<CoupledBlock> kc;
+    for (const auto& b : bearings) add_bearing(kb, kc, b, b.at(w).K);
+    if (!kb.empty()) p.K += blocks_matrix(size(), kb, kc);
     p.M.makeCompressed();
     p.C.makeCompressed();
     p.K.makeCompressed();

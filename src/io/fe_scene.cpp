@@ -64,7 +64,7 @@ int node_at(const TomlKeys& e, const std::vector<double>& z, const LengthUnit& u
 
 GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRotor* rotor) {
     k.only({"type", "shaft", "disk", "bearing", "support", "E", "poisson", "density", "material", "materials",
-            "shear_deformation", "rotary_inertia", "dofs_per_node", "length_unit"});
+            "shear_deformation", "rotary_inertia", "dofs_per_node", "length_unit", "pedestal"});
     FeRotor r;
     r.dofs_per_node = static_cast<int>(k.integer("dofs_per_node", 4, 4, 6));
     if (r.dofs_per_node == 5)
@@ -306,6 +306,32 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         r.supports.push_back(s);
     });
 
+    // Pedestals: a mass on springs to the ground under the bearings of its node.
+    for_each_entry(k, "pedestal", false, [&](const TomlKeys& e) {
+        e.only({"z", "mass", "k", "c", "kxx", "kyy", "cxx", "cyy"});
+        FePedestal p;
+        p.node = node_at(e, z, len);
+        p.mass = e.number("mass", std::nullopt, 0, true, "kg");
+        const double kk = e.number("k", 0.0, 0, false, "N/m"), cc = e.number("c", 0.0, 0, false, "N s/m");
+        p.kxx = e.number("kxx", kk, 0, false, "N/m");
+        p.kyy = e.number("kyy", kk, 0, false, "N/m");
+        p.cxx = e.number("cxx", cc, 0, false, "N s/m");
+        p.cyy = e.number("cyy", cc, 0, false, "N s/m");
+        const bool carries = std::any_of(r.bearings.begin(), r.bearings.end(),
+                                         [&](const FeBearing& b) { return b.node == p.node; }) ||
+                             std::any_of(tables.begin(), tables.end(), [&](const Tabulated& t) { return t.node == p.node; });
+        if (!carries)
+            throw InputError(fmt::format("{} is at node {}, where no bearing stands; allowed: the z of a bearing "
+                                         "(a pedestal carries the bearings at its node)",
+                                         e.where("z"), p.node));
+        for (const FePedestal& q : r.pedestals)
+            if (q.node == p.node)
+                throw InputError(fmt::format("{}: a second pedestal at node {}; allowed: one pedestal per bearing "
+                                             "position",
+                                             e.where("z"), p.node));
+        r.pedestals.push_back(p);
+    });
+
     const FeRotorMatrices m = r.assemble();
     GyroscopicSystem sys = m.to_system();
     for (const Tabulated& t : tables) {
@@ -330,6 +356,11 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         }
         else
             sys.bearings.push_back(read_bearing_csv(t.path, sys.size(), dof("x"), dof("y")));
+        // On a pedestal: the bearing acts between the shaft and the pedestal.
+        if (std::any_of(r.pedestals.begin(), r.pedestals.end(), [&](const FePedestal& p) { return p.node == t.node; })) {
+            sys.bearings.back().pedestal_x = dof("px");
+            sys.bearings.back().pedestal_y = dof("py");
+        }
     }
     if (rotor) *rotor = r;
     return sys;

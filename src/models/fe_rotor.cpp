@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <tuple>
 
 namespace gyrokit {
 
@@ -257,6 +258,17 @@ void FeRotor::validate() const {
             require(b.czz == 0.0, w, "czz", b.czz, "0 with 4 DOFs per node (an axial bearing needs dofs_per_node = 6)");
         }
     }
+    for (std::size_t i = 0; i < pedestals.size(); ++i) {
+        const FePedestal& p = pedestals[i];
+        const std::string w = where("pedestal", i);
+        require(p.node >= 0 && p.node < nodes, w, "node", p.node, node_range);
+        require(std::isfinite(p.mass) && p.mass > 0, w, "mass", p.mass, "(0, inf) kg");
+        const std::pair<const char*, double> coeffs[] = {{"kxx", p.kxx}, {"kyy", p.kyy}, {"cxx", p.cxx}, {"cyy", p.cyy}};
+        for (const auto& [key, v] : coeffs) require(std::isfinite(v) && v >= 0, w, key, v, "[0, inf)");
+        for (std::size_t j = 0; j < i; ++j)
+            require(pedestals[j].node != p.node, w, "node", p.node,
+                    fmt::format("a node without a pedestal (pedestal {} stands there)", j));
+    }
     for (std::size_t i = 0; i < supports.size(); ++i) {
         const FeSupport& s = supports[i];
         require(s.node >= 0 && s.node < nodes, where("support", i), "node", s.node, node_range);
@@ -298,6 +310,16 @@ FeRotorMatrices FeRotor::assemble() const {
             r.node_of_dof.push_back(j / per);
         }
     if (n == 0) throw InputError("fe rotor: supports: every DOF is constrained; allowed: at least one free DOF");
+    // Pedestal DOFs after the node DOFs (not on the shaft's axis: node -1).
+    std::vector<int> pedestal_of(nodes, -1);   // assembled index of px at each node
+    for (const FePedestal& p : pedestals) {
+        pedestal_of[p.node] = n;
+        for (const char* name : {"px", "py"}) {
+            r.dof_names.push_back(name + std::to_string(p.node));
+            r.node_of_dof.push_back(-1);
+            ++n;
+        }
+    }
     for (int k = 0; k < nodes; ++k)
         for (int p = 0; p < 2; ++p) {
             const int u = map[per * k + 2 * p], v = map[per * k + 2 * p + 1];
@@ -367,9 +389,34 @@ FeRotorMatrices FeRotor::assemble() const {
         add(td, b + X, b + Y, br.cxy);
         add(td, b + Y, b + X, br.cyx);
         add(td, b + Y, b + Y, br.cyy);
+        // On a pedestal the forces act on the relative motion: the pedestal's pair gets
+        // +B and the shaft-pedestal blocks -B (a held shaft DOF keeps only the pedestal's).
+        if (const int p = pedestal_of[br.node]; p >= 0) {
+            const int sx = map[b + X], sy = map[b + Y];
+            const double k[2][2] = {{br.kxx, br.kxy}, {br.kyx, br.kyy}}, c[2][2] = {{br.cxx, br.cxy}, {br.cyx, br.cyy}};
+            for (int i = 0; i < 2; ++i)
+                for (int j = 0; j < 2; ++j) {
+                    const int si = i == 0 ? sx : sy, sj = j == 0 ? sx : sy;
+                    for (auto [t, v] : {std::pair{&tk, k[i][j]}, std::pair{&td, c[i][j]}}) {
+                        if (v == 0.0) continue;
+                        t->emplace_back(p + i, p + j, v);
+                        if (si >= 0) t->emplace_back(si, p + j, -v);
+                        if (sj >= 0) t->emplace_back(p + i, sj, -v);
+                    }
+                }
+        }
         if (six) {
             add(tk, b + Z, b + Z, br.kzz);
             add(td, b + Z, b + Z, br.czz);
+        }
+    }
+    for (const FePedestal& p : pedestals) {
+        const int i = pedestal_of[p.node];
+        tm.emplace_back(i, i, p.mass);
+        tm.emplace_back(i + 1, i + 1, p.mass);
+        for (auto [t, a, b] : {std::tuple{&tk, p.kxx, p.kyy}, std::tuple{&td, p.cxx, p.cyy}}) {
+            if (a != 0.0) t->emplace_back(i, i, a);
+            if (b != 0.0) t->emplace_back(i + 1, i + 1, b);
         }
     }
     auto build = [n](Eigen::SparseMatrix<double>& S, const std::vector<T>& t) {

@@ -1,7 +1,8 @@
 // A bearing (or seal) whose stiffness and damping change with spin speed,
 // given as a table of coefficients against speed and acting between one DOF
-// pair (x, y) and the ground:
-//   force = -[kxx kxy; kyx kyy] (x, y) - [cxx cxy; cyx cyy] (x', y').
+// pair (x, y) and the ground, or a pedestal's DOF pair (px, py):
+//   force = -[kxx kxy; kyx kyy] (x - px, y - py) - [cxx cxy; cyx cyy] (x' - px', y' - py'),
+// and its opposite on the pedestal.
 // Between table speeds every coefficient is interpolated linearly; outside the
 // table the end row is held (constant extrapolation), and `covers` tells the
 // caller so that it can report it.
@@ -22,6 +23,7 @@ struct BearingCoefficients {
 struct BearingTable {
     std::string name;             // e.g. the CSV file it came from; names it in messages
     int dof_x = 0, dof_y = 0;     // 0-based DOF indices of the model
+    int pedestal_x = -1, pedestal_y = -1;   // the pair it acts against; -1: the ground
     std::vector<double> speeds;   // rad/s, strictly increasing, at least two
     std::vector<BearingCoefficients> rows;   // one per speed
     // Instead of rows: coefficients computed at any speed (a fluid-film bearing

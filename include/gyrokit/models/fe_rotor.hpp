@@ -68,6 +68,16 @@ struct FeBearing {
     double czz = 0.0;                                     // N s/m, axial (6 DOFs per node)
 };
 
+// Bearing pedestal (support): a mass on springs and dampers to the ground that
+// carries every bearing at its node (their forces act on the relative motion of
+// shaft and pedestal). Adds the DOFs px<node>, py<node> after the node DOFs.
+struct FePedestal {
+    int node = 0;
+    double mass = 0.0;               // kg, > 0
+    double kxx = 0.0, kyy = 0.0;     // N/m, >= 0, pedestal to ground
+    double cxx = 0.0, cyy = 0.0;     // N s/m, >= 0
+};
+
 // Rigid support: the chosen DOFs of a node are held at zero and removed from
 // the assembled system (pinned: x and y; clamped: all of the node's DOFs).
 // z and theta_z exist with 6 DOFs per node only.
@@ -78,7 +88,8 @@ struct FeSupport {
 };
 
 // The assembled matrices (constrained DOFs removed). Row/column order: node by
-// node, [x, y, theta_x, theta_y] each, constrained DOFs skipped.
+// node, [x, y, theta_x, theta_y] (and z, theta_z with 6 DOFs per node) each, constrained
+// DOFs skipped, then (px, py) of each pedestal in the order given.
 struct FeRotorMatrices {
     Eigen::SparseMatrix<double> M;   // mass (translational + rotary + disks), symmetric positive definite
     Eigen::SparseMatrix<double> K;   // stiffness (shaft + bearings); symmetric when kxy = kyx
@@ -107,6 +118,7 @@ public:
     std::vector<FeDisk> disks;
     std::vector<FeBearing> bearings;
     std::vector<FeSupport> supports;
+    std::vector<FePedestal> pedestals;       // at most one per node
     bool shear_deformation = true;   // false: Euler-Bernoulli / Rayleigh beam (Phi = 0)
     bool rotary_inertia = true;      // false: no rotary inertia and no shaft gyroscopic moments
     int dofs_per_node = 4;           // 4: lateral only; 6: also axial z and torsion theta_z
