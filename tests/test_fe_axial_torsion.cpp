@@ -581,3 +581,53 @@ c = 500
     CHECK_THAT(test::scene_error(head + film + "[[model.pedestal]]\nz = 0.3\nmass = 0\n"),
                Catch::Contains("mass = 0"));
 }
+
+// A bearing table written in the scene is the CSV table: same interpolated coefficients.
+TEST_CASE("fe rotor scene: a bearing table written in the scene (speeds in rpm) equals its CSV form",
+          "[fe_rotor][scene][bearing_table]") {
+    const std::string head = R"(
+[model]
+type = "fe_rotor"
+material = "steel"
+[[model.shaft]]
+length = 0.6
+elements = 3
+outer_diameter = 0.05
+[[model.bearing]]
+z = 0.6
+k = 2e7
+)";
+    const Scene a = parse_scene(head + R"(
+[[model.bearing]]
+z = 0.0
+speeds = [0, 3000, 6000]
+speed_unit = "rpm"
+kxx = [1e7, 2e7, 4e7]
+kyy = [1.5e7, 2.5e7, 4.5e7]
+kxy = [0, 1e6, 3e6]
+c = [100, 200, 300]
+)",
+                                "inline.toml");
+    REQUIRE(a.system.bearings.size() == 1);
+    const BearingTable& t = a.system.bearings[0];
+    CHECK(t.name == "table_0");
+    CHECK(t.speeds[1] == Approx(3000 * pi / 30).epsilon(1e-15));
+    const double w = 4500 * pi / 30;   // halfway between the last two rows
+    const BearingCoefficients c = t.at(w);
+    CHECK(c.K(0, 0) == Approx(3e7).epsilon(1e-14));
+    CHECK(c.K(1, 1) == Approx(3.5e7).epsilon(1e-14));
+    CHECK(c.K(0, 1) == Approx(2e6).epsilon(1e-14));
+    CHECK(c.K(1, 0) == 0.0);
+    CHECK(c.C(0, 0) == Approx(250).epsilon(1e-14));
+    CHECK(c.C(1, 1) == Approx(250).epsilon(1e-14));
+    CHECK(c.C(0, 1) == 0.0);
+    const auto bad = [&](const std::string& rows) { return test::scene_error(head + "[[model.bearing]]\nz = 0.0\n" + rows); };
+    CHECK_THAT(bad("speeds = [0, 100]\nkxx = [1e7]\n"), Catch::Contains("kxx has 1 entries") &&
+                                                           Catch::Contains("an array of 2 numbers"));
+    CHECK_THAT(bad("speeds = [100]\nk = [1e7]\n"), Catch::Contains("at least 2 numbers"));
+    CHECK_THAT(bad("speeds = [100, 50]\nk = [1e7, 2e7]\n"), Catch::Contains("strictly increasing"));
+    CHECK_THAT(bad("speeds = [0, 100]\nk = [1e7, 'a']\n"), Catch::Contains("entry 2 is not a finite number"));
+    CHECK_THAT(bad("speeds = [0, 100]\nk = [1e7, 1e7]\ntable = \"x.csv\"\n"), Catch::Contains("table is given together with speeds"));
+    CHECK_THAT(bad("speed_unit = \"rpm\"\nk = 1e7\n"), Catch::Contains("speed_unit needs speeds"));
+    CHECK_THAT(bad("speeds = [0, 100]\nspeed_unit = \"furlong\"\nk = [1, 2]\n"), Catch::Contains("allowed: rad/s, Hz, rpm"));
+}

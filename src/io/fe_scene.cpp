@@ -1,6 +1,7 @@
 #include "io/fe_scene.hpp"
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/io/bearing_csv.hpp>
 #include <gyrokit/models/journal_bearing.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
@@ -58,6 +59,57 @@ int node_at(const TomlKeys& e, const std::vector<double>& z, const LengthUnit& u
                                      L / unit.scale));
     }
     return static_cast<int>(it - z.begin());
+}
+
+// An array of numbers [[model.bearing]] KEY = [...] of `count` entries (0: any count >= 2).
+std::vector<double> numbers(const TomlKeys& e, const char* key, std::size_t count, const char* unit) {
+    const toml::array* a = e.table().get(key) ? e.table().get(key)->as_array() : nullptr;
+    const std::string want = count ? fmt::format("an array of {} numbers ({}), one per speed", count, unit)
+                                   : fmt::format("an array of at least 2 numbers ({})", unit);
+    if (!a) throw InputError(e.where(key) + " must be " + want);
+    std::vector<double> v;
+    for (const auto& x : *a) {
+        const std::optional<double> d = x.value<double>();
+        if (!d || !std::isfinite(*d))
+            throw InputError(fmt::format("{} entry {} is not a finite number; allowed: {}", e.where(key), v.size() + 1,
+                                         want));
+        v.push_back(*d);
+    }
+    if (count ? v.size() != count : v.size() < 2)
+        throw InputError(fmt::format("{} has {} entries; allowed: {}", e.where(key), v.size(), want));
+    return v;
+}
+
+// A bearing table written in the scene: `speeds` (in `speed_unit`, default rad/s) and
+// the coefficient arrays (`k`, `c` isotropic, or kxx ... cyy; missing ones are 0).
+BearingTable inline_bearing_table(const TomlKeys& e) {
+    BearingTable t;
+    t.name = e.where("speeds");   // until it is attached (then table_<node>)
+    SpeedUnit unit;
+    const std::string unit_name = e.choice("speed_unit", "rad/s", {});
+    try {
+        unit = SpeedUnit::parse(unit_name);
+    } catch (const InputError&) {
+        throw InputError(e.where("speed_unit") + " = '" + unit_name + "': allowed: rad/s, Hz, rpm");
+    }
+    t.speeds = numbers(e, "speeds", 0, unit.name.c_str());
+    for (double& w : t.speeds) w /= unit.factor;
+    const std::size_t n = t.speeds.size();
+    t.rows.resize(n);
+    const auto column = [&](const char* key, const char* iso, const char* u) {
+        if (e.has(key)) return numbers(e, key, n, u);
+        if (e.has(iso)) return numbers(e, iso, n, u);
+        return std::vector<double>(n, 0.0);
+    };
+    const std::vector<double> kxx = column("kxx", "k", "N/m"), kyy = column("kyy", "k", "N/m"),
+                              kxy = column("kxy", "", "N/m"), kyx = column("kyx", "", "N/m"),
+                              cxx = column("cxx", "c", "N s/m"), cyy = column("cyy", "c", "N s/m"),
+                              cxy = column("cxy", "", "N s/m"), cyx = column("cyx", "", "N s/m");
+    for (std::size_t i = 0; i < n; ++i) {
+        t.rows[i].K << kxx[i], kxy[i], kyx[i], kyy[i];
+        t.rows[i].C << cxx[i], cxy[i], cyx[i], cyy[i];
+    }
+    return t;
 }
 
 }  // namespace
@@ -212,6 +264,7 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         int node;
         std::string path;                        // a table, or empty
         std::optional<JournalBearing> journal;   // a fluid-film bearing
+        std::optional<BearingTable> written;     // a table written in the scene
         std::string where;
     };
     std::vector<Tabulated> tables;
@@ -249,12 +302,22 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
             std::string origin = e.where("");   // "file: [table] "
             origin.pop_back();
             j.validate(origin);
-            tables.push_back({node_at(e, z, len), "", j, e.where("type")});
+            tables.push_back({node_at(e, z, len), "", j, std::nullopt, e.where("type")});
             return;
         }
         e.only({"type", "z", "k", "c", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy", "kzz", "czz",
-                "table"});
+                "table", "speeds", "speed_unit"});
         const int node = node_at(e, z, len);
+        if (e.has("speeds")) {
+            for (const char* key : {"table", "kzz", "czz"})
+                if (e.has(key))
+                    throw InputError(e.where(key) + " is given together with speeds; allowed: a table in the scene "
+                                                    "(speeds with k, c or kxx ... cyy arrays) without " + key);
+            tables.push_back({node, "", std::nullopt, inline_bearing_table(e), e.where("speeds")});
+            return;
+        }
+        if (e.has("speed_unit"))
+            throw InputError(e.where("speed_unit") + " needs speeds; allowed: with a table in the scene (speeds = [...])");
         if (!six)
             for (const char* key : {"kzz", "czz"})
                 if (e.has(key))
@@ -266,7 +329,7 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
                     throw InputError(e.where(key) + " is given together with table; allowed: either a table or "
                                                     "constant coefficients");
             tables.push_back({node, (std::filesystem::path(dir) / e.choice("table", "", {})).string(), std::nullopt,
-                              e.where("table")});
+                              std::nullopt, e.where("table")});
             return;
         }
         FeBearing b;
@@ -344,17 +407,29 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
                                              t.where, t.node, name));
             return static_cast<int>(it - m.dof_names.begin());
         };
-        if (t.journal) {
-            // Named by node; a second one at the same node gets a suffix (damping components need unique names).
-            std::string name = "fluid_film_" + std::to_string(t.node);
+        // Named by kind and node; a second one at the same node gets a suffix (damping
+        // components need unique names).
+        const auto unique_name = [&](const std::string& kind) {
+            std::string name = kind + "_" + std::to_string(t.node);
             for (int k = 2; std::any_of(sys.bearings.begin(), sys.bearings.end(),
                                         [&](const BearingTable& b) { return b.name == name; });
                  ++k)
-                name = "fluid_film_" + std::to_string(t.node) + "_" + std::to_string(k);
+                name = kind + "_" + std::to_string(t.node) + "_" + std::to_string(k);
+            return name;
+        };
+        if (t.journal) {
+            const std::string name = unique_name("fluid_film");
             const int dx = dof("x"), dy = dof("y");
             sys.bearings.push_back(journal_bearing_table(*t.journal, name, dx, dy));
         }
-        else
+        else if (t.written) {
+            BearingTable b = *t.written;
+            b.dof_x = dof("x");
+            b.dof_y = dof("y");
+            b.validate(sys.size());   // errors name the scene's table
+            b.name = unique_name("table");
+            sys.bearings.push_back(b);
+        } else
             sys.bearings.push_back(read_bearing_csv(t.path, sys.size(), dof("x"), dof("y")));
         // On a pedestal: the bearing acts between the shaft and the pedestal.
         if (std::any_of(r.pedestals.begin(), r.pedestals.end(), [&](const FePedestal& p) { return p.node == t.node; })) {
