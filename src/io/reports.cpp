@@ -622,10 +622,11 @@ Table model_summary(const Scene& sc) {
         add("elements", ll(static_cast<int>(r.elements.size())));
         double shaft = 0.0, dmin = 1e300, dmax = 0.0;
         for (const auto& e : r.elements) {
-            shaft += e.density * M_PI * (e.outer_diameter * e.outer_diameter - e.inner_diameter * e.inner_diameter) /
-                     4.0 * e.length;
-            dmin = std::min(dmin, e.outer_diameter);
-            dmax = std::max(dmax, e.outer_diameter);
+            shaft += fe_element_mass(e);
+            for (const double d : {e.outer_diameter, e.outer_diameter_end.value_or(e.outer_diameter)}) {
+                dmin = std::min(dmin, d);
+                dmax = std::max(dmax, d);
+            }
         }
         add("shaft_mass", shaft, "kg");
         double disks = 0.0;
@@ -669,8 +670,13 @@ Figure fe_rotor_figure(const FeRotor& r, const GyroscopicSystem& sys, const std:
     bore_top.color = bore_bottom.color = "#1f77b4";
     bore_top.style = bore_bottom.style = "dashed";
     for (size_t e = 0; e < r.elements.size(); ++e) {
-        const double ro = r.elements[e].outer_diameter / 2, ri = r.elements[e].inner_diameter / 2;
-        for (const double x : {z[e], z[e + 1]}) {
+        const FeShaftElement& el = r.elements[e];
+        // Both ends of the element: a step between uniform elements, a slope along a cone.
+        const double ends[2][2] = {{el.outer_diameter / 2, el.inner_diameter / 2},
+                                   {el.outer_diameter_end.value_or(el.outer_diameter) / 2,
+                                    el.inner_diameter_end.value_or(el.inner_diameter) / 2}};
+        for (int k = 0; k < 2; ++k) {
+            const double x = z[e + k], ro = ends[k][0], ri = ends[k][1];
             top.x.push_back(x), top.y.push_back(ro);
             bottom.x.push_back(x), bottom.y.push_back(-ro);
             bore_top.x.push_back(x), bore_top.y.push_back(ri > 0 ? ri : NAN);
@@ -698,7 +704,10 @@ Figure fe_rotor_figure(const FeRotor& r, const GyroscopicSystem& sys, const std:
         m.color = color;
         for (const int n : nodes) {
             double ro = 0.0;
-            if (n > 0) ro = std::max(ro, r.elements[static_cast<size_t>(n - 1)].outer_diameter / 2);
+            if (n > 0) {
+                const FeShaftElement& left = r.elements[static_cast<size_t>(n - 1)];
+                ro = std::max(ro, left.outer_diameter_end.value_or(left.outer_diameter) / 2);
+            }
             if (n < static_cast<int>(r.elements.size())) ro = std::max(ro, r.elements[static_cast<size_t>(n)].outer_diameter / 2);
             m.x.push_back(z[static_cast<size_t>(n)]);
             m.y.push_back(-1.5 * ro);

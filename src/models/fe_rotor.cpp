@@ -152,6 +152,11 @@ FeSection fe_section(const FeShaftElement& e, double xi) {
     return s;
 }
 
+double fe_element_mass(const FeShaftElement& e) {
+    const double a = fe_section(e, 0.0).area, m = fe_section(e, 0.5).area, b = fe_section(e, 1.0).area;
+    return e.density * e.length * (a + 4 * m + b) / 6;
+}
+
 FeElementMatrices fe_shaft_element_matrices(const FeShaftElement& e, bool shear_deformation, bool rotary_inertia) {
     const bool tapered = e.outer_diameter_end.has_value() || e.inner_diameter_end.has_value();
     const FeSection s = fe_section(e, tapered ? 0.5 : 0.0);

@@ -144,6 +144,8 @@ struct FeSection {
 };
 // The section at node e (xi = 0) or, of a tapered element, at xi = (z - z_e) / length in [0, 1].
 FeSection fe_section(const FeShaftElement& e, double xi = 0.0);
+// The element's mass rho int A dz (Simpson's rule: exact, A is quadratic along a cone).
+double fe_element_mass(const FeShaftElement& e);
 
 // Cowper's shear coefficient of a hollow circular section, m = di / do:
 // kappa = 6 (1 + nu) (1 + m^2)^2 / ((7 + 6 nu) (1 + m^2)^2 + (20 + 12 nu) m^2).
