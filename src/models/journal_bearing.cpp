@@ -1,6 +1,7 @@
 #include <gyrokit/models/journal_bearing.hpp>
 
 #include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/models/reynolds_bearing.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <cmath>
@@ -36,6 +37,15 @@ void JournalBearing::validate(const std::string& origin) const {
         throw InputError(fmt::format("{}: load_angle = {} rad; allowed: -360 to 360 deg", origin, load_angle));
     if (!(max_eccentricity >= 0.01 && max_eccentricity <= 0.999))
         throw InputError(fmt::format("{}: max_eccentricity = {}; allowed: 0.01 to 0.999", origin, max_eccentricity));
+    if (solution != FilmSolution::short_bearing && solution != FilmSolution::finite_difference)
+        throw InputError(fmt::format("{}: solution = {}; allowed: short, finite_difference", origin,
+                                     static_cast<int>(solution)));
+    if (grid_circumferential < 16 || grid_circumferential > 2880 || grid_circumferential % 2 != 0)
+        throw InputError(fmt::format("{}: grid_circumferential = {}; allowed: an even number from 16 to 2880", origin,
+                                     grid_circumferential));
+    if (grid_axial < 4 || grid_axial > 256 || grid_axial % 4 != 0)
+        throw InputError(
+            fmt::format("{}: grid_axial = {}; allowed: a multiple of 4 from 4 to 256", origin, grid_axial));
     // The film's scales must be numbers: S_s per unit speed, the speed where max_eccentricity is
     // reached, and the stiffness and damping scales W/c, W/(c w) there.
     const double per_speed = sommerfeld_per_speed(*this), w_min = short_bearing_sommerfeld(max_eccentricity) / per_speed;
@@ -98,11 +108,17 @@ BearingTable journal_bearing_table(const JournalBearing& b, const std::string& n
     t.name = name;
     t.dof_x = dof_x;
     t.dof_y = dof_y;
-    t.speeds = {journal_bearing_speed_at(b, b.max_eccentricity)};
-    t.model = [b, name](double w) {
+    const bool fd = b.solution == FilmSolution::finite_difference;
+    try {
+        t.speeds = {fd ? reynolds_bearing_speed_at(b, b.max_eccentricity)
+                       : journal_bearing_speed_at(b, b.max_eccentricity)};
+    } catch (const Error& e) {
+        throw SolverError(fmt::format("bearing {}: {}", name, e.what()));
+    }
+    t.model = [b, name, fd](double w) {
         try {
-            return short_bearing(b, w).coefficients;
-        } catch (const InputError& e) {
+            return fd ? reynolds_bearing(b, w).coefficients : short_bearing(b, w).coefficients;
+        } catch (const Error& e) {
             throw SolverError(fmt::format("bearing {}: {}", name, e.what()));
         }
     };
