@@ -446,7 +446,8 @@ k = 1e7
         const std::string shaft = "[[model.shaft]]\nlength = 1.0\nouter_diameter = 0.05\n";
         CHECK_THAT(test::scene_error(base + "dofs_per_node = 5\n" + shaft),
                    Catch::Contains("dofs_per_node = 5") && Catch::Contains("4 (lateral) or 6"));
-        CHECK_THAT(test::scene_error(base + "dofs_per_node = 8\n" + shaft), Catch::Contains("[4, 6]"));
+        CHECK_THAT(test::scene_error(base + "dofs_per_node = 8\n" + shaft),
+                   Catch::Contains("dofs_per_node = 8; allowed: 4 (lateral) or 6"));
         CHECK_THAT(test::scene_error(base + "length_unit = \"cm\"\n" + shaft), Catch::Contains("length_unit"));
         CHECK_THAT(test::scene_error(base + shaft + "[[model.bearing]]\nz = 0.0\nk = 1e6\nkzz = 1e6\n"),
                    Catch::Contains("kzz") && Catch::Contains("dofs_per_node = 6"));
@@ -573,6 +574,15 @@ c = 500
     REQUIRE(sa.modes.size() == sb.modes.size());
     for (std::size_t i = 0; i < sa.modes.size(); ++i)
         CHECK(std::abs(sa.modes[i].lambda - sb.modes[i].lambda) <= 1e-10 * std::abs(sb.modes[i].lambda));
+    // A shaft held where a pedestal stands: every kind of bearing acts from the pedestal to
+    // the ground (a table the same as a constant bearing).
+    const std::string held = head + "[[model.support]]\nz = 0.0\n[[model.bearing]]\nz = 0.6\nk = 2e7\n";
+    const Scene c = parse_scene(held + "[[model.bearing]]\nz = 0.0\nk = 3e7\n", "held.toml");
+    const Scene d = parse_scene(held + "[[model.bearing]]\nz = 0.0\nspeeds = [0, 1000]\nk = [3e7, 3e7]\n",
+                                "held_table.toml");
+    const QuadraticPencil pc = c.system.at_speed(w), pd = d.system.at_speed(w);
+    CHECK((pc.K - pd.K).cwiseAbs().maxCoeff() <= 1e-12 * pc.K.cwiseAbs().maxCoeff());
+    CHECK((pc.C - pd.C).cwiseAbs().maxCoeff() <= 1e-12 * pc.C.cwiseAbs().maxCoeff());
     // Bad input.
     CHECK_THAT(test::scene_error(head + "[[model.bearing]]\nz = 0.1\nk = 1e6\n"),
                Catch::Contains("where no bearing stands"));
@@ -626,8 +636,89 @@ c = [100, 200, 300]
                                                            Catch::Contains("an array of 2 numbers"));
     CHECK_THAT(bad("speeds = [100]\nk = [1e7]\n"), Catch::Contains("at least 2 numbers"));
     CHECK_THAT(bad("speeds = [100, 50]\nk = [1e7, 2e7]\n"), Catch::Contains("strictly increasing"));
+    CHECK_THAT(bad("speeds = [3000, 1000]\nspeed_unit = \"rpm\"\nk = [1e7, 2e7]\n"),
+               Catch::Contains("entry 2 = 1000 rpm does not exceed entry 1 = 3000"));
+    CHECK_THAT(bad("speeds = [-60, 1000]\nspeed_unit = \"rpm\"\nk = [1e7, 2e7]\n"),
+               Catch::Contains("entry 1 = -60 rpm; allowed: >= 0"));
     CHECK_THAT(bad("speeds = [0, 100]\nk = [1e7, 'a']\n"), Catch::Contains("entry 2 is not a finite number"));
     CHECK_THAT(bad("speeds = [0, 100]\nk = [1e7, 1e7]\ntable = \"x.csv\"\n"), Catch::Contains("table is given together with speeds"));
     CHECK_THAT(bad("speed_unit = \"rpm\"\nk = 1e7\n"), Catch::Contains("speed_unit needs speeds"));
     CHECK_THAT(bad("speeds = [0, 100]\nspeed_unit = \"furlong\"\nk = [1, 2]\n"), Catch::Contains("allowed: rad/s, Hz, rpm"));
+}
+
+// Two equal rigid disks (m, J) joined by a flexible coupling only, each on a bearing k_b:
+// translation in phase w^2 = k_b / m', out of phase w^2 = (k_b + 2 k_lat) / m' (m' = m plus
+// half the coupling's mass); torsion, free: w^2 = 2 k_t / J' (J' = J + Ip_c / 2); axial
+// with thrust bearings k_z at both ends: k_z / m' and (k_z + 2 k_ax) / m'. Exact (1e-12).
+TEST_CASE("fe rotor coupling: two disks joined by a flexible coupling against the closed forms",
+          "[fe_rotor][coupling][validation]") {
+    const double m = 12.0, J = 0.08, mc = 2.0, Ipc = 0.004, kb = 3e6, klat = 5e5, kt = 2e4, kax = 7e6, kz = 1e6;
+    const Scene sc = parse_scene(fmt::format(R"(
+[model]
+type = "fe_rotor"
+dofs_per_node = 6
+length_unit = "mm"
+[[model.shaft]]
+type = "coupling"
+length = 120
+k_lateral = {}
+k_bending = 1e4
+k_axial = {}
+k_torsion = {}
+mass = {}
+Id = 0.002
+Ip = {}
+[[model.disk]]
+z = 0
+mass = {}
+Id = 0.05
+Ip = {}
+[[model.disk]]
+z = 120
+mass = {}
+Id = 0.05
+Ip = {}
+[[model.bearing]]
+z = 0
+k = {}
+kzz = {}
+[[model.bearing]]
+z = 120
+k = {}
+kzz = {}
+)",
+                                             klat, kax, kt, mc, Ipc, m, J, m, J, kb, kz, kb, kz),
+                                 "coupling.toml");
+    REQUIRE(sc.dofs() == 12);
+    const double mm = m + mc / 2, JJ = J + Ipc / 2;
+    const auto pair_frequencies = [&](const char* kind) {
+        std::vector<int> idx;
+        for (int i = 0; i < sc.dofs(); ++i)
+            if (sc.system.dof_names[i] == std::string(kind) + "0" || sc.system.dof_names[i] == std::string(kind) + "1")
+                idx.push_back(i);
+        REQUIRE(idx.size() == 2);
+        Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(sc.system.K)(idx, idx),
+                                                                    Eigen::MatrixXd(sc.system.M)(idx, idx));
+        return es.eigenvalues();
+    };
+    const Eigen::Vector2d x = pair_frequencies("x"), t = pair_frequencies("tz"), a = pair_frequencies("z");
+    CHECK(x(0) == Approx(kb / mm).epsilon(1e-12));
+    CHECK(x(1) == Approx((kb + 2 * klat) / mm).epsilon(1e-12));
+    CHECK(std::abs(t(0)) < 1e-9 * t(1));
+    CHECK(t(1) == Approx(2 * kt / JJ).epsilon(1e-12));
+    CHECK(a(0) == Approx(kz / mm).epsilon(1e-12));
+    CHECK(a(1) == Approx((kz + 2 * kax) / mm).epsilon(1e-12));
+    // The coupling's polar inertia is gyroscopic, half at each node.
+    const Eigen::MatrixXd G(sc.system.G);
+    CHECK(G.sum() == 0.0);
+    CHECK(G.cwiseAbs().maxCoeff() == Approx(J + Ipc / 2).epsilon(1e-15));
+    // Bad input.
+    const std::string head = "[model]\ntype = \"fe_rotor\"\nmaterial = \"steel\"\n[[model.shaft]]\nlength = 0.2\n"
+                             "outer_diameter = 0.05\n[[model.shaft]]\ntype = \"coupling\"\nlength = 0.05\n";
+    CHECK_THAT(test::scene_error(head + "k_lateral = 1e6\n"), Catch::Contains("k_bending' is missing"));
+    CHECK_THAT(test::scene_error(head + "k_lateral = -1\nk_bending = 1\n"), Catch::Contains("k_lateral = -1"));
+    CHECK_THAT(test::scene_error(head + "k_lateral = 1\nk_bending = 1\nk_torsion = 1\n"),
+               Catch::Contains("dofs_per_node = 6"));
+    CHECK_THAT(test::scene_error(head + "k_lateral = 1\nk_bending = 1\nouter_diameter = 0.1\n"),
+               Catch::Contains("unknown key 'outer_diameter'"));
 }

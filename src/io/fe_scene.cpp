@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <fmt/format.h>
 
 namespace gyrokit {
@@ -93,6 +94,16 @@ BearingTable inline_bearing_table(const TomlKeys& e) {
         throw InputError(e.where("speed_unit") + " = '" + unit_name + "': allowed: rad/s, Hz, rpm");
     }
     t.speeds = numbers(e, "speeds", 0, unit.name.c_str());
+    // Order and sign in the scene's unit, as written (the table's own checks would show rad/s).
+    for (std::size_t i = 0; i < t.speeds.size(); ++i) {
+        if (t.speeds[i] < 0)
+            throw InputError(fmt::format("{} entry {} = {} {}; allowed: >= 0", e.where("speeds"), i + 1, t.speeds[i],
+                                         unit.name));
+        if (i > 0 && !(t.speeds[i] > t.speeds[i - 1]))
+            throw InputError(fmt::format("{} entry {} = {} {} does not exceed entry {} = {}; allowed: strictly "
+                                         "increasing speeds",
+                                         e.where("speeds"), i + 1, t.speeds[i], unit.name, i, t.speeds[i - 1]));
+    }
     for (double& w : t.speeds) w /= unit.factor;
     const std::size_t n = t.speeds.size();
     t.rows.resize(n);
@@ -118,9 +129,12 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
     k.only({"type", "shaft", "disk", "bearing", "support", "E", "poisson", "density", "material", "materials",
             "shear_deformation", "rotary_inertia", "dofs_per_node", "length_unit", "pedestal"});
     FeRotor r;
-    r.dofs_per_node = static_cast<int>(k.integer("dofs_per_node", 4, 4, 6));
-    if (r.dofs_per_node == 5)
-        throw InputError(k.where("dofs_per_node") + " = 5; allowed: 4 (lateral) or 6 (lateral, axial, torsion)");
+    const long long per = k.integer("dofs_per_node", 4, std::numeric_limits<long long>::min(),
+                                    std::numeric_limits<long long>::max());
+    if (per != 4 && per != 6)
+        throw InputError(fmt::format("{} = {}; allowed: 4 (lateral) or 6 (lateral, axial, torsion)",
+                                     k.where("dofs_per_node"), per));
+    r.dofs_per_node = static_cast<int>(per);
     const bool six = r.dofs_per_node == 6;
     LengthUnit len;
     if (k.choice("length_unit", "m", {"m", "mm"}) == "mm") len = {1e-3, "mm"};
@@ -171,7 +185,33 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
 
     std::vector<double> z{0.0};
     for_each_entry(k, "shaft", true, [&](const TomlKeys& e) {
-        e.only({"length", "elements", "outer_diameter", "inner_diameter", "outer_diameter_end", "inner_diameter_end",
+        if (e.choice("type", "beam", {"beam", "coupling"}) == "coupling") {
+            // A flexible coupling in the chain: one element of its length.
+            e.only({"type", "length", "k_lateral", "k_bending", "k_axial", "k_torsion", "mass", "Id", "Ip"});
+            if (!six)
+                for (const char* key : {"k_axial", "k_torsion"})
+                    if (e.has(key))
+                        throw InputError(e.where(key) + " acts on an axial or torsional DOF; allowed: with "
+                                                        "dofs_per_node = 6 in [model] (the model has 4 DOFs per node)");
+            if (r.elements.size() + 1 > static_cast<std::size_t>(kMaxFeElements))
+                throw InputError(fmt::format("{} makes {} elements in all; allowed: at most {}", e.where("type"),
+                                             r.elements.size() + 1, kMaxFeElements));
+            FeShaftElement el;
+            el.length = len(e, "length", std::nullopt, true);
+            FeCoupling c;
+            c.k_lateral = e.number("k_lateral", std::nullopt, 0, false, "N/m");
+            c.k_bending = e.number("k_bending", std::nullopt, 0, false, "N m/rad");
+            c.k_axial = e.number("k_axial", six ? std::nullopt : std::optional(0.0), 0, false, "N/m");
+            c.k_torsion = e.number("k_torsion", six ? std::nullopt : std::optional(0.0), 0, false, "N m/rad");
+            c.mass = e.number("mass", 0.0, 0, false, "kg");
+            c.diametral_inertia = e.number("Id", 0.0, 0, false, "kg m^2");
+            c.polar_inertia = e.number("Ip", 0.0, 0, false, "kg m^2");
+            el.coupling = c;
+            r.elements.push_back(el);
+            z.push_back(z.back() + el.length);
+            return;
+        }
+        e.only({"type", "length", "elements", "outer_diameter", "inner_diameter", "outer_diameter_end", "inner_diameter_end",
                 "E", "poisson", "density", "material"});
         const std::optional<Material> mat = material_of(e);
         FeShaftElement el;
@@ -398,7 +438,17 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
     const FeRotorMatrices m = r.assemble();
     GyroscopicSystem sys = m.to_system();
     for (const Tabulated& t : tables) {
-        const auto dof = [&](const char* prefix) {
+        const bool on_pedestal =
+            std::any_of(r.pedestals.begin(), r.pedestals.end(), [&](const FePedestal& p) { return p.node == t.node; });
+        const auto has = [&](const std::string& name) {
+            return std::find(m.dof_names.begin(), m.dof_names.end(), name) != m.dof_names.end();
+        };
+        // A shaft held at a pedestal: the bearing acts between the pedestal and the held
+        // shaft, i.e. from the pedestal to the ground (as a constant bearing does there).
+        const bool pedestal_only = on_pedestal && !has("x" + std::to_string(t.node)) &&
+                                   !has("y" + std::to_string(t.node));
+        const auto dof = [&](std::string prefix) {
+            if (pedestal_only && (prefix == "x" || prefix == "y")) prefix = "p" + prefix;
             const std::string name = prefix + std::to_string(t.node);
             const auto it = std::find(m.dof_names.begin(), m.dof_names.end(), name);
             if (it == m.dof_names.end())
@@ -432,7 +482,7 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         } else
             sys.bearings.push_back(read_bearing_csv(t.path, sys.size(), dof("x"), dof("y")));
         // On a pedestal: the bearing acts between the shaft and the pedestal.
-        if (std::any_of(r.pedestals.begin(), r.pedestals.end(), [&](const FePedestal& p) { return p.node == t.node; })) {
+        if (on_pedestal && !pedestal_only) {
             sys.bearings.back().pedestal_x = dof("px");
             sys.bearings.back().pedestal_y = dof("py");
         }

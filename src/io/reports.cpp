@@ -622,7 +622,8 @@ Table model_summary(const Scene& sc) {
         add("elements", ll(static_cast<int>(r.elements.size())));
         double shaft = 0.0, dmin = 1e300, dmax = 0.0;
         for (const auto& e : r.elements) {
-            shaft += fe_element_mass(e);
+            shaft += fe_element_mass(e);   // couplings: their mass
+            if (e.coupling) continue;
             for (const double d : {e.outer_diameter, e.outer_diameter_end.value_or(e.outer_diameter)}) {
                 dmin = std::min(dmin, d);
                 dmax = std::max(dmax, d);
@@ -671,6 +672,10 @@ Figure fe_rotor_figure(const FeRotor& r, const GyroscopicSystem& sys, const std:
     bore_top.style = bore_bottom.style = "dashed";
     for (size_t e = 0; e < r.elements.size(); ++e) {
         const FeShaftElement& el = r.elements[e];
+        if (el.coupling) {   // no outline: a gap in the drawn shaft
+            for (Series* s : {&top, &bottom, &bore_top, &bore_bottom}) s->x.push_back(NAN), s->y.push_back(NAN);
+            continue;
+        }
         // Both ends of the element: a step between uniform elements, a slope along a cone.
         const double ends[2][2] = {{el.outer_diameter / 2, el.inner_diameter / 2},
                                    {el.outer_diameter_end.value_or(el.outer_diameter) / 2,

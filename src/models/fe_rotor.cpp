@@ -153,11 +153,42 @@ FeSection fe_section(const FeShaftElement& e, double xi) {
 }
 
 double fe_element_mass(const FeShaftElement& e) {
+    if (e.coupling) return e.coupling->mass;
     const double a = fe_section(e, 0.0).area, m = fe_section(e, 0.5).area, b = fe_section(e, 1.0).area;
     return e.density * e.length * (a + 4 * m + b) / 6;
 }
 
+namespace {
+
+// A coupling: diagonal springs on the relative motion, half its mass and inertias lumped
+// at each node (as ROSS's coupling element), Ip / 2 gyroscopic at each node.
+FeElementMatrices coupling_matrices(const FeCoupling& c) {
+    FeElementMatrices m;
+    m.M.setZero();
+    m.K.setZero();
+    m.G.setZero();
+    const double k[4] = {c.k_lateral, c.k_lateral, c.k_bending, c.k_bending};
+    const double mass[4] = {c.mass / 2, c.mass / 2, c.diametral_inertia / 2, c.diametral_inertia / 2};
+    for (int a = 0; a < 4; ++a) {
+        m.K(a, a) = m.K(a + 4, a + 4) = k[a];
+        m.K(a, a + 4) = m.K(a + 4, a) = -k[a];
+        m.M(a, a) = m.M(a + 4, a + 4) = mass[a];
+    }
+    for (const int b : {0, 4}) {
+        m.G(b + 2, b + 3) = c.polar_inertia / 2;
+        m.G(b + 3, b + 2) = -c.polar_inertia / 2;
+    }
+    m.K_axial << c.k_axial, -c.k_axial, -c.k_axial, c.k_axial;
+    m.K_torsion << c.k_torsion, -c.k_torsion, -c.k_torsion, c.k_torsion;
+    m.M_axial = Eigen::Matrix2d::Identity() * (c.mass / 2);
+    m.M_torsion = Eigen::Matrix2d::Identity() * (c.polar_inertia / 2);
+    return m;
+}
+
+}  // namespace
+
 FeElementMatrices fe_shaft_element_matrices(const FeShaftElement& e, bool shear_deformation, bool rotary_inertia) {
+    if (e.coupling) return coupling_matrices(*e.coupling);
     const bool tapered = e.outer_diameter_end.has_value() || e.inner_diameter_end.has_value();
     const FeSection s = fe_section(e, tapered ? 0.5 : 0.0);
     const double L = e.length;
@@ -213,6 +244,14 @@ void FeRotor::validate() const {
         const FeShaftElement& s = elements[e];
         const std::string w = where("element", e);
         require(std::isfinite(s.length) && s.length > 0, w, "length", s.length, "(0, inf) m");
+        if (const auto& c = s.coupling) {
+            const std::pair<const char*, double> values[] = {
+                {"k_lateral", c->k_lateral}, {"k_bending", c->k_bending}, {"k_axial", c->k_axial},
+                {"k_torsion", c->k_torsion}, {"mass", c->mass},           {"Id", c->diametral_inertia},
+                {"Ip", c->polar_inertia}};
+            for (const auto& [key, v] : values) require(std::isfinite(v) && v >= 0, w + " (coupling)", key, v, "[0, inf)");
+            continue;
+        }
         require(std::isfinite(s.outer_diameter) && s.outer_diameter > 0, w, "outer_diameter", s.outer_diameter,
                 "(0, inf) m");
         require(std::isfinite(s.inner_diameter) && s.inner_diameter >= 0 && s.inner_diameter < s.outer_diameter, w,
@@ -314,7 +353,6 @@ FeRotorMatrices FeRotor::assemble() const {
             r.dof_names.push_back(prefix[j % per] + std::to_string(j / per));
             r.node_of_dof.push_back(j / per);
         }
-    if (n == 0) throw InputError("fe rotor: supports: every DOF is constrained; allowed: at least one free DOF");
     // Pedestal DOFs after the node DOFs (not on the shaft's axis: node -1).
     std::vector<int> pedestal_of(nodes, -1);   // assembled index of px at each node
     for (const FePedestal& p : pedestals) {
@@ -325,6 +363,7 @@ FeRotorMatrices FeRotor::assemble() const {
             ++n;
         }
     }
+    if (n == 0) throw InputError("fe rotor: supports: every DOF is constrained; allowed: at least one free DOF");
     for (int k = 0; k < nodes; ++k)
         for (int p = 0; p < 2; ++p) {
             const int u = map[per * k + 2 * p], v = map[per * k + 2 * p + 1];

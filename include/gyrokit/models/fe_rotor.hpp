@@ -32,7 +32,21 @@
 
 namespace gyrokit {
 
+// Flexible coupling between two shafts: springs on the relative motion of its two
+// nodes (no coupling between the directions), its mass and inertias half at each node.
+struct FeCoupling {
+    double k_lateral = 0.0;          // N/m, >= 0: x, y
+    double k_bending = 0.0;          // N m/rad, >= 0: theta_x, theta_y (angular misalignment)
+    double k_axial = 0.0;            // N/m, >= 0: z (6 DOFs per node)
+    double k_torsion = 0.0;          // N m/rad, >= 0: theta_z (6 DOFs per node)
+    double mass = 0.0;               // kg, >= 0
+    double diametral_inertia = 0.0;  // Id, kg m^2, >= 0
+    double polar_inertia = 0.0;      // Ip, kg m^2, >= 0 (also gyroscopic)
+};
+
 // One shaft element between node e and node e + 1 (elements form one chain).
+// With `coupling` set the element is a flexible coupling of that length instead of a
+// beam (its diameters and material are then unused).
 // Tapered (conical) when the diameters at node e + 1 are given: the section then
 // varies linearly from node e to node e + 1 (docs/fe_rotor.md, "Tapered elements").
 struct FeShaftElement {
@@ -41,6 +55,7 @@ struct FeShaftElement {
     double inner_diameter = 0.0;    // m, in [0, outer_diameter) (at node e)
     std::optional<double> outer_diameter_end;   // m, > 0, at node e + 1; none: uniform
     std::optional<double> inner_diameter_end;   // m, in [0, outer_diameter_end); none: inner_diameter
+    std::optional<FeCoupling> coupling;          // set: a flexible coupling, not a beam
     double youngs_modulus = 0.0;    // E, Pa, > 0
     double shear_modulus = 0.0;     // G, Pa, > 0; 0 = E / (2 (1 + poisson_ratio))
     double poisson_ratio = 0.3;     // in (-1, 0.5]; used for G (if 0) and the shear coefficient
