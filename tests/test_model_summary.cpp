@@ -50,3 +50,57 @@ TEST_CASE("model summary of the exported ROSS rotor counts its four rigid-body e
     CHECK(std::get<long long>(value(t, "dofs")) == 42);
     CHECK(std::get<long long>(value(t, "rigid_body_eigenvalues_at_rest")) == 4);
 }
+
+// A tapered section, a coupling and a pedestal: the shaft mass is the frustum's (exact),
+// a rigid translation moves shaft, coupling and disk (not the pedestal, which is not on
+// the axis), and the pedestal is listed.
+TEST_CASE("model summary of a rotor with a cone, a coupling and a pedestal", "[model][pedestal][coupling]") {
+    const Scene sc = parse_scene(R"(
+[model]
+type = "fe_rotor"
+material = "steel"
+length_unit = "mm"
+[[model.shaft]]
+length = 600
+elements = 6
+outer_diameter = 50
+outer_diameter_end = 40
+inner_diameter = 10
+[[model.shaft]]
+type = "coupling"
+length = 50
+k_lateral = 1e6
+k_bending = 1e4
+mass = 1.5
+[[model.shaft]]
+length = 300
+elements = 3
+outer_diameter = 40
+[[model.disk]]
+z = 300
+mass = 10
+[[model.pedestal]]
+z = 0
+mass = 20
+k = 5e7
+c = 100
+[[model.bearing]]
+z = 0
+speeds = [0, 1000]
+k = [3e7, 3e7]
+[[model.bearing]]
+z = 950
+k = 2e7
+)",
+                                 "cone.toml");
+    const Table t = model_summary(sc);
+    const double cone = 7810 * M_PI / 4 * 0.6 * ((0.05 * 0.05 + 0.05 * 0.04 + 0.04 * 0.04) / 3 - 0.01 * 0.01);
+    const double shaft = cone + 1.5 + 7810 * M_PI / 4 * 0.04 * 0.04 * 0.3;
+    CHECK(std::get<double>(value(t, "shaft_mass")) == Approx(shaft).epsilon(1e-14));
+    CHECK(std::get<double>(value(t, "total_mass")) == Approx(shaft + 10).epsilon(1e-14));
+    CHECK(std::get<double>(value(t, "translating_mass")) == Approx(shaft + 10).epsilon(1e-13));
+    CHECK(std::get<long long>(value(t, "couplings")) == 1);
+    CHECK(std::get<double>(value(t, "pedestal1_mass")) == 20.0);
+    CHECK(std::get<double>(value(t, "bearing2_z")) == Approx(0.0).margin(1e-15));
+    CHECK(std::get<double>(value(t, "shaft_outer_diameter_min")) == Approx(0.04).epsilon(1e-14));
+}

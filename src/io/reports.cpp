@@ -570,6 +570,20 @@ std::pair<double, double> disk_cylinder(const FeDisk& d) {
 
 }  // namespace
 
+namespace {
+
+// The shaft node a speed-dependent bearing stands at (-1: none): its x DOF's node, or
+// the node of the pedestal it acts on (a held shaft: px<node>).
+int bearing_node(const GyroscopicSystem& s, const BearingTable& b) {
+    if (s.node_of_dof.empty()) return -1;
+    const int node = s.node_of_dof[static_cast<size_t>(b.dof_x)];
+    const std::string& name = s.dof_names[static_cast<size_t>(b.dof_x)];
+    if (node < 0 && name.rfind("px", 0) == 0) return std::stoi(name.substr(2));
+    return node;
+}
+
+}  // namespace
+
 Table model_summary(const Scene& sc) {
     Table t({"quantity", "value", "unit"});
     t.key = "model";
@@ -620,6 +634,9 @@ Table model_summary(const Scene& sc) {
     if (sc.fe_rotor) {
         const FeRotor& r = *sc.fe_rotor;
         add("elements", ll(static_cast<int>(r.elements.size())));
+        add("dofs_per_node", ll(r.dofs_per_node));
+        add("couplings", ll(static_cast<int>(std::count_if(r.elements.begin(), r.elements.end(),
+                                                            [](const FeShaftElement& e) { return e.coupling.has_value(); }))));
         double shaft = 0.0, dmin = 1e300, dmax = 0.0;
         for (const auto& e : r.elements) {
             shaft += fe_element_mass(e);   // couplings: their mass
@@ -649,11 +666,21 @@ Table model_summary(const Scene& sc) {
         for (const auto& b : r.bearings)
             add(fmt::format("bearing{}_z", ++k), s.node_z[static_cast<size_t>(b.node)], "m");
         for (const auto& b : s.bearings)
-            add(fmt::format("bearing{}_z", ++k), s.node_z[static_cast<size_t>(s.node_of_dof[static_cast<size_t>(b.dof_x)])],
-                "m");
+            if (const int node = bearing_node(s, b); node >= 0)
+                add(fmt::format("bearing{}_z", ++k), s.node_z[static_cast<size_t>(node)], "m");
         k = 0;
         for (const auto& sp : r.supports)
             add(fmt::format("support{}_z", ++k), s.node_z[static_cast<size_t>(sp.node)], "m");
+        k = 0;
+        for (const auto& p : r.pedestals) {
+            const std::string key = fmt::format("pedestal{}_", ++k);
+            add(key + "z", s.node_z[static_cast<size_t>(p.node)], "m");
+            add(key + "mass", p.mass, "kg");
+            add(key + "kxx", p.kxx, "N/m");
+            add(key + "kyy", p.kyy, "N/m");
+            add(key + "cxx", p.cxx, "N s/m");
+            add(key + "cyy", p.cyy, "N s/m");
+        }
     }
     return t;
 }
@@ -721,7 +748,8 @@ Figure fe_rotor_figure(const FeRotor& r, const GyroscopicSystem& sys, const std:
     };
     std::vector<int> bearing_nodes, support_nodes, nodes;
     for (const auto& b : r.bearings) bearing_nodes.push_back(b.node);
-    for (const auto& b : sys.bearings) bearing_nodes.push_back(sys.node_of_dof[static_cast<size_t>(b.dof_x)]);
+    for (const auto& b : sys.bearings)
+        if (const int node = bearing_node(sys, b); node >= 0) bearing_nodes.push_back(node);
     for (const auto& s : r.supports) support_nodes.push_back(s.node);
     marks(bearing_nodes, "bearings", "#2ca02c");
     marks(support_nodes, "rigid supports", "#000000");
