@@ -141,16 +141,24 @@ TEST_CASE("ROSS example: six lowest branches over 0-1000 rad/s without ambiguity
     // Independent: K x = w^2 (M - i G) x, a linear Hermitian pencil (zggev).
     const std::vector<CriticalSpeed> direct = critical_speeds_direct(sys, 1, 0.0, 1000.0);
     const std::vector<CriticalSpeed> branch = critical_speeds(sys, cd, {1});
-    const double published[] = {91.788, 96.296, 271.25, 300.35, 636.02, 774.35, 866.83};
-    REQUIRE(direct.size() == 7);
-    REQUIRE(branch.size() == 7);
-    for (size_t k = 0; k < 7; ++k) {
+    // The exporter lists 774.35 rad/s as well: its axial mode, which moves no whirl pair,
+    // so the rotor's unbalance cannot excite it. It is no critical speed here (the branch
+    // crosses the 1x line all the same, in the diagram).
+    const double published[] = {91.788, 96.296, 271.25, 300.35, 636.02, 866.83};
+    REQUIRE(direct.size() == 6);
+    REQUIRE(branch.size() == 6);
+    for (size_t k = 0; k < 6; ++k) {
         INFO("critical speed " << k);
         CHECK(std::abs(branch[k].speed - direct[k].speed) <= 1e-9 * direct[k].speed);
         CHECK(std::abs(direct[k].speed - published[k]) <= 0.006);
         CHECK(branch[k].mode.whirl == direct[k].mode.whirl);
+        CHECK(branch[k].mode.whirl != Whirl::None);
     }
-    CHECK(branch[5].mode.whirl == Whirl::None);   // the axial mode at 774.35 rad/s
+    bool axial_branch = false;   // the axial branch is in the diagram, at 774.35 rad/s
+    for (const Branch& b : cd.branches)
+        for (const BranchPoint& q : b.points)
+            axial_branch |= q.mode.whirl == Whirl::None && std::abs(q.mode.frequency() - 774.35) < 0.01;
+    CHECK(axial_branch);
 }
 
 TEST_CASE("ROSS example with damped bearings: rigid-body modes stay apart, every mode stable, critical speeds are "

@@ -409,9 +409,13 @@ def gyrostat(*, speeds=None, analysis=None, **keys) -> Scene:
 
 
 def fe_rotor(*, speeds=None, analysis=None, directory=".", **keys) -> Scene:
-    """A finite-element rotor from its [model] keys: E, poisson, density, shaft=[{length, elements,
-    outer_diameter, ...}], disk=[{z, mass, Id, Ip, unbalance}], bearing=[{z, k, c, kxx, ..., table}],
-    support=[{z, type}] (docs/scene_format.md); bearing tables are found relative to `directory`."""
+    """A finite-element rotor from its [model] keys (docs/scene_format.md): material or E, poisson,
+    density; dofs_per_node (4 or 6); length_unit ("m" or "mm"); shaft=[{length, elements, outer_diameter,
+    inner_diameter, outer_diameter_end, ...} or {type: "coupling", length, k_lateral, k_bending, ...}],
+    disk=[{z, mass, Id, Ip or outer_diameter, width, ...; unbalance}], bearing=[{z, k, c, kxx, ..., kzz}
+    or {z, table} or {z, speeds: [...], k: [...], ...} or {z, type: "fluid_film", diameter, length,
+    clearance, viscosity, load, solution}], pedestal=[{z, mass, k, c}], support=[{z, type, axial,
+    torsion}]; bearing tables are found relative to `directory`."""
     return _model_scene("fe_rotor", keys, speeds, analysis, directory)
 
 

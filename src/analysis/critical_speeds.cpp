@@ -78,6 +78,9 @@ std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const Ca
         if (k < 1) throw InputError("harmonic " + std::to_string(k) + " is not allowed; allowed: k >= 1");
         const auto g = [k](const Mode& m, double w) { return m.lambda.imag() - k * w; };
         const auto holds = [&](const Mode& m0, double w0, const Mode& m1, double w1, Interval& iv) {
+            // A mode that moves no whirl pair (axial, torsional) is not excited by the
+            // rotor's unbalance or the spin harmonics: no critical speed.
+            if (m0.whirl == Whirl::None && m1.whirl == Whirl::None) return false;
             iv.g0 = g(m0, w0);
             iv.g1 = g(m1, w1);
             if (iv.g0 == 0.0 && iv.i > 0) return false;   // counted as the end of the previous interval
@@ -185,6 +188,7 @@ std::vector<CriticalSpeed> critical_speeds_direct(const GyroscopicSystem& sys, i
         c.mode.right = ge.right.col(j).normalized();
         c.mode.backward_error = backward_error(sys.at_speed(w), c.mode.lambda, c.mode.right);
         c.mode.whirl = classify_whirl(c.mode.lambda, c.mode.right, sys.whirl_pairs, 0.0);
+        if (c.mode.whirl == Whirl::None) continue;   // axial or torsional: not a critical speed
         // Mode number: its rank by frequency among the modes at that speed.
         const QuadraticSpectrum sp = solve_at_speed(sys, w);
         double nearest = std::numeric_limits<double>::infinity();

@@ -270,6 +270,18 @@ def test_models_from_keywords_equal_their_scenes():
     a = gk.eig(rotor, 700.0, solver="dense").eigenvalues
     b = gk.eig(gk.load_scene(scene("fe_rotor.toml")), 700.0, solver="dense").eigenvalues
     np.testing.assert_allclose(a, b, rtol=1e-13)
+    # 6 DOFs per node, a cone, a coupling, a pedestal and a table written as arrays.
+    train = gk.fe_rotor(material="steel", dofs_per_node=6, length_unit="mm",
+                        shaft=[dict(length=600, elements=6, outer_diameter=50, outer_diameter_end=40),
+                               dict(type="coupling", length=50, k_lateral=1e6, k_bending=1e4, k_axial=1e8,
+                                    k_torsion=2e4, mass=1.5),
+                               dict(length=300, elements=3, outer_diameter=40)],
+                        disk=[dict(z=300, outer_diameter=250, width=40)],
+                        pedestal=[dict(z=0, mass=20, k=5e7)],
+                        bearing=[dict(z=0, speeds=[0, 1000], k=[3e7, 3.5e7], c=[200, 250]),
+                                 dict(z=950, k=2e7, c=300, kzz=1e8)])
+    assert train.system.size == 6 * 11 + 2
+    assert "tz5" in train.system.dof_names and "px0" in train.system.dof_names
 
 
 def test_balancer_and_sommerfeld_match_the_cli():
