@@ -55,7 +55,7 @@ int node_at(const TomlKeys& e, const std::vector<double>& z, const LengthUnit& u
         for (double x : z)
             if (std::abs(x - zi) < std::abs(nearest - zi)) nearest = x;
         throw InputError(fmt::format("{} = {} {} is not a node of the mesh; allowed: a section end or "
-                                     "subdivision, the nearest is {} (rotor length {})",
+                                     "subdivision, the nearest is {:.12g} (rotor length {:.12g})",
                                      e.where("z"), zi / unit.scale, unit.name, nearest / unit.scale,
                                      L / unit.scale));
     }
