@@ -91,15 +91,22 @@ JournalBearingState short_bearing(const JournalBearing& b, double w) {
     const double buv = -h0 * 8.0 * (pi2 * (1.0 + 2.0 * e * e) - 16.0 * e * e);
     st.b << h0 * 2.0 * kPi * rs * (pi2 * (1.0 + 2.0 * e * e) - 16.0 * e * e) / e, buv,
         buv, h0 * 2.0 * kPi * (pi2 * s * s + 48.0 * e * e) / (e * rs);
+    st.coefficients = journal_bearing_coefficients(b, w, st.a, st.b);
+    return st;
+}
+
+BearingCoefficients journal_bearing_coefficients(const JournalBearing& bearing, double w, const Eigen::Matrix2d& a,
+                                                 const Eigen::Matrix2d& b) {
     // The closed forms hold in axes (u, v) where the load acts along -v and the spin
     // turns u into v (for a load along -y: u = x, v = y). (u, v) = T (x, y), K_xy = T^T K_uv T.
-    const double ca = std::cos(b.load_angle), sa = std::sin(b.load_angle);
+    const double ca = std::cos(bearing.load_angle), sa = std::sin(bearing.load_angle);
     Eigen::Matrix2d T;
     T << -sa, ca, -ca, -sa;
-    const double kscale = b.load / b.clearance, cscale = b.load / (b.clearance * w);
-    st.coefficients.K = T.transpose() * (kscale * st.a) * T;
-    st.coefficients.C = T.transpose() * (cscale * st.b) * T;
-    return st;
+    const double kscale = bearing.load / bearing.clearance, cscale = bearing.load / (bearing.clearance * w);
+    BearingCoefficients c;
+    c.K = T.transpose() * (kscale * a) * T;
+    c.C = T.transpose() * (cscale * b) * T;
+    return c;
 }
 
 BearingTable journal_bearing_table(const JournalBearing& b, const std::string& name, int dof_x, int dof_y) {

@@ -362,12 +362,7 @@ JournalBearingState reynolds_bearing(const JournalBearing& b, double w) {
     }
     const double e = st.eccentricity;
     st.sommerfeld = S;
-    const double ca = std::cos(b.load_angle), sa = std::sin(b.load_angle);
-    Eigen::Matrix2d T;
-    T << -sa, ca, -ca, -sa;
-    const double kscale = b.load / b.clearance, cscale = b.load / (b.clearance * w);
-    st.coefficients.K = T.transpose() * (kscale * st.a) * T;
-    st.coefficients.C = T.transpose() * (cscale * st.b) * T;
+    st.coefficients = journal_bearing_coefficients(b, w, st.a, st.b);
     if (!(st.coefficients.K.allFinite() && st.coefficients.C.allFinite()))
         throw SolverError(fmt::format("{}: the coefficients are not finite (eccentricity {}); use the short-bearing "
                                       "solution",

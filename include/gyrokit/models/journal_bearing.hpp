@@ -58,6 +58,11 @@ struct JournalBearingState {
     BearingCoefficients coefficients;   // N/m and N s/m in (x, y)
 };
 
+// Dimensionless coefficients a, b in the load axes (u, v) turned into N/m and N s/m in
+// (x, y) at spin speed w: K = T^T (W/c) a T, C = T^T (W/(c w)) b T, (u, v) = T (x, y).
+BearingCoefficients journal_bearing_coefficients(const JournalBearing& bearing, double w, const Eigen::Matrix2d& a,
+                                                 const Eigen::Matrix2d& b);
+
 // The bearing at spin speed w > 0 (rad/s): eccentricity from S_s(e) = S_s(w)
 // by root finding, coefficients in closed form, turned into (x, y).
 JournalBearingState short_bearing(const JournalBearing& b, double w);
