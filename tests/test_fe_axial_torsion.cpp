@@ -592,8 +592,9 @@ c = 500
                Catch::Contains("mass = 0"));
 }
 
-// A bearing table written in the scene is the CSV table: same interpolated coefficients.
-TEST_CASE("fe rotor scene: a bearing table written in the scene (speeds in rpm) equals its CSV form",
+// A bearing table written in the scene: speeds converted from rpm, coefficients linearly
+// interpolated between its rows (checked halfway between the last two), missing ones 0.
+TEST_CASE("fe rotor scene: a bearing table written in the scene (speeds in rpm) interpolates its rows",
           "[fe_rotor][scene][bearing_table]") {
     const std::string head = R"(
 [model]
