@@ -151,7 +151,7 @@ TEST_CASE("fe rotor 6 DOF: axial and torsional modes of a fixed-free shaft equal
     const double L = 2.0, E = 2.1e11, nu = 0.3, rho = 7800.0, G = E / (2 * (1 + nu));
     const int count = 40;
     FeRotor r = fe_uniform_shaft(L, count, 0.05, 0.02, E, nu, rho);
-    r.dofs_per_node = 6;
+    r.motion = FeMotion::all;
     FeSupport clamp;
     clamp.node = 0;
     clamp.theta_x = clamp.theta_y = clamp.z = clamp.theta_z = true;
@@ -210,7 +210,7 @@ TEST_CASE("fe rotor 6 DOF: torsion of two disks on a shaft against the closed fo
     const double Jp = pi * std::pow(d, 4) / 32, J1 = 0.35, J2 = 0.8;
     const auto model = [&](double rho, int count) {
         FeRotor r = fe_uniform_shaft(l, count, d, 0.0, E, nu, rho);
-        r.dofs_per_node = 6;
+        r.motion = FeMotion::all;
         r.disks.push_back({0, 20.0, 0.2, J1, 0.0, 0.0});
         r.disks.push_back({count, 35.0, 0.45, J2, 0.0, 0.0});
         // Lateral bearings, nothing axial or torsional: the shaft turns and slides freely.
@@ -294,7 +294,7 @@ TEST_CASE("fe rotor tapered element: a conical shaft converges to fine meshes of
     const double L = 1.0, o0 = 0.12, o1 = 0.04, i0 = 0.02, i1 = 0.01;
     const auto cantilever = [&](int count, bool tapered) {
         FeRotor r;
-        r.dofs_per_node = 6;
+        r.motion = FeMotion::all;
         for (int k = 0; k < count; ++k) {
             FeShaftElement e;
             e.length = L / count;

@@ -127,15 +127,34 @@ BearingTable inline_bearing_table(const TomlKeys& e) {
 
 GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRotor* rotor) {
     k.only({"type", "shaft", "disk", "bearing", "support", "E", "poisson", "density", "material", "materials",
-            "shear_deformation", "rotary_inertia", "dofs_per_node", "length_unit", "pedestal"});
+            "shear_deformation", "rotary_inertia", "dofs_per_node", "motion", "length_unit", "pedestal"});
     FeRotor r;
+    // The DOF set: motion, or dofs_per_node (4: lateral, 6: all); given both, they agree.
+    const std::string motion = k.choice("motion", "", {"lateral", "all", "axial", "torsional"});
     const long long per = k.integer("dofs_per_node", 4, std::numeric_limits<long long>::min(),
                                     std::numeric_limits<long long>::max());
-    if (per != 4 && per != 6)
-        throw InputError(fmt::format("{} = {}; allowed: 4 (lateral) or 6 (lateral, axial, torsion)",
-                                     k.where("dofs_per_node"), per));
-    r.dofs_per_node = static_cast<int>(per);
-    const bool six = r.dofs_per_node == 6;
+    const FeMotion by_motion = motion == "all"         ? FeMotion::all
+                               : motion == "axial"     ? FeMotion::axial
+                               : motion == "torsional" ? FeMotion::torsional
+                                                       : FeMotion::lateral;
+    if (motion.empty()) {
+        if (per != 4 && per != 6)
+            throw InputError(fmt::format("{} = {}; allowed: 4 (lateral) or 6 (lateral, axial, torsion), or 1 with "
+                                         "motion = \"axial\" or \"torsional\"",
+                                         k.where("dofs_per_node"), per));
+        r.motion = per == 6 ? FeMotion::all : FeMotion::lateral;
+    } else {
+        if (k.has("dofs_per_node") && per != dofs_per_node(by_motion))
+            throw InputError(fmt::format("{} = {} disagrees with motion = \"{}\"; allowed: {} (or leave it out)",
+                                         k.where("dofs_per_node"), per, motion, dofs_per_node(by_motion)));
+        r.motion = by_motion;
+    }
+    // A model whose motion is given uses of each item only what acts on its DOFs, so one
+    // rotor description serves every motion; without it (lateral by default) axial and
+    // torsional keys are refused: they would model nothing.
+    const bool lateral_only = r.motion == FeMotion::lateral && !k.has("motion") && !k.has("dofs_per_node");
+    const std::string needs_axial_dofs = "allowed: with dofs_per_node = 6 or a motion in [model] (without either "
+                                         "the model is lateral, 4 DOFs per node)";
     LengthUnit len;
     if (k.choice("length_unit", "m", {"m", "mm"}) == "mm") len = {1e-3, "mm"};
     const auto flag = [&](const char* key) {
@@ -187,22 +206,28 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
     for_each_entry(k, "shaft", true, [&](const TomlKeys& e) {
         if (e.choice("type", "beam", {"beam", "coupling"}) == "coupling") {
             // A flexible coupling in the chain: one element of its length.
-            e.only({"type", "length", "k_lateral", "k_bending", "k_axial", "k_torsion", "mass", "Id", "Ip"});
-            if (!six)
-                for (const char* key : {"k_axial", "k_torsion"})
+            e.only({"type", "length", "k_lateral", "k_bending", "k_axial", "k_torsion", "c_lateral", "c_bending",
+                    "c_axial", "c_torsion", "mass", "Id", "Ip"});
+            if (lateral_only)
+                for (const char* key : {"k_axial", "k_torsion", "c_axial", "c_torsion"})
                     if (e.has(key))
-                        throw InputError(e.where(key) + " acts on an axial or torsional DOF; allowed: with "
-                                                        "dofs_per_node = 6 in [model] (the model has 4 DOFs per node)");
+                        throw InputError(e.where(key) + " acts on an axial or torsional DOF; " + needs_axial_dofs);
             if (r.elements.size() + 1 > static_cast<std::size_t>(kMaxFeElements))
                 throw InputError(fmt::format("{} makes {} elements in all; allowed: at most {}", e.where("type"),
                                              r.elements.size() + 1, kMaxFeElements));
             FeShaftElement el;
             el.length = len(e, "length", std::nullopt, true);
+            // The springs of the DOFs the model has are required, the dampers optional.
+            const auto needed = [](bool has) { return has ? std::nullopt : std::optional(0.0); };
             FeCoupling c;
-            c.k_lateral = e.number("k_lateral", std::nullopt, 0, false, "N/m");
-            c.k_bending = e.number("k_bending", std::nullopt, 0, false, "N m/rad");
-            c.k_axial = e.number("k_axial", six ? std::nullopt : std::optional(0.0), 0, false, "N/m");
-            c.k_torsion = e.number("k_torsion", six ? std::nullopt : std::optional(0.0), 0, false, "N m/rad");
+            c.k_lateral = e.number("k_lateral", needed(r.has_lateral()), 0, false, "N/m");
+            c.k_bending = e.number("k_bending", needed(r.has_lateral()), 0, false, "N m/rad");
+            c.k_axial = e.number("k_axial", needed(r.has_axial()), 0, false, "N/m");
+            c.k_torsion = e.number("k_torsion", needed(r.has_torsion()), 0, false, "N m/rad");
+            c.c_lateral = e.number("c_lateral", 0.0, 0, false, "N s/m");
+            c.c_bending = e.number("c_bending", 0.0, 0, false, "N m s/rad");
+            c.c_axial = e.number("c_axial", 0.0, 0, false, "N s/m");
+            c.c_torsion = e.number("c_torsion", 0.0, 0, false, "N m s/rad");
             c.mass = e.number("mass", 0.0, 0, false, "kg");
             c.diametral_inertia = e.number("Id", 0.0, 0, false, "kg m^2");
             c.polar_inertia = e.number("Ip", 0.0, 0, false, "kg m^2");
@@ -341,7 +366,7 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
             }
             std::string origin = e.where("");   // "file: [table] "
             origin.pop_back();
-            j.validate(origin);
+            j.validate(origin, len.scale, len.name);   // lengths in the scene's unit
             tables.push_back({node_at(e, z, len), "", j, std::nullopt, e.where("type")});
             return;
         }
@@ -358,11 +383,10 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         }
         if (e.has("speed_unit"))
             throw InputError(e.where("speed_unit") + " needs speeds; allowed: with a table in the scene (speeds = [...])");
-        if (!six)
+        if (lateral_only)
             for (const char* key : {"kzz", "czz"})
                 if (e.has(key))
-                    throw InputError(e.where(key) + " acts on the axial DOF z; allowed: with dofs_per_node = 6 "
-                                                    "in [model] (the model has 4 DOFs per node)");
+                    throw InputError(e.where(key) + " acts on the axial DOF z; " + needs_axial_dofs);
         if (e.has("table")) {
             for (const char* key : {"k", "c", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy"})
                 if (e.has(key))
@@ -397,11 +421,10 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         // Axial and torsional holds: a clamped end holds them too; a pinned one where it says so.
         const auto hold = [&](const char* key) {
             const toml::node* n = e.table().get(key);
-            if (!n) return six && type == "clamped";
+            if (!n) return !lateral_only && type == "clamped";
             if (!n->is_boolean()) throw InputError(e.where(key) + " must be true or false");
-            if (!six && *n->value<bool>())
-                throw InputError(e.where(key) + " = true holds a DOF the model does not have; allowed: with "
-                                                "dofs_per_node = 6 in [model] (the model has 4 DOFs per node)");
+            if (lateral_only && *n->value<bool>())
+                throw InputError(e.where(key) + " = true holds a DOF the model does not have; " + needs_axial_dofs);
             return *n->value<bool>();
         };
         s.z = hold("axial");
@@ -437,6 +460,8 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
 
     const FeRotorMatrices m = r.assemble();
     GyroscopicSystem sys = m.to_system();
+    // Speed-dependent bearings act on x and y alone: an axial or torsional model has no use for them.
+    if (!r.has_lateral()) tables.clear();
     for (const Tabulated& t : tables) {
         const bool on_pedestal =
             std::any_of(r.pedestals.begin(), r.pedestals.end(), [&](const FePedestal& p) { return p.node == t.node; });

@@ -634,7 +634,8 @@ Table model_summary(const Scene& sc) {
     if (sc.fe_rotor) {
         const FeRotor& r = *sc.fe_rotor;
         add("elements", ll(static_cast<int>(r.elements.size())));
-        add("dofs_per_node", ll(r.dofs_per_node));
+        add("motion", std::string(to_string(r.motion)));
+        add("dofs_per_node", ll(dofs_per_node(r.motion)));
         add("couplings", ll(static_cast<int>(std::count_if(r.elements.begin(), r.elements.end(),
                                                             [](const FeShaftElement& e) { return e.coupling.has_value(); }))));
         double shaft = 0.0, dmin = 1e300, dmax = 0.0;

@@ -160,26 +160,35 @@ double fe_element_mass(const FeShaftElement& e) {
 
 namespace {
 
-// A coupling: diagonal springs on the relative motion, half its mass and inertias lumped
-// at each node (as ROSS's coupling element), Ip / 2 gyroscopic at each node.
+// A coupling: diagonal springs and dampers on the relative motion, half its mass and
+// inertias lumped at each node (as ROSS's coupling element), Ip / 2 gyroscopic at each node.
 FeElementMatrices coupling_matrices(const FeCoupling& c) {
     FeElementMatrices m;
     m.M.setZero();
     m.K.setZero();
     m.G.setZero();
+    m.D.setZero();
     const double k[4] = {c.k_lateral, c.k_lateral, c.k_bending, c.k_bending};
+    const double d[4] = {c.c_lateral, c.c_lateral, c.c_bending, c.c_bending};
     const double mass[4] = {c.mass / 2, c.mass / 2, c.diametral_inertia / 2, c.diametral_inertia / 2};
+    const auto relative = [](Eigen::Matrix<double, 8, 8>& A, int a, double v) {
+        A(a, a) = A(a + 4, a + 4) = v;
+        A(a, a + 4) = A(a + 4, a) = -v;
+    };
     for (int a = 0; a < 4; ++a) {
-        m.K(a, a) = m.K(a + 4, a + 4) = k[a];
-        m.K(a, a + 4) = m.K(a + 4, a) = -k[a];
+        relative(m.K, a, k[a]);
+        relative(m.D, a, d[a]);
         m.M(a, a) = m.M(a + 4, a + 4) = mass[a];
     }
     for (const int b : {0, 4}) {
         m.G(b + 2, b + 3) = c.polar_inertia / 2;
         m.G(b + 3, b + 2) = -c.polar_inertia / 2;
     }
-    m.K_axial << c.k_axial, -c.k_axial, -c.k_axial, c.k_axial;
-    m.K_torsion << c.k_torsion, -c.k_torsion, -c.k_torsion, c.k_torsion;
+    const Eigen::Matrix2d spring = (Eigen::Matrix2d() << 1, -1, -1, 1).finished();
+    m.K_axial = c.k_axial * spring;
+    m.K_torsion = c.k_torsion * spring;
+    m.D_axial = c.c_axial * spring;
+    m.D_torsion = c.c_torsion * spring;
     m.M_axial = Eigen::Matrix2d::Identity() * (c.mass / 2);
     m.M_torsion = Eigen::Matrix2d::Identity() * (c.polar_inertia / 2);
     return m;
@@ -209,6 +218,9 @@ FeElementMatrices fe_shaft_element_matrices(const FeShaftElement& e, bool shear_
     m.M.setZero();
     m.K.setZero();
     m.G.setZero();
+    m.D.setZero();   // a beam has no damping of its own
+    m.D_axial.setZero();
+    m.D_torsion.setZero();
     const Mat4 Mp = p.Mt + p.Mr;
     for (int a = 0; a < 4; ++a)
         for (int b = 0; b < 4; ++b) {
@@ -247,8 +259,9 @@ void FeRotor::validate() const {
         if (const auto& c = s.coupling) {
             const std::pair<const char*, double> values[] = {
                 {"k_lateral", c->k_lateral}, {"k_bending", c->k_bending}, {"k_axial", c->k_axial},
-                {"k_torsion", c->k_torsion}, {"mass", c->mass},           {"Id", c->diametral_inertia},
-                {"Ip", c->polar_inertia}};
+                {"k_torsion", c->k_torsion}, {"c_lateral", c->c_lateral}, {"c_bending", c->c_bending},
+                {"c_axial", c->c_axial},     {"c_torsion", c->c_torsion}, {"mass", c->mass},
+                {"Id", c->diametral_inertia}, {"Ip", c->polar_inertia}};
             for (const auto& [key, v] : values) require(std::isfinite(v) && v >= 0, w + " (coupling)", key, v, "[0, inf)");
             continue;
         }
@@ -271,8 +284,9 @@ void FeRotor::validate() const {
                 "poisson_ratio", s.poisson_ratio, "(-1, 0.5]");
         require(std::isfinite(s.density) && s.density > 0, w, "density", s.density, "(0, inf) kg/m^3");
     }
-    require(dofs_per_node == 4 || dofs_per_node == 6, "fe rotor", "dofs_per_node", dofs_per_node,
-            "4 (lateral) or 6 (lateral, axial, torsion)");
+    require(motion == FeMotion::lateral || motion == FeMotion::all || motion == FeMotion::axial ||
+                motion == FeMotion::torsional,
+            "fe rotor", "motion", static_cast<int>(motion), "lateral, all, axial or torsional");
     const int nodes = node_count();
     const std::string node_range = fmt::format("an integer in [0, {}]", nodes - 1);
     for (std::size_t i = 0; i < disks.size(); ++i) {
@@ -297,10 +311,6 @@ void FeRotor::validate() const {
         for (const auto& [key, v] : coeffs) require_finite(w, key, v);
         require_finite(w, "kzz", b.kzz);
         require_finite(w, "czz", b.czz);
-        if (dofs_per_node == 4) {
-            require(b.kzz == 0.0, w, "kzz", b.kzz, "0 with 4 DOFs per node (an axial bearing needs dofs_per_node = 6)");
-            require(b.czz == 0.0, w, "czz", b.czz, "0 with 4 DOFs per node (an axial bearing needs dofs_per_node = 6)");
-        }
     }
     for (std::size_t i = 0; i < pedestals.size(); ++i) {
         const FePedestal& p = pedestals[i];
@@ -316,57 +326,57 @@ void FeRotor::validate() const {
     for (std::size_t i = 0; i < supports.size(); ++i) {
         const FeSupport& s = supports[i];
         require(s.node >= 0 && s.node < nodes, where("support", i), "node", s.node, node_range);
-        if (dofs_per_node == 4 && (s.z || s.theta_z))
-            throw InputError(fmt::format("{}: holds {}, which a model of 4 DOFs per node does not have; allowed: "
-                                         "dofs_per_node = 6 for axial and torsional supports",
-                                         where("support", i), s.z ? "z" : "theta_z"));
     }
 }
 
 FeRotorMatrices FeRotor::assemble() const {
     validate();
     const int nodes = node_count();
-    const int per = dofs_per_node;
-    const int full = per * nodes;
-    const bool six = per == 6;
-    // Local DOF numbers within a node.
+    // Local DOF kinds; slot[kind]: its place within a node, -1 where the motion lacks it.
     enum { X = 0, Y = 1, TX = 2, TY = 3, Z = 4, TZ = 5 };
+    int slot[6] = {-1, -1, -1, -1, -1, -1};
+    int per = 0;
+    for (int kind = 0; kind < 6; ++kind)
+        if (kind < Z ? has_lateral() : kind == Z ? has_axial() : has_torsion()) slot[kind] = per++;
+    const int full = per * nodes;
 
     // Map full DOF -> assembled DOF (-1: constrained).
     std::vector<char> fixed(full, 0);
     for (const FeSupport& s : supports) {
-        const int b = per * s.node;
-        if (s.x) fixed[b + X] = 1;
-        if (s.y) fixed[b + Y] = 1;
-        if (s.theta_x) fixed[b + TX] = 1;
-        if (s.theta_y) fixed[b + TY] = 1;
-        if (six && s.z) fixed[b + Z] = 1;
-        if (six && s.theta_z) fixed[b + TZ] = 1;
+        const bool held[6] = {s.x, s.y, s.theta_x, s.theta_y, s.z, s.theta_z};
+        for (int kind = 0; kind < 6; ++kind)
+            if (held[kind] && slot[kind] >= 0) fixed[per * s.node + slot[kind]] = 1;
     }
     std::vector<int> map(full, -1);
     FeRotorMatrices r;
     static const char* prefix[6] = {"x", "y", "tx", "ty", "z", "tz"};
+    int kind_of_slot[6] = {};
+    for (int kind = 0; kind < 6; ++kind)
+        if (slot[kind] >= 0) kind_of_slot[slot[kind]] = kind;
     int n = 0;
     for (int j = 0; j < full; ++j)
         if (!fixed[j]) {
             map[j] = n++;
-            r.dof_names.push_back(prefix[j % per] + std::to_string(j / per));
+            r.dof_names.push_back(prefix[kind_of_slot[j % per]] + std::to_string(j / per));
             r.node_of_dof.push_back(j / per);
         }
-    // Pedestal DOFs after the node DOFs (not on the shaft's axis: node -1).
+    // Assembled index of a node's DOF of a kind: -1 if held or not in the model.
+    const auto dof = [&](int node, int kind) { return slot[kind] < 0 ? -1 : map[per * node + slot[kind]]; };
+    // Pedestal DOFs after the node DOFs (not on the shaft's axis: node -1); lateral only.
     std::vector<int> pedestal_of(nodes, -1);   // assembled index of px at each node
-    for (const FePedestal& p : pedestals) {
-        pedestal_of[p.node] = n;
-        for (const char* name : {"px", "py"}) {
-            r.dof_names.push_back(name + std::to_string(p.node));
-            r.node_of_dof.push_back(-1);
-            ++n;
+    if (has_lateral())
+        for (const FePedestal& p : pedestals) {
+            pedestal_of[p.node] = n;
+            for (const char* name : {"px", "py"}) {
+                r.dof_names.push_back(name + std::to_string(p.node));
+                r.node_of_dof.push_back(-1);
+                ++n;
+            }
         }
-    }
     if (n == 0) throw InputError("fe rotor: supports: every DOF is constrained; allowed: at least one free DOF");
     for (int k = 0; k < nodes; ++k)
         for (int p = 0; p < 2; ++p) {
-            const int u = map[per * k + 2 * p], v = map[per * k + 2 * p + 1];
+            const int u = dof(k, 2 * p), v = dof(k, 2 * p + 1);
             if (u >= 0 && v >= 0) r.whirl_pairs.emplace_back(u, v);
         }
     r.node_z.resize(nodes);
@@ -374,88 +384,88 @@ FeRotorMatrices FeRotor::assemble() const {
     for (int e = 0; e < nodes - 1; ++e) r.node_z[e + 1] = r.node_z[e] + elements[e].length;
 
     using T = Eigen::Triplet<double>;
-    std::vector<T> tm, tk, tg, td;
-    const std::size_t bars = six ? 8 : 0;
-    tm.reserve((64 + bars) * elements.size() + per * disks.size());
-    tk.reserve((64 + bars) * elements.size() + 5 * bearings.size());
-    tg.reserve(32 * elements.size() + 2 * disks.size());
+    std::vector<T> tm, tk, tg, td, tc;
+    const std::size_t lateral = has_lateral() ? 64 : 0, bars = 4 * (has_axial() + has_torsion());
+    tm.reserve((lateral + bars) * elements.size() + per * disks.size());
+    tk.reserve((lateral + bars) * elements.size() + 5 * bearings.size());
+    tg.reserve(lateral / 2 * elements.size() + 2 * disks.size());
     td.reserve(5 * bearings.size());
-    auto add = [&](std::vector<T>& t, int i, int j, double v) {
-        const int a = map[i], b = map[j];
+    // Adds v at the assembled DOFs a, b (skipped where either is held or not modelled).
+    auto add = [&](std::vector<T>& t, int a, int b, double v) {
         if (a >= 0 && b >= 0 && v != 0.0) t.emplace_back(a, b, v);
     };
 
     for (std::size_t e = 0; e < elements.size(); ++e) {
         const FeElementMatrices em = fe_shaft_element_matrices(elements[e], shear_deformation, rotary_inertia);
-        const int base = per * static_cast<int>(e);
+        const int node = static_cast<int>(e);
         // Element DOF a (0..7) is local DOF a % 4 of node e + a / 4.
-        const auto at = [&](int a) { return base + per * (a / 4) + a % 4; };
-        for (int a = 0; a < 8; ++a)
-            for (int b = 0; b < 8; ++b) {
-                add(tm, at(a), at(b), em.M(a, b));
-                add(tk, at(a), at(b), em.K(a, b));
-                add(tg, at(a), at(b), em.G(a, b));
-            }
-        if (six)
-            for (int a = 0; a < 2; ++a)
-                for (int b = 0; b < 2; ++b) {
-                    add(tm, base + per * a + Z, base + per * b + Z, em.M_axial(a, b));
-                    add(tk, base + per * a + Z, base + per * b + Z, em.K_axial(a, b));
-                    add(tm, base + per * a + TZ, base + per * b + TZ, em.M_torsion(a, b));
-                    add(tk, base + per * a + TZ, base + per * b + TZ, em.K_torsion(a, b));
+        if (has_lateral())
+            for (int a = 0; a < 8; ++a)
+                for (int b = 0; b < 8; ++b) {
+                    const int i = dof(node + a / 4, a % 4), j = dof(node + b / 4, b % 4);
+                    add(tm, i, j, em.M(a, b));
+                    add(tk, i, j, em.K(a, b));
+                    add(tg, i, j, em.G(a, b));
+                    add(tc, i, j, em.D(a, b));
                 }
+        for (int a = 0; a < 2; ++a)
+            for (int b = 0; b < 2; ++b) {
+                const int za = dof(node + a, Z), zb = dof(node + b, Z);
+                const int ta = dof(node + a, TZ), tb = dof(node + b, TZ);
+                add(tm, za, zb, em.M_axial(a, b));
+                add(tk, za, zb, em.K_axial(a, b));
+                add(tc, za, zb, em.D_axial(a, b));
+                add(tm, ta, tb, em.M_torsion(a, b));
+                add(tk, ta, tb, em.K_torsion(a, b));
+                add(tc, ta, tb, em.D_torsion(a, b));
+            }
     }
     r.unbalance = Eigen::VectorXcd::Zero(n);
     for (const FeDisk& d : disks) {
-        const int b = per * d.node;
-        add(tm, b + X, b + X, d.mass);
-        add(tm, b + Y, b + Y, d.mass);
-        add(tm, b + TX, b + TX, d.diametral_inertia);
-        add(tm, b + TY, b + TY, d.diametral_inertia);
-        add(tg, b + TX, b + TY, d.polar_inertia);
-        add(tg, b + TY, b + TX, -d.polar_inertia);
-        if (six) {
-            add(tm, b + Z, b + Z, d.mass);
-            add(tm, b + TZ, b + TZ, d.polar_inertia);
-        }
+        const int k = d.node;
+        add(tm, dof(k, X), dof(k, X), d.mass);
+        add(tm, dof(k, Y), dof(k, Y), d.mass);
+        add(tm, dof(k, TX), dof(k, TX), d.diametral_inertia);
+        add(tm, dof(k, TY), dof(k, TY), d.diametral_inertia);
+        add(tg, dof(k, TX), dof(k, TY), d.polar_inertia);
+        add(tg, dof(k, TY), dof(k, TX), -d.polar_inertia);
+        add(tm, dof(k, Z), dof(k, Z), d.mass);
+        add(tm, dof(k, TZ), dof(k, TZ), d.polar_inertia);
         // Force w^2 m_e e (cos(w t + phi), sin(w t + phi)) = Re(w^2 m_e e e^{i phi} (1, -i) e^{i w t}).
         const std::complex<double> f = d.unbalance * std::polar(1.0, d.unbalance_phase);
-        if (map[b + X] >= 0) r.unbalance(map[b + X]) += f;
-        if (map[b + Y] >= 0) r.unbalance(map[b + Y]) += std::complex<double>(0, -1) * f;
+        if (dof(k, X) >= 0) r.unbalance(dof(k, X)) += f;
+        if (dof(k, Y) >= 0) r.unbalance(dof(k, Y)) += std::complex<double>(0, -1) * f;
     }
     for (const FeBearing& br : bearings) {
-        const int b = per * br.node;
-        add(tk, b + X, b + X, br.kxx);
-        add(tk, b + X, b + Y, br.kxy);
-        add(tk, b + Y, b + X, br.kyx);
-        add(tk, b + Y, b + Y, br.kyy);
-        add(td, b + X, b + X, br.cxx);
-        add(td, b + X, b + Y, br.cxy);
-        add(td, b + Y, b + X, br.cyx);
-        add(td, b + Y, b + Y, br.cyy);
+        const int k = br.node, sx = dof(k, X), sy = dof(k, Y);
+        add(tk, sx, sx, br.kxx);
+        add(tk, sx, sy, br.kxy);
+        add(tk, sy, sx, br.kyx);
+        add(tk, sy, sy, br.kyy);
+        add(td, sx, sx, br.cxx);
+        add(td, sx, sy, br.cxy);
+        add(td, sy, sx, br.cyx);
+        add(td, sy, sy, br.cyy);
         // On a pedestal the forces act on the relative motion: the pedestal's pair gets
         // +B and the shaft-pedestal blocks -B (a held shaft DOF keeps only the pedestal's).
-        if (const int p = pedestal_of[br.node]; p >= 0) {
-            const int sx = map[b + X], sy = map[b + Y];
-            const double k[2][2] = {{br.kxx, br.kxy}, {br.kyx, br.kyy}}, c[2][2] = {{br.cxx, br.cxy}, {br.cyx, br.cyy}};
+        if (const int p = pedestal_of[k]; p >= 0) {
+            const double kb[2][2] = {{br.kxx, br.kxy}, {br.kyx, br.kyy}}, cb[2][2] = {{br.cxx, br.cxy}, {br.cyx, br.cyy}};
             for (int i = 0; i < 2; ++i)
                 for (int j = 0; j < 2; ++j) {
                     const int si = i == 0 ? sx : sy, sj = j == 0 ? sx : sy;
-                    for (auto [t, v] : {std::pair{&tk, k[i][j]}, std::pair{&td, c[i][j]}}) {
-                        if (v == 0.0) continue;
-                        t->emplace_back(p + i, p + j, v);
-                        if (si >= 0) t->emplace_back(si, p + j, -v);
-                        if (sj >= 0) t->emplace_back(p + i, sj, -v);
+                    for (auto [t, v] : {std::pair{&tk, kb[i][j]}, std::pair{&td, cb[i][j]}}) {
+                        add(*t, p + i, p + j, v);
+                        add(*t, si, p + j, -v);
+                        add(*t, p + i, sj, -v);
                     }
                 }
         }
-        if (six) {
-            add(tk, b + Z, b + Z, br.kzz);
-            add(td, b + Z, b + Z, br.czz);
-        }
+        add(tk, dof(k, Z), dof(k, Z), br.kzz);
+        add(td, dof(k, Z), dof(k, Z), br.czz);
     }
     for (const FePedestal& p : pedestals) {
         const int i = pedestal_of[p.node];
+        if (i < 0) continue;   // an axial or torsional model: no pedestal DOFs
         tm.emplace_back(i, i, p.mass);
         tm.emplace_back(i + 1, i + 1, p.mass);
         for (auto [t, a, b] : {std::tuple{&tk, p.kxx, p.kyy}, std::tuple{&td, p.cxx, p.cyy}}) {
@@ -472,13 +482,14 @@ FeRotorMatrices FeRotor::assemble() const {
     build(r.K, tk);
     build(r.G, tg);
     build(r.D, td);
+    build(r.D_couplings, tc);
     return r;
 }
 
 SparsePencil FeRotorMatrices::at_speed(double w) const {
     SparsePencil p;
     p.M = M;
-    p.C = D + w * G;
+    p.C = D + D_couplings + w * G;
     p.K = K;
     return p;
 }
@@ -490,12 +501,33 @@ GyroscopicSystem FeRotorMatrices::to_system() const {
     s.K = K;
     s.G = G;
     if (D.nonZeros() > 0) s.damping.push_back({"bearings", D});
+    if (D_couplings.nonZeros() > 0) s.damping.push_back({"couplings", D_couplings});
     if (unbalance.size() > 0 && unbalance.cwiseAbs().maxCoeff() > 0) s.unbalance = unbalance;
     s.whirl_pairs = whirl_pairs;
     s.node_of_dof = node_of_dof;
     s.node_z = node_z;
     for (const auto& name : dof_names) s.dof_units.push_back(name[0] == 't' ? "rad" : "m");   // tx, ty: rotations
     return s;
+}
+
+int dofs_per_node(FeMotion m) {
+    switch (m) {
+        case FeMotion::lateral: return 4;
+        case FeMotion::all: return 6;
+        case FeMotion::axial:
+        case FeMotion::torsional: return 1;
+    }
+    return 0;
+}
+
+const char* to_string(FeMotion m) {
+    switch (m) {
+        case FeMotion::lateral: return "lateral";
+        case FeMotion::all: return "all";
+        case FeMotion::axial: return "axial";
+        case FeMotion::torsional: return "torsional";
+    }
+    return "?";
 }
 
 GyroscopicSystem make_system(const FeRotor& r) {

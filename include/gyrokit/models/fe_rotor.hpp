@@ -7,9 +7,11 @@
 //   x, y          displacements of the shaft centre line,
 //   theta_x       rotation of the cross-section about +x  (= -dy/dz for a slender beam),
 //   theta_y       rotation of the cross-section about +y  (= +dx/dz for a slender beam);
-// with dofs_per_node = 6 also the axial displacement z and the torsion theta_z
+// with FeMotion::all also the axial displacement z and the torsion theta_z
 // (node DOFs [x, y, theta_x, theta_y, z, theta_z]; axial and torsional bars with
-// linear shape functions, uncoupled from the lateral motion at constant speed).
+// linear shape functions, uncoupled from the lateral motion at constant speed);
+// FeMotion::axial or ::torsional builds that bar alone (one DOF per node), since
+// at constant speed it does not couple to the rest.
 // With this right-handed choice both (x, y) and (theta_x, theta_y) turn in the
 // positive sense for forward whirl, so every node contributes the whirl pairs
 // (x, y) and (theta_x, theta_y).
@@ -34,11 +36,16 @@ namespace gyrokit {
 
 // Flexible coupling between two shafts: springs on the relative motion of its two
 // nodes (no coupling between the directions), its mass and inertias half at each node.
+// Its dampers act on the same relative motions (the damping component "couplings").
 struct FeCoupling {
     double k_lateral = 0.0;          // N/m, >= 0: x, y
     double k_bending = 0.0;          // N m/rad, >= 0: theta_x, theta_y (angular misalignment)
-    double k_axial = 0.0;            // N/m, >= 0: z (6 DOFs per node)
-    double k_torsion = 0.0;          // N m/rad, >= 0: theta_z (6 DOFs per node)
+    double k_axial = 0.0;            // N/m, >= 0: z
+    double k_torsion = 0.0;          // N m/rad, >= 0: theta_z
+    double c_lateral = 0.0;          // N s/m, >= 0
+    double c_bending = 0.0;          // N m s/rad, >= 0
+    double c_axial = 0.0;            // N s/m, >= 0
+    double c_torsion = 0.0;          // N m s/rad, >= 0
     double mass = 0.0;               // kg, >= 0
     double diametral_inertia = 0.0;  // Id, kg m^2, >= 0
     double polar_inertia = 0.0;      // Ip, kg m^2, >= 0 (also gyroscopic)
@@ -65,27 +72,29 @@ struct FeShaftElement {
 // Rigid disk attached at a node.
 struct FeDisk {
     int node = 0;
-    double mass = 0.0;              // kg, >= 0 (lateral, and axial with 6 DOFs per node)
+    double mass = 0.0;              // kg, >= 0 (lateral and axial)
     double diametral_inertia = 0.0; // Id, kg m^2, >= 0
-    double polar_inertia = 0.0;     // Ip, kg m^2, >= 0 (gyroscopic, and torsional with 6 DOFs per node)
+    double polar_inertia = 0.0;     // Ip, kg m^2, >= 0 (gyroscopic, and torsional)
     double unbalance = 0.0;         // m_e e, kg m, >= 0 (mass times eccentricity)
     double unbalance_phase = 0.0;   // rad, angle of the unbalance at t = 0 from +x
 };
 
 // Linear bearing between a node and the ground, acting on (x, y):
-// force = -[kxx kxy; kyx kyy] (x, y) - [cxx cxy; cyx cyy] (x', y'); with 6 DOFs per
-// node also a thrust stiffness and damping on z (kzz, czz; 0 otherwise).
+// force = -[kxx kxy; kyx kyy] (x, y) - [cxx cxy; cyx cyy] (x', y'); where the model
+// has the axial DOF also a thrust stiffness and damping on z (kzz, czz; 0 otherwise).
+// Each part acts where the model has its DOFs (a torsional model: none).
 struct FeBearing {
     int node = 0;
     double kxx = 0.0, kxy = 0.0, kyx = 0.0, kyy = 0.0;   // N/m
     double cxx = 0.0, cxy = 0.0, cyx = 0.0, cyy = 0.0;   // N s/m
-    double kzz = 0.0;                                     // N/m, axial (6 DOFs per node)
-    double czz = 0.0;                                     // N s/m, axial (6 DOFs per node)
+    double kzz = 0.0;                                     // N/m, axial
+    double czz = 0.0;                                     // N s/m, axial
 };
 
 // Bearing pedestal (support): a mass on springs and dampers to the ground that
 // carries every bearing at its node (their forces act on the relative motion of
-// shaft and pedestal). Adds the DOFs px<node>, py<node> after the node DOFs.
+// shaft and pedestal). Adds the DOFs px<node>, py<node> after the node DOFs
+// (in a model with lateral DOFs; an axial or torsional model leaves it out).
 struct FePedestal {
     int node = 0;
     double mass = 0.0;               // kg, > 0
@@ -95,7 +104,7 @@ struct FePedestal {
 
 // Rigid support: the chosen DOFs of a node are held at zero and removed from
 // the assembled system (pinned: x and y; clamped: all of the node's DOFs).
-// z and theta_z exist with 6 DOFs per node only.
+// Holds on DOFs the model does not build (FeRotor::motion) are no-ops.
 struct FeSupport {
     int node = 0;
     bool x = true, y = true, theta_x = false, theta_y = false;
@@ -103,13 +112,14 @@ struct FeSupport {
 };
 
 // The assembled matrices (constrained DOFs removed). Row/column order: node by
-// node, [x, y, theta_x, theta_y] (and z, theta_z with 6 DOFs per node) each, constrained
-// DOFs skipped, then (px, py) of each pedestal in the order given.
+// node, the motion's DOFs in the order [x, y, theta_x, theta_y, z, theta_z] each,
+// constrained DOFs skipped, then (px, py) of each pedestal in the order given.
 struct FeRotorMatrices {
     Eigen::SparseMatrix<double> M;   // mass (translational + rotary + disks), symmetric positive definite
     Eigen::SparseMatrix<double> K;   // stiffness (shaft + bearings); symmetric when kxy = kyx
     Eigen::SparseMatrix<double> G;   // gyroscopic per unit speed, skew
-    Eigen::SparseMatrix<double> D;   // bearing damping; symmetric when cxy = cyx
+    Eigen::SparseMatrix<double> D;   // bearing and pedestal damping; symmetric when cxy = cyx
+    Eigen::SparseMatrix<double> D_couplings;   // coupling damping, symmetric
     Eigen::VectorXcd unbalance;      // force amplitude per w^2 (forward-turning disk unbalance)
     std::vector<std::string> dof_names;            // "x3", "y3", "tx3", "ty3" (and "z3", "tz3")
     std::vector<std::pair<int, int>> whirl_pairs;  // (x, y) and (theta_x, theta_y) of each node, when both are free
@@ -119,13 +129,25 @@ struct FeRotorMatrices {
     int size() const { return static_cast<int>(M.rows()); }
     // Sparse pencil at spin speed w: M, C = D + w G, K.
     SparsePencil at_speed(double w) const;
-    // The model as a gyroscopic system (bearing damping: the damping component "bearings").
+    // The model as a gyroscopic system (damping components "bearings" and "couplings").
     GyroscopicSystem to_system() const;
 };
 
 // At most this many elements in all: 20,000,000 DOFs (the largest size a Matrix
 // Market file may declare), far beyond the solvers' reach, refused before assembly.
 constexpr int kMaxFeElements = 4'999'999;
+
+// Which DOFs each node has. At constant speed the axial and the torsional bars couple
+// neither to each other nor to the lateral motion, so an axial or torsional analysis
+// needs only its own DOF.
+enum class FeMotion {
+    lateral,     // x, y, theta_x, theta_y (4 per node)
+    all,         // lateral, z and theta_z (6 per node)
+    axial,       // z (1 per node)
+    torsional,   // theta_z (1 per node)
+};
+int dofs_per_node(FeMotion m);
+const char* to_string(FeMotion m);
 
 class FeRotor {
 public:
@@ -136,7 +158,11 @@ public:
     std::vector<FePedestal> pedestals;       // at most one per node
     bool shear_deformation = true;   // false: Euler-Bernoulli / Rayleigh beam (Phi = 0)
     bool rotary_inertia = true;      // false: no rotary inertia and no shaft gyroscopic moments
-    int dofs_per_node = 4;           // 4: lateral only; 6: also axial z and torsion theta_z
+    FeMotion motion = FeMotion::lateral;
+
+    bool has_lateral() const { return motion == FeMotion::lateral || motion == FeMotion::all; }
+    bool has_axial() const { return motion == FeMotion::all || motion == FeMotion::axial; }
+    bool has_torsion() const { return motion == FeMotion::all || motion == FeMotion::torsional; }
 
     int node_count() const { return elements.empty() ? 0 : static_cast<int>(elements.size()) + 1; }
 
@@ -167,10 +193,10 @@ double fe_element_mass(const FeShaftElement& e);
 double cowper_shear_coefficient(double poisson_ratio, double diameter_ratio);
 
 // Element matrices: lateral in the element DOF order [x1 y1 tx1 ty1 x2 y2 tx2 ty2];
-// the axial (z1, z2) and torsional (tz1, tz2) bars, used with 6 DOFs per node.
+// the axial (z1, z2) and torsional (tz1, tz2) bars. D: a coupling's dampers (0 for a beam).
 struct FeElementMatrices {
-    Eigen::Matrix<double, 8, 8> M, K, G;
-    Eigen::Matrix2d M_axial, K_axial, M_torsion, K_torsion;
+    Eigen::Matrix<double, 8, 8> M, K, G, D;
+    Eigen::Matrix2d M_axial, K_axial, D_axial, M_torsion, K_torsion, D_torsion;
 };
 FeElementMatrices fe_shaft_element_matrices(const FeShaftElement& e, bool shear_deformation = true,
                                             bool rotary_inertia = true);
