@@ -231,9 +231,9 @@ PYBIND11_MODULE(_core, m) {
             return py::array_t<double>(static_cast<py::ssize_t>(p.size()), p.data());
         });
 
-    m.def("load_scene", [](const std::string& path, const std::map<std::string, double>& overrides) {
-        return load_scene(path, overrides);
-    }, py::arg("path"), py::arg("overrides") = std::map<std::string, double>{});
+    m.def("load_scene", [](const std::string& path, const std::map<std::string, double>& overrides,
+                           const std::string& motion) { return load_scene(path, overrides, motion); },
+          py::arg("path"), py::arg("overrides") = std::map<std::string, double>{}, py::arg("motion") = "");
 
     m.def("eig", [](const GyroscopicSystem& s, double speed, const std::string& solver, int modes,
                     const py::object& target, double target_order, const std::string& method, int lanczos) {

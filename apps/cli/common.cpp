@@ -21,6 +21,12 @@ void add_common(CLI::App* c, Common& o, bool with_speeds) {
     if (with_speeds) c->add_option("--speeds", o.speeds, "speed range FROM:TO:N (overrides the scene's [speeds])");
 }
 
+void add_motion_option(CLI::App* c, Common& o) {
+    c->add_option("--motion", o.motion,
+                  "fe_rotor scenes: the DOFs built, in place of the scene's motion / dofs_per_node: lateral (4 per "
+                  "node), all (6), axial or torsional (1: that motion alone)");
+}
+
 void add_solver_options(CLI::App* c, Common& o) {
     c->add_option("--solver", o.solver, "eigensolver: dense (all modes, scaled QZ), sparse (ARPACK shift-invert, a "
                                         "few modes near --target) or auto (sparse above " +
@@ -71,7 +77,7 @@ Context open_scene(const Common& o, bool need_speeds) {
         std::cerr << "note: --jobs " << c.jobs << " capped to the " << cores << " cores of this machine\n";
         c.jobs = cores;
     }
-    c.scene = load_scene(o.scene);
+    c.scene = load_scene(o.scene, {}, o.motion);
     c.solver = c.scene.solver_options();
     c.solver.eig = c.eig;
     c.solver.lanczos_vectors = o.lanczos;

@@ -30,9 +30,12 @@ struct Common {
     // Solver choice (eig, campbell, critical, stability, response).
     std::string solver, target, target_order;
     int lanczos = 0, jobs = 0;
+    std::string motion;   // FE rotors: the DOF set in place of the scene's
 };
 
 void add_common(CLI::App* c, Common& o, bool with_speeds);
+// --motion: an FE rotor's DOF set (lateral, all, axial, torsional) in place of the scene's.
+void add_motion_option(CLI::App* c, Common& o);
 // --solver, --target, --target-order, --lanczos, --jobs.
 void add_solver_options(CLI::App* c, Common& o);
 

@@ -157,6 +157,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
 
     auto* eig = app.add_subcommand("eig", "all eigenvalues at one speed");
     add_common(eig, o->common, false);
+    add_motion_option(eig, o->common);
     add_solver_options(eig, o->common);
     eig->add_option("--speed", o->speed, "spin speed (in --units)")->required();
     eig->add_option("--modes", o->modes, "sparse solver: number of modes near --target (default: the scene's, else 6)");
@@ -177,10 +178,11 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     model->add_option("scene", o->common.scene, "scene file (TOML)")->required();
     model->add_option("--format", o->common.format, "output format: table, csv or json")->capture_default_str();
     model->add_option("--plot", o->common.plot, "FE rotors: draw the shaft, disks and bearings into FILE.svg|.png");
+    add_motion_option(model, o->common);
     cmds.push_back({model, [o](std::ostream& out) {
         const TableFormat format = parse_format(o->common);
         check_plot_path(o->common.plot);
-        const Scene sc = load_scene(o->common.scene);
+        const Scene sc = load_scene(o->common.scene, {}, o->common.motion);
         if (!o->common.plot.empty() && !sc.fe_rotor)
             throw InputError("--plot: draws finite-element rotors; this model is " + sc.model_type);
         write_table(out, model_summary(sc), format);
@@ -189,6 +191,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
 
     auto* modes = app.add_subcommand("modes", "mode shapes at one speed: orbits per node (or entries per DOF)");
     add_common(modes, o->common, false);
+    add_motion_option(modes, o->common);
     add_solver_options(modes, o->common);
     modes->add_option("--speed", o->speed, "spin speed (in --units); default 0")->default_str("0");
     modes->add_option("--modes", o->modes, "number of modes (the lowest, or the sparse window; default: the "
@@ -233,6 +236,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
 
     auto* camp = app.add_subcommand("campbell", "modes tracked over speed (Campbell diagram)");
     add_common(camp, o->common, true);
+    add_motion_option(camp, o->common);
     add_solver_options(camp, o->common);
     camp->add_option("--modes", o->modes, "number of modes to track: the K lowest by frequency (0 = all; sparse: "
                                           "the K nearest --target, default 6)");
@@ -264,6 +268,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
 
     auto* crit = app.add_subcommand("critical", "critical speeds: crossings with the k x speed lines");
     add_common(crit, o->common, true);
+    add_motion_option(crit, o->common);
     add_solver_options(crit, o->common);
     crit->add_option("--harmonics", o->harmonics, "harmonics k, e.g. 1,2 (default: the scene's, else 1)");
     crit->add_option("--modes", o->modes, "number of modes considered (0 = all)");
@@ -295,6 +300,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
 
     auto* stab = app.add_subcommand("stability", "speeds where a mode becomes unstable or stable again");
     add_common(stab, o->common, true);
+    add_motion_option(stab, o->common);
     add_solver_options(stab, o->common);
     stab->add_option("--modes", o->modes, "number of modes considered (0 = all; sparse: default 6)");
     cmds.push_back({stab, [o](std::ostream& out) {
@@ -313,6 +319,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
 
     auto* perv = app.add_subcommand("pervasive", "Hautus pervasive-damping check for each damping component");
     add_common(perv, o->common, true);
+    add_motion_option(perv, o->common);
     add_solver_options(perv, o->common);
     perv->add_option("--tolerance", o->tolerance, "largest residual of a loss (a loss must also be within 1e3 "
                                                   "times the eigenpair's backward error)")
@@ -336,6 +343,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
 
     auto* resp = app.add_subcommand("response", "unbalance response: amplitude and phase per DOF");
     add_common(resp, o->common, true);
+    add_motion_option(resp, o->common);
     add_solver_options(resp, o->common);
     resp->add_option("--plot", o->common.plot, "draw amplitude (one panel per unit) and phase into FILE.svg or FILE.png");
     resp->add_flag("--polar", o->polar, "with --plot: a polar plot (Im Z against Re Z) instead of amplitude and phase");
@@ -381,6 +389,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
 
     auto* exp = app.add_subcommand("export", "M, D, G, K, N and the state matrices as Matrix Market");
     add_common(exp, o->common, false);
+    add_motion_option(exp, o->common);
     exp->add_option("--speed", o->speed, "spin speed for the assembled matrices (in --units)")->required();
     exp->add_option("--dir", o->dir, "output directory (created if missing)")->required();
     cmds.push_back({exp, [o](std::ostream&) {

@@ -20,9 +20,11 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "modes", "ModeShapes"]
 
 
-def load_scene(path, overrides=None) -> Scene:
-    """Reads a scene file (TOML); `overrides` maps "TABLE.KEY" to numbers (e.g. {"model.c_G": 400.0})."""
-    return _core.load_scene(str(path), dict(overrides or {}))
+def load_scene(path, overrides=None, motion=None) -> Scene:
+    """Reads a scene file (TOML); `overrides` maps "TABLE.KEY" to numbers (e.g. {"model.c_G": 400.0}).
+    `motion` ("lateral", "all", "axial" or "torsional") builds that DOF set of an fe_rotor model in place
+    of the scene's motion / dofs_per_node (e.g. a torsional analysis of a rotor described once)."""
+    return _core.load_scene(str(path), dict(overrides or {}), motion or "")
 
 
 def _options(model, solver, modes, target, target_order):
@@ -410,8 +412,9 @@ def gyrostat(*, speeds=None, analysis=None, **keys) -> Scene:
 
 def fe_rotor(*, speeds=None, analysis=None, directory=".", **keys) -> Scene:
     """A finite-element rotor from its [model] keys (docs/scene_format.md): material or E, poisson,
-    density; dofs_per_node (4 or 6); length_unit ("m" or "mm"); shaft=[{length, elements, outer_diameter,
-    inner_diameter, outer_diameter_end, ...} or {type: "coupling", length, k_lateral, k_bending, ...}],
+    density; dofs_per_node (4 or 6) or motion ("lateral", "all", "axial", "torsional"); length_unit
+    ("m" or "mm"); shaft=[{length, elements, outer_diameter, inner_diameter, outer_diameter_end, ...} or
+    {type: "coupling", length, k_lateral, k_bending, ..., c_torsion}],
     disk=[{z, mass, Id, Ip or outer_diameter, width, ...; unbalance}], bearing=[{z, k, c, kxx, ..., kzz}
     or {z, table} or {z, speeds: [...], k: [...], ...} or {z, type: "fluid_film", diameter, length,
     clearance, viscosity, load, solution}], pedestal=[{z, mass, k, c}], support=[{z, type, axial,

@@ -164,10 +164,22 @@ namespace {
 
 // A parsed scene document: `path` names it in messages, `dir` resolves its relative files.
 Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
-                 const std::map<std::string, double>& overrides) {
+                 const std::map<std::string, double>& overrides, const std::string& fe_motion = "") {
     Scene sc;
     sc.path = path;
     apply_overrides(root, path, overrides);
+    if (!fe_motion.empty()) {
+        // The DOF set of an FE rotor in place of the scene's motion and dofs_per_node.
+        toml::table* model = root.get_as<toml::table>("model");
+        const auto* given = model ? model->get_as<std::string>("type") : nullptr;
+        const std::string type = given ? given->get() : "(none)";
+        if (type != "fe_rotor")
+            throw InputError(fmt::format("{}: motion '{}' applies to a [model] of type fe_rotor; this scene's model is "
+                                         "{}",
+                                         path, fe_motion, type));
+        model->erase("dofs_per_node");
+        model->insert_or_assign("motion", fe_motion);
+    }
     TomlKeys top(path, "top level", root);
     top.only({"title", "model", "speeds", "analysis"});
     sc.title = top.choice("title", "", {});
@@ -226,8 +238,9 @@ Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
 
 }  // namespace
 
-Scene load_scene(const std::string& path, const std::map<std::string, double>& overrides) {
-    return scene_from(parse_scene_file(path), path, fs::path(path).parent_path(), overrides);
+Scene load_scene(const std::string& path, const std::map<std::string, double>& overrides,
+                 const std::string& fe_motion) {
+    return scene_from(parse_scene_file(path), path, fs::path(path).parent_path(), overrides, fe_motion);
 }
 
 Scene parse_scene(const std::string& text, const std::string& origin, const std::string& dir) {

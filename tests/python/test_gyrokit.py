@@ -282,6 +282,14 @@ def test_models_from_keywords_equal_their_scenes():
                                  dict(z=950, k=2e7, c=300, kzz=1e8)])
     assert train.system.size == 6 * 11 + 2
     assert "tz5" in train.system.dof_names and "px0" in train.system.dof_names
+    # The same description, torsion alone: one DOF per node, the block of the 6-DOF model.
+    full = gk.load_scene(scene("drive_train.toml"))
+    torsion = gk.load_scene(scene("drive_train.toml"), motion="torsional")
+    idx = [i for i, n in enumerate(full.system.dof_names) if n.startswith("tz")]
+    assert torsion.system.dof_names == [full.system.dof_names[i] for i in idx]
+    np.testing.assert_array_equal(torsion.system.K.toarray(), full.system.K.toarray()[np.ix_(idx, idx)])
+    with pytest.raises(gk.InputError, match="fe_rotor"):
+        gk.load_scene(scene("centrifuge.toml"), motion="torsional")
 
 
 def test_balancer_and_sommerfeld_match_the_cli():

@@ -37,8 +37,11 @@ struct Scene {
 // Reads and validates a scene. Every error is an InputError of one line naming
 // the file, the key, the value and the allowed range. `overrides` replace
 // numeric keys before validation, named TABLE.KEY (e.g. "model.c_G"): how a
-// design study varies a base scene.
-Scene load_scene(const std::string& path, const std::map<std::string, double>& overrides = {});
+// design study varies a base scene. `fe_motion` (lateral, all, axial or torsional), if
+// given, replaces the DOF set of an fe_rotor model (its motion and dofs_per_node): a
+// torsional or axial analysis of a rotor described once.
+Scene load_scene(const std::string& path, const std::map<std::string, double>& overrides = {},
+                 const std::string& fe_motion = "");
 
 // The same from the text of a scene: `origin` names it in messages, `dir`
 // resolves the files it refers to (Matrix Market, bearing tables).
