@@ -288,4 +288,15 @@ TEST_CASE("journal bearing in a scene: bad input names the key, value and range"
           std::string::npos);
     CHECK(message(film_rotor().replace(film_rotor().find("\"fluid_film\""), 12, "\"magnetic\"")).find(
               "type = 'magnetic': allowed: fluid_film, linear") != std::string::npos);
+    // A scene in mm: the message speaks the scene's unit.
+    const std::string mm = "[model]\ntype = \"fe_rotor\"\nmaterial = \"steel\"\nlength_unit = \"mm\"\n"
+                           "[[model.shaft]]\nlength = 500\nelements = 2\nouter_diameter = 50\n"
+                           "[[model.bearing]]\nz = 0\ntype = \"fluid_film\"\ndiameter = 50\nlength = 20\n"
+                           "viscosity = 0.02\nload = 200\nclearance = ";
+    CHECK(message(mm + "30\n").find("clearance = 30 mm with diameter = 50 mm; allowed: 0 < clearance < diameter / 2") !=
+          std::string::npos);
+    CHECK(message(mm + "0.05\n") == "no error");
+    std::string thin_mm = mm + "0.05\n";
+    thin_mm.replace(thin_mm.find("viscosity = 0.02"), 16, "viscosity = 1e-320");
+    CHECK(message(thin_mm).find("diameter = 50 mm, length = 20 mm, clearance = 0.05 mm") != std::string::npos);
 }

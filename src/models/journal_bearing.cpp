@@ -20,19 +20,20 @@ double sommerfeld_per_speed(const JournalBearing& b) {
 
 }  // namespace
 
-void JournalBearing::validate(const std::string& origin) const {
-    const auto positive = [&](const char* key, double v, const char* unit) {
+void JournalBearing::validate(const std::string& origin, double metres_per_unit, const char* unit) const {
+    const auto positive = [&](const char* key, double v, double scale, const char* u) {
         if (!(v > 0.0) || !std::isfinite(v))
-            throw InputError(fmt::format("{}: {} = {}; allowed: a finite number > 0 ({})", origin, key, v, unit));
+            throw InputError(fmt::format("{}: {} = {}; allowed: a finite number > 0 ({})", origin, key, v / scale, u));
     };
-    positive("diameter", diameter, "m");
-    positive("length", length, "m");
-    positive("clearance", clearance, "m");
-    positive("viscosity", viscosity, "Pa s");
-    positive("load", load, "N");
+    const double mu = metres_per_unit;
+    positive("diameter", diameter, mu, unit);
+    positive("length", length, mu, unit);
+    positive("clearance", clearance, mu, unit);
+    positive("viscosity", viscosity, 1.0, "Pa s");
+    positive("load", load, 1.0, "N");
     if (!(clearance < 0.5 * diameter))
-        throw InputError(fmt::format("{}: clearance = {} m with diameter = {} m; allowed: 0 < clearance < diameter / 2",
-                                     origin, clearance, diameter));
+        throw InputError(fmt::format("{}: clearance = {} {} with diameter = {} {}; allowed: 0 < clearance < diameter / 2",
+                                     origin, clearance / mu, unit, diameter / mu, unit));
     if (!(std::fabs(load_angle) <= 2.0 * kPi))
         throw InputError(fmt::format("{}: load_angle = {} rad; allowed: -360 to 360 deg", origin, load_angle));
     if (!(max_eccentricity >= 0.01 && max_eccentricity <= 0.999))
@@ -52,10 +53,11 @@ void JournalBearing::validate(const std::string& origin) const {
     const double k_scale = load / clearance, c_scale = k_scale / w_min;
     for (const double v : {per_speed, w_min, k_scale, c_scale})
         if (!(std::isfinite(v) && v > 0.0 && v < 1e200 && v > 1e-200))
-            throw InputError(fmt::format("{}: diameter = {} m, length = {} m, clearance = {} m, viscosity = {} Pa s, "
-                                         "load = {} N give no usable film (Sommerfeld number per rad/s {:g}, film "
-                                         "stiffness scale {:g} N/m); allowed: values of a real bearing",
-                                         origin, diameter, length, clearance, viscosity, load, per_speed, k_scale));
+            throw InputError(fmt::format("{}: diameter = {} {}, length = {} {}, clearance = {} {}, viscosity = {} "
+                                         "Pa s, load = {} N give no usable film (Sommerfeld number per rad/s {:g}, "
+                                         "film stiffness scale {:g} N/m); allowed: values of a real bearing",
+                                         origin, diameter / mu, unit, length / mu, unit, clearance / mu, unit, viscosity,
+                                         load, per_speed, k_scale));
 }
 
 double short_bearing_sommerfeld(double e) {

@@ -40,7 +40,8 @@ struct JournalBearing {
     int grid_axial = 32;
 
     // Throws InputError naming `origin`, the key, the value and the allowed range.
-    void validate(const std::string& origin) const;
+    // Lengths in messages are divided by `metres_per_unit` and named `unit` (a scene in mm).
+    void validate(const std::string& origin, double metres_per_unit = 1.0, const char* unit = "m") const;
 };
 
 // Modified Sommerfeld number of the short bearing at eccentricity ratio e:
