@@ -18,10 +18,8 @@
 #include <gsl/gsl_sf_zeta.h>
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <complex>
-#include <cstdio>
 #include <vector>
 
 using namespace gyrokit;
@@ -533,44 +531,4 @@ TEST_CASE("reynolds bearing in an fe_rotor scene: solution = finite_difference a
     refused("solution = \"finite_difference\"\ngrid_axial = 32.0\n",
             "[model.bearing[1]] grid_axial must be a whole number in [4, 256]");
     refused("grid_axial = 32\n", "[model.bearing[1]] grid_axial is given with solution = \"short\"");
-}
-
-TEST_CASE("reynolds bearing: cost per evaluation and error against the finest grid", "[.][reynolds_timing]") {
-    // Not run by default: prints the table of docs/fe_rotor.md. Errors at a given load and
-    // speed (e, attitude, a, b), largest over L/D = 0.25, 0.5, 1, 2 and e = 0.1, 0.5, 0.8,
-    // 0.9 (and apart e = 0.95); time: one reynolds_bearing call (equilibrium and coefficients).
-    const std::vector<std::pair<int, int>> grids{{60, 8},   {120, 16}, {180, 24},  {240, 32},
-                                                 {360, 48}, {480, 64}, {960, 128}, {1920, 256}};
-    const std::vector<double> lds{0.25, 0.5, 1.0, 2.0}, es{0.1, 0.5, 0.8, 0.9, 0.95};
-    std::vector<std::vector<Dimless>> exact(lds.size());
-    std::vector<std::vector<JournalBearingState>> finest(lds.size());
-    for (size_t i = 0; i < lds.size(); ++i)
-        for (const double e : es) {
-            exact[i].push_back(spectral(lds[i], e, e > 0.9 ? 160 : 96, 60));
-            const AtSpeed x = at_speed(lds[i], exact[i].back(), 1920, 256);
-            finest[i].push_back(reynolds_bearing(x.b, x.w));
-        }
-    std::printf("grid        time per evaluation  vs finest: e <= 0.9  e = 0.95   vs spectral: e <= 0.9  e = 0.95\n");
-    for (const auto& [N, A] : grids) {
-        double t = 0, f9 = 0, f95 = 0, s9 = 0, s95 = 0;
-        int count = 0;
-        for (size_t i = 0; i < lds.size(); ++i)
-            for (size_t k = 0; k < es.size(); ++k) {
-                const AtSpeed x = at_speed(lds[i], exact[i][k], N, A);
-                const int reps = N <= 480 ? 20 : 2;
-                JournalBearingState s;
-                const auto start = std::chrono::steady_clock::now();
-                for (int r = 0; r < reps; ++r) s = reynolds_bearing(x.b, x.w);
-                t += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / reps;
-                ++count;
-                const double df = difference_at_speed(s, finest[i][k].eccentricity, of(finest[i][k])),
-                             ds = difference_at_speed(s, es[k], exact[i][k]);
-                double& f = es[k] <= 0.9 ? f9 : f95;
-                double& g = es[k] <= 0.9 ? s9 : s95;
-                f = std::max(f, df);
-                g = std::max(g, ds);
-            }
-        std::printf("%4d x %3d  %9.2e s           %.1e    %.1e                %.1e    %.1e\n", N, A, t / count, f9,
-                    f95, s9, s95);
-    }
 }
