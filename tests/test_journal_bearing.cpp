@@ -108,6 +108,33 @@ TEST_CASE("journal bearing: load, eccentricity, attitude and 8 coefficients agai
     }
 }
 
+// Friswell, Penny, Garvey, Lees, "Dynamics of Rotating Machines" (2010), Example 5.5.1: a
+// short bearing of D = 100 mm, L = 30 mm, c = 0.1 mm, eta = 0.1 Pa s at 1500 rev/min
+// (157.1 rad/s) carrying 525 N. The book prints e = 0.2663 and the coefficients to four
+// significant digits (x horizontal, y vertical, the load along -y), computed with e as
+// printed: the tolerance is 1e-3 relative (half a unit of the fourth digit, 5e-4 of 1.0,
+// plus the coefficients' sensitivity to e rounded to 4 digits, |dk/de| e / k < 2 here,
+// times 2e-4).
+TEST_CASE("journal bearing: Friswell et al. Example 5.5.1, eccentricity and 8 coefficients as printed",
+          "[journal_bearing][validation]") {
+    JournalBearing b;
+    b.diameter = 0.1;
+    b.length = 0.03;
+    b.clearance = 0.1e-3;
+    b.viscosity = 0.1;
+    b.load = 525.0;
+    const JournalBearingState s = short_bearing(b, 157.1);
+    CHECK(s.eccentricity == Approx(0.2663).epsilon(2e-4));
+    const Eigen::Matrix2d K = s.coefficients.K / 1e6, C = s.coefficients.C / 1e3;   // MN/m, kN s/m
+    const double k_book[2][2] = {{12.81, 16.39}, {-25.06, 8.815}}, c_book[2][2] = {{232.9, -81.92}, {-81.92, 294.9}};
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) {
+            INFO("entry " << i << j << " K " << K(i, j) << " C " << C(i, j));
+            CHECK(K(i, j) == Approx(k_book[i][j]).epsilon(1e-3));
+            CHECK(C(i, j) == Approx(c_book[i][j]).epsilon(1e-3));
+        }
+}
+
 TEST_CASE("journal bearing: the Sommerfeld number falls from infinity to 0 and the speed inverts it",
           "[journal_bearing]") {
     // Short bearing: S_s = (1 - e^2)^2 / (e sqrt(16 e^2 + pi^2 (1 - e^2))); e -> 0: S_s ~ 1 / (pi e).
