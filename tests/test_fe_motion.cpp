@@ -171,3 +171,17 @@ TEST_CASE("fe rotor coupling dampers: two disks on a damped coupling against the
     r.elements[0].coupling->c_torsion = -1.0;
     CHECK_THROWS_WITH(r.assemble(), Catch::Contains("c_torsion = -1") && Catch::Contains("[0, inf)"));
 }
+
+// Response outputs by node (--nodes, --at) are the whirling translations x, y: the axial z
+// of a 6-DOF model, also in metres, is no lateral response.
+TEST_CASE("fe rotor motion: a node's translations are x and y, not the axial z", "[fe_rotor][motion]") {
+    const Scene all = load_scene(data("drive_train.toml"));
+    std::vector<std::string> names;
+    for (const int i : all.system.node_translations(15)) names.push_back(all.dof_names()[i]);
+    CHECK(names == std::vector<std::string>{"x15", "y15"});
+    CHECK(all.system.node_dofs(15, "m").size() == 3);   // x15, y15, z15
+    // An axial model has no whirl pairs: its z is the node's translation.
+    const Scene axial = load_scene(data("drive_train.toml"), {}, "axial");
+    REQUIRE(axial.system.node_translations(15).size() == 1);
+    CHECK(axial.dof_names()[axial.system.node_translations(15)[0]] == "z15");
+}

@@ -79,7 +79,7 @@ std::vector<int> parse_dofs(const std::string& text, const std::vector<std::stri
 std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys) {
     std::vector<int> out = parse_dofs(o.dofs, sys.dof_names);
     const auto add_node = [&](int node) {
-        const std::vector<int> dofs = sys.node_dofs(node, sys.dof_units.empty() ? "" : "m");
+        const std::vector<int> dofs = sys.node_translations(node);
         // Nothing would mean every DOF: a node held by a support is an error, not "all".
         if (dofs.empty())
             throw InputError(fmt::format("node {} has no free translation (a support holds it); allowed: a node "

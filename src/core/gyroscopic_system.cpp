@@ -162,6 +162,17 @@ std::vector<int> GyroscopicSystem::node_dofs(int node, const std::string& unit) 
     return out;
 }
 
+std::vector<int> GyroscopicSystem::node_translations(int node) const {
+    std::vector<int> out = node_dofs(node, dof_units.empty() ? "" : "m");
+    if (whirl_pairs.empty()) return out;
+    const auto paired = [&](int i) {
+        return std::any_of(whirl_pairs.begin(), whirl_pairs.end(),
+                           [&](const std::pair<int, int>& p) { return p.first == i || p.second == i; });
+    };
+    out.erase(std::remove_if(out.begin(), out.end(), [&](int i) { return !paired(i); }), out.end());
+    return out;
+}
+
 GyroscopicSystem GyroscopicSystem::with_damping_only(const std::vector<std::string>& names) const {
     GyroscopicSystem s = *this;
     s.damping.clear();

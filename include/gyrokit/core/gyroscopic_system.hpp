@@ -112,6 +112,9 @@ public:
     // The DOFs of a node, those in `unit` only if one is given; InputError if the
     // model has no such node.
     std::vector<int> node_dofs(int node, const std::string& unit = "") const;
+    // The node's lateral translations: its DOFs in m that are members of a whirl pair
+    // (x, y; not an axial z), or all its DOFs in m where the model has no whirl pairs.
+    std::vector<int> node_translations(int node) const;
     // Total damping at speed w (speed matters for speed-dependent components and bearing tables).
     SparseMatrix damping_matrix(double w = 0.0) const;
     // Names of the damping components: `damping`, then bearing tables with damping.
