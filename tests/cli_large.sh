@@ -37,6 +37,10 @@ grep -q '^1[0-9][0-9]\.' "$dir/out" || { echo "FAIL: sparse critical speeds"; ca
 # Bearing tables cover 0..4000 rad/s: a wider range is reported, not refused.
 run campbell "$data/fe_rotor.toml" --solver sparse --speeds 0:5000:3 --format csv
 grep -q "held constant" "$dir/err" || { echo "FAIL: extrapolation not reported"; fail=1; }
+# ... and at one speed (eig, modes, export) as well.
+run eig "$data/fe_rotor.toml" --solver sparse --modes 2 --speed 5000
+grep -q "the speed 5000 rad/s outside it uses its end row (held constant)" "$dir/err" ||
+    { echo "FAIL: extrapolation at one speed not reported"; cat "$dir/err"; fail=1; }
 
 # The published example (Friswell et al., Example 5.9.1): the Campbell diagram of the
 # scene at 4000 rev/min gives the six published frequencies (rad/s, 8 decimals) within

@@ -37,10 +37,11 @@ CampbellOptions campbell_options(const Context& c, const SolverChoice& plan) {
     return co;
 }
 
-void note_extrapolation(const Context& c) {
-    if (c.speeds.empty()) return;
-    const auto& b = c.scene.system.bearings;
-    for (const auto& n : extrapolation_notes(b, c.speeds.front(), c.speeds.back())) std::cerr << "note: " << n << "\n";
+// Notes on speed-dependent bearings used outside their tables: over the sweep, or at one speed.
+void note_extrapolation(const Context& c, std::optional<double> at = std::nullopt) {
+    if (!at && c.speeds.empty()) return;
+    const double from = at ? *at : c.speeds.front(), to = at ? *at : c.speeds.back();
+    for (const auto& n : extrapolation_notes(c.scene.system.bearings, from, to)) std::cerr << "note: " << n << "\n";
 }
 
 // The items of a comma-separated list.
@@ -165,6 +166,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     cmds.push_back({eig, [o](std::ostream& out) {
         const Context c = open_scene(o->common, false);
         const double w = parse_speed(o->speed, "--speed", c.unit);
+        note_extrapolation(c, w);
         const SolverChoice plan = plan_solver(c, wanted_modes(c, o->modes));
         const QuadraticSpectrum s = plan.make()(w);
         for (const auto& n : s.notes) std::cerr << "note: " << n << "\n";
@@ -206,6 +208,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         if (o->per != "node" && o->per != "dof")
             throw InputError("--per '" + o->per + "': allowed: node, dof");
         const double w = o->speed.empty() ? 0.0 : parse_speed(o->speed, "--speed", c.unit);
+        note_extrapolation(c, w);
         SolverOptions so = c.solver;
         so.modes = wanted_modes(c, o->modes);
         std::vector<std::string> notes;
@@ -395,6 +398,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     cmds.push_back({exp, [o](std::ostream&) {
         const Context c = open_scene(o->common, false);
         const double w = parse_speed(o->speed, "--speed", c.unit);
+        note_extrapolation(c, w);
         const ExportReport r = export_matrices(c.scene.system, w, o->dir);
         for (const auto& n : r.notes) std::cerr << "note: " << n << "\n";
         std::cerr << "wrote the matrices at " << c.unit.factor * w << " " << c.unit.name << " into " << o->dir

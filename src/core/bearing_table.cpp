@@ -90,12 +90,15 @@ std::vector<std::string> extrapolation_notes(const std::vector<BearingTable>& ta
     for (const auto& t : tables)
         if (t.model && !t.covers(from))
             notes.push_back(fmt::format("bearing {}: below {:g} rad/s its coefficients at {:g} rad/s hold (the film "
-                                        "would be thinner than max_eccentricity allows; from {:g} rad/s requested)",
-                                        t.name, t.speeds.front(), t.speeds.front(), from));
+                                        "would be thinner than max_eccentricity allows; {} {:g} rad/s requested)",
+                                        t.name, t.speeds.front(), t.speeds.front(), from == to ? "at" : "from", from));
         else if (!t.model && (!t.covers(from) || !t.covers(to)))
-            notes.push_back(fmt::format("bearing table {} covers {:g} to {:g} rad/s; the speeds {:g} to {:g} rad/s "
-                                        "outside it use its end rows (held constant)",
-                                        t.name, t.speeds.front(), t.speeds.back(), from, to));
+            notes.push_back(from == to ? fmt::format("bearing table {} covers {:g} to {:g} rad/s; the speed {:g} rad/s "
+                                                     "outside it uses its end row (held constant)",
+                                                     t.name, t.speeds.front(), t.speeds.back(), from)
+                                       : fmt::format("bearing table {} covers {:g} to {:g} rad/s; the speeds {:g} to "
+                                                     "{:g} rad/s outside it use its end rows (held constant)",
+                                                     t.name, t.speeds.front(), t.speeds.back(), from, to));
     return notes;
 }
 
