@@ -3,6 +3,7 @@
 // coupling between two disks against the closed form.
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
+#include <gyrokit/io/reports.hpp>
 #include <gyrokit/io/scene.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 
@@ -184,4 +185,21 @@ TEST_CASE("fe rotor motion: a node's translations are x and y, not the axial z",
     const Scene axial = load_scene(data("drive_train.toml"), {}, "axial");
     REQUIRE(axial.system.node_translations(15).size() == 1);
     CHECK(axial.dof_names()[axial.system.node_translations(15)[0]] == "z15");
+}
+
+// The model summary names circulatory forces from cross-coupled bearings (oil films), not
+// only a speed-proportional N.
+TEST_CASE("model summary: cross-coupled bearing stiffness is circulatory", "[fe_rotor][reports]") {
+    const auto circulatory = [](const Scene& sc) {
+        const Table t = model_summary(sc);
+        for (std::size_t i = 0; i < t.rows(); ++i)
+            if (std::get<std::string>(t.row(i)[0]) == "circulatory") return std::get<std::string>(t.row(i)[1]);
+        return std::string("missing");
+    };
+    CHECK(circulatory(load_scene(data("compressor.toml"))) == "yes (cross-coupled stiffness)");
+    CHECK(circulatory(load_scene(data("drive_train.toml"))) == "no");
+    const std::string text = "[model]\ntype = \"fe_rotor\"\nmaterial = \"steel\"\n[[model.shaft]]\nlength = 1\n"
+                             "outer_diameter = 0.05\n[[model.bearing]]\nz = 0\nk = 1e7\nkxy = 2e6\n[[model.bearing]]\n"
+                             "z = 1\nk = 1e7\n";
+    CHECK(circulatory(parse_scene(text, "cc.toml")) == "yes (cross-coupled stiffness)");
 }

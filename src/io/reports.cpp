@@ -617,7 +617,21 @@ Table model_summary(const Scene& sc) {
     }
     add("nonzeros_M_K", ll(static_cast<int>(s.M.nonZeros() + s.K.nonZeros())));
     add("gyroscopic", std::string(s.G.nonZeros() > 0 && s.G.norm() > 0 ? "yes" : "no"));
-    add("circulatory", std::string(s.has_circulatory() ? "yes" : "no"));
+    // Circulatory forces: a speed-proportional N, or a skew part of the stiffness (cross-coupled
+    // bearings, constant or speed-dependent: the usual cause of oil whip).
+    {
+        const bool skew_K = SparseMatrix(s.K - SparseMatrix(s.K.transpose())).norm() > 0.0;
+        const bool skew_tables = std::any_of(s.bearings.begin(), s.bearings.end(), [](const BearingTable& b) {
+            return std::any_of(b.speeds.begin(), b.speeds.end(), [&](double w) {
+                const Eigen::Matrix2d k = b.at(w).K;
+                return k(0, 1) != k(1, 0);
+            });
+        });
+        std::vector<std::string> why;
+        if (s.has_circulatory()) why.push_back("N per unit speed");
+        if (skew_K || skew_tables) why.push_back("cross-coupled stiffness");
+        add("circulatory", why.empty() ? std::string("no") : fmt::format("yes ({})", fmt::join(why, ", ")));
+    }
     add("speed_squared_stiffness", std::string(s.has_speed_squared_stiffness() ? "yes" : "no"));
     std::string damping;
     for (const auto& n : s.damping_names()) damping += (damping.empty() ? "" : ", ") + n;
