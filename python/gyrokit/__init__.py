@@ -417,7 +417,7 @@ def fe_rotor(*, speeds=None, analysis=None, directory=".", **keys) -> Scene:
     {type: "coupling", length, k_lateral, k_bending, ..., c_torsion}],
     disk=[{z, mass, Id, Ip or outer_diameter, width, ...; unbalance}], bearing=[{z, k, c, kxx, ..., kzz}
     or {z, table} or {z, speeds: [...], k: [...], ...} or {z, type: "fluid_film", diameter, length,
-    clearance, viscosity, load, solution}], pedestal=[{z, mass, k, c}], support=[{z, type, axial,
+    clearance, viscosity, load (N or "auto"), solution}], pedestal=[{z, mass, k, c}], support=[{z, type, axial,
     torsion}]; bearing tables are found relative to `directory`."""
     return _model_scene("fe_rotor", keys, speeds, analysis, directory)
 

@@ -331,6 +331,8 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         std::optional<JournalBearing> journal;   // a fluid-film bearing
         std::optional<BearingTable> written;     // a table written in the scene
         std::string where;
+        bool auto_load = false;                  // a fluid film's load from the rotor's weight
+        std::string origin;                      // "file: [table]" of a fluid film
     };
     std::vector<Tabulated> tables;
     for_each_entry(k, "bearing", false, [&](const TomlKeys& e) {
@@ -343,7 +345,13 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
             j.length = len(e, "length", std::nullopt, true);
             j.clearance = len(e, "clearance", std::nullopt, true);
             j.viscosity = e.number("viscosity", std::nullopt, 0.0, true, "Pa s");
-            j.load = e.number("load", std::nullopt, 0.0, true, "N");
+            // load = "auto": the bearing's share of the rotor's weight (set once the rotor is built).
+            const toml::node* load = e.table().get("load");
+            const bool auto_load = load && load->is_string();
+            if (auto_load && *load->value<std::string>() != "auto")
+                throw InputError(e.where("load") + " = '" + *load->value<std::string>() +
+                                 "'; allowed: a number > 0 (N) or \"auto\" (from the rotor's weight)");
+            j.load = auto_load ? 1.0 : e.number("load", std::nullopt, 0.0, true, "N");
             if (e.has("load_angle")) {
                 const double deg = e.any_number("load_angle", "deg");
                 if (!(std::fabs(deg) <= 360.0))
@@ -366,8 +374,8 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
             }
             std::string origin = e.where("");   // "file: [table] "
             origin.pop_back();
-            j.validate(origin, len.scale, len.name);   // lengths in the scene's unit
-            tables.push_back({node_at(e, z, len), "", j, std::nullopt, e.where("type")});
+            if (!auto_load) j.validate(origin, len.scale, len.name);   // lengths in the scene's unit
+            tables.push_back({node_at(e, z, len), "", j, std::nullopt, e.where("type"), auto_load, origin});
             return;
         }
         e.only({"type", "z", "k", "c", "kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy", "kzz", "czz",
@@ -462,6 +470,30 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
     GyroscopicSystem sys = m.to_system();
     // Speed-dependent bearings act on x and y alone: an axial or torsional model has no use for them.
     if (!r.has_lateral()) tables.clear();
+    // Fluid films with load = "auto": the weight's reactions with every speed-dependent
+    // bearing as a rigid support (constant bearings as their springs); films at one node
+    // share their node's reaction equally.
+    if (std::any_of(tables.begin(), tables.end(), [](const Tabulated& t) { return t.auto_load; })) {
+        std::vector<int> held, auto_nodes;
+        for (const Tabulated& t : tables) {
+            held.push_back(t.node);
+            if (t.auto_load) auto_nodes.push_back(t.node);
+        }
+        const std::vector<double> reactions = fe_gravity_reactions(r, held);
+        for (std::size_t i = 0; i < tables.size(); ++i) {
+            Tabulated& t = tables[i];
+            if (!t.auto_load) continue;
+            const double share =
+                reactions[i] / static_cast<double>(std::count(auto_nodes.begin(), auto_nodes.end(), t.node));
+            if (!(share > 0.0))
+                throw InputError(fmt::format("{} load = \"auto\": the rotor's weight lifts the journal off this "
+                                             "bearing (reaction {:.6g} N at node {}); allowed: a bearing that carries "
+                                             "weight, or load = a number (N) with load_angle",
+                                             t.origin, share, t.node));
+            t.journal->load = share;
+            t.journal->validate(t.origin, len.scale, len.name);
+        }
+    }
     for (const Tabulated& t : tables) {
         const bool on_pedestal =
             std::any_of(r.pedestals.begin(), r.pedestals.end(), [&](const FePedestal& p) { return p.node == t.node; });
