@@ -203,3 +203,48 @@ TEST_CASE("model summary: cross-coupled bearing stiffness is circulatory", "[fe_
                              "z = 1\nk = 1e7\n";
     CHECK(circulatory(parse_scene(text, "cc.toml")) == "yes (cross-coupled stiffness)");
 }
+
+// The coupling's lateral damper turns with the shafts: a disk m on a coupling (k, c_i) to
+// a clamped stub, with a fixed damper c_e at the disk, is the Jeffcott rotor with internal
+// damping, m z'' + (c_e + c_i) z' + (k - i w c_i) z = 0 (z = x + i y): stable below
+// w_th = w_n (1 + c_e / c_i), w_n = sqrt(k / m), where the forward mode sits exactly at
+// lambda = i w_n, unstable above.
+TEST_CASE("fe rotor coupling dampers: internal damping, the Jeffcott threshold w_n (1 + c_e / c_i)",
+          "[fe_rotor][coupling][validation]") {
+    const double m = 8.0, k = 2e5, ci = 60.0, ce = 25.0;
+    FeRotor r;
+    FeShaftElement e;
+    e.length = 0.05;
+    FeCoupling c;
+    c.k_lateral = k;
+    c.c_lateral = ci;
+    c.k_bending = 1e4;   // no bending damper: the tilt pair stays neutral
+    e.coupling = c;
+    r.elements.push_back(e);
+    FeSupport clamp;
+    clamp.theta_x = clamp.theta_y = true;
+    r.supports.push_back(clamp);
+    r.disks.push_back({1, m, 0.02, 0.0, 0.0, 0.0});
+    r.bearings.push_back({1, 0, 0, 0, 0, ce, 0, 0, ce});
+    const GyroscopicSystem sys = make_system(r);
+    REQUIRE(sys.has_circulatory());
+    const double wn = std::sqrt(k / m), wth = wn * (1 + ce / ci);
+    const auto largest_real = [&](double w) {
+        double x = -1e300;
+        for (const Mode& mode : solve_at_speed(sys, w).modes)
+            if (std::abs(mode.lambda.imag() - wn) < 0.2 * wn) x = std::max(x, mode.lambda.real());
+        return x;
+    };
+    CHECK(largest_real(0.99 * wth) < 0.0);
+    CHECK(largest_real(1.01 * wth) > 0.0);
+    // Internal damping destabilises the forward whirl (a sign error would pick the backward one).
+    for (const Mode& mode : solve_at_speed(sys, 1.01 * wth).modes)
+        if (mode.lambda.real() > 0.0) CHECK(mode.whirl == Whirl::Forward);
+    double nearest = 1e300;
+    for (const Mode& mode : solve_at_speed(sys, wth).modes)
+        nearest = std::min(nearest, std::abs(mode.lambda - std::complex<double>(0.0, wn)));
+    CHECK(nearest <= 1e-10 * wn);
+    // The sparse pencil carries the same term: K + w N.
+    const SparsePencil p = r.assemble().at_speed(wth);
+    CHECK((Eigen::MatrixXd(p.K) - Eigen::MatrixXd(sys.K) - wth * Eigen::MatrixXd(sys.N)).norm() == 0.0);
+}

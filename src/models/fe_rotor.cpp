@@ -171,6 +171,7 @@ FeElementMatrices coupling_matrices(const FeCoupling& c) {
     m.K.setZero();
     m.G.setZero();
     m.D.setZero();
+    m.N.setZero();
     const double k[4] = {c.k_lateral, c.k_lateral, c.k_bending, c.k_bending};
     const double d[4] = {c.c_lateral, c.c_lateral, c.c_bending, c.c_bending};
     const double mass[4] = {c.mass / 2, c.mass / 2, c.diametral_inertia / 2, c.diametral_inertia / 2};
@@ -186,6 +187,17 @@ FeElementMatrices coupling_matrices(const FeCoupling& c) {
     for (const int b : {0, 4}) {
         m.G(b + 2, b + 3) = c.polar_inertia / 2;
         m.G(b + 3, b + 2) = -c.polar_inertia / 2;
+    }
+    // Rotating dampers in fixed axes (Jeffcott with internal damping c_i: the force
+    // -c_i (q' - w J q) with J the quarter turn), on the relative pairs (x, y), (tx, ty):
+    // N(u, v) = +c, N(v, u) = -c of each relative pair.
+    for (const int p : {0, 2}) {
+        const double cp = d[p];
+        for (const auto& [a, b, sign] : {std::tuple{0, 0, 1.0}, std::tuple{0, 4, -1.0}, std::tuple{4, 0, -1.0},
+                                         std::tuple{4, 4, 1.0}}) {
+            m.N(a + p, b + p + 1) = sign * cp;
+            m.N(a + p + 1, b + p) = -sign * cp;
+        }
     }
     const Eigen::Matrix2d spring = (Eigen::Matrix2d() << 1, -1, -1, 1).finished();
     m.K_axial = c.k_axial * spring;
@@ -222,6 +234,7 @@ FeElementMatrices fe_shaft_element_matrices(const FeShaftElement& e, bool shear_
     m.K.setZero();
     m.G.setZero();
     m.D.setZero();   // a beam has no damping of its own
+    m.N.setZero();
     m.D_axial.setZero();
     m.D_torsion.setZero();
     const Mat4 Mp = p.Mt + p.Mr;
@@ -387,7 +400,7 @@ FeRotorMatrices FeRotor::assemble() const {
     for (int e = 0; e < nodes - 1; ++e) r.node_z[e + 1] = r.node_z[e] + elements[e].length;
 
     using T = Eigen::Triplet<double>;
-    std::vector<T> tm, tk, tg, td, tc;
+    std::vector<T> tm, tk, tg, td, tc, tn;
     const std::size_t lateral = has_lateral() ? 64 : 0, bars = 4 * (has_axial() + has_torsion());
     tm.reserve((lateral + bars) * elements.size() + per * disks.size());
     tk.reserve((lateral + bars) * elements.size() + 5 * bearings.size());
@@ -410,6 +423,7 @@ FeRotorMatrices FeRotor::assemble() const {
                     add(tk, i, j, em.K(a, b));
                     add(tg, i, j, em.G(a, b));
                     add(tc, i, j, em.D(a, b));
+                    add(tn, i, j, em.N(a, b));
                 }
         for (int a = 0; a < 2; ++a)
             for (int b = 0; b < 2; ++b) {
@@ -486,6 +500,7 @@ FeRotorMatrices FeRotor::assemble() const {
     build(r.G, tg);
     build(r.D, td);
     build(r.D_couplings, tc);
+    build(r.N, tn);
     return r;
 }
 
@@ -493,7 +508,7 @@ SparsePencil FeRotorMatrices::at_speed(double w) const {
     SparsePencil p;
     p.M = M;
     p.C = D + D_couplings + w * G;
-    p.K = K;
+    p.K = N.nonZeros() > 0 ? SparseMatrix(K + w * N) : K;
     return p;
 }
 
@@ -505,6 +520,7 @@ GyroscopicSystem FeRotorMatrices::to_system() const {
     s.G = G;
     if (D.nonZeros() > 0) s.damping.push_back({"bearings", D});
     if (D_couplings.nonZeros() > 0) s.damping.push_back({"couplings", D_couplings});
+    if (N.nonZeros() > 0) s.N = N;
     if (unbalance.size() > 0 && unbalance.cwiseAbs().maxCoeff() > 0) s.unbalance = unbalance;
     s.whirl_pairs = whirl_pairs;
     s.node_of_dof = node_of_dof;

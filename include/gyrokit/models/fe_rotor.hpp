@@ -36,7 +36,10 @@ namespace gyrokit {
 
 // Flexible coupling between two shafts: springs on the relative motion of its two
 // nodes (no coupling between the directions), its mass and inertias half at each node.
-// Its dampers act on the same relative motions (the damping component "couplings").
+// Its dampers act on the same relative motions (the damping component "couplings");
+// the lateral and bending ones turn with the shafts (an elastomer element): in fixed
+// axes they add the circulatory term w c [0 1; -1 0] on each relative whirl pair, the
+// internal damping that destabilises forward whirl above a threshold speed.
 struct FeCoupling {
     double k_lateral = 0.0;          // N/m, >= 0: x, y
     double k_bending = 0.0;          // N m/rad, >= 0: theta_x, theta_y (angular misalignment)
@@ -120,6 +123,7 @@ struct FeRotorMatrices {
     Eigen::SparseMatrix<double> G;   // gyroscopic per unit speed, skew
     Eigen::SparseMatrix<double> D;   // bearing and pedestal damping; symmetric when cxy = cyx
     Eigen::SparseMatrix<double> D_couplings;   // coupling damping, symmetric
+    Eigen::SparseMatrix<double> N;   // circulatory per unit speed (rotating coupling dampers), skew
     Eigen::VectorXcd unbalance;      // force amplitude per w^2 (forward-turning disk unbalance)
     std::vector<std::string> dof_names;            // "x3", "y3", "tx3", "ty3" (and "z3", "tz3")
     std::vector<std::pair<int, int>> whirl_pairs;  // (x, y) and (theta_x, theta_y) of each node, when both are free
@@ -127,7 +131,7 @@ struct FeRotorMatrices {
     std::vector<double> node_z;                    // axial position of each node (m), z_0 = 0
 
     int size() const { return static_cast<int>(M.rows()); }
-    // Sparse pencil at spin speed w: M, C = D + w G, K.
+    // Sparse pencil at spin speed w: M, C = D + w G, K + w N.
     SparsePencil at_speed(double w) const;
     // The model as a gyroscopic system (damping components "bearings" and "couplings").
     GyroscopicSystem to_system() const;
@@ -201,9 +205,10 @@ double fe_element_mass(const FeShaftElement& e);
 double cowper_shear_coefficient(double poisson_ratio, double diameter_ratio);
 
 // Element matrices: lateral in the element DOF order [x1 y1 tx1 ty1 x2 y2 tx2 ty2];
-// the axial (z1, z2) and torsional (tz1, tz2) bars. D: a coupling's dampers (0 for a beam).
+// the axial (z1, z2) and torsional (tz1, tz2) bars. D: a coupling's dampers, N their
+// circulatory part per unit speed (both 0 for a beam).
 struct FeElementMatrices {
-    Eigen::Matrix<double, 8, 8> M, K, G, D;
+    Eigen::Matrix<double, 8, 8> M, K, G, D, N;
     Eigen::Matrix2d M_axial, K_axial, D_axial, M_torsion, K_torsion, D_torsion;
 };
 FeElementMatrices fe_shaft_element_matrices(const FeShaftElement& e, bool shear_deformation = true,
