@@ -145,7 +145,7 @@ int main(int argc, char** argv) {
 
         // The order between successive grids, from the largest of the four errors. Measured against
         // the reference, a pure h^2 error drops 4 (1 - 4^-(k+1)) / (1 - 4^-k) times for a grid k
-        // halvings coarser than the reference: the last two rows read 2.32 and 2.07, not 2.
+        // halvings coarser than the reference: the last two rows read 2.07 and 2.32, not 2.
         Table summary({"solution", "seconds_min", "seconds_max", "e_error", "attitude_error_deg", "K_error", "C_error",
                        "order"});
         summary.key = "summary";

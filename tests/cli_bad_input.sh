@@ -131,8 +131,8 @@ from = 0
 to = 1000
 count = 11
 END
-expect "node 0 has no free translation" response "$dir/pinned.toml" --nodes 0
-expect "--at 0: node 0 has no free translation" response "$dir/pinned.toml" --at 0
+expect "node 0 has no free lateral translation" response "$dir/pinned.toml" --nodes 0
+expect "--at 0: node 0 has no free lateral translation" response "$dir/pinned.toml" --at 0
 expect "--at 1.5: axial position 1.5 m is off the shaft; allowed: [0, 1] m" response "$dir/pinned.toml" --at 1.5
 "$cli" response "$dir/pinned.toml" --at 0.5 --format csv | cut -d, -f2 | sort -u | tr '\n' ' ' | grep -qx "dof x2 y2 " ||
     { echo "FAIL: --at 0.5 gives x2, y2"; fail=1; }

@@ -77,8 +77,11 @@ TEST_CASE("fe rotor motion: an axial or torsional model is that block of the 6-D
                 if (all.dof_names()[i][0] != 'z' && all.dof_names()[i].rfind("tz", 0) != 0) v.push_back(i);
             return v;
         }();
+        CHECK(Eigen::MatrixXd(lateral.system.M) == Eigen::MatrixXd(all.system.M)(idx, idx));
         CHECK(Eigen::MatrixXd(lateral.system.K) == Eigen::MatrixXd(all.system.K)(idx, idx));
         CHECK(Eigen::MatrixXd(lateral.system.G) == Eigen::MatrixXd(all.system.G)(idx, idx));
+        CHECK(Eigen::MatrixXd(lateral.system.damping_matrix()) ==
+              Eigen::MatrixXd(all.system.damping_matrix())(idx, idx));
     }
 }
 
@@ -97,8 +100,11 @@ TEST_CASE("fe rotor motion: scene keys and bad input", "[fe_rotor][motion]") {
         }
         // Axial: the thrust bearing (kzz) acts, its lateral k does not exist here.
         const Scene ax = parse_scene(head + "motion = \"axial\"\n" + shaft, "a.toml");
+        std::string no_thrust = shaft;
+        no_thrust.replace(no_thrust.find("kzz = 1e8\n"), 10, "");
+        const Scene ax0 = parse_scene(head + "motion = \"axial\"\n" + no_thrust, "a0.toml");
         CHECK(ax.dofs() == 4);
-        CHECK(ax.system.K.coeff(0, 0) > 1e8);
+        CHECK(ax.system.K.coeff(0, 0) - ax0.system.K.coeff(0, 0) == Approx(1e8).epsilon(1e-12));
         CHECK(ax.system.dof_units == std::vector<std::string>(4, "m"));
     }
     SECTION("bad input") {
@@ -117,7 +123,7 @@ TEST_CASE("fe rotor motion: scene keys and bad input", "[fe_rotor][motion]") {
         // The override applies to FE rotors only.
         REQUIRE_THROWS_AS(load_scene(data("centrifuge.toml"), {}, "torsional"), InputError);
         CHECK_THROWS_WITH(load_scene(data("centrifuge.toml"), {}, "torsional"),
-                          Catch::Contains("applies to a [model] of type fe_rotor"));
+                          Catch::Contains("does not apply to a [model] of type gyrostat; allowed: a [model] of type fe_rotor"));
     }
 }
 
@@ -136,7 +142,9 @@ TEST_CASE("fe rotor coupling dampers: two disks on a damped coupling against the
     c.k_lateral = kl;
     c.c_lateral = cl;
     c.k_bending = 1e3;
+    c.c_bending = 3.0;
     c.k_axial = 1e6;
+    c.c_axial = 50.0;
     c.k_torsion = kt;
     c.c_torsion = ct;
     e.coupling = c;
@@ -168,6 +176,12 @@ TEST_CASE("fe rotor coupling dampers: two disks on a damped coupling against the
     const auto [x1, x2] = relative_roots(m1, m2, cl, kl);
     present(x1);
     present(x2);
+    const auto [a1, a2] = relative_roots(m1, m2, 50.0, 1e6);   // axial
+    present(a1);
+    present(a2);
+    const auto [b1, b2] = relative_roots(0.1, 0.1, 3.0, 1e3);   // tilt (Id of both disks)
+    present(b1);
+    present(b2);
     // Bad input: a negative damper.
     r.elements[0].coupling->c_torsion = -1.0;
     CHECK_THROWS_WITH(r.assemble(), Catch::Contains("c_torsion = -1") && Catch::Contains("[0, inf)"));

@@ -60,6 +60,19 @@ void require_dense(const Context& c, const std::string& command) {
                                      c.scene.path, command, kDenseLimit, c.scene.dofs()));
 }
 
+Scene load_motion_scene(const Common& o) {
+    try {
+        return load_scene(o.scene, {}, o.motion);
+    } catch (const InputError& e) {
+        // The library names the motion; on the command line it is the option.
+        const std::string what = e.what();
+        if (!o.motion.empty() && what.rfind("motion '", 0) == 0) throw InputError("--" + what);
+        if (!o.motion.empty() && what.find(": motion '") != std::string::npos)
+            throw InputError("--motion " + o.motion + ": " + what);
+        throw;
+    }
+}
+
 Context open_scene(const Common& o, bool need_speeds) {
     Context c;
     c.format = parse_format(o);
@@ -77,7 +90,7 @@ Context open_scene(const Common& o, bool need_speeds) {
         std::cerr << "note: --jobs " << c.jobs << " capped to the " << cores << " cores of this machine\n";
         c.jobs = cores;
     }
-    c.scene = load_scene(o.scene, {}, o.motion);
+    c.scene = load_motion_scene(o);
     c.solver = c.scene.solver_options();
     c.solver.eig = c.eig;
     c.solver.lanczos_vectors = o.lanczos;

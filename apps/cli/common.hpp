@@ -36,6 +36,8 @@ struct Common {
 void add_common(CLI::App* c, Common& o, bool with_speeds);
 // --motion: an FE rotor's DOF set (lateral, all, axial, torsional) in place of the scene's.
 void add_motion_option(CLI::App* c, Common& o);
+// The scene with --motion applied; errors about the motion name the option.
+Scene load_motion_scene(const Common& o);
 // --solver, --target, --target-order, --lanczos, --jobs.
 void add_solver_options(CLI::App* c, Common& o);
 

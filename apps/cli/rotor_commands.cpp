@@ -83,8 +83,8 @@ std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys)
         const std::vector<int> dofs = sys.node_translations(node);
         // Nothing would mean every DOF: a node held by a support is an error, not "all".
         if (dofs.empty())
-            throw InputError(fmt::format("node {} has no free translation (a support holds it); allowed: a node "
-                                         "with free x or y",
+            throw InputError(fmt::format("node {} has no free lateral translation (a support holds it, or the "
+                                         "model has no lateral DOFs); allowed: a node with free x or y",
                                          node));
         for (const int k : dofs)
             if (std::find(out.begin(), out.end(), k) == out.end()) out.push_back(k);
@@ -184,7 +184,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     cmds.push_back({model, [o](std::ostream& out) {
         const TableFormat format = parse_format(o->common);
         check_plot_path(o->common.plot);
-        const Scene sc = load_scene(o->common.scene, {}, o->common.motion);
+        const Scene sc = load_motion_scene(o->common);
         if (!o->common.plot.empty() && !sc.fe_rotor)
             throw InputError("--plot: draws finite-element rotors; this model is " + sc.model_type);
         write_table(out, model_summary(sc), format);
@@ -351,8 +351,8 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     resp->add_option("--plot", o->common.plot, "draw amplitude (one panel per unit) and phase into FILE.svg or FILE.png");
     resp->add_flag("--polar", o->polar, "with --plot: a polar plot (Im Z against Re Z) instead of amplitude and phase");
     resp->add_option("--dofs", o->dofs, "DOFs reported, by name, e.g. x3,y3 (default: all)");
-    resp->add_option("--nodes", o->nodes, "DOFs reported: the translations of these nodes, e.g. 12,20");
-    resp->add_option("--at", o->at, "DOFs reported: the translations of the nodes nearest these axial positions (m)");
+    resp->add_option("--nodes", o->nodes, "DOFs reported: the lateral translations x, y of these nodes, e.g. 12,20");
+    resp->add_option("--at", o->at, "DOFs reported: the lateral translations x, y of the nodes nearest these axial positions (m)");
     resp->add_flag("--extrema", o->extrema, "print the peaks and antiresonances instead of the curve");
     resp->add_flag("--rows", o->rows, "table format: every row of the curve instead of the summary");
     resp->add_option("--modes", o->modes, "modes checked for stability over the range (0 = all; default: the scene's)")

@@ -150,10 +150,10 @@ GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRoto
         r.motion = by_motion;
     }
     // A model whose motion is given uses of each item only what acts on its DOFs, so one
-    // rotor description serves every motion; without it (lateral by default) axial and
-    // torsional keys are refused: they would model nothing.
-    const bool lateral_only = r.motion == FeMotion::lateral && !k.has("motion") && !k.has("dofs_per_node");
-    const std::string needs_axial_dofs = "allowed: with dofs_per_node = 6 or a motion in [model] (without either "
+    // rotor description serves every motion; without it (lateral: by default or by
+    // dofs_per_node = 4) axial and torsional keys are refused: they would model nothing.
+    const bool lateral_only = r.motion == FeMotion::lateral && !k.has("motion");
+    const std::string needs_axial_dofs = "allowed: with dofs_per_node = 6 or a motion in [model] (without a motion "
                                          "the model is lateral, 4 DOFs per node)";
     LengthUnit len;
     if (k.choice("length_unit", "m", {"m", "mm"}) == "mm") len = {1e-3, "mm"};

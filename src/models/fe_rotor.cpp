@@ -389,7 +389,10 @@ FeRotorMatrices FeRotor::assemble() const {
                 ++n;
             }
         }
-    if (n == 0) throw InputError("fe rotor: supports: every DOF is constrained; allowed: at least one free DOF");
+    if (n == 0)
+        throw InputError(fmt::format("fe rotor: supports: every DOF of the {} model is constrained; allowed: at least "
+                                     "one free DOF",
+                                     to_string(motion)));
     for (int k = 0; k < nodes; ++k)
         for (int p = 0; p < 2; ++p) {
             const int u = dof(k, 2 * p), v = dof(k, 2 * p + 1);
