@@ -376,16 +376,18 @@ PYBIND11_MODULE(_core, m) {
             ch = stability_changes(t.solver.make, t.diagram, threads(jobs));
         }
         const auto n = static_cast<py::ssize_t>(ch.size());
-        py::array_t<double> speed(n);
+        py::array_t<double> speed(n), bound(n);
         py::array_t<int> branch(n);
         py::array_t<bool> unstable(n);
         for (py::ssize_t k = 0; k < n; ++k) {
             speed.mutable_at(k) = ch[static_cast<size_t>(k)].speed;
+            bound.mutable_at(k) = ch[static_cast<size_t>(k)].bound;
             branch.mutable_at(k) = ch[static_cast<size_t>(k)].branch;
             unstable.mutable_at(k) = ch[static_cast<size_t>(k)].becomes_unstable;
         }
         py::dict d;
         d["speeds"] = speed;
+        d["bounds"] = bound;
         d["branch"] = branch;
         d["becomes_unstable"] = unstable;
         return d;

@@ -163,15 +163,17 @@ class CriticalSpeeds(_Result):
 
 
 class StabilityChanges(_Result):
-    """Speeds where a branch becomes unstable (or stable again), refined by root finding."""
+    """Speeds where a branch becomes unstable (or stable again), refined by root finding;
+    bounds: |speed - exact threshold| <= bound (rad/s)."""
 
     def __init__(self, d):
         self.speeds = d["speeds"]
+        self.bounds = d["bounds"]
         self.branch = d["branch"]
         self.becomes_unstable = d["becomes_unstable"]
 
     def to_pandas(self):
-        return self._frame({"speed": self.speeds, "branch": self.branch,
+        return self._frame({"speed": self.speeds, "bound": self.bounds, "branch": self.branch,
                             "becomes_unstable": self.becomes_unstable})
 
 

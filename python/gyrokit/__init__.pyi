@@ -106,6 +106,7 @@ class CriticalSpeeds:
 
 class StabilityChanges:
     speeds: npt.NDArray[np.float64]
+    bounds: npt.NDArray[np.float64]
     branch: npt.NDArray[np.int32]
     becomes_unstable: npt.NDArray[np.bool_]
     def to_pandas(self) -> Any: ...

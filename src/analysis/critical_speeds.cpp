@@ -20,9 +20,16 @@ struct Interval {
     double g0, g1;
 };
 
+// A refined root and its bound (rad/s; 0 where none is computed).
+struct Root {
+    double speed = 0.0, bound = 0.0;
+};
+
 // Every interval of every oscillating branch that `holds` accepts, refined on
-// `workers` (each search is independent) by `refine(solve, mode_at,
-// interval)`, then emitted in branch order.
+// `workers` (each search is independent) by `refine(mode_at, interval)`, then
+// emitted in branch order. A solver of a window of modes refines each interval
+// on a window centred on the branch's own frequency (SolverFactory::centred), so
+// that the sweep's window cannot move the root.
 template <class Holds, class Refine, class Emit>
 void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const Holds& holds, const Refine& refine,
                    Workers workers, const Emit& emit) {
@@ -40,14 +47,18 @@ void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const H
         run_on_workers(make, found.size(), workers, [&](SpectrumSolver& solve, size_t k) {
             const Branch& b = *found[k].branch;
             const size_t i = found[k].i;
-            const auto mode_at = [&](double w) { return continue_branch(b, i, w, solve(w)); };
+            SpectrumSolver own = make.centred ? make.centred(b.points[i].mode.lambda.imag()) : SpectrumSolver{};
+            SpectrumSolver& use = make.centred ? own : solve;
+            const auto mode_at = [&](double w) { return continue_branch(b, i, w, use(w)); };
+            const Root r = refine(mode_at, found[k]);
             QuadraticSpectrum s;
-            s.speed = refine(mode_at, found[k]);
+            s.speed = r.speed;
+            s.speed_bound = r.bound;
             s.modes.push_back(mode_at(s.speed));
             return s;
         });
     for (size_t k = 0; k < found.size(); ++k)
-        emit(*found[k].branch, roots[k].speed, roots[k].modes.at(0), found[k].g0, found[k].g1);
+        emit(*found[k].branch, roots[k].speed, roots[k].speed_bound, roots[k].modes.at(0));
 }
 
 // Last speed in [a, b] on the side of a where `unstable(w)` equals its value at
@@ -62,6 +73,28 @@ double bisect_edge(const Pred& unstable, double a, double b) {
         (unstable(m) == at_a ? a : b) = m;
     }
     return 0.5 * (a + b);
+}
+
+// Bound on a stability threshold w in [a, b] (rad/s): the computed Re lambda is
+// within e (the eigenvalue's error bound) of the exact one, so the exact
+// threshold lies where |Re lambda| <= e: to first order within
+// (|Re lambda(w)| + e) / |d Re lambda / dw| of w. The slope is a difference over
+// a step that resolves it above the noise e (up to the interval), and the bound is
+// never below the search's own resolution `resolution`.
+template <class ModeAt>
+double threshold_bound(const ModeAt& mode_at, double w, double a, double b, double resolution) {
+    const Mode m = mode_at(w);
+    const double e = m.error_bound, g = m.lambda.real();
+    if (!std::isfinite(e)) return std::numeric_limits<double>::infinity();
+    double slope = 0.0;
+    for (double h = 1e-6 * (b - a); h <= b - a; h *= 10.0) {
+        const double lo = std::max(a, w - h), hi = std::min(b, w + h);
+        const double dg = mode_at(hi).lambda.real() - mode_at(lo).lambda.real();
+        slope = dg / (hi - lo);
+        if (std::abs(dg) >= 100.0 * e || hi - lo >= b - a) break;
+    }
+    if (!(std::abs(slope) > 0.0)) return std::numeric_limits<double>::infinity();
+    return std::max((std::abs(g) + e) / std::abs(slope), resolution);
 }
 
 }  // namespace
@@ -88,9 +121,9 @@ std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const Ca
         };
         const auto refine = [&](const auto& mode_at, const Interval& iv) {
             const auto& p = iv.branch->points;
-            return find_root([&](double x) { return g(mode_at(x), x); }, p[iv.i].speed, p[iv.i + 1].speed);
+            return Root{find_root([&](double x) { return g(mode_at(x), x); }, p[iv.i].speed, p[iv.i + 1].speed), 0.0};
         };
-        scan_branches(solver, cd, holds, refine, workers, [&](const Branch& b, double w, Mode m, double, double) {
+        scan_branches(solver, cd, holds, refine, workers, [&](const Branch& b, double w, double, Mode m) {
             out.push_back({w, k, b.id, std::move(m)});
         });
     }
@@ -116,16 +149,22 @@ std::vector<StabilityChange> stability_changes(const SolverFactory& solver, cons
         const auto& p = iv.branch->points;
         const Mode& m0 = p[iv.i].mode;
         const Mode& m1 = p[iv.i + 1].mode;
-        // Both ends decided (stable and unstable): the real part crosses zero, Brent finds it.
-        if (m0.stability() != Stability::Neutral && m1.stability() != Stability::Neutral)
-            return find_root([&](double x) { return mode_at(x).lambda.real(); }, p[iv.i].speed, p[iv.i + 1].speed);
-        return bisect_edge([&](double x) { return unstable(mode_at(x)); }, p[iv.i].speed, p[iv.i + 1].speed);
+        const double a = p[iv.i].speed, b = p[iv.i + 1].speed;
+        // Both ends decided (stable and unstable): the real part crosses zero, Brent
+        // finds it (relative tolerance 1e-13). Next to a neutral end, where Re lambda is
+        // rounding and may change sign anywhere, the edge of the unstable range is bisected.
+        if (m0.stability() != Stability::Neutral && m1.stability() != Stability::Neutral) {
+            const double w = find_root([&](double x) { return mode_at(x).lambda.real(); }, a, b);
+            return Root{w, threshold_bound(mode_at, w, a, b, 4e-13 * std::abs(w))};
+        }
+        const double w = bisect_edge([&](double x) { return unstable(mode_at(x)); }, a, b);
+        return Root{w, threshold_bound(mode_at, w, a, b, 2e-12 * std::abs(w))};
     };
-    scan_branches(solver, cd, holds, refine, workers, [&](const Branch& b, double w, Mode m, double, double) {
+    scan_branches(solver, cd, holds, refine, workers, [&](const Branch& b, double w, double bound, Mode m) {
         const auto& p = b.points;
         const auto it = std::find_if(p.begin(), p.end(), [&](const BranchPoint& q) { return q.speed >= w; });
         const bool after = it != p.end() ? unstable(it->mode) : unstable(p.back().mode);
-        out.push_back({w, b.id, after, std::move(m)});
+        out.push_back({w, bound, b.id, after, std::move(m)});
     });
     std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
     return out;

@@ -39,13 +39,19 @@ ModeShape mode_shape(const Mode& m, const GyroscopicSystem& sys) {
     ModeShape s;
     s.mode = m;
     // Reference: the largest entry among the DOFs in metres, unless those hold only
-    // rounding (a pure tilt mode), else the largest of all.
+    // rounding (a pure tilt mode), else the largest of all. Entries equal to 1e-9
+    // (x and y of a circular orbit) are a tie: the first DOF wins, not the rounding.
     const double top = m.right.size() ? m.right.cwiseAbs().maxCoeff() : 0.0;
     const auto largest_of = [&](bool metres_only) {
+        const auto counts = [&](int i) { return !metres_only || sys.dof_units[static_cast<size_t>(i)] == "m"; };
         double largest = -1.0;
         for (int i = 0; i < n; ++i)
-            if ((!metres_only || sys.dof_units[static_cast<size_t>(i)] == "m") && std::abs(m.right(i)) > largest)
-                largest = std::abs(m.right(i)), s.reference = i;
+            if (counts(i)) largest = std::max(largest, std::abs(m.right(i)));
+        for (int i = 0; i < n; ++i)
+            if (counts(i) && std::abs(m.right(i)) >= (1.0 - kTieTolerance) * largest) {
+                s.reference = i;
+                break;
+            }
         return largest;
     };
     double largest = -1.0;

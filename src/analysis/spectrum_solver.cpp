@@ -50,8 +50,7 @@ QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p) {
     q.method = "ARPACK shift-invert";
     q.iterations = s.iterations;
     q.refined = s.refined;
-    const double scale = std::sqrt(p.K.norm() / p.M.norm());
-    q.scale = std::isfinite(scale) && scale > 0 ? scale : 1.0;
+    q.scale = natural_frequency_scale(p.M.diagonal(), p.K.diagonal(), p.M.norm(), p.K.norm());
     q.real_tol = 1e-7 * q.scale;
     q.partial = true;
     return q;
@@ -61,6 +60,13 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
                             const SparseEigenOptions& opt, bool reuse) {
     SolverFactory f;
     f.thread_safe = false;
+    // A window centred on one mode's frequency, where a root search follows that mode.
+    f.centred = [pencil, whirl_pairs, opt](double nu) {
+        SparseEigenOptions o = opt;
+        o.shift = {0.0, nu};
+        o.shift_order = 0.0;
+        return sparse_solver(pencil, whirl_pairs, o, true).make();
+    };
     f.make = [pencil, whirl_pairs, opt, reuse]() -> SpectrumSolver {
         // The state vectors [lambda x; x] of the last speed's modes, summed: a
         // start vector rich in the wanted invariant subspace.
@@ -232,6 +238,7 @@ void put_spectrum(std::FILE* f, const QuadraticSpectrum& s) {
     put(f, s.real_tol);
     put(f, s.partial);
     put(f, s.speed);
+    put(f, s.speed_bound);
     put_string(f, s.method);
     put(f, s.iterations);
     put(f, s.refined);
@@ -247,6 +254,7 @@ QuadraticSpectrum get_spectrum(std::FILE* f) {
     s.real_tol = get<double>(f);
     s.partial = get<bool>(f);
     s.speed = get<double>(f);
+    s.speed_bound = get<double>(f);
     s.method = get_string(f);
     s.iterations = get<int>(f);
     s.refined = get<int>(f);

@@ -35,28 +35,71 @@ Stability Mode::stability() const {
     return Stability::Neutral;
 }
 
+double natural_frequency_scale(const Eigen::VectorXd& m_diag, const Eigen::VectorXd& k_diag, double norm_M,
+                               double norm_K) {
+    std::vector<double> ratios;
+    for (Eigen::Index i = 0; i < m_diag.size() && i < k_diag.size(); ++i) {
+        const double m = std::abs(m_diag(i)), k = std::abs(k_diag(i));
+        if (m > 0.0 && k > 0.0 && std::isfinite(k / m)) ratios.push_back(k / m);
+    }
+    double g = 0.0;
+    if (!ratios.empty()) {
+        const auto mid = ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2);
+        std::nth_element(ratios.begin(), mid, ratios.end());
+        g = std::sqrt(*mid);
+    } else if (norm_M > 0.0 && norm_K > 0.0) {
+        g = std::sqrt(norm_K / norm_M);
+    }
+    return std::isfinite(g) && g > 0.0 ? g : 1.0;
+}
+
 bool is_rigid_body(std::complex<double> lambda, const Eigen::VectorXcd& x, const PencilAction& pencil,
                    double scale) {
     if (!(std::abs(lambda) <= kRigidBodyTolerance * scale)) return false;
     Eigen::VectorXcd Mx, Cx, Kx;
     pencil.apply(x, Mx, Cx, Kx);
-    return Kx.norm() <= kRigidBodyTolerance * pencil.norm_K * x.norm();
+    Eigen::VectorXd absKx;
+    pencil.apply_abs_K(x.cwiseAbs(), absKx);
+    return Kx.norm() <= kRigidBodyTolerance * absKx.norm();
 }
 
 std::pair<int, double> frequency_rank(const Mode& m) {
     return m.whirl == Whirl::Real ? std::pair{1, std::abs(m.lambda)} : std::pair{0, m.lambda.imag()};
 }
 
+void sort_by_frequency(std::vector<Mode>& modes) {
+    std::stable_sort(modes.begin(), modes.end(), [](const Mode& a, const Mode& b) {
+        if (frequency_rank(a) != frequency_rank(b)) return frequency_rank(a) < frequency_rank(b);
+        return a.lambda.real() < b.lambda.real();
+    });
+    // Real eigenvalues whose moduli agree to kTieTolerance (a pair +-a: one stable, one
+    // divergent) by real part, not by the rounding of their moduli.
+    const auto tied = [](const Mode& a, const Mode& b) {
+        return std::abs(std::abs(a.lambda) - std::abs(b.lambda)) <= kTieTolerance * std::abs(b.lambda);
+    };
+    for (size_t i = 0; i < modes.size();) {
+        size_t j = i + 1;
+        if (modes[i].whirl == Whirl::Real)
+            while (j < modes.size() && modes[j].whirl == Whirl::Real && tied(modes[j - 1], modes[j])) ++j;
+        if (j - i > 1)
+            std::stable_sort(modes.begin() + static_cast<std::ptrdiff_t>(i), modes.begin() + static_cast<std::ptrdiff_t>(j),
+                             [](const Mode& a, const Mode& b) { return a.lambda.real() < b.lambda.real(); });
+        i = j;
+    }
+}
+
+double Mode::real_part() const { return stability() == Stability::Neutral ? 0.0 : lambda.real(); }
+
 double Mode::damping_ratio() const {
     const double a = std::abs(lambda);
-    return a == 0.0 ? 0.0 : 0.0 - lambda.real() / a;   // 0.0 - x: no negative zero in the output
+    return a == 0.0 ? 0.0 : 0.0 - real_part() / a;   // 0.0 - x: no negative zero in the output
 }
 
 double Mode::log_decrement() const {
-    if (lambda.imag() > 0.0) return 0.0 - 2.0 * M_PI * lambda.real() / lambda.imag();   // no negative zero
-    if (lambda.real() == 0.0) return 0.0;
-    return lambda.real() < 0.0 ? std::numeric_limits<double>::infinity()
-                               : -std::numeric_limits<double>::infinity();
+    const double re = real_part();
+    if (lambda.imag() > 0.0) return 0.0 - 2.0 * M_PI * re / lambda.imag();   // no negative zero
+    if (re == 0.0) return 0.0;
+    return re < 0.0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
 }
 
 Whirl classify_whirl(std::complex<double> lambda, const Eigen::VectorXcd& x,
@@ -153,9 +196,11 @@ double backward_error(const PencilAction& p, std::complex<double> lambda, const 
 }
 
 Eigen::VectorXcd unit_vector(const Eigen::VectorXcd& v) {
-    Eigen::Index k = 0;
     if (v.size() == 0) return v;
-    v.cwiseAbs().maxCoeff(&k);
+    // The first entry within kTieTolerance of the largest: a tie is not left to rounding.
+    const double top = v.cwiseAbs().maxCoeff();
+    Eigen::Index k = 0;
+    while (k + 1 < v.size() && std::abs(v(k)) < (1.0 - kTieTolerance) * top) ++k;
     if (std::abs(v(k)) == 0.0) return v;
     const std::complex<double> phase = std::conj(v(k)) / std::abs(v(k));
     return v * phase / v.norm();
@@ -192,38 +237,54 @@ void separate_double_whirl(std::vector<Mode>& modes, const std::vector<std::pair
     }
 }
 
-void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil) {
+namespace {
+
+// The first-order bound of mode i (set_error_bounds) on the pencil `pencil` of
+// the coordinates x = T^-1 x_original (t = 1: the original ones).
+double error_bound_in(const std::vector<Mode>& modes, size_t i, const PencilAction& pencil, const Eigen::VectorXd& t) {
+    const auto in = [&t](const Eigen::VectorXcd& v) -> Eigen::VectorXcd {
+        return (v.array() / t.array().cast<std::complex<double>>()).matrix().normalized();
+    };
+    const Mode& m = modes[i];
+    std::vector<size_t> cluster;
+    for (size_t j = 0; j < modes.size(); ++j)
+        if (modes[j].left.size() == m.right.size() && std::abs(modes[j].lambda - m.lambda) <= 1e-6 * std::abs(m.lambda))
+            cluster.push_back(j);
+    const Eigen::Index k = static_cast<Eigen::Index>(cluster.size());
+    Eigen::MatrixXcd X(m.right.size(), k), Y(m.right.size(), k), dPX(m.right.size(), k);
+    Eigen::VectorXcd Mx, Cx, Kx;
+    for (Eigen::Index c = 0; c < k; ++c) {
+        const Mode& o = modes[cluster[static_cast<size_t>(c)]];
+        X.col(c) = in(o.right);
+        Y.col(c) = in(o.left);
+        pencil.apply(X.col(c), Mx, Cx, Kx);
+        dPX.col(c) = (2.0 * m.lambda) * Mx + Cx;
+    }
+    const double eta = backward_error(pencil, m.lambda, in(m.right));
+    const Eigen::MatrixXcd S = Y.adjoint() * dPX;
+    const double smin = Eigen::JacobiSVD<Eigen::MatrixXcd>(S).singularValues()(k - 1);
+    const double a = std::abs(m.lambda);
+    const double scale = (a * a * pencil.norm_M + a * pencil.norm_C + pencil.norm_K) *
+                         Eigen::JacobiSVD<Eigen::MatrixXcd>(X).singularValues()(0) *
+                         Eigen::JacobiSVD<Eigen::MatrixXcd>(Y).singularValues()(0);
     const double eps = std::numeric_limits<double>::epsilon();
-    const size_t n = modes.size();
-    for (size_t i = 0; i < n; ++i) {
+    return smin > 0.0 && std::isfinite(eta) ? 10.0 * std::max(eta, eps) * scale / smin
+                                            : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil, const PencilAction& scaled,
+                      const Eigen::VectorXd& t) {
+    const Eigen::VectorXd one = Eigen::VectorXd::Ones(t.size());
+    for (size_t i = 0; i < modes.size(); ++i) {
         Mode& m = modes[i];
         if (m.left.size() != m.right.size()) {
             m.error_bound = std::numeric_limits<double>::infinity();
             continue;
         }
-        std::vector<size_t> cluster;
-        for (size_t j = 0; j < n; ++j)
-            if (modes[j].left.size() == m.right.size() &&
-                std::abs(modes[j].lambda - m.lambda) <= 1e-6 * std::abs(m.lambda))
-                cluster.push_back(j);
-        const Eigen::Index k = static_cast<Eigen::Index>(cluster.size());
-        Eigen::MatrixXcd X(m.right.size(), k), Y(m.right.size(), k), dPX(m.right.size(), k);
-        Eigen::VectorXcd Mx, Cx, Kx;
-        for (Eigen::Index c = 0; c < k; ++c) {
-            const Mode& o = modes[cluster[static_cast<size_t>(c)]];
-            X.col(c) = o.right.normalized();
-            Y.col(c) = o.left.normalized();
-            pencil.apply(X.col(c), Mx, Cx, Kx);
-            dPX.col(c) = (2.0 * m.lambda) * Mx + Cx;
-        }
-        const Eigen::MatrixXcd S = Y.adjoint() * dPX;
-        const double smin = Eigen::JacobiSVD<Eigen::MatrixXcd>(S).singularValues()(k - 1);
-        const double a = std::abs(m.lambda);
-        const double scale = (a * a * pencil.norm_M + a * pencil.norm_C + pencil.norm_K) *
-                             Eigen::JacobiSVD<Eigen::MatrixXcd>(X).singularValues()(0) *
-                             Eigen::JacobiSVD<Eigen::MatrixXcd>(Y).singularValues()(0);
-        m.error_bound = smin > 0.0 ? 10.0 * std::max(m.backward_error, eps) * scale / smin
-                                   : std::numeric_limits<double>::infinity();
+        // Both are bounds on the same eigenvalue: the tighter one is kept.
+        m.error_bound = std::min(error_bound_in(modes, i, pencil, one), error_bound_in(modes, i, scaled, t));
     }
 }
 

@@ -50,9 +50,10 @@ double backward_error(const QuadraticPencil& p, cd lambda, const Eigen::VectorXc
 namespace {
 
 double natural_scale(const QuadraticPencil& p) {
-    const double nm = p.M.norm(), nk = p.K.norm();
-    return (nm > 0.0 && nk > 0.0) ? std::sqrt(nk / nm) : 1.0;
+    return natural_frequency_scale(p.M.diagonal(), p.K.diagonal(), p.M.norm(), p.K.norm());
 }
+
+Eigen::VectorXd dof_scaling(const QuadraticPencil& p);
 
 // Keeps the upper half plane and the real axis, sets the error bounds, puts
 // the rigid-body eigenvalues apart, classifies and sorts.
@@ -66,15 +67,16 @@ void finish(QuadraticSpectrum& s, const QuadraticPencil& p, const std::vector<st
         kept.push_back(std::move(m));
     }
     const PencilAction action = action_of(p);
-    set_error_bounds(kept, action);
+    // Bounds on the DOF-scaled pencil (as QZ solves it): stiff supports do not inflate them.
+    const Eigen::VectorXd t = dof_scaling(p);
+    const QuadraticPencil scaled{t.asDiagonal() * p.M * t.asDiagonal(), t.asDiagonal() * p.C * t.asDiagonal(),
+                                 t.asDiagonal() * p.K * t.asDiagonal()};
+    set_error_bounds(kept, action, action_of(scaled), t);
     if (!keep_left)
         for (auto& m : kept) m.left.resize(0);
     split_rigid_body(kept, s.rigid_body, action, s.scale);
     separate_double_whirl(kept, pairs, s.real_tol, action);
-    std::stable_sort(kept.begin(), kept.end(), [](const Mode& a, const Mode& b) {
-        if (frequency_rank(a) != frequency_rank(b)) return frequency_rank(a) < frequency_rank(b);
-        return a.lambda.real() < b.lambda.real();
-    });
+    sort_by_frequency(kept);
     s.modes = std::move(kept);
 }
 
@@ -168,6 +170,13 @@ QuadraticSpectrum solve_state(const QuadraticPencil& p) {
         m.right = unit_vector(es.eigenvectors().col(j).head(n));
         m.left = unit_vector(Y.col(j));
         m.backward_error = backward_error(action, m.lambda, m.right);
+        // The left vector from V^-1 may be far off where V is ill-conditioned; the
+        // condition number it gives is then no bound: such a mode gets none (infinite).
+        const cd l = std::conj(m.lambda);
+        const Eigen::VectorXcd r = (l * l) * (p.M.transpose() * m.left) + l * (p.C.transpose() * m.left) +
+                                   p.K.transpose() * m.left;
+        const double a = std::abs(m.lambda);
+        if (!(r.norm() <= 1e-8 * (a * a * action.norm_M + a * action.norm_C + action.norm_K))) m.left.resize(0);
         s.modes.push_back(std::move(m));
     }
     return s;
@@ -184,6 +193,17 @@ QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& 
     s = opt.method == EigenMethod::ScaledQZ ? solve_qz(p, true) : solve_state(p);
     s.method = opt.method == EigenMethod::ScaledQZ ? "scaled QZ" : "state matrix";
     finish(s, p, whirl_pairs, opt.left_vectors);
+    // A printed eigenvalue lies within its printed bound; one whose bound exceeds
+    // 1e-6 of its modulus (and the real-axis tolerance) is not vouched for: said.
+    const auto loose = std::count_if(s.modes.begin(), s.modes.end(), [&](const Mode& m) {
+        return !(m.error_bound <= std::max(kVouchTolerance * std::abs(m.lambda), s.real_tol));
+    });
+    if (loose > 0)
+        s.notes.push_back(fmt::format("{} of {} eigenvalues have an error bound above {} of their modulus: the {} "
+                                      "method cannot vouch for them{}",
+                                      loose, s.modes.size(), kVouchTolerance, s.method,
+                                      opt.method == EigenMethod::StateMatrix ? "; use the QZ method (method = qz)"
+                                                                             : " (see the error_bound column)"));
     return s;
 }
 

@@ -291,8 +291,7 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
     if (!(opt.verify_tolerance > 0.0 && opt.verify_tolerance < 1.0))
         throw InputError(fmt::format("verify_tolerance {}: allowed: 0 < tolerance < 1", opt.verify_tolerance));
     const PencilAction action = action_of(p);
-    const double g = std::sqrt(action.norm_K / action.norm_M);
-    const double scale = std::isfinite(g) && g > 0 ? g : 1.0;
+    const double scale = natural_frequency_scale(p.M.diagonal(), p.K.diagonal(), action.norm_M, action.norm_K);
     const double real_tol = 1e-7 * scale;
     // DOF scaling for the condition estimate of P(sigma) (as the dense solver scales).
     Eigen::VectorXd t(n);
@@ -379,7 +378,19 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
     std::sort(out.modes.begin(), out.modes.end(), [&](const Mode& a, const Mode& b) {
         return std::abs(a.lambda - opt.shift) < std::abs(b.lambda - opt.shift);
     });
-    if (static_cast<int>(out.modes.size()) > opt.modes) out.modes.resize(static_cast<size_t>(opt.modes));
+    if (static_cast<int>(out.modes.size()) > opt.modes) {
+        // A window edge through a double eigenvalue (an axisymmetric rotor at
+        // standstill): which half is nearer the shift is rounding, so both are kept.
+        size_t keep = static_cast<size_t>(opt.modes);
+        while (keep < out.modes.size() && std::abs(out.modes[keep].lambda - out.modes[keep - 1].lambda) <=
+                                              1e-6 * std::abs(out.modes[keep - 1].lambda))
+            ++keep;
+        if (keep > static_cast<size_t>(opt.modes))
+            out.notes.push_back(fmt::format("the window's edge cuts a double eigenvalue at {:.6g} rad/s: both halves "
+                                            "are kept ({} modes)",
+                                            out.modes[keep - 1].lambda.imag(), keep));
+        out.modes.resize(keep);
+    }
     // Verification: refine every pair, and reject one that stays above the tolerance.
     const double accurate = 1e-3 * opt.verify_tolerance;
     const std::vector<Mode> arnoldi = out.modes;
@@ -411,13 +422,14 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
     // Double eigenvalues turned into their backward and forward modes (after the
     // refinement, which may rotate a pair's vectors in their plane).
     separate_double_whirl(out.modes, whirl_pairs, real_tol, action);
-    set_error_bounds(out.modes, action);
+    {   // Bounds on the DOF-scaled pencil t P t (as the dense solver's): stiff supports do not inflate them.
+        const SparsePencil scaled{t.asDiagonal() * p.M * t.asDiagonal(), t.asDiagonal() * p.C * t.asDiagonal(),
+                                  t.asDiagonal() * p.K * t.asDiagonal()};
+        set_error_bounds(out.modes, action, action_of(scaled), t);
+    }
     if (!opt.left_vectors)
         for (Mode& m : out.modes) m.left.resize(0);
-    std::stable_sort(out.modes.begin(), out.modes.end(), [](const Mode& a, const Mode& b) {
-        return frequency_rank(a) != frequency_rank(b) ? frequency_rank(a) < frequency_rank(b)
-                                                      : a.lambda.real() < b.lambda.real();
-    });
+    sort_by_frequency(out.modes);
     return out;
 }
 

@@ -14,7 +14,8 @@ namespace {
 long long ll(int i) { return static_cast<long long>(i); }
 
 std::vector<Cell> mode_cells(const Mode& m, const SpeedUnit& u) {
-    return {m.lambda.real(), m.lambda.imag(), u.factor * m.frequency(), to_string(m.whirl), m.damping_ratio(),
+    // A real part within its error bound is neutral and shown as 0 (Mode::real_part).
+    return {m.real_part(), m.lambda.imag(), u.factor * m.frequency(), to_string(m.whirl), m.damping_ratio(),
             m.log_decrement()};
 }
 
@@ -24,7 +25,7 @@ std::string speed_label(const SpeedUnit& u) { return "speed [" + u.name + "]"; }
 
 Table eig_table(const QuadraticSpectrum& s, double speed, const SpeedUnit& u, bool rigid_body) {
     Table t({u.column("speed"), "index", "re_1_s", "im_rad_s", u.column("frequency"), "whirl", "damping_ratio", "log_dec",
-             "backward_error"});
+             "backward_error", "error_bound"});
     t.key = "eigenvalues";
     t.title = "eigenvalues at " + std::to_string(u.factor * speed) + " " + u.name +
               (s.infinite_count ? " (" + std::to_string(s.infinite_count) + " infinite eigenvalues omitted)" : "");
@@ -34,6 +35,7 @@ Table eig_table(const QuadraticSpectrum& s, double speed, const SpeedUnit& u, bo
         for (auto& c : mode_cells(m, u)) row.push_back(c);
         if (rigid) row[5] = std::string("rigid-body");
         row.push_back(m.backward_error);
+        row.push_back(m.error_bound);
         t.add_row(std::move(row));
     };
     for (const Mode& m : s.modes) add(m, false);
@@ -161,13 +163,19 @@ Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u) {
     return t;
 }
 
+double round_to_bound(double x, double bound) {
+    if (!(bound > 0.0) || !std::isfinite(bound) || !std::isfinite(x)) return x;
+    const double q = std::pow(10.0, std::floor(std::log10(bound)));
+    return std::round(x / q) * q;
+}
+
 Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u) {
-    Table t({u.column("speed"), "mode", "change", u.column("frequency")});
+    Table t({u.column("speed"), u.column("bound"), "mode", "change", u.column("frequency")});
     t.key = "stability_changes";
-    t.title = "stability changes (a mode's real part passes its error bound)";
+    t.title = "stability changes (a mode's real part passes its error bound; the speed within the bound)";
     for (const auto& c : sc)
-        t.add_row({u.factor * c.speed, ll(c.branch), std::string(c.becomes_unstable ? "unstable" : "stable"),
-                   u.factor * c.mode.frequency()});
+        t.add_row({u.factor * round_to_bound(c.speed, c.bound), u.factor * c.bound, ll(c.branch),
+                   std::string(c.becomes_unstable ? "unstable" : "stable"), u.factor * c.mode.frequency()});
     return t;
 }
 

@@ -33,6 +33,9 @@ std::vector<CriticalSpeed> critical_speeds_direct(const GyroscopicSystem& sys, i
 
 struct StabilityChange {
     double speed = 0;
+    // rad/s: |speed - exact threshold| <= bound, to first order: the real part's
+    // error bound over its slope (docs/numerics.md); infinite where unknown.
+    double bound = 0;
     int branch = 0;
     bool becomes_unstable = true;   // with increasing speed
     Mode mode;
@@ -42,7 +45,8 @@ struct StabilityChange {
 // only where Re lambda exceeds its error bound (Mode::stability); neutral modes
 // (undamped, conservative) never count. Where both ends are decided the root of
 // Re lambda is refined by Brent; next to a neutral end, the edge of the unstable
-// range by bisection (relative width 1e-12).
+// range by bisection (relative width 1e-12). Each change carries its bound. A
+// solver of a window of modes refines on a window centred on the mode.
 std::vector<StabilityChange> stability_changes(const GyroscopicSystem& sys, const CampbellDiagram& cd,
                                                const EigenOptions& eig = {});
 std::vector<StabilityChange> stability_changes(const SolverFactory& solver, const CampbellDiagram& cd,

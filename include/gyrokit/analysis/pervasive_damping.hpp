@@ -17,7 +17,7 @@ namespace gyrokit {
 
 struct PervasiveOptions {
     // Upper limit of the residual of a loss. Below it, a residual counts as a
-    // loss only at the level the eigenpair's accuracy explains: r <= 1e3 max(eta, eps).
+    // loss only at the level the eigenpair's accuracy explains: r <= 1e3 max(eta, sqrt(n) eps).
     double tolerance = 1e-8;
     int modes = 0;   // the K lowest branches at the first speed are checked; 0 = all (dense) or
                      // the sparse solver's default window

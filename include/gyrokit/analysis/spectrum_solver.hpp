@@ -26,6 +26,10 @@ struct SolverFactory {
     // ARPACK runs must not share a process: such solvers run in parallel in
     // worker processes instead of threads.
     bool thread_safe = true;
+    // A window of modes (sparse solvers): a solver whose window is centred on the
+    // frequency nu (rad/s), so that a root search refines a mode on its own shift and
+    // the sweep's window cannot move the result. Empty for solvers of every mode.
+    std::function<SpectrumSolver(double nu)> centred;
     SpectrumSolver operator()() const { return make(); }
 };
 

@@ -34,23 +34,36 @@ struct Mode {
     Whirl whirl = Whirl::Undefined;
 
     double frequency() const { return lambda.imag(); }   // damped natural frequency, rad/s
-    // -Re(lambda)/|lambda|; 0 for a zero eigenvalue.
+    // Re(lambda) as far as it is vouched for: 0 where it lies within its error
+    // bound (a neutral mode), so that rounding never shows as damping of either sign.
+    double real_part() const;
+    // -real_part()/|lambda|; 0 for a zero eigenvalue and for a neutral mode.
     double damping_ratio() const;
-    // -2 pi Re(lambda)/Im(lambda); +-infinity for a non-oscillating mode.
+    // -2 pi real_part()/Im(lambda); +-infinity for a non-oscillating mode, 0 for a neutral one.
     double log_decrement() const;
     // Unstable only if Re lambda > error_bound, stable only if Re lambda < -error_bound.
     Stability stability() const;
 };
 
 struct PencilAction;
+
+// The pencil's natural frequency scale (rad/s): the square root of the median of
+// |K_ii| / |M_ii| over the DOFs where both are nonzero, or sqrt(|K| / |M|)
+// (Frobenius) where there is no such DOF. A median, so that a few very stiff
+// supports (1e20 N/m, as other packages model a pinned end) do not inflate it as
+// they inflate |K|: the scale decides what counts as zero or real.
+double natural_frequency_scale(const Eigen::VectorXd& m_diag, const Eigen::VectorXd& k_diag, double norm_M,
+                               double norm_K);
+
 // Rigid-body eigenvalues (free motion of a singular K: free-free rotors, free
 // axial or torsional DOFs) are zero eigenvalues whose vector K does not see:
-// |lambda| <= kRigidBodyTolerance * scale and |K x| <= kRigidBodyTolerance |K| |x|,
-// scale = sqrt(|K|/|M|) the pencil's natural frequency (Frobenius norms). A zero
-// eigenvalue of a Jordan chain of length two (q = a + b t) is computed as
-// +-sqrt(eps) * scale (1.5e-8 scale). The test on K x keeps the slow precession
-// of a fast gyroscope (lambda -> 0 as the speed grows, but K x of the order of
-// |K| |x|) a mode.
+// |lambda| <= kRigidBodyTolerance * scale and |K x| <= kRigidBodyTolerance * | |K| |x| |,
+// scale the pencil's natural frequency (natural_frequency_scale). The second test
+// measures K x against what K's entries could make of x entry by entry: a stiff
+// support that x does not move does not count. A zero eigenvalue of a Jordan
+// chain of length two (q = a + b t) is computed as +-sqrt(eps) times the scale.
+// The test on K x keeps the slow precession of a fast gyroscope (lambda -> 0 as
+// the speed grows, but K x of the order of |K| |x|) a mode.
 constexpr double kRigidBodyTolerance = 1e-6;
 bool is_rigid_body(std::complex<double> lambda, const Eigen::VectorXcd& x, const PencilAction& pencil, double scale);
 
@@ -64,7 +77,12 @@ constexpr double kWhirlTolerance = 1e-6;
 Whirl classify_whirl(std::complex<double> lambda, const Eigen::VectorXcd& x,
                      const std::vector<std::pair<int, int>>& pairs, double real_tol);
 
-// Unit 2-norm, largest entry real and positive: reproducible output.
+// Moduli that agree to this relative tolerance are a tie, broken by a rule (the
+// first DOF), never by rounding: |x| = |y| on a circular orbit.
+constexpr double kTieTolerance = 1e-9;
+
+// Unit 2-norm, largest entry real and positive (of entries tied with it, the
+// first): reproducible output.
 Eigen::VectorXcd unit_vector(const Eigen::VectorXcd& v);
 
 // The products M x, C x, K x of a pencil P(lambda) = lambda^2 M + lambda C + K
@@ -72,6 +90,8 @@ Eigen::VectorXcd unit_vector(const Eigen::VectorXcd& v);
 struct PencilAction {
     std::function<void(const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx, Eigen::VectorXcd& Kx)>
         apply;
+    // |K| a for a >= 0 (entrywise absolute values): the scale of K x entry by entry.
+    std::function<void(const Eigen::VectorXd& a, Eigen::VectorXd& absKa)> apply_abs_K;
     double norm_M = 0.0, norm_C = 0.0, norm_K = 0.0;
 };
 
@@ -86,6 +106,7 @@ PencilAction pencil_action(const Matrix& M, const Matrix& C, const Matrix& K, Ti
         Cx = times(C, x);
         Kx = times(K, x);
     };
+    a.apply_abs_K = [&K](const Eigen::VectorXd& v, Eigen::VectorXd& absKv) { absKv = K.cwiseAbs() * v; };
     a.norm_M = M.norm();
     a.norm_C = C.norm();
     a.norm_K = K.norm();
@@ -116,8 +137,14 @@ void separate_double_whirl(std::vector<Mode>& modes, const std::vector<std::pair
 //   bound = 10 max(eta, eps) (|l|^2 |M| + |l| |C| + |K|) |X| |Y| / s_min(Y^H P'(l) X),
 // where X, Y hold the vectors of every mode within 1e-6 relative of l (a double
 // eigenvalue's plane, whose computed bases need not pair up). Modes without a
-// left vector get an infinite bound.
-void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil);
+// left vector get an infinite bound. The bound is computed twice, on `pencil`
+// and on `scaled`, the pencil T P T of a diagonal congruence t > 0 (the solvers'
+// DOF scaling: the eigenvalues are the same, the vectors T^-1 x and T^-1 y, eta
+// and the condition number those of the scaled pencil), and the smaller is kept:
+// a stiff support inflates |K| and with it the normwise measures of the
+// original, not those of the scaled pencil.
+void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil, const PencilAction& scaled,
+                      const Eigen::VectorXd& t);
 
 // Modal assurance criterion |a^H b|^2 / (|a|^2 |b|^2), in [0, 1].
 double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);
@@ -126,5 +153,8 @@ double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);
 // non-oscillating (real, overdamped) eigenvalues by modulus; an overdamped
 // eigenvalue is no vibration mode, so "the K lowest modes" are K that vibrate.
 std::pair<int, double> frequency_rank(const Mode& m);
+// Modes in that order, equal ranks by real part; real eigenvalues whose moduli
+// agree to 1e-9 relative by real part too (a tie is not left to rounding).
+void sort_by_frequency(std::vector<Mode>& modes);
 
 }  // namespace gyrokit

@@ -19,6 +19,10 @@ enum class EigenMethod { ScaledQZ, StateMatrix };
 EigenMethod parse_eigen_method(const std::string& name);   // "qz" | "state"
 std::string to_string(EigenMethod m);
 
+// An eigenvalue is vouched for when its error bound is at most this fraction of
+// its modulus (or below the real-axis tolerance); otherwise the spectrum says so.
+constexpr double kVouchTolerance = 1e-6;
+
 struct EigenOptions {
     EigenMethod method = EigenMethod::ScaledQZ;
     bool left_vectors = false;   // keep the left vectors in the modes (always computed, for the error bounds)
@@ -35,6 +39,7 @@ struct QuadraticSpectrum {
     double real_tol = 0.0;        // |Im lambda| below this counts as real
     bool partial = false;         // only a window of modes (near a shift), not all
     double speed = 0.0;           // rad/s, where a sweep or a root search set it
+    double speed_bound = 0.0;     // rad/s: a root search's bound on |speed - the exact root| (0: none)
     std::vector<std::string> notes;   // what the solver changed or could not vouch for (e.g. a moved shift)
     // The solver's account, as Spectra's CompInfo: a spectrum is only returned
     // when it converged and every mode passed verification (else SolverError).

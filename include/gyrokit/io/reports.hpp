@@ -30,6 +30,9 @@ Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u);
 Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& critical, const SpeedUnit& u,
                        const std::string& plot_file, bool window = false);
 Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u);
+// x rounded to the decade of its bound (no digits below what is vouched for); x
+// itself where the bound is 0, infinite or not a number.
+double round_to_bound(double x, double bound);
 Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u);
 Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u);
 // Every row of the curve; `unit` is the DOF's unit ("" if the model names none).
