@@ -319,10 +319,12 @@ TEST_CASE("fe rotor: sparse shift-invert agrees with dense QZ on a 300-DOF rotor
             CAPTURE(i);
             const Mode& sm = s.modes[i];
             const Mode& dm = ref.modes[i];   // both lists: lowest frequencies first
-            // Symmetric bearing damping: 1e-10 relative. Cross-coupled (non-normal) bearings
-            // raise the eigenvalue condition numbers; both solvers stay backward stable (below).
-            const double tol = model == &sym ? 1e-10 : 1e-9;
-            CHECK(std::abs(sm.lambda - dm.lambda) <= tol * std::abs(dm.lambda));
+            // Within the two error bounds (cross-coupled, non-normal bearings raise the
+            // condition numbers: the difference follows the BLAS's rounding, the bounds
+            // cover it); both solvers stay backward stable (below) and vouch for the pair.
+            CHECK(std::abs(sm.lambda - dm.lambda) <= sm.error_bound + dm.error_bound);
+            CHECK(sm.error_bound <= kVouchTolerance * std::abs(sm.lambda));
+            CHECK(dm.error_bound <= kVouchTolerance * std::abs(dm.lambda));
             CHECK(sm.whirl == dm.whirl);
             CHECK(sm.backward_error < 1e-12);
         }

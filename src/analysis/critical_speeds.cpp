@@ -85,7 +85,7 @@ template <class ModeAt>
 double threshold_bound(const ModeAt& mode_at, double w, double a, double b, double resolution) {
     const Mode m = mode_at(w);
     const double e = m.error_bound, g = m.lambda.real();
-    if (!std::isfinite(e)) return std::numeric_limits<double>::infinity();
+    if (!std::isfinite(e) || !(b > a)) return std::numeric_limits<double>::infinity();
     double slope = 0.0;
     for (double h = 1e-6 * (b - a); h <= b - a; h *= 10.0) {
         const double lo = std::max(a, w - h), hi = std::min(b, w + h);
