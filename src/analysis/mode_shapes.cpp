@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <climits>
+#include <map>
+#include <string>
 #include <cmath>
 
 namespace gyrokit {
@@ -59,6 +61,15 @@ ModeShape mode_shape(const Mode& m, const GyroscopicSystem& sys) {
     if (largest < kWhirlTolerance * top) largest = largest_of(false);
     s.shape = largest > 0.0 ? Eigen::VectorXcd(m.right / m.right(s.reference)) : m.right;
     const bool has_nodes = static_cast<int>(sys.node_of_dof.size()) == n;
+    // A pair whose entries are below 1e-9 of the largest of its unit is at rest (a node
+    // of the mode, zero by symmetry): its computed orbit is rounding, and its angle
+    // and phase would be noise. It is given as no motion.
+    const auto unit_of = [&](int i) { return sys.dof_units.empty() ? std::string() : sys.dof_units[static_cast<size_t>(i)]; };
+    std::map<std::string, double> largest_in;
+    for (const auto& [u, v] : sys.whirl_pairs) {
+        double& l = largest_in[unit_of(u)];
+        l = std::max({l, std::abs(s.shape(u)), std::abs(s.shape(v))});
+    }
     for (const auto& [u, v] : sys.whirl_pairs) {
         PairOrbit p;
         p.u = u;
@@ -69,7 +80,9 @@ ModeShape mode_shape(const Mode& m, const GyroscopicSystem& sys) {
             p.node = sys.node_of_dof[static_cast<size_t>(u)];
             if (p.node >= 0) p.z = sys.node_z[static_cast<size_t>(p.node)];
         }
-        p.orbit = orbit_of(s.shape(u), s.shape(v));
+        const bool at_rest =
+            std::max(std::abs(s.shape(u)), std::abs(s.shape(v))) <= kRestTolerance * largest_in[unit_of(u)];
+        p.orbit = at_rest ? Orbit{} : orbit_of(s.shape(u), s.shape(v));
         s.orbits.push_back(p);
     }
     // Along the axis: by node (pairs without a node last), the model's order within a node.

@@ -11,17 +11,21 @@
 
 namespace gyrokit {
 
-GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_left) {
+GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_left, bool classic) {
     const lapack_int n = static_cast<lapack_int>(A.rows());
     Eigen::VectorXd ar(n), ai(n), be(n);
     Eigen::MatrixXd vl(want_left ? n : 1, want_left ? n : 1), vr(n, n);
-    const lapack_int info = LAPACKE_dggev(LAPACK_COL_MAJOR, want_left ? 'V' : 'N', 'V', n, A.data(), n,
-                                          B.data(), n, ar.data(), ai.data(), be.data(), vl.data(),
-                                          want_left ? n : 1, vr.data(), n);
+    const char jobvl = want_left ? 'V' : 'N';
+    const lapack_int ldvl = want_left ? n : 1;
+    const lapack_int info =
+        classic ? LAPACKE_dggev(LAPACK_COL_MAJOR, jobvl, 'V', n, A.data(), n, B.data(), n, ar.data(), ai.data(),
+                                be.data(), vl.data(), ldvl, vr.data(), n)
+                : LAPACKE_dggev3(LAPACK_COL_MAJOR, jobvl, 'V', n, A.data(), n, B.data(), n, ar.data(), ai.data(),
+                                 be.data(), vl.data(), ldvl, vr.data(), n);
     if (info != 0)
-        throw SolverError(fmt::format("LAPACK dggev (QZ) failed with info = {}; the pencil may contain "
+        throw SolverError(fmt::format("LAPACK {} (QZ) failed with info = {}; the pencil may contain "
                                       "NaN or be too badly scaled",
-                                      info));
+                                      classic ? "dggev" : "dggev3", info));
     GeneralizedEigen g;
     g.alpha.resize(n);
     g.beta = be;

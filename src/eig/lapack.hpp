@@ -14,8 +14,10 @@ struct GeneralizedEigen {
     Eigen::MatrixXcd right, left;
 };
 
-// Real pencil (dggev). Throws SolverError if QZ fails.
-GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_left);
+// Real pencil: dggev3 (multishift QZ with aggressive early deflation, blocked
+// Hessenberg-triangular reduction) by default, dggev (the classic single-shift
+// QZ) with `classic`. Throws SolverError if QZ fails.
+GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_left, bool classic = false);
 // Complex pencil (zggev), right eigenvectors only.
 GeneralizedEigen lapack_zggev(Eigen::MatrixXcd A, Eigen::MatrixXcd B);
 

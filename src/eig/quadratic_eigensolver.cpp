@@ -15,11 +15,19 @@ using cd = std::complex<double>;
 
 EigenMethod parse_eigen_method(const std::string& name) {
     if (name == "qz") return EigenMethod::ScaledQZ;
+    if (name == "qz-classic") return EigenMethod::ClassicQZ;
     if (name == "state") return EigenMethod::StateMatrix;
-    throw InputError(fmt::format("eigen method '{}' is unknown; allowed: qz, state", name));
+    throw InputError(fmt::format("eigen method '{}' is unknown; allowed: qz, qz-classic, state", name));
 }
 
-std::string to_string(EigenMethod m) { return m == EigenMethod::ScaledQZ ? "qz" : "state"; }
+std::string to_string(EigenMethod m) {
+    switch (m) {
+    case EigenMethod::ScaledQZ: return "qz";
+    case EigenMethod::ClassicQZ: return "qz-classic";
+    case EigenMethod::StateMatrix: break;
+    }
+    return "state";
+}
 
 void split_rigid_body(std::vector<Mode>& modes, std::vector<Mode>& rigid_body, const PencilAction& pencil,
                       double scale) {
@@ -93,7 +101,7 @@ Eigen::VectorXd dof_scaling(const QuadraticPencil& p) {
     return t / t.maxCoeff();
 }
 
-QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left) {
+QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left, bool classic) {
     const int n = static_cast<int>(original.M.rows());
     const Eigen::VectorXd t = dof_scaling(original);
     const PencilAction action = action_of(original);   // backward errors refer to the original problem
@@ -111,7 +119,7 @@ QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left) {
     B.topLeftCorner(n, n) = (gamma * gamma * delta) * p.M;
     B.bottomRightCorner(n, n).setIdentity();
 
-    GeneralizedEigen ge = lapack_dggev(A, B, want_left);
+    GeneralizedEigen ge = lapack_dggev(A, B, want_left, classic);
 
     QuadraticSpectrum s;
     s.scale = natural_scale(original);
@@ -190,8 +198,11 @@ QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& 
         throw InputError("the pencil has a NaN or infinite coefficient");
     QuadraticSpectrum s;
     // Both methods compute left vectors: they give every eigenvalue its error bound.
-    s = opt.method == EigenMethod::ScaledQZ ? solve_qz(p, true) : solve_state(p);
-    s.method = opt.method == EigenMethod::ScaledQZ ? "scaled QZ" : "state matrix";
+    const bool qz = opt.method != EigenMethod::StateMatrix;
+    s = qz ? solve_qz(p, true, opt.method == EigenMethod::ClassicQZ) : solve_state(p);
+    s.method = opt.method == EigenMethod::ScaledQZ    ? "scaled QZ"
+               : opt.method == EigenMethod::ClassicQZ ? "scaled classic QZ"
+                                                      : "state matrix";
     finish(s, p, whirl_pairs, opt.left_vectors);
     // A printed eigenvalue lies within its printed bound; one whose bound exceeds
     // 1e-6 of its modulus (and the real-axis tolerance) is not vouched for: said.

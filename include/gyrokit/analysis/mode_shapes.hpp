@@ -26,6 +26,10 @@ struct Orbit {
                                // None: no motion
 };
 Orbit orbit_of(std::complex<double> u, std::complex<double> v);
+// In a mode shape, a pair whose entries are at most this fraction of the largest
+// entry of its unit is at rest (a node of the mode): its orbit is no motion, not
+// the rounding's ellipse.
+constexpr double kRestTolerance = 1e-9;
 
 // One whirl pair's orbit in a mode, with where it sits.
 struct PairOrbit {

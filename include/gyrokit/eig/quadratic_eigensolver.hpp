@@ -1,8 +1,10 @@
 // Dense solvers for the quadratic eigenproblem (lambda^2 M + lambda C + K) x = 0.
 //
 // ScaledQZ (default): Fan-Lin-Van Dooren scaling, first companion linearization,
-//   LAPACK dggev (QZ). Needs no inverse of M, so singular M (infinite
-//   eigenvalues) and badly scaled data are handled.
+//   LAPACK dggev3 (multishift QZ with aggressive early deflation). Needs no
+//   inverse of M, so singular M (infinite eigenvalues) and badly scaled data are
+//   handled. ClassicQZ: the same with LAPACK dggev (single-shift QZ), slower on
+//   large pencils (docs/benchmarks.md).
 // StateMatrix: the cheaper M^{-1}-based state matrix solved by Eigen; fails on
 //   singular M and loses accuracy on badly scaled problems (see docs/numerics.md).
 #pragma once
@@ -15,8 +17,8 @@
 
 namespace gyrokit {
 
-enum class EigenMethod { ScaledQZ, StateMatrix };
-EigenMethod parse_eigen_method(const std::string& name);   // "qz" | "state"
+enum class EigenMethod { ScaledQZ, StateMatrix, ClassicQZ };
+EigenMethod parse_eigen_method(const std::string& name);   // "qz" | "qz-classic" | "state"
 std::string to_string(EigenMethod m);
 
 // An eigenvalue is vouched for when its error bound is at most this fraction of
