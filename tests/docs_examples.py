@@ -134,7 +134,8 @@ def measures_agree(doc, out):
         return False
     if a < NOISE and b < NOISE:
         return True
-    return a > 0 and b > 0 and max(a, b) <= MEASURE_FACTOR * min(a, b)
+    same_sign = doc.lstrip().startswith("-") == out.lstrip().startswith("-")
+    return same_sign and a > 0 and b > 0 and max(a, b) <= MEASURE_FACTOR * min(a, b)
 
 
 def line_matches(doc, out, header=None):
@@ -176,8 +177,8 @@ def headers(lines):
             current = line.split()
         elif "," in line and " " not in line.strip() and re.fullmatch(r"[a-z_0-9,]+", line.strip()):
             current = line.strip().split(",")
-        elif not line.strip():
-            current = None
+        elif not line.strip() or line.strip() == "...":
+            current = None   # a table ends at a blank line; after '...' rows may be of any table
         out.append(current)
     return out
 

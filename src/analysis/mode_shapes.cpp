@@ -61,14 +61,14 @@ ModeShape mode_shape(const Mode& m, const GyroscopicSystem& sys) {
     if (largest < kWhirlTolerance * top) largest = largest_of(false);
     s.shape = largest > 0.0 ? Eigen::VectorXcd(m.right / m.right(s.reference)) : m.right;
     const bool has_nodes = static_cast<int>(sys.node_of_dof.size()) == n;
-    // A pair whose entries are below 1e-9 of the largest of its unit is at rest (a node
+    // A pair whose entries are below 1e-9 of the largest entry of its unit is at rest (a node
     // of the mode, zero by symmetry): its computed orbit is rounding, and its angle
     // and phase would be noise. It is given as no motion.
     const auto unit_of = [&](int i) { return sys.dof_units.empty() ? std::string() : sys.dof_units[static_cast<size_t>(i)]; };
-    std::map<std::string, double> largest_in;
-    for (const auto& [u, v] : sys.whirl_pairs) {
-        double& l = largest_in[unit_of(u)];
-        l = std::max({l, std::abs(s.shape(u)), std::abs(s.shape(v))});
+    std::map<std::string, double> largest_in;   // over every DOF of the unit, paired or not
+    for (int i = 0; i < n; ++i) {
+        double& l = largest_in[unit_of(i)];
+        l = std::max(l, std::abs(s.shape(i)));
     }
     for (const auto& [u, v] : sys.whirl_pairs) {
         PairOrbit p;

@@ -58,6 +58,7 @@ bool is_rigid_body(std::complex<double> lambda, const Eigen::VectorXcd& x, const
     if (!(std::abs(lambda) <= kRigidBodyTolerance * scale)) return false;
     Eigen::VectorXcd Mx, Cx, Kx;
     pencil.apply(x, Mx, Cx, Kx);
+    if (!pencil.apply_abs_K) return Kx.norm() <= kRigidBodyTolerance * pencil.norm_K * x.norm();
     Eigen::VectorXd absKx;
     pencil.apply_abs_K(x.cwiseAbs(), absKx);
     return Kx.norm() <= kRigidBodyTolerance * absKx.norm();
@@ -88,7 +89,10 @@ void sort_by_frequency(std::vector<Mode>& modes) {
     }
 }
 
-double Mode::real_part() const { return stability() == Stability::Neutral ? 0.0 : lambda.real(); }
+double Mode::real_part() const {
+    // An unknown bound (no left vector) vouches for nothing: the real part is shown as computed.
+    return stability() == Stability::Neutral && std::isfinite(error_bound) ? 0.0 : lambda.real();
+}
 
 double Mode::damping_ratio() const {
     const double a = std::abs(lambda);
@@ -251,6 +255,7 @@ double error_bound_in(const std::vector<Mode>& modes, size_t i, const PencilActi
         if (modes[j].left.size() == m.right.size() && std::abs(modes[j].lambda - m.lambda) <= 1e-6 * std::abs(m.lambda))
             cluster.push_back(j);
     const Eigen::Index k = static_cast<Eigen::Index>(cluster.size());
+    if (k == 0) return std::numeric_limits<double>::infinity();   // a NaN or infinite eigenvalue
     Eigen::MatrixXcd X(m.right.size(), k), Y(m.right.size(), k), dPX(m.right.size(), k);
     Eigen::VectorXcd Mx, Cx, Kx;
     for (Eigen::Index c = 0; c < k; ++c) {

@@ -381,9 +381,11 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
     if (static_cast<int>(out.modes.size()) > opt.modes) {
         // A window edge through a double eigenvalue (an axisymmetric rotor at
         // standstill): which half is nearer the shift is rounding, so both are kept.
+        // One more at most: a double eigenvalue has two halves (a cluster is left as cut).
         size_t keep = static_cast<size_t>(opt.modes);
-        while (keep < out.modes.size() && std::abs(out.modes[keep].lambda - out.modes[keep - 1].lambda) <=
-                                              1e-6 * std::abs(out.modes[keep - 1].lambda))
+        if (std::abs(out.modes[keep].lambda - out.modes[keep - 1].lambda) <=
+                1e-6 * std::abs(out.modes[keep - 1].lambda) &&
+            out.modes[keep].lambda != out.modes[keep - 1].lambda)
             ++keep;
         if (keep > static_cast<size_t>(opt.modes))
             out.notes.push_back(fmt::format("the window's edge cuts a double eigenvalue at {:.6g} rad/s: both halves "

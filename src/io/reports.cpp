@@ -174,7 +174,7 @@ Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u
     t.key = "stability_changes";
     t.title = "stability changes (a mode's real part passes its error bound; the speed within the bound)";
     for (const auto& c : sc)
-        t.add_row({u.factor * round_to_bound(c.speed, c.bound), u.factor * c.bound, ll(c.branch),
+        t.add_row({round_to_bound(u.factor * c.speed, u.factor * c.bound), u.factor * c.bound, ll(c.branch),
                    std::string(c.becomes_unstable ? "unstable" : "stable"), u.factor * c.mode.frequency()});
     return t;
 }

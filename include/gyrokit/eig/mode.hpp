@@ -34,8 +34,9 @@ struct Mode {
     Whirl whirl = Whirl::Undefined;
 
     double frequency() const { return lambda.imag(); }   // damped natural frequency, rad/s
-    // Re(lambda) as far as it is vouched for: 0 where it lies within its error
-    // bound (a neutral mode), so that rounding never shows as damping of either sign.
+    // Re(lambda) as far as it is vouched for: 0 where it lies within its (finite)
+    // error bound (a neutral mode), so that rounding never shows as damping of
+    // either sign; as computed where the bound is unknown (infinite).
     double real_part() const;
     // -real_part()/|lambda|; 0 for a zero eigenvalue and for a neutral mode.
     double damping_ratio() const;
