@@ -166,13 +166,12 @@ struct Tracked {
     SolverChoice solver;
     CampbellDiagram diagram;
 };
-Tracked track(const GyroscopicSystem& s, const SolverOptions& o, const std::vector<double>& w, int jobs) {
+Tracked track(const GyroscopicSystem& s, const SolverOptions& o, const std::vector<double>& w,
+              const std::vector<int>& harmonics, int jobs) {
     Tracked t;
     t.solver = choose_solver(s, o);
-    CampbellOptions co;
+    CampbellOptions co = tracking_options(t.solver, o.modes, w, harmonics, threads(jobs));
     co.eig = o.eig;
-    co.modes = t.solver.modes;
-    co.threads = threads(jobs);
     t.diagram = campbell(t.solver.make, w, co);
     return t;
 }
@@ -312,20 +311,22 @@ PYBIND11_MODULE(_core, m) {
     }, py::arg("system"), py::arg("speed"), py::arg("solver"), py::arg("modes"), py::arg("target"),
           py::arg("target_order"), py::arg("method"), py::arg("lanczos"));
 
-    m.def("campbell", [](const GyroscopicSystem& s, const std::vector<double>& speeds, const std::string& solver,
-                         int modes, const py::object& target, double target_order, const std::string& method,
-                         int lanczos, int jobs) {
+    m.def("campbell", [](const GyroscopicSystem& s, const std::vector<double>& speeds,
+                         const std::vector<int>& harmonics, const std::string& solver, int modes,
+                         const py::object& target, double target_order, const std::string& method, int lanczos,
+                         int jobs) {
         const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
         const std::vector<double> w = checked_speeds(speeds);
         CampbellDiagram cd;
         {
             py::gil_scoped_release free;
-            Tracked t = track(s, o, w, jobs);
+            Tracked t = track(s, o, w, harmonics, jobs);
             cd = std::move(t.diagram);
             cd.notes.insert(cd.notes.begin(), t.solver.notes.begin(), t.solver.notes.end());
+            if (!cd.out_of_range.empty()) cd.notes.push_back(out_of_range_note(cd, SpeedUnit::parse("rad/s")));
         }
         return campbell_dict(cd);
-    }, py::arg("system"), py::arg("speeds"), py::arg("solver"), py::arg("modes"), py::arg("target"),
+    }, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"), py::arg("modes"), py::arg("target"),
           py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
 
     m.def("critical_speeds", [](const GyroscopicSystem& s, const std::vector<double>& speeds,
@@ -339,7 +340,7 @@ PYBIND11_MODULE(_core, m) {
         std::vector<CriticalSpeed> cs;
         {
             py::gil_scoped_release free;
-            const Tracked t = track(s, o, w, jobs);
+            const Tracked t = track(s, o, w, harmonics, jobs);
             cs = critical_speeds(t.solver.make, t.diagram, harmonics, threads(jobs));
         }
         const auto n = static_cast<py::ssize_t>(cs.size());
@@ -364,15 +365,16 @@ PYBIND11_MODULE(_core, m) {
     }, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"), py::arg("modes"),
           py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
 
-    m.def("stability", [](const GyroscopicSystem& s, const std::vector<double>& speeds, const std::string& solver,
-                          int modes, const py::object& target, double target_order, const std::string& method,
-                          int lanczos, int jobs) {
+    m.def("stability", [](const GyroscopicSystem& s, const std::vector<double>& speeds,
+                          const std::vector<int>& harmonics, const std::string& solver, int modes,
+                          const py::object& target, double target_order, const std::string& method, int lanczos,
+                          int jobs) {
         const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
         const std::vector<double> w = checked_speeds(speeds);
         std::vector<StabilityChange> ch;
         {
             py::gil_scoped_release free;
-            const Tracked t = track(s, o, w, jobs);
+            const Tracked t = track(s, o, w, harmonics, jobs);
             ch = stability_changes(t.solver.make, t.diagram, threads(jobs));
         }
         const auto n = static_cast<py::ssize_t>(ch.size());
@@ -391,8 +393,8 @@ PYBIND11_MODULE(_core, m) {
         d["branch"] = branch;
         d["becomes_unstable"] = unstable;
         return d;
-    }, py::arg("system"), py::arg("speeds"), py::arg("solver"), py::arg("modes"), py::arg("target"),
-          py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
+    }, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"), py::arg("modes"),
+          py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
 
     m.def("parse_scene", &parse_scene, py::arg("text"), py::arg("origin"), py::arg("dir") = ".");
 

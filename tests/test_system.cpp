@@ -54,8 +54,8 @@ TEST_CASE("system: every analysis validates before it solves", "[system][validat
     CHECK(message([&] { choose_solver(nan, {}); }).find("NaN") != std::string::npos);
     // Options are checked by field name.
     SolverOptions o;
-    o.modes = -1;
-    CHECK(message([&] { choose_solver(make_system(centrifuge()), o); }).rfind("modes = -1", 0) == 0);
+    o.modes = -2;   // -1 is kModesInRange
+    CHECK(message([&] { choose_solver(make_system(centrifuge()), o); }).rfind("modes = -2", 0) == 0);
 }
 
 TEST_CASE("system: solvers own their system, a temporary model is safe", "[system]") {

@@ -28,11 +28,10 @@ struct Options {
 
 int wanted_modes(const Context& c, int modes) { return modes >= 0 ? modes : c.scene.modes; }
 
-CampbellOptions campbell_options(const Context& c, const SolverChoice& plan) {
-    CampbellOptions co;
+// The tracking of `modes` asked (kModesInRange: those the speeds and harmonics excite).
+CampbellOptions campbell_options(const Context& c, const SolverChoice& plan, int modes, const std::vector<int>& harmonics) {
+    CampbellOptions co = tracking_options(plan, modes, c.speeds, harmonics, c.jobs);
     co.eig = c.eig;
-    co.modes = plan.modes;
-    co.threads = c.jobs;
     co.progress = progress_bar("speeds");
     return co;
 }
@@ -121,7 +120,7 @@ std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys)
 
 // What the tracked diagram says besides its rows: solver notes, rigid-body
 // eigenvalues left out, ambiguity, and every unstable range (a warning).
-void note_diagram(const CampbellDiagram& cd, const Context& c) {
+void note_diagram(const CampbellDiagram& cd, const Context& c, bool in_summary = false) {
     for (const auto& n : cd.notes) std::cerr << "note: " << n << "\n";
     if (cd.rigid_body > 0)
         std::cerr << "note: " << cd.rigid_body << " rigid-body eigenvalues (lambda = 0: free motion of a singular K) "
@@ -130,6 +129,7 @@ void note_diagram(const CampbellDiagram& cd, const Context& c) {
         std::cerr << "note: " << cd.ambiguous_steps
                   << " speed steps stayed ambiguous at the refinement limit; use a finer --speeds grid\n";
     for (const auto& w : instability_warnings(cd, c.unit)) std::cerr << "warning: " << w << "\n";
+    if (!cd.out_of_range.empty() && !in_summary) std::cerr << "note: " << out_of_range_note(cd, c.unit) << "\n";
 }
 
 // The steady unbalance response is no state the rotor reaches where a mode is
@@ -143,7 +143,7 @@ void warn_unstable_response(const Context& c, int modes) {
         for (int k = 0; k <= 20; ++k) grid.push_back(c.speeds.front() + (c.speeds.back() - c.speeds.front()) * k / 20.0);
     }
     const SolverChoice plan = plan_solver(c, modes);
-    CampbellOptions co = campbell_options(c, plan);
+    CampbellOptions co = campbell_options(c, plan, modes, c.scene.harmonics);
     co.progress = {};
     const CampbellDiagram cd = campbell(plan.make, grid, co);
     for (const auto& w : instability_warnings(cd, c.unit))
@@ -249,9 +249,10 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     cmds.push_back({camp, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
         const auto h = parse_harmonics(o->harmonics, c.scene.harmonics);
-        const SolverChoice plan = plan_solver(c, wanted_modes(c, o->modes));
+        const int modes = wanted_modes(c, o->modes);
+        const SolverChoice plan = plan_solver(c, modes);
         note_extrapolation(c);
-        const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
+        const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan, modes, h));
         // The first screen (table format): a summary and the critical speeds; the rows on request.
         const bool summary = c.format == TableFormat::Text && !o->rows;
         std::vector<CriticalSpeed> cs;
@@ -266,7 +267,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
             write_table(out, campbell_table(cd, c.unit), c.format);
         }
         if (!o->common.plot.empty()) plot_if(o->common.plot, campbell_figure(cd, cs, h, c.unit, c.scene.title));
-        note_diagram(cd, c);
+        note_diagram(cd, c, summary);
     }});
 
     auto* crit = app.add_subcommand("critical", "critical speeds: crossings with the k x speed lines");
@@ -292,9 +293,10 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
             }
             std::sort(cs.begin(), cs.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
         } else {
-            const SolverChoice plan = plan_solver(c, wanted_modes(c, o->modes));
+            const int modes = wanted_modes(c, o->modes);
+            const SolverChoice plan = plan_solver(c, modes);
             note_extrapolation(c);
-            const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
+            const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan, modes, h));
             cs = critical_speeds(plan.make, cd, h, c.jobs);
             note_diagram(cd, c);
         }
@@ -308,12 +310,14 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     stab->add_option("--modes", o->modes, "number of modes considered (0 = all; sparse: default 6)");
     cmds.push_back({stab, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
-        const SolverChoice plan = plan_solver(c, std::max(0, o->modes));
+        const int modes = wanted_modes(c, o->modes);
+        const SolverChoice plan = plan_solver(c, modes);
         note_extrapolation(c);
-        const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan));
+        const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan, modes, c.scene.harmonics));
         const auto changes = stability_changes(plan.make, cd, c.jobs);
         write_table(out, stability_table(changes, c.unit), c.format);
         for (const auto& n : cd.notes) std::cerr << "note: " << n << "\n";
+        if (!cd.out_of_range.empty()) std::cerr << "note: " << out_of_range_note(cd, c.unit) << "\n";
         if (changes.empty())
             std::cerr << "note: no mode changes stability in the range; "
                       << (unstable_ranges(cd).empty() ? "none is unstable (neutral modes: Re lambda within its error bound)"

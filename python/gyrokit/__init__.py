@@ -27,8 +27,19 @@ def load_scene(path, overrides=None, motion=None) -> Scene:
     return _core.load_scene(str(path), dict(overrides or {}), motion or "")
 
 
+_IN_RANGE = -1   # modes not given: those in the range the speeds and harmonics excite
+
+
+def _harmonics(model, harmonics):
+    if harmonics is None:
+        harmonics = model.harmonics if isinstance(model, Scene) else [1]
+    return [int(h) for h in harmonics]
+
+
 def _options(model, solver, modes, target, target_order):
     """The system and the solver options: a scene's [analysis] values where a keyword is None."""
+    if modes is not None and (int(modes) != modes or modes < 0):
+        raise InputError(f"modes = {modes}: allowed: a whole number >= 0 (0: all); None: the modes in range")
     if isinstance(model, Scene):
         system = model.system
         solver = model.solver if solver is None else solver
@@ -39,9 +50,8 @@ def _options(model, solver, modes, target, target_order):
         system = model
     else:
         raise InputError(f"expected a gyrokit.System or gyrokit.Scene, got {type(model).__name__}")
-    if modes is not None and (int(modes) != modes or modes < 0):
-        raise InputError(f"modes = {modes}: allowed: a whole number >= 0 (0: all)")
-    return system, dict(solver=solver or "auto", modes=int(modes or 0), target=target,
+    # None (and a scene without [analysis] modes): the modes the speeds and harmonics excite.
+    return system, dict(solver=solver or "auto", modes=_IN_RANGE if modes is None else int(modes), target=target,
                         target_order=float(target_order or 0.0))
 
 
@@ -215,30 +225,30 @@ def modes(model, speed, *, solver=None, modes=None, target=None, target_order=No
                       float(speed), system.dof_names)
 
 
-def campbell(model, speeds=None, *, solver=None, modes=None, target=None, target_order=None, method="qz",
-             lanczos=0, jobs=1) -> CampbellResult:
-    """Campbell diagram over `speeds` (rad/s; default: the scene's [speeds]); jobs threads (0 = all cores)."""
+def campbell(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
+             method="qz", lanczos=0, jobs=1) -> CampbellResult:
+    """Campbell diagram over `speeds` (rad/s; default: the scene's [speeds]); jobs threads (0 = all cores).
+    modes None (and no scene value): the modes in the band the speeds and harmonics excite."""
     system, o = _options(model, solver, modes, target, target_order)
-    return CampbellResult(_core.campbell(system, _speeds(model, speeds), method=method, lanczos=int(lanczos),
-                                         jobs=int(jobs), **o))
+    return CampbellResult(_core.campbell(system, _speeds(model, speeds), _harmonics(model, harmonics),
+                                         method=method, lanczos=int(lanczos), jobs=int(jobs), **o))
 
 
 def critical_speeds(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
                     method="qz", lanczos=0, jobs=1) -> CriticalSpeeds:
     """Critical speeds (rad/s) where tracked branches cross k * speed, k in `harmonics` (default: the scene's, or 1)."""
     system, o = _options(model, solver, modes, target, target_order)
-    if harmonics is None:
-        harmonics = model.harmonics if isinstance(model, Scene) else [1]
-    return CriticalSpeeds(_core.critical_speeds(system, _speeds(model, speeds), [int(h) for h in harmonics],
+    return CriticalSpeeds(_core.critical_speeds(system, _speeds(model, speeds), _harmonics(model, harmonics),
                                                 method=method, lanczos=int(lanczos), jobs=int(jobs), **o))
 
 
-def stability(model, speeds=None, *, solver=None, modes=None, target=None, target_order=None, method="qz",
-              lanczos=0, jobs=1) -> StabilityChanges:
-    """Speeds where a mode becomes unstable or stable again (Re lambda beyond its error bound)."""
+def stability(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
+               method="qz", lanczos=0, jobs=1) -> StabilityChanges:
+    """Speeds where a mode becomes unstable or stable again (Re lambda beyond its error bound), over the
+    modes in range (modes None) or the K lowest (modes = K; 0: every mode)."""
     system, o = _options(model, solver, modes, target, target_order)
-    return StabilityChanges(_core.stability(system, _speeds(model, speeds), method=method, lanczos=int(lanczos),
-                                            jobs=int(jobs), **o))
+    return StabilityChanges(_core.stability(system, _speeds(model, speeds), _harmonics(model, harmonics),
+                                            method=method, lanczos=int(lanczos), jobs=int(jobs), **o))
 
 
 class ScreenResult(_Result):

@@ -36,6 +36,19 @@ const Mode& continue_branch(const Branch& branch, size_t i, double w, const Quad
 
 namespace {
 
+// How far mode b at speed w0 + h lies from the continuation of mode a at w0:
+// from the trapezoid (Hermite) prediction a + h (a' + b') / 2 where both slopes
+// are known (error O(h^3)), from a + h a' where only a's is, else from
+// `predicted` (the branch's linear extrapolation).
+double step_residual(const Mode& a, const Mode& b, double h, cd predicted) {
+    const bool sa = std::isfinite(a.slope.real()), sb = std::isfinite(b.slope.real());
+    if (sa && sb) return std::abs(b.lambda - a.lambda - 0.5 * h * (a.slope + b.slope));
+    if (sa) return std::abs(b.lambda - a.lambda - h * a.slope);
+    return std::abs(b.lambda - predicted);
+}
+
+bool has_slope(const Mode& m) { return std::isfinite(m.slope.real()) && std::isfinite(m.slope.imag()); }
+
 struct Tracker {
     SpectrumSolver& solve;
     const CampbellOptions& opt;
@@ -49,27 +62,85 @@ struct Tracker {
     std::vector<char> watched;
     char watch_new = 1;        // whether branches that start later are watched
 
-    // Assignment of the modes of `prev` to those of `next`; ambiguous if any
-    // match is weak or a rival is nearly as good.
+    // Modes beyond twice the band at both ends are matched by frequency order only:
+    // they are not reported, and an optimal assignment over hundreds of them would
+    // cost more than the solve.
+    bool far(const Mode& m) const { return std::isfinite(opt.band) && std::abs(m.frequency()) > 2.0 * opt.band; }
+
+    // Assignment of the modes of `prev` (speed w0) to those of `next` (w0 + h).
+    // A watched match is clear when the eigenvalue continues the branch's slope
+    // (trapezoid residual within a tenth of the step's change, or within the error
+    // bounds) and every rival's residual is at least four times larger; without
+    // slopes, when the mode shapes correlate (MAC >= mac_min) and no rival's cost
+    // is within 0.05. Else the step is ambiguous.
     std::vector<int> match(const std::vector<Mode>& prev, const std::vector<cd>& predicted,
-                           const std::vector<Mode>& next, bool& ambiguous) const {
-        Eigen::MatrixXd cost(prev.size(), next.size());
-        for (size_t i = 0; i < prev.size(); ++i)
-            for (size_t j = 0; j < next.size(); ++j)
-                cost(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
-                    match_cost(prev[i], predicted[i], next[j]);
-        std::vector<int> a = solve_assignment(cost);
-        ambiguous = !window && prev.size() != next.size();
-        for (size_t i = 0; i < prev.size() && !ambiguous; ++i) {
-            const int j = a[i];
-            if (j < 0 || degenerate(prev, i)) continue;   // a double eigenvalue: either match is right
+                           const std::vector<Mode>& next, double h, bool& ambiguous) const {
+        std::vector<size_t> rows, cols, far_rows, far_cols;
+        for (size_t i = 0; i < prev.size(); ++i) (far(prev[i]) ? far_rows : rows).push_back(i);
+        for (size_t j = 0; j < next.size(); ++j) (far(next[j]) ? far_cols : cols).push_back(j);
+        std::vector<int> a(prev.size(), -1);
+        ambiguous = false;
+        // The far modes in frequency order, pair by pair.
+        const auto by_freq = [](const std::vector<Mode>& m, std::vector<size_t>& idx) {
+            std::stable_sort(idx.begin(), idx.end(), [&](size_t x, size_t y) { return m[x].frequency() < m[y].frequency(); });
+        };
+        by_freq(prev, far_rows);
+        by_freq(next, far_cols);
+        const size_t nr = rows.size(), nc = cols.size();
+        Eigen::MatrixXd res(nr, nc), cost(nr, nc);
+        for (size_t r = 0; r < nr; ++r)
+            for (size_t c = 0; c < nc; ++c) {
+                const Mode& p = prev[rows[r]];
+                const Mode& q = next[cols[c]];
+                res(r, c) = step_residual(p, q, h, predicted[rows[r]]);
+                cost(r, c) = res(r, c) / (std::abs(p.lambda) + std::abs(q.lambda) + 1e-300);
+            }
+        // The shapes weigh in where eigenvalues leave a choice: MAC of each row's three nearest.
+        for (size_t r = 0; r < nr; ++r) {
+            std::vector<size_t> near(nc);
+            for (size_t c = 0; c < nc; ++c) near[c] = c;
+            const size_t k = std::min<size_t>(3, nc);
+            std::partial_sort(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(k), near.end(),
+                              [&](size_t x, size_t y) { return cost(r, x) < cost(r, y); });
+            for (size_t c = 0; c < nc; ++c) cost(r, c) += 0.01;
+            for (size_t t = 0; t < k; ++t)
+                cost(r, near[t]) += 0.01 * (-mac(prev[rows[r]].right, next[cols[near[t]]].right));
+        }
+        const std::vector<int> sub = solve_assignment(cost);
+        for (size_t r = 0; r < nr; ++r)
+            if (sub[r] >= 0) a[rows[r]] = static_cast<int>(cols[static_cast<size_t>(sub[r])]);
+        for (size_t t = 0; t < std::min(far_rows.size(), far_cols.size()); ++t)
+            a[far_rows[t]] = static_cast<int>(far_cols[t]);
+
+        for (size_t r = 0; r < nr && !ambiguous; ++r) {
+            const size_t i = rows[r];
+            if (sub[r] < 0 || degenerate(prev, i)) continue;   // a double eigenvalue: either match is right
             if (!watched[static_cast<size_t>(active[i])]) continue;
             if (window && opt.modes > 0 && static_cast<int>(i) >= opt.modes) continue;   // the window's edge
-            if (mac(prev[i].right, next[static_cast<size_t>(j)].right) < opt.mac_min) ambiguous = true;
-            for (size_t k = 0; k < next.size(); ++k)
-                if (static_cast<int>(k) != j && cost(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) <
-                                                    cost(static_cast<Eigen::Index>(i), j) + 0.05)
-                    ambiguous = true;
+            const size_t c = static_cast<size_t>(sub[r]);
+            const Mode& p = prev[i];
+            const Mode& q = next[cols[c]];
+            if (std::isfinite(opt.band) && p.frequency() > opt.band && q.frequency() > opt.band) continue;
+            // Real (overdamped) eigenvalues are kept apart: a pair that turns overdamped
+            // splits at an exceptional point, where no slope exists; not a matter of step size.
+            if (frequency_rank(p).first != 0 || frequency_rank(q).first != 0) continue;
+            if (has_slope(p) && has_slope(q) && std::isfinite(p.error_bound) && std::isfinite(q.error_bound)) {
+                const double noise = 4.0 * (p.error_bound + q.error_bound) + 1e-12 * (std::abs(p.lambda) + std::abs(q.lambda));
+                const double change = std::max({std::abs(q.lambda - p.lambda), std::abs(h * p.slope), std::abs(h * q.slope)});
+                if (res(r, c) > 0.1 * change + noise) ambiguous = true;
+                for (size_t k = 0; k < nc; ++k)
+                    if (k != c && std::abs(next[cols[k]].lambda - q.lambda) > 1e-8 * std::abs(q.lambda) &&
+                        res(r, k) < std::max(4.0 * res(r, c), noise))
+                        ambiguous = true;
+            } else {
+                const double own = 1.0 - mac(p.right, q.right) + res(r, c) / (std::abs(p.lambda) + std::abs(q.lambda) + 1e-300);
+                if (mac(p.right, q.right) < opt.mac_min) ambiguous = true;
+                for (size_t k = 0; k < nc && !ambiguous; ++k)
+                    if (k != c && 1.0 - mac(p.right, next[cols[k]].right) +
+                                          res(r, k) / (std::abs(p.lambda) + std::abs(next[cols[k]].lambda) + 1e-300) <
+                                      own + 0.05)
+                        ambiguous = true;
+            }
         }
         return a;
     }
@@ -127,8 +198,8 @@ struct Tracker {
         std::vector<Mode> prev;
         last_modes(prev);
         bool ambiguous = false;
-        std::vector<int> a = match(prev, predictions(prev, w1), s1.modes, ambiguous);
         const double w0 = out.speeds.back();
+        std::vector<int> a = match(prev, predictions(prev, w1), s1.modes, w1 - w0, ambiguous);
         const double wm = 0.5 * (w0 + w1);
         // No bisection below the resolution of the speeds (wm equal to an end).
         if (ambiguous && depth < opt.max_refine && wm > w0 && wm < w1) {
@@ -146,6 +217,23 @@ struct Tracker {
 };
 
 }  // namespace
+
+double excitation_band(const std::vector<double>& speeds, const std::vector<int>& harmonics) {
+    double top = 0.0;
+    for (double w : speeds) top = std::max(top, std::abs(w));
+    int h = 1;
+    for (int k : harmonics) h = std::max(h, k);
+    return top > 0.0 && std::isfinite(top) ? kBandMargin * h * top : std::numeric_limits<double>::infinity();
+}
+
+CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std::vector<double>& speeds,
+                                 const std::vector<int>& harmonics, Workers threads) {
+    CampbellOptions co;
+    co.modes = modes == kModesInRange ? (plan.kind == SolverKind::Sparse ? plan.modes : 0) : plan.modes;
+    if (modes == kModesInRange) co.band = excitation_band(speeds, harmonics);
+    co.threads = threads;
+    return co;
+}
 
 CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>& speeds, const CampbellOptions& opt) {
     return campbell(dense_solver(sys, opt.eig), speeds, opt);
@@ -204,6 +292,21 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
             out.untracked.push_back(std::move(br[i]));
         }
         br.resize(static_cast<size_t>(opt.modes));
+    } else if (std::isfinite(opt.band) && (opt.modes == 0 || t.window)) {
+        // Out of range: above the band at every speed. Named, not judged.
+        out.band = opt.band;
+        const auto in_range = [&](const Branch& b) {
+            return std::any_of(b.points.begin(), b.points.end(),
+                               [&](const BranchPoint& p) { return p.mode.frequency() <= opt.band; });
+        };
+        const auto split = std::stable_partition(br.begin(), br.end(), in_range);
+        for (auto it = split; it != br.end(); ++it) {
+            for (auto& p : it->points) p.mode.right.resize(0), p.mode.left.resize(0);
+            out.out_of_range.push_back(std::move(*it));
+        }
+        br.erase(split, br.end());
+        for (size_t i = 0; i < out.out_of_range.size(); ++i)
+            out.out_of_range[i].id = static_cast<int>(br.size() + i + 1);
     }
     if (t.window) {   // the window's branches: those of the first speed, then the ones that entered later
         const auto first = std::stable_partition(br.begin(), br.end(), [&](const Branch& b) {

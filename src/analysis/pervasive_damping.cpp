@@ -68,10 +68,8 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
     const SolverChoice solver = choose_solver(s, so);
     const bool dense = solver.kind == SolverKind::Dense;
     SpectrumSolver solve = solver.make();
-    CampbellOptions co;
+    CampbellOptions co = tracking_options(solver, opt.modes, speeds, {1}, opt.threads);
     co.eig = so.eig;
-    co.modes = solver.modes;
-    co.threads = opt.threads;
     const CampbellDiagram cd = campbell(solver.make, speeds, co);
     // The residual over a mode's left plane, from the dense or the sparse pencil.
     const auto plane = [&](double w, const Mode& m, const Eigen::MatrixXcd& Y) {

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -37,9 +38,48 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
     // The solvers share ownership of one copy: a temporary system outlives the call.
     const auto model = std::make_shared<const GyroscopicSystem>(sys);
     return {[model, eig]() -> SpectrumSolver {
-                return [model, eig](double w) { return solve_at_speed(*model, w, eig); };
+                return [model, eig](double w) {
+                    EigenOptions o = eig;
+                    o.left_vectors = true;   // for the slopes
+                    QuadraticSpectrum s = solve_at_speed(*model, w, o);
+                    set_slopes(s.modes, [&](double v) { return model->sparse_at_speed(v); }, w, s.scale);
+                    if (!eig.left_vectors)
+                        for (Mode& m : s.modes) m.left.resize(0);
+                    return s;
+                };
             },
             true};
+}
+
+void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(double)>& pencil, double w,
+                double scale) {
+    using cd = std::complex<double>;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (modes.empty()) return;
+    // Central differences (forward ones next to standstill, where a table holds its
+    // end row below zero): exact for the terms linear and quadratic in w up to
+    // rounding of order eps |P| / h, the average slope across a table's kink.
+    const double h = 1e-4 * std::max(std::abs(w), scale > 0.0 ? scale : 1.0);
+    const bool forward = w - h < 0.0;
+    const SparsePencil p = pencil(w), hi = pencil(w + h), lo = pencil(forward ? w : w - h);
+    const double span = forward ? h : 2.0 * h;
+    for (Mode& m : modes) {
+        m.slope = {nan, 0.0};
+        if (m.left.size() != m.right.size() || m.right.size() == 0) continue;
+        // A double eigenvalue's vectors are any basis of its plane: no slope of its own.
+        bool single = true;
+        for (const Mode& o : modes)
+            if (&o != &m && std::abs(o.lambda - m.lambda) <= 1e-6 * std::abs(m.lambda)) single = false;
+        if (!single) continue;
+        const cd l = m.lambda;
+        const Eigen::VectorXcd& x = m.right;
+        const Eigen::VectorXcd dPx = ((l * l) * ((hi.M - lo.M) * x) + l * ((hi.C - lo.C) * x) + (hi.K - lo.K) * x) / span;
+        const Eigen::VectorXcd dlPx = (2.0 * l) * (p.M * x) + p.C * x;
+        const cd den = m.left.dot(dlPx);   // y^H P'(lambda) x
+        if (std::abs(den) == 0.0) continue;
+        m.slope = -m.left.dot(dPx) / den;
+        if (!std::isfinite(m.slope.real()) || !std::isfinite(m.slope.imag())) m.slope = {nan, 0.0};
+    }
 }
 
 QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p) {
@@ -78,16 +118,21 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
             SparseEigenOptions o = opt;
             o.shift += std::complex<double>(0.0, opt.shift_order * w);   // continued along nu + k w
             if (reuse) o.start = *start;
+            o.left_vectors = true;   // for the slopes
             if (*rigid > 0) o.reserve = std::max(o.reserve, *rigid + 2);
             SparseSpectrum s = solve_quadratic_sparse(p, o, whirl_pairs);
             *rigid = static_cast<int>(s.rigid_body.size());
-            if (reuse && !s.modes.empty()) {
+            QuadraticSpectrum q = to_spectrum(std::move(s), p);
+            set_slopes(q.modes, pencil, w, q.scale);
+            if (!opt.left_vectors)
+                for (Mode& m : q.modes) m.left.resize(0);
+            if (reuse && !q.modes.empty()) {
                 // Real and imaginary parts of [lambda x; x] span each mode and its
                 // conjugate (ARPACK wants both); a small random part keeps the
                 // Krylov space from closing on them before it holds all it needs.
                 const Eigen::Index n = p.M.rows();
                 Eigen::VectorXcd v = Eigen::VectorXcd::Zero(2 * n);
-                for (const Mode& m : s.modes) {
+                for (const Mode& m : q.modes) {
                     Eigen::VectorXcd z(2 * n);
                     z.head(n) = m.lambda / std::max(1.0, std::abs(m.lambda)) * m.right;
                     z.tail(n) = m.right / std::max(1.0, std::abs(m.lambda));
@@ -98,7 +143,7 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
                 Eigen::VectorXcd r = Eigen::VectorXcd::Random(2 * n);
                 *start = v + 0.01 * r / r.norm();
             }
-            return to_spectrum(std::move(s), p);
+            return q;
         };
     };
     return f;
@@ -132,7 +177,7 @@ SolverKind resolve_solver_kind(int dofs, SolverKind requested) {
 }
 
 SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt) {
-    if (opt.modes < 0)
+    if (opt.modes < kModesInRange)
         throw InputError(fmt::format("modes = {}: allowed: 0 (all modes; the sparse solver: {}) or more", opt.modes,
                                      kDefaultSparseModes));
     if (opt.target && !std::isfinite(*opt.target))
@@ -145,13 +190,13 @@ SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt
     SolverChoice c;
     c.kind = resolve_solver_kind(n, opt.kind);
     if (c.kind == SolverKind::Dense) {
-        c.modes = opt.modes;   // every mode is computed; a target does not matter
+        c.modes = std::max(0, opt.modes);   // every mode is computed; a target does not matter
         c.make = dense_solver(sys, opt.eig);
         return c;
     }
     SparseEigenOptions so;
     so.modes = opt.modes > 0 ? opt.modes : kDefaultSparseModes;
-    if (opt.modes == 0)
+    if (opt.modes <= 0)
         c.notes.push_back(fmt::format("the sparse solver computes {} modes near the target; set modes for another "
                                       "number",
                                       so.modes));
@@ -211,6 +256,7 @@ void put_modes(std::FILE* f, const std::vector<Mode>& modes) {
         put(f, m.backward_error);
         put(f, m.error_bound);
         put(f, static_cast<int>(m.whirl));
+        put(f, m.slope);
         put_vector(f, m.right);
         put_vector(f, m.left);
     }
@@ -222,6 +268,7 @@ std::vector<Mode> get_modes(std::FILE* f) {
         m.backward_error = get<double>(f);
         m.error_bound = get<double>(f);
         m.whirl = static_cast<Whirl>(get<int>(f));
+        m.slope = get<std::complex<double>>(f);
         m.right = get_vector(f);
         m.left = get_vector(f);
     }

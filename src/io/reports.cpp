@@ -76,6 +76,16 @@ std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const S
     return out;
 }
 
+std::string out_of_range_note(const CampbellDiagram& cd, const SpeedUnit& u) {
+    if (cd.out_of_range.empty()) return "";
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const Branch& b : cd.out_of_range)
+        for (const auto& p : b.points) lowest = std::min(lowest, p.mode.frequency());
+    return fmt::format("{} modes stay above {:.6g} {} over the range ({} times the highest excitation; the lowest at "
+                       "{:.6g} {}): out of range, not judged; --modes 0 judges every mode",
+                       cd.out_of_range.size(), u.factor * cd.band, u.name, kBandMargin, u.factor * lowest, u.name);
+}
+
 Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u) {
     Table t({u.column("speed"), "mode", "re_1_s", "im_rad_s", u.column("frequency"), "whirl", "damping_ratio", "log_dec"});
     t.key = "campbell";
@@ -130,7 +140,8 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
     // a sparse window covers its tracked modes only, and says so.
     const auto unstable = unstable_ranges(cd, true);
     const std::string which =
-        window ? fmt::format("the {} tracked modes (the others are not checked)", cd.branches.size()) : "every mode";
+        window ? fmt::format("the {} tracked modes (the others are not checked)", cd.branches.size())
+               : (cd.out_of_range.empty() ? "every mode" : "every mode in range");
     std::string verdict = unstable.empty() ? fmt::format("{} stable over the range (no real part beyond its error "
                                                          "bound)",
                                                          which)
@@ -144,6 +155,7 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
     if (!unstable.empty() && window)
         verdict += fmt::format("; modes beyond the {} tracked are not checked", cd.branches.size());
     t.add_row({std::string("stability"), verdict});
+    if (!cd.out_of_range.empty()) t.add_row({std::string("out of range"), out_of_range_note(cd, u)});
     if (cd.rigid_body > 0)
         t.add_row({std::string("rigid-body eigenvalues"), fmt::format("{} (not modes, not tracked)", cd.rigid_body)});
     t.add_row({std::string("largest backward error"), fmt::format("{:.2g}", cd.max_backward_error)});

@@ -219,7 +219,7 @@ Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
     if (const toml::table* an = root.get_as<toml::table>("analysis")) {
         TomlKeys k(path, "analysis", *an);
         k.only({"modes", "harmonics", "solver", "target", "target_order"});
-        sc.modes = static_cast<int>(k.integer("modes", 0, 0, 100000));
+        if (k.has("modes")) sc.modes = static_cast<int>(k.integer("modes", 0, 0, 100000));
         sc.solver = parse_solver_kind(k.choice("solver", "auto", {"auto", "dense", "sparse"}));
         if (k.has("target")) sc.target = k.number("target", std::nullopt, 0, false, "rad/s");
         sc.target_order = k.number("target_order", 0.0, 0, false, "multiple of the speed");

@@ -1,7 +1,8 @@
 // Campbell diagram: the modes tracked across spin speed. Modes are matched
-// between neighbouring speeds by eigenvector correlation (MAC) plus eigenvalue
-// continuity; where the match is ambiguous (crossing, veering) the speed step
-// is bisected.
+// between neighbouring speeds by eigenvalue continuity along their slopes
+// d lambda / d w (the trapezoid rule on the slopes at both ends), with the
+// eigenvector correlation (MAC) as a tie-breaker; where the match is ambiguous
+// (a veering the step does not resolve) the speed step is bisected.
 #pragma once
 
 #include <gyrokit/analysis/spectrum_solver.hpp>
@@ -9,6 +10,7 @@
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 
 #include <functional>
+#include <limits>
 #include <vector>
 
 namespace gyrokit {
@@ -18,6 +20,10 @@ struct CampbellOptions {
     int modes = 0;            // keep the K lowest branches by frequency at the first speed (oscillating
                               // ones first, real eigenvalues after them); 0 = all.
                               // Dense: only these (and the next two) decide whether a step is ambiguous
+    // rad/s: with modes = 0, the modes whose frequency stays above it over the whole
+    // range are out of range (CampbellDiagram::out_of_range: named, not judged);
+    // infinity: every mode. excitation_band gives the engineer's default.
+    double band = std::numeric_limits<double>::infinity();
     int max_refine = 8;       // bisection levels allowed between two grid speeds
     double mac_min = 0.9;     // a match with a lower MAC is ambiguous
     Workers threads = 1;      // grid speeds solved in parallel: this many threads or worker processes
@@ -48,7 +54,27 @@ struct CampbellDiagram {
     // (no vectors), ids K + 1 on; a dense spectrum is complete, so they cost nothing
     // more and let a stability verdict cover every mode.
     std::vector<Branch> untracked;
+    // With a band (CampbellOptions::band): the branches above it at every speed,
+    // eigenvalues only, ids after the reported ones. Not judged by any verdict.
+    double band = std::numeric_limits<double>::infinity();
+    std::vector<Branch> out_of_range;
 };
+
+// How far above the highest excitation a mode still counts as in range: API 684
+// asks for separation margins up to 26 % above the operating range; a further
+// margin keeps the modes that approach it from above within reach.
+constexpr double kBandMargin = 1.5;
+
+// The frequency band the speeds and harmonics can excite (rad/s): kBandMargin
+// times the highest harmonic times the highest speed; infinity for a top speed
+// of 0 (no excitation to measure a range by: every mode).
+double excitation_band(const std::vector<double>& speeds, const std::vector<int>& harmonics);
+
+// The tracking options every front end uses: `modes` as asked (kModesInRange:
+// every mode in the excitation band of the speeds and harmonics; 0: every mode;
+// K: the K lowest at the first speed) on the solver `plan`.
+CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std::vector<double>& speeds,
+                                 const std::vector<int>& harmonics, Workers threads = {});
 
 // Dense: every mode of the system, solved with opt.eig.
 CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>& speeds,

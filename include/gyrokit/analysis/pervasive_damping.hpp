@@ -20,7 +20,8 @@ struct PervasiveOptions {
     // loss only at the level the eigenpair's accuracy explains: r <= 1e3 max(eta, sqrt(n) eps).
     double tolerance = 1e-8;
     int modes = 0;   // the K lowest branches at the first speed are checked; 0 = all (dense) or
-                     // the sparse solver's default window
+                     // the sparse solver's default window; kModesInRange: those in range of 1x
+                     // the speeds (tracking_options)
     // Which solver computes the modes (choose_solver; its `modes` is replaced by
     // the field above). Dense: the full SVD of [P^T; D] refines a loss as well;
     // sparse: the residual over the left eigenvectors, in O(nonzeros).

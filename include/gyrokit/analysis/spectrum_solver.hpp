@@ -59,11 +59,16 @@ constexpr int kDenseLimit = 3000;
 // Modes the sparse solver computes when none are asked for.
 constexpr int kDefaultSparseModes = 6;
 
+// `modes` not given: the modes in the range the speeds excite (tracking_options);
+// to a solver it means every mode (dense) or kDefaultSparseModes (sparse).
+constexpr int kModesInRange = -1;
+
 // The fields carry the names of the scene's [analysis] keys (and the CLI's options).
 struct SolverOptions {
     SolverKind kind = SolverKind::Auto;   // solver
     EigenOptions eig;                     // dense: scaled QZ or state matrix
-    int modes = 0;                        // modes wanted; 0: all (dense) or kDefaultSparseModes (sparse)
+    int modes = 0;                        // modes wanted; 0: all (dense) or kDefaultSparseModes (sparse);
+                                          // kModesInRange: as 0, the tracking keeps those in range
     std::optional<double> target;         // rad/s: the sparse search centre (default 0: the lowest modes)
     double target_order = 0.0;            // the centre moves as target + target_order * speed
     int lanczos_vectors = 0;              // sparse: Arnoldi vectors, 0 = automatic
@@ -116,6 +121,12 @@ struct WorkerDied : Error {
     long long task;
     int signal;
 };
+
+// Each mode's slope d lambda / d w (Mode::slope) from its right and left vectors
+// and the pencils pencil(w), pencil(w +- h) (central differences, h = 1e-4
+// max(w, scale); forward ones where w - h < 0). Both solvers of a model set it.
+void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(double)>& pencil, double w,
+                double scale);
 
 // The ARPACK result as a spectrum of the dense interface.
 QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p);

@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <complex>
+#include <limits>
 #include <functional>
 #include <string>
 #include <utility>
@@ -28,6 +29,10 @@ struct Mode {
     Eigen::VectorXcd right;        // P(lambda) x = 0, unit 2-norm
     Eigen::VectorXcd left;         // y^H P(lambda) = 0, unit 2-norm (empty unless asked for)
     double backward_error = 0.0;   // relative backward error of (lambda, right)
+    // d lambda / d w: how the eigenvalue moves with the spin speed, first-order
+    // perturbation theory -y^H (dP/dw) x / y^H P'(lambda) x (set_slopes); NaN where
+    // unknown (no left vector, a double eigenvalue, a solver that does not set it).
+    std::complex<double> slope{std::numeric_limits<double>::quiet_NaN(), 0.0};
     // Bound on |lambda - exact eigenvalue| (1/s): condition number times backward
     // error, with a safety factor; infinity where the condition is unknown.
     double error_bound = 0.0;

@@ -21,6 +21,8 @@ Table eig_table(const QuadraticSpectrum& s, double speed, const SpeedUnit& u, bo
 // (those with at least a tenth of the largest amplitude); empty if none.
 std::string rigid_body_note(const std::vector<Mode>& rigid, const std::vector<std::string>& dof_names);
 // One warning line per unstable range of the diagram (empty: none).
+// One line naming the modes out of range (CampbellDiagram::out_of_range); empty if none.
+std::string out_of_range_note(const CampbellDiagram& cd, const SpeedUnit& u);
 std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const SpeedUnit& u);
 Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u);
 // What a person reads of a Campbell diagram in ten seconds: modes tracked, the

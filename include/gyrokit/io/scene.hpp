@@ -23,7 +23,7 @@ struct Scene {
     std::optional<double> target;      // [analysis] target: frequency (rad/s) the sparse search centres on
     double target_order = 0.0;         // [analysis] target_order: the centre moves as target + order * speed
     std::optional<SpeedRange> speeds;  // [speeds] from, to, count
-    int modes = 0;                     // [analysis] modes (0 = all)
+    int modes = kModesInRange;         // [analysis] modes (0 = all; absent: those in range)
     std::vector<int> harmonics{1};     // [analysis] harmonics
     std::optional<FluidRotorParameters> fluid;   // set for [model] type = "fluid_rotor"
     std::optional<FeRotor> fe_rotor;   // set for [model] type = "fe_rotor": its geometry (tabulated bearings in system)
