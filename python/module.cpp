@@ -163,7 +163,7 @@ Workers threads(int jobs) {
 
 // The solver the options choose and the Campbell diagram it tracks over w (without the interpreter).
 struct Tracked {
-    SolverChoice solver;
+    SolverChoice solver;   // its make: the solver the tracking stood on (tracking_solver)
     CampbellDiagram diagram;
 };
 Tracked track(const GyroscopicSystem& s, const SolverOptions& o, const std::vector<double>& w,
@@ -172,6 +172,7 @@ Tracked track(const GyroscopicSystem& s, const SolverOptions& o, const std::vect
     t.solver = choose_solver(s, o);
     CampbellOptions co = tracking_options(t.solver, o.modes, w, harmonics, threads(jobs));
     co.eig = o.eig;
+    t.solver.make = tracking_solver(t.solver.make, co, w);
     t.diagram = campbell(t.solver.make, w, co);
     return t;
 }
@@ -323,7 +324,7 @@ PYBIND11_MODULE(_core, m) {
             Tracked t = track(s, o, w, harmonics, jobs);
             cd = std::move(t.diagram);
             cd.notes.insert(cd.notes.begin(), t.solver.notes.begin(), t.solver.notes.end());
-            if (!cd.out_of_range.empty()) cd.notes.push_back(out_of_range_note(cd, SpeedUnit::parse("rad/s")));
+            if (std::isfinite(cd.band)) cd.notes.push_back(out_of_range_note(cd, SpeedUnit::parse("rad/s")));
         }
         return campbell_dict(cd);
     }, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"), py::arg("modes"), py::arg("target"),

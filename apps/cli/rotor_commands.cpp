@@ -129,7 +129,7 @@ void note_diagram(const CampbellDiagram& cd, const Context& c, bool in_summary =
         std::cerr << "note: " << cd.ambiguous_steps
                   << " speed steps stayed ambiguous at the refinement limit; use a finer --speeds grid\n";
     for (const auto& w : instability_warnings(cd, c.unit)) std::cerr << "warning: " << w << "\n";
-    if (!cd.out_of_range.empty() && !in_summary) std::cerr << "note: " << out_of_range_note(cd, c.unit) << "\n";
+    if (std::isfinite(cd.band) && !in_summary) std::cerr << "note: " << out_of_range_note(cd, c.unit) << "\n";
 }
 
 // The steady unbalance response is no state the rotor reaches where a mode is
@@ -145,7 +145,7 @@ void warn_unstable_response(const Context& c, int modes) {
     const SolverChoice plan = plan_solver(c, modes);
     CampbellOptions co = campbell_options(c, plan, modes, c.scene.harmonics);
     co.progress = {};
-    const CampbellDiagram cd = campbell(plan.make, grid, co);
+    const CampbellDiagram cd = campbell(tracking_solver(plan.make, co, grid), grid, co);
     for (const auto& w : instability_warnings(cd, c.unit))
         std::cerr << "warning: " << w << "; the unbalance response there is not a steady state\n";
 }
@@ -252,11 +252,13 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         const int modes = wanted_modes(c, o->modes);
         const SolverChoice plan = plan_solver(c, modes);
         note_extrapolation(c);
-        const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan, modes, h));
+        const CampbellOptions co = campbell_options(c, plan, modes, h);
+        const SolverFactory solver = tracking_solver(plan.make, co, c.speeds);
+        const CampbellDiagram cd = campbell(solver, c.speeds, co);
         // The first screen (table format): a summary and the critical speeds; the rows on request.
         const bool summary = c.format == TableFormat::Text && !o->rows;
         std::vector<CriticalSpeed> cs;
-        if (summary || !o->common.plot.empty()) cs = critical_speeds(plan.make, cd, h, c.jobs);
+        if (summary || !o->common.plot.empty()) cs = critical_speeds(solver, cd, h, c.jobs);
         if (summary) {
             // A sparse window's verdict covers its modes only (a dense diagram keeps every mode).
             const bool window = plan.kind == SolverKind::Sparse;
@@ -296,8 +298,10 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
             const int modes = wanted_modes(c, o->modes);
             const SolverChoice plan = plan_solver(c, modes);
             note_extrapolation(c);
-            const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan, modes, h));
-            cs = critical_speeds(plan.make, cd, h, c.jobs);
+            const CampbellOptions co = campbell_options(c, plan, modes, h);
+            const SolverFactory solver = tracking_solver(plan.make, co, c.speeds);
+            const CampbellDiagram cd = campbell(solver, c.speeds, co);
+            cs = critical_speeds(solver, cd, h, c.jobs);
             note_diagram(cd, c);
         }
         write_table(out, critical_table(cs, c.unit), c.format);
@@ -313,11 +317,13 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         const int modes = wanted_modes(c, o->modes);
         const SolverChoice plan = plan_solver(c, modes);
         note_extrapolation(c);
-        const CampbellDiagram cd = campbell(plan.make, c.speeds, campbell_options(c, plan, modes, c.scene.harmonics));
-        const auto changes = stability_changes(plan.make, cd, c.jobs);
+        const CampbellOptions co = campbell_options(c, plan, modes, c.scene.harmonics);
+        const SolverFactory solver = tracking_solver(plan.make, co, c.speeds);
+        const CampbellDiagram cd = campbell(solver, c.speeds, co);
+        const auto changes = stability_changes(solver, cd, c.jobs);
         write_table(out, stability_table(changes, c.unit), c.format);
         for (const auto& n : cd.notes) std::cerr << "note: " << n << "\n";
-        if (!cd.out_of_range.empty()) std::cerr << "note: " << out_of_range_note(cd, c.unit) << "\n";
+        if (std::isfinite(cd.band)) std::cerr << "note: " << out_of_range_note(cd, c.unit) << "\n";
         if (changes.empty())
             std::cerr << "note: no mode changes stability in the range; "
                       << (unstable_ranges(cd).empty() ? "none is unstable (neutral modes: Re lambda within its error bound)"

@@ -235,6 +235,11 @@ CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std:
     return co;
 }
 
+SolverFactory tracking_solver(const SolverFactory& make, const CampbellOptions& co, const std::vector<double>& speeds) {
+    if (!std::isfinite(co.band) || co.modes != 0 || !make.continued || speeds.empty()) return make;
+    return make.continued(speeds, co.band, co.threads);
+}
+
 CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>& speeds, const CampbellOptions& opt) {
     return campbell(dense_solver(sys, opt.eig), speeds, opt);
 }
@@ -271,6 +276,7 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
     // Number the branches by frequency at their first point; keep the K lowest
     // among those present at the first speed.
     std::vector<Branch>& br = out.branches;
+    if (opt.modes == 0 || t.window) out.band = opt.band;
     std::stable_sort(br.begin(), br.end(), [&](const Branch& a, const Branch& b) {
         const bool a0 = a.points.front().speed == speeds.front(), b0 = b.points.front().speed == speeds.front();
         if (a0 != b0) return a0;
@@ -294,7 +300,6 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
         br.resize(static_cast<size_t>(opt.modes));
     } else if (std::isfinite(opt.band) && (opt.modes == 0 || t.window)) {
         // Out of range: above the band at every speed. Named, not judged.
-        out.band = opt.band;
         const auto in_range = [&](const Branch& b) {
             return std::any_of(b.points.begin(), b.points.end(),
                                [&](const BranchPoint& p) { return p.mode.frequency() <= opt.band; });

@@ -1,5 +1,6 @@
 #include <gyrokit/analysis/spectrum_solver.hpp>
 
+#include <gyrokit/analysis/continuation.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <algorithm>
@@ -37,7 +38,7 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
                                      sys.size(), kDenseLimit));
     // The solvers share ownership of one copy: a temporary system outlives the call.
     const auto model = std::make_shared<const GyroscopicSystem>(sys);
-    return {[model, eig]() -> SpectrumSolver {
+    SolverFactory f{[model, eig]() -> SpectrumSolver {
                 return [model, eig](double w) {
                     EigenOptions o = eig;
                     o.left_vectors = true;   // for the slopes
@@ -49,6 +50,14 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
                 };
             },
             true};
+    f.continued = [model, eig](const std::vector<double>& speeds, double band, Workers workers) {
+        ContinuationOptions o;
+        o.band = band;
+        o.eig = eig;
+        o.workers = workers;
+        return continuation_solver(model, speeds, o);
+    };
+    return f;
 }
 
 void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(double)>& pencil, double w,

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <memory>
 
 namespace gyrokit {
 
@@ -44,7 +45,35 @@ double QuadraticSpectrum::max_backward_error() const {
 
 namespace {
 
+// Real sparse matrix times complex vector, without a complex copy of the matrix.
+Eigen::VectorXcd times_sparse(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x) {
+    const Eigen::VectorXd re = A * x.real(), im = A * x.imag();
+    Eigen::VectorXcd y(re.size());
+    y.real() = re;
+    y.imag() = im;
+    return y;
+}
+
+// The pencil's action: sparse where the matrices are (a finite-element pencil,
+// a few entries per row: the residuals of hundreds of modes cost a fraction of
+// the dense products), dense otherwise. The sparse copies live in the action.
 PencilAction action_of(const QuadraticPencil& p) {
+    const Eigen::Index n = p.M.rows();
+    const auto nonzeros = [](const Eigen::MatrixXd& A) { return (A.array() != 0.0).count(); };
+    if (n >= 32 && nonzeros(p.M) + nonzeros(p.C) + nonzeros(p.K) < n * n / 2) {
+        const auto s = std::make_shared<const SparsePencil>(to_sparse(p));
+        PencilAction a;
+        a.apply = [s](const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx, Eigen::VectorXcd& Kx) {
+            Mx = times_sparse(s->M, x);
+            Cx = times_sparse(s->C, x);
+            Kx = times_sparse(s->K, x);
+        };
+        a.apply_abs_K = [s](const Eigen::VectorXd& v, Eigen::VectorXd& absKv) { absKv = s->K.cwiseAbs() * v; };
+        a.norm_M = p.M.norm();
+        a.norm_C = p.C.norm();
+        a.norm_K = p.K.norm();
+        return a;
+    }
     return pencil_action(p.M, p.C, p.K,
                          [](const Eigen::MatrixXd& A, const Eigen::VectorXcd& x) -> Eigen::VectorXcd { return A * x; });
 }

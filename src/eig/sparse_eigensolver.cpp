@@ -227,14 +227,10 @@ std::vector<Ritz> ritz_real(const SparsePencil& p, const SparseEigenOptions& opt
     return out;
 }
 
-// Inverse iteration on P(lambda) from an ARPACK eigenpair, with one LU of P at
-// a point 1e-12 |lambda| off the eigenvalue (so that it is not singular to
-// rounding, yet resolves pairs split by 1e-10): always finds the left vector;
-// refines the right vector and the eigenvalue (two-sided Rayleigh quotient)
-// only if the pair's backward error exceeds `accurate`, since inverse iteration
-// from two vectors of a double eigenvalue's plane may turn both to one
-// direction. Returns the backward error before refinement.
-double refine(const SparsePencil& p, const PencilAction& action, Mode& m, double accurate, double scale) {
+
+}  // namespace
+
+double refine_eigenpair(const SparsePencil& p, const PencilAction& action, Mode& m, double accurate, double scale) {
     const double raw = backward_error(action, m.lambda, m.right);
     const cd off = 1e-12 * std::max(std::abs(m.lambda), kRigidBodyTolerance * scale) * std::polar(1.0, M_PI / 4);
     const cd at = m.lambda + off;
@@ -278,8 +274,6 @@ double refine(const SparsePencil& p, const PencilAction& action, Mode& m, double
     m.backward_error = eta;
     return raw;
 }
-
-}  // namespace
 
 SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOptions& opt,
                                       const std::vector<std::pair<int, int>>& whirl_pairs) {
@@ -397,7 +391,7 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
     const double accurate = 1e-3 * opt.verify_tolerance;
     const std::vector<Mode> arnoldi = out.modes;
     for (Mode& m : out.modes) {
-        const double raw = refine(p, action, m, accurate, scale);
+        const double raw = refine_eigenpair(p, action, m, accurate, scale);
         out.max_raw_backward_error = std::max(out.max_raw_backward_error, raw);
         if (raw > accurate) ++out.refined;
     }

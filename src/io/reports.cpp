@@ -77,7 +77,11 @@ std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const S
 }
 
 std::string out_of_range_note(const CampbellDiagram& cd, const SpeedUnit& u) {
-    if (cd.out_of_range.empty()) return "";
+    if (!std::isfinite(cd.band)) return "";
+    if (cd.out_of_range.empty())   // a solver of the band alone (continuation, a sparse window) has not computed them
+        return fmt::format("modes above {:.6g} {} ({} times the highest excitation) are out of range, not judged; "
+                           "--modes 0 judges every mode",
+                           u.factor * cd.band, u.name, kBandMargin);
     double lowest = std::numeric_limits<double>::infinity();
     for (const Branch& b : cd.out_of_range)
         for (const auto& p : b.points) lowest = std::min(lowest, p.mode.frequency());
@@ -141,7 +145,7 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
     const auto unstable = unstable_ranges(cd, true);
     const std::string which =
         window ? fmt::format("the {} tracked modes (the others are not checked)", cd.branches.size())
-               : (cd.out_of_range.empty() ? "every mode" : "every mode in range");
+               : (std::isfinite(cd.band) ? "every mode in range" : "every mode");
     std::string verdict = unstable.empty() ? fmt::format("{} stable over the range (no real part beyond its error "
                                                          "bound)",
                                                          which)
@@ -155,7 +159,7 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
     if (!unstable.empty() && window)
         verdict += fmt::format("; modes beyond the {} tracked are not checked", cd.branches.size());
     t.add_row({std::string("stability"), verdict});
-    if (!cd.out_of_range.empty()) t.add_row({std::string("out of range"), out_of_range_note(cd, u)});
+    if (std::isfinite(cd.band)) t.add_row({std::string("out of range"), out_of_range_note(cd, u)});
     if (cd.rigid_body > 0)
         t.add_row({std::string("rigid-body eigenvalues"), fmt::format("{} (not modes, not tracked)", cd.rigid_body)});
     t.add_row({std::string("largest backward error"), fmt::format("{:.2g}", cd.max_backward_error)});

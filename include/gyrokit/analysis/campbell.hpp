@@ -76,6 +76,12 @@ double excitation_band(const std::vector<double>& speeds, const std::vector<int>
 CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std::vector<double>& speeds,
                                  const std::vector<int>& harmonics, Workers threads = {});
 
+// The solver a tracking over `speeds` with `co` stands on, and the critical
+// speeds and stability thresholds after it: with a band (the modes in range) and
+// a dense solver, the continuation on a reduced basis (continuation_solver; the
+// dense solver itself where the basis would not pay); else `make`.
+SolverFactory tracking_solver(const SolverFactory& make, const CampbellOptions& co, const std::vector<double>& speeds);
+
 // Dense: every mode of the system, solved with opt.eig.
 CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>& speeds,
                          const CampbellOptions& opt = {});

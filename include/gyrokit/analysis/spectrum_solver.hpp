@@ -18,6 +18,20 @@
 
 namespace gyrokit {
 
+// How parallel work runs, apart from what is solved: `count` workers as
+// threads or as forked worker processes (results through temporary files, a
+// crashed worker reported as WorkerDied). Auto: processes for a solver that is
+// not thread safe (ARPACK: its iterations would wait on each other), else
+// threads. Threads is always correct (ARPACK iterations are serialized within a
+// process) and is the choice inside a host that must not fork (an interpreter);
+// Processes also for thread-safe solvers. Converts from a plain count.
+enum class WorkerKind { Auto, Threads, Processes };
+struct Workers {
+    int count = 1;
+    WorkerKind kind = WorkerKind::Auto;
+    Workers(int n = 1, WorkerKind k = WorkerKind::Auto) : count(n), kind(k) {}
+};
+
 using SpectrumSolver = std::function<QuadraticSpectrum(double w)>;
 
 struct SolverFactory {
@@ -30,6 +44,10 @@ struct SolverFactory {
     // frequency nu (rad/s), so that a root search refines a mode on its own shift and
     // the sweep's window cannot move the result. Empty for solvers of every mode.
     std::function<SpectrumSolver(double nu)> centred;
+    // Dense solvers: the continuation on a reduced basis for the modes within
+    // `band` over `speeds` (continuation_solver; itself a dense solver where the
+    // basis would not pay). Empty for the others.
+    std::function<SolverFactory(const std::vector<double>& speeds, double band, Workers workers)> continued;
     SpectrumSolver operator()() const { return make(); }
 };
 
@@ -86,19 +104,6 @@ SolverKind resolve_solver_kind(int dofs, SolverKind requested);
 // Validates the options (InputError naming the field) and the system, and makes the solver.
 SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt);
 
-// How parallel work runs, apart from what is solved: `count` workers as
-// threads or as forked worker processes (results through temporary files, a
-// crashed worker reported as WorkerDied). Auto: processes for a solver that is
-// not thread safe (ARPACK: its iterations would wait on each other), else
-// threads. Threads is always correct (ARPACK iterations are serialized within a
-// process) and is the choice inside a host that must not fork (an interpreter);
-// Processes also for thread-safe solvers. Converts from a plain count.
-enum class WorkerKind { Auto, Threads, Processes };
-struct Workers {
-    int count = 1;
-    WorkerKind kind = WorkerKind::Auto;
-    Workers(int n = 1, WorkerKind k = WorkerKind::Auto) : count(n), kind(k) {}
-};
 
 // The spectra at all speeds on `workers` (contiguous blocks of speeds, so that
 // reuse works within a block). `progress(done, total)` is called from the

@@ -47,6 +47,17 @@ struct SparseSpectrum {
     std::vector<std::string> notes;
 };
 
+// Inverse iteration on P(lambda) from an approximate eigenpair (m.lambda,
+// m.right), with one sparse LU of P at a point 1e-12 |lambda| off the eigenvalue
+// (so that it is not singular to rounding, yet resolves pairs split by 1e-10):
+// always finds the left vector; refines the right vector and the eigenvalue
+// (two-sided Rayleigh quotient) only if the pair's backward error exceeds
+// `accurate`, since inverse iteration from two vectors of a double eigenvalue's
+// plane may turn both to one direction. Sets m.lambda, right, left and
+// backward_error; returns the backward error before refinement. `scale` is the
+// pencil's natural frequency scale.
+double refine_eigenpair(const SparsePencil& p, const PencilAction& action, Mode& m, double accurate, double scale);
+
 // Eigenvalues near the shift sigma = opt.shift. If P(sigma) is singular or
 // nearly so (rigid-body modes at sigma = 0 with a singular K), the shift is
 // moved to sigma - 1e-5 g (then 1e-4 g, 1e-3 g; g = sqrt(|K|/|M|)) and a note

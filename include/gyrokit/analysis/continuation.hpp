@@ -1,0 +1,53 @@
+// Continuation of the modes in a frequency band over a speed range on a reduced
+// basis: full dense solves at a few anchor speeds, the projected pencil at every
+// other speed, every reported pair refined and verified on the full model.
+// docs/numerics.md ("Continuation") gives the rules.
+#pragma once
+
+#include <gyrokit/analysis/spectrum_solver.hpp>
+
+#include <memory>
+#include <vector>
+
+namespace gyrokit {
+
+struct ContinuationOptions {
+    double band = 0;            // rad/s: the modes kept (frequency <= band; a real eigenvalue |lambda| <= band)
+    int anchor_stride = 25;     // a full solve every this many speeds of the grid, and at both ends
+    double tolerance = 1e-10;   // a pair is kept if the backward errors of its right and left vectors are below
+    // The basis is used only if its dimension is at most this fraction of the DOFs:
+    // the projected QZ costs about (r/n)^3 of the full one, and the refinement and
+    // verification of each pair come on top (measured by gyrokit-bench-campbell).
+    double max_basis_fraction = 0.75;
+    EigenOptions eig;           // the full solves' method; left_vectors: keep them in the modes
+    Workers workers = 1;        // the anchors' full solves
+};
+
+// What the continuation did, for the notes and the benchmark.
+struct ContinuationReport {
+    bool used = false;          // false: the basis would not pay; every speed is solved in full
+    int basis = 0;              // dimension of the reduced basis
+    int dofs = 0;
+    std::vector<double> anchors;   // speeds solved in full to build the basis
+};
+
+// A solver (SolverFactory) for any speed in or near `speeds` that returns the
+// modes within the band: the projected pencil Q^T P(w) Q, Q an orthonormal real
+// basis of the right and left vectors (real and imaginary parts) of every mode
+// within twice the band at the anchor speeds; each of its eigenpairs within the
+// band lifted to the full model, refined by inverse iteration on P(lambda) and
+// kept only if verified (backward errors of the right and left vectors <=
+// opt.tolerance, distinct from the others); a speed where one fails is solved in
+// full. Every mode gets its error bound, whirl and slope as from the dense
+// solver; spectra are partial (the band), `method` names the continuation. At an
+// anchor speed the full solve's modes in the band are returned. If the basis
+// would exceed max_basis_fraction of the DOFs, the plain dense solver is
+// returned (report->used = false).
+SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model, const std::vector<double>& speeds,
+                                  const ContinuationOptions& opt, ContinuationReport* report = nullptr);
+
+// Whether a mode lies within the band: an oscillating one by its frequency, a
+// real (overdamped) one by its modulus.
+bool within_band(const Mode& m, double band, double real_tol);
+
+}  // namespace gyrokit
