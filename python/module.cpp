@@ -343,11 +343,13 @@ PYBIND11_MODULE(_core, m) {
             py::gil_scoped_release free;
             const Tracked t = track(s, o, w, harmonics, jobs);
             cs = critical_speeds(t.solver.make, t.diagram, harmonics, threads(jobs));
+            set_amplification_factors(cs, s);
         }
         const auto n = static_cast<py::ssize_t>(cs.size());
-        py::array_t<double> speed(n), damping(n);
+        py::array_t<double> speed(n), damping(n), amplification(n);
         py::array_t<int> harmonic(n), branch(n);
-        py::list whirl;
+        py::array_t<bool> critical(n);
+        py::list whirl, af_method;
         for (py::ssize_t k = 0; k < n; ++k) {
             const CriticalSpeed& c = cs[static_cast<size_t>(k)];
             speed.mutable_at(k) = c.speed;
@@ -355,6 +357,9 @@ PYBIND11_MODULE(_core, m) {
             harmonic.mutable_at(k) = c.harmonic;
             branch.mutable_at(k) = c.branch;
             whirl.append(to_string(c.mode.whirl));
+            amplification.mutable_at(k) = c.amplification;
+            af_method.append(to_string(c.amplification_method));
+            critical.mutable_at(k) = c.api684_critical();
         }
         py::dict d;
         d["speeds"] = speed;
@@ -362,6 +367,9 @@ PYBIND11_MODULE(_core, m) {
         d["branch"] = branch;
         d["whirl"] = whirl;
         d["damping_ratio"] = damping;
+        d["amplification"] = amplification;
+        d["af_method"] = af_method;
+        d["api684_critical"] = critical;
         return d;
     }, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"), py::arg("modes"),
           py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));

@@ -258,13 +258,16 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
         // The first screen (table format): a summary and the critical speeds; the rows on request.
         const bool summary = c.format == TableFormat::Text && !o->rows;
         std::vector<CriticalSpeed> cs;
-        if (summary || !o->common.plot.empty()) cs = critical_speeds(solver, cd, h, c.jobs);
+        if (summary || !o->common.plot.empty()) {
+            cs = critical_speeds(solver, cd, h, c.jobs);
+            set_amplification_factors(cs, c.scene.system);
+        }
         if (summary) {
             // A sparse window's verdict covers its modes only (a dense diagram keeps every mode).
             const bool window = plan.kind == SolverKind::Sparse;
             write_table(out, campbell_summary(cd, cs, c.unit, o->common.plot, window), c.format);
             out << "\n";
-            write_table(out, critical_table(cs, c.unit), c.format);
+            write_tables(out, critical_tables(cs, c.unit), c.format);
         } else {
             write_table(out, campbell_table(cd, c.unit), c.format);
         }
@@ -304,7 +307,12 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
             cs = critical_speeds(solver, cd, h, c.jobs);
             note_diagram(cd, c);
         }
-        write_table(out, critical_table(cs, c.unit), c.format);
+        set_amplification_factors(cs, c.scene.system);
+        // A person reads the critical speeds and the heavily damped crossings apart; a script gets one table.
+        if (c.format == TableFormat::Text)
+            write_tables(out, critical_tables(cs, c.unit), c.format);
+        else
+            write_table(out, critical_table(cs, c.unit), c.format);
     }});
 
     auto* stab = app.add_subcommand("stability", "speeds where a mode becomes unstable or stable again");

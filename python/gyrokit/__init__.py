@@ -158,7 +158,9 @@ class CampbellResult(_Result):
 
 
 class CriticalSpeeds(_Result):
-    """Crossings of tracked branches with the lines k * speed, refined by root finding."""
+    """Crossings of tracked branches with the lines k * speed, refined by root finding, each with its
+    API 684 amplification factor (half-power on the unbalance response, else 1/(2 zeta)); api684_critical
+    is False for a heavily damped crossing (amplification factor < 2.5)."""
 
     def __init__(self, d):
         self.speeds = d["speeds"]
@@ -166,10 +168,15 @@ class CriticalSpeeds(_Result):
         self.branch = d["branch"]
         self.whirl = list(d["whirl"])
         self.damping_ratio = d["damping_ratio"]
+        self.amplification = d["amplification"]
+        self.af_method = list(d["af_method"])
+        self.api684_critical = d["api684_critical"]
 
     def to_pandas(self):
         return self._frame({"speed": self.speeds, "branch": self.branch, "whirl": self.whirl,
-                            "harmonic": self.harmonic, "damping_ratio": self.damping_ratio})
+                            "harmonic": self.harmonic, "damping_ratio": self.damping_ratio,
+                            "amplification": self.amplification, "af_method": self.af_method,
+                            "api684_critical": self.api684_critical})
 
 
 class StabilityChanges(_Result):

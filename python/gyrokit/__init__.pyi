@@ -102,6 +102,9 @@ class CriticalSpeeds:
     branch: npt.NDArray[np.int32]
     whirl: list[str]
     damping_ratio: npt.NDArray[np.float64]
+    amplification: npt.NDArray[np.float64]
+    af_method: list[str]
+    api684_critical: npt.NDArray[np.bool_]
     def to_pandas(self) -> Any: ...
 
 class StabilityChanges:
@@ -118,14 +121,16 @@ def modes(model: Model, speed: float, *, solver: Optional[str] = ..., modes: Opt
 def eig(model: Model, speed: float, *, solver: Optional[str] = ..., modes: Optional[int] = ...,
         target: Optional[float] = ..., target_order: Optional[float] = ..., method: str = ...,
         lanczos: int = ...) -> EigResult: ...
-def campbell(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, solver: Optional[str] = ...,
+def campbell(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, harmonics: Optional[Sequence[int]] = ...,
+             solver: Optional[str] = ...,
              modes: Optional[int] = ..., target: Optional[float] = ..., target_order: Optional[float] = ...,
              method: str = ..., lanczos: int = ..., jobs: int = ...) -> CampbellResult: ...
 def critical_speeds(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, harmonics: Optional[Sequence[int]] = ...,
                     solver: Optional[str] = ..., modes: Optional[int] = ..., target: Optional[float] = ...,
                     target_order: Optional[float] = ..., method: str = ..., lanczos: int = ...,
                     jobs: int = ...) -> CriticalSpeeds: ...
-def stability(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, solver: Optional[str] = ...,
+def stability(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, harmonics: Optional[Sequence[int]] = ...,
+              solver: Optional[str] = ...,
               modes: Optional[int] = ..., target: Optional[float] = ..., target_order: Optional[float] = ...,
               method: str = ..., lanczos: int = ..., jobs: int = ...) -> StabilityChanges: ...
 

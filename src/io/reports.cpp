@@ -120,12 +120,18 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
         t.add_row({std::string("speed range"), fmt::format("{} to {} ({} speeds, {} inserted by refinement)",
                                                             speed(cd.speeds.front()), speed(cd.speeds.back()),
                                                             cd.speeds.size(), cd.inserted_speeds)});
-    std::size_t forward = 0;
-    for (const auto& c : critical) forward += c.mode.whirl == Whirl::Forward;
+    std::size_t forward = 0, damped = 0;
+    for (const auto& c : critical) {
+        if (!c.api684_critical()) ++damped;
+        else forward += c.mode.whirl == Whirl::Forward;
+    }
     t.add_row({std::string("critical speeds"),
                critical.empty() ? std::string("none in the range")
-                                : fmt::format("{} in the range, {} of them forward whirl (table below)", critical.size(),
-                                              forward)});
+               : fmt::format("{} in the range (API 684: amplification factor >= {}), {} of them forward whirl{} "
+                             "(tables below)",
+                             critical.size() - damped, kApi684CriticalAmplification, forward,
+                             damped ? fmt::format("; {} heavily damped crossings (not critical)", damped)
+                                    : std::string())});
     // The least damped oscillating mode over the range, untracked ones included.
     const BranchPoint* least = nullptr;
     int least_branch = 0;
@@ -169,14 +175,52 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
     return t;
 }
 
+namespace {
+
+// The amplification factor as printed: 3 digits (a half-power width or a damping
+// ratio is not known better), "inf" for an undamped mode, "-" where not set.
+Cell amplification_cell(const CriticalSpeed& c) {
+    if (std::isnan(c.amplification)) return std::string("-");
+    if (std::isinf(c.amplification)) return std::string("inf");
+    return std::stod(fmt::format("{:.3g}", c.amplification));
+}
+
+Table critical_rows(const std::vector<const CriticalSpeed*>& cs, const SpeedUnit& u) {
+    Table t({u.column("speed"), "mode", "whirl", "harmonic", u.column("frequency"), "damping_ratio", "amplification",
+             "af_method", "api684"});
+    for (const CriticalSpeed* c : cs)
+        t.add_row({u.factor * c->speed, ll(c->branch), to_string(c->mode.whirl), ll(c->harmonic),
+                   u.factor * c->mode.frequency(), c->mode.damping_ratio(), amplification_cell(*c),
+                   std::isnan(c->amplification) ? std::string("-") : to_string(c->amplification_method),
+                   std::isnan(c->amplification) ? std::string("-")
+                   : c->api684_critical()       ? std::string("critical")
+                                                : std::string("not critical")});
+    return t;
+}
+
+}  // namespace
+
 Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u) {
-    Table t({u.column("speed"), "mode", "whirl", "harmonic", u.column("frequency"), "damping_ratio"});
+    std::vector<const CriticalSpeed*> all;
+    for (const auto& c : cs) all.push_back(&c);
+    Table t = critical_rows(all, u);
     t.key = "critical_speeds";
     t.title = "critical speeds";
-    for (const auto& c : cs)
-        t.add_row({u.factor * c.speed, ll(c.branch), to_string(c.mode.whirl), ll(c.harmonic),
-                   u.factor * c.mode.frequency(), c.mode.damping_ratio()});
     return t;
+}
+
+std::vector<Table> critical_tables(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u) {
+    std::vector<const CriticalSpeed*> critical, damped;
+    for (const auto& c : cs) (c.api684_critical() ? critical : damped).push_back(&c);
+    Table a = critical_rows(critical, u);
+    a.key = "critical_speeds";
+    a.title = fmt::format("critical speeds (API 684: amplification factor >= {})", kApi684CriticalAmplification);
+    if (damped.empty()) return {a};
+    Table b = critical_rows(damped, u);
+    b.key = "heavily_damped_crossings";
+    b.title = fmt::format("heavily damped crossings (amplification factor < {}: not critical by API 684)",
+                          kApi684CriticalAmplification);
+    return {a, b};
 }
 
 double round_to_bound(double x, double bound) {

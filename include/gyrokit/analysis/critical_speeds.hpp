@@ -5,16 +5,43 @@
 
 #include <gyrokit/analysis/campbell.hpp>
 
+#include <limits>
+#include <string>
 #include <vector>
 
 namespace gyrokit {
+
+// API 684: amplification factors below this are not critical.
+constexpr double kApi684CriticalAmplification = 2.5;
+// Half-power amplification factors up to this many DOFs (each costs some hundred
+// solves of the dynamic stiffness); beyond, 1/(2 zeta).
+constexpr int kHalfPowerDofs = 3000;
+enum class AmplificationMethod { HalfPower, DampingRatio };
+std::string to_string(AmplificationMethod m);   // "half-power", "1/(2 zeta)"
 
 struct CriticalSpeed {
     double speed = 0;      // rad/s
     int harmonic = 1;      // k of the line Im(lambda) = k w
     int branch = 0;        // Campbell branch id; direct method: rank by frequency at that speed
     Mode mode;             // the mode at the critical speed
+    // API 684 amplification factor (set_amplification_factors): NaN until set.
+    double amplification = std::numeric_limits<double>::quiet_NaN();
+    AmplificationMethod amplification_method = AmplificationMethod::DampingRatio;
+    int probe = -1;        // half-power: the DOF whose response peak was measured
+    // API 684: a crossing with an amplification factor below 2.5 is not a critical
+    // speed (heavily damped, no separation margin required).
+    bool api684_critical() const { return !(amplification < kApi684CriticalAmplification); }
 };
+
+// Amplification factors of critical speeds (API 684, section 2.8): the half-power
+// method on the unbalance response, AF = N_peak / (N_2 - N_1) with N_1, N_2 the
+// speeds where the amplitude of the probe DOF (the mode's largest translation)
+// is 0.707 of its peak; used for 1x crossings of a model with an unbalance whose
+// probe shows a peak within 3 damping widths of the crossing and both half-power
+// points within the search. Otherwise (other harmonics, no unbalance, no peak,
+// models above kHalfPowerDofs DOFs) AF = 1/(2 zeta) from the mode's damping
+// ratio (infinite for an undamped or unstable mode).
+void set_amplification_factors(std::vector<CriticalSpeed>& cs, const GyroscopicSystem& sys);
 
 // Crossings of every oscillating branch with the lines k w, k in `harmonics`,
 // refined with GSL Brent on f(w) = Im lambda(w) - k w.

@@ -32,6 +32,9 @@ Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u);
 Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& critical, const SpeedUnit& u,
                        const std::string& plot_file, bool window = false);
 Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u);
+// The same split for reading: the critical speeds (API 684: amplification factor
+// >= 2.5), then, if any, the heavily damped crossings in a table of their own.
+std::vector<Table> critical_tables(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u);
 // x rounded to the decade of its bound (no digits below what is vouched for); x
 // itself where the bound is 0, infinite or not a number.
 double round_to_bound(double x, double bound);

@@ -1,0 +1,195 @@
+// The continuation on a reduced basis against the full dense solve, on every
+// scene in data/ it can run: the same modes within the band at every speed,
+// eigenvalues within the two error bounds each path reports; the tracking along
+// slopes without ambiguity on the three-disk rotor.
+#include "test_helpers.hpp"
+#include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/continuation.hpp>
+#include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/io/scene.hpp>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+using namespace gyrokit;
+
+namespace {
+
+const std::string data = GYROKIT_DATA_DIR;
+
+// At most `count` speeds of the scene's grid, ends included.
+std::vector<double> thinned(const std::vector<double>& grid, size_t count) {
+    if (grid.size() <= count) return grid;
+    std::vector<double> out;
+    for (size_t k = 0; k < count; ++k) out.push_back(grid[k * (grid.size() - 1) / (count - 1)]);
+    return out;
+}
+
+// Every mode of `a` has one in `b` within the sum of their bounds, and the
+// reverse; modes within 1e-6 of the band's edge may be on one side only.
+void same_modes(const QuadraticSpectrum& a, const QuadraticSpectrum& b, double band, const std::string& where) {
+    const auto edge = [&](const Mode& m) {
+        const double f = std::abs(m.lambda.imag()) <= a.real_tol ? std::abs(m.lambda) : m.lambda.imag();
+        return std::abs(f - band) <= 1e-6 * band;
+    };
+    for (const auto& [from, to] : {std::pair{&a, &b}, std::pair{&b, &a}})
+        for (const Mode& m : from->modes) {
+            if (edge(m)) continue;
+            double best = INFINITY, allowed = 0;
+            for (const Mode& o : to->modes)
+                if (std::abs(o.lambda - m.lambda) < best)
+                    best = std::abs(o.lambda - m.lambda), allowed = m.error_bound + o.error_bound;
+            INFO(where << ": lambda = " << m.lambda << ", nearest at " << best << ", bounds " << allowed);
+            CHECK(best <= allowed);
+        }
+}
+
+}  // namespace
+
+TEST_CASE("continuation: the modes in range equal the full solve's within their bounds on every data/ scene",
+          "[continuation]") {
+    int used = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(data)) {
+        if (entry.path().extension() != ".toml") continue;
+        Scene sc;
+        try {
+            sc = load_scene(entry.path().string());
+        } catch (const Error&) {
+            continue;   // not a rotor scene (balancer, Sommerfeld and fluid scenes have their own tools)
+        }
+        if (!sc.speeds || sc.dofs() > 400 || sc.dofs() < 2) continue;
+        const std::vector<double> grid = thinned(sc.speeds->points(), 26);
+        const double band = excitation_band(grid, sc.harmonics);
+        if (!std::isfinite(band)) continue;
+        const auto model = std::make_shared<const GyroscopicSystem>(sc.system);
+        ContinuationOptions o;
+        o.band = band;
+        o.anchor_stride = 5;
+        o.max_basis_fraction = 1.0;   // continue even where it would not pay: the answers are what is tested
+        ContinuationReport rep;
+        const SolverFactory cont = continuation_solver(model, grid, o, &rep);
+        REQUIRE(rep.used);
+        ++used;
+        const SpectrumSolver reduced = cont.make(), full = dense_solver(sc.system).make();
+        for (double w : grid) {
+            QuadraticSpectrum f = full(w);
+            std::vector<Mode> kept;
+            for (Mode& m : f.modes)
+                if (within_band(m, band, f.real_tol)) kept.push_back(std::move(m));
+            f.modes = std::move(kept);
+            const QuadraticSpectrum r = reduced(w);
+            for (const Mode& m : r.modes) CHECK(m.backward_error <= 1e-10);
+            same_modes(r, f, band, entry.path().filename().string() + " at " + std::to_string(w) + " rad/s");
+        }
+        // Between the grid speeds too (a root search's speeds).
+        for (size_t k = 0; k + 1 < grid.size(); k += 7) {
+            const double w = 0.5 * (grid[k] + grid[k + 1]);
+            QuadraticSpectrum f = full(w);
+            std::vector<Mode> kept;
+            for (Mode& m : f.modes)
+                if (within_band(m, band, f.real_tol)) kept.push_back(std::move(m));
+            f.modes = std::move(kept);
+            same_modes(reduced(w), f, band, entry.path().filename().string() + " at " + std::to_string(w) + " rad/s");
+        }
+    }
+    CHECK(used >= 5);
+}
+
+TEST_CASE("three-disk rotor: default Campbell tracks the modes in range without an ambiguous step, and its "
+          "critical speeds equal the full solve's",
+          "[continuation]") {
+    const Scene sc = load_scene(data + "/three_disk_rotor.toml");
+    const std::vector<double> grid = sc.speeds->points();
+    SolverOptions so;
+    so.modes = kModesInRange;
+    const SolverChoice plan = choose_solver(sc.system, so);
+    const CampbellOptions co = tracking_options(plan, kModesInRange, grid, sc.harmonics, 2);
+    CHECK(co.band == Approx(kBandMargin * 15000 * M_PI / 30));
+    const SolverFactory solver = tracking_solver(plan.make, co, grid);
+    const CampbellDiagram cd = campbell(solver, grid, co);
+    CHECK(cd.ambiguous_steps == 0);
+    CHECK(cd.branches.size() >= 8);
+    for (const Branch& b : cd.branches)
+        for (const BranchPoint& p : b.points) CHECK(p.mode.backward_error <= 1e-10);
+    const auto cs = critical_speeds(solver, cd, {1}, 2);
+    // The full path: every mode, every speed.
+    CampbellOptions every = co;
+    every.band = INFINITY;
+    const CampbellDiagram full = campbell(plan.make, grid, every);
+    const auto fcs = critical_speeds(plan.make, full, {1}, 2);
+    REQUIRE(cs.size() == 4);
+    REQUIRE(fcs.size() == cs.size());
+    for (size_t k = 0; k < cs.size(); ++k) {
+        // Each root within the speed tolerance of the two searches (relative 1e-9 of the speed).
+        CHECK(std::abs(cs[k].speed - fcs[k].speed) <= 1e-8 * fcs[k].speed);
+        CHECK(cs[k].mode.whirl == fcs[k].mode.whirl);
+    }
+}
+
+namespace {
+
+// A Jeffcott rotor: mass m on an isotropic shaft k with damping c, unbalance m e.
+GyroscopicSystem jeffcott(double zeta) {
+    const double m = 10.0, k = 4e6, c = 2.0 * zeta * std::sqrt(k * m), e = 1e-4;
+    GyroscopicSystem s;
+    s.M = Eigen::MatrixXd(m * Eigen::MatrixXd::Identity(2, 2));
+    s.K = Eigen::MatrixXd(k * Eigen::MatrixXd::Identity(2, 2));
+    s.damping.push_back({"c", Eigen::MatrixXd(c * Eigen::MatrixXd::Identity(2, 2))});
+    s.unbalance = Eigen::VectorXcd(2);
+    s.unbalance << std::complex<double>(m * e, 0.0), std::complex<double>(0.0, -m * e);
+    s.dof_names = {"x", "y"};
+    s.dof_units = {"m", "m"};
+    s.whirl_pairs = {{0, 1}};
+    return s;
+}
+
+// The half-power amplification factor of the Jeffcott unbalance response in closed
+// form: |Z| ~ s / sqrt((1 - s)^2 + 4 zeta^2 s) with s = (w/wn)^2 peaks at
+// s_p = 1/(1 - 2 zeta^2), a_p = 1/(2 zeta sqrt(1 - zeta^2)); the half-power points
+// solve (a_p^2 - 2) s^2 + a_p^2 (4 zeta^2 - 2) s + a_p^2 = 0.
+double jeffcott_af(double zeta) {
+    const double sp = 1.0 / (1.0 - 2.0 * zeta * zeta), ap2 = 1.0 / (4.0 * zeta * zeta * (1.0 - zeta * zeta));
+    const double a = ap2 - 2.0, b = ap2 * (4.0 * zeta * zeta - 2.0), c = ap2;
+    const double d = std::sqrt(b * b - 4.0 * a * c);
+    const double s1 = (-b - d) / (2.0 * a), s2 = (-b + d) / (2.0 * a);
+    return std::sqrt(sp) / (std::sqrt(std::max(s1, s2)) - std::sqrt(std::min(s1, s2)));
+}
+
+}  // namespace
+
+TEST_CASE("amplification factor: half-power on the Jeffcott rotor's unbalance response equals the closed form, "
+          "and API 684 calls AF < 2.5 not critical",
+          "[continuation]") {
+    for (const double zeta : {0.01, 0.05, 0.1, 0.3}) {
+        const GyroscopicSystem sys = jeffcott(zeta);
+        const double wn = std::sqrt(4e6 / 10.0);
+        const std::vector<double> grid = {0.0, 0.5 * wn, 1.5 * wn, 2.0 * wn};
+        const SolverFactory solver = dense_solver(sys);
+        const CampbellDiagram cd = campbell(solver, grid);
+        std::vector<CriticalSpeed> cs = critical_speeds(solver, cd, {1});
+        REQUIRE(cs.size() >= 1);
+        set_amplification_factors(cs, sys);
+        for (const CriticalSpeed& c : cs) {
+            INFO("zeta " << zeta << ", crossing at " << c.speed);
+            CHECK(c.speed == Approx(wn * std::sqrt(1.0 - zeta * zeta)).epsilon(1e-9));
+            // The peak speed to sqrt(eps) relative on a flat top, the half-power roots to 1e-10: AF to 1e-6.
+            CHECK(c.amplification_method == AmplificationMethod::HalfPower);
+            CHECK(c.amplification == Approx(jeffcott_af(zeta)).epsilon(1e-6));
+            CHECK(c.api684_critical() == (jeffcott_af(zeta) >= 2.5));
+        }
+    }
+    // Without an unbalance: 1/(2 zeta).
+    GyroscopicSystem bare = jeffcott(0.1);
+    bare.unbalance.resize(0);
+    const SolverFactory solver = dense_solver(bare);
+    const double wn = std::sqrt(4e5);
+    std::vector<CriticalSpeed> cs = critical_speeds(solver, campbell(solver, {0.0, 2.0 * wn}), {1});
+    REQUIRE(!cs.empty());
+    set_amplification_factors(cs, bare);
+    CHECK(cs[0].amplification_method == AmplificationMethod::DampingRatio);
+    CHECK(cs[0].amplification == Approx(5.0).epsilon(1e-9));
+}
