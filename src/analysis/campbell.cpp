@@ -68,9 +68,10 @@ struct Tracker {
     bool far(const Mode& m) const { return std::isfinite(opt.band) && std::abs(m.frequency()) > 2.0 * opt.band; }
 
     // Assignment of the modes of `prev` (speed w0) to those of `next` (w0 + h).
-    // A watched match is clear when the eigenvalue continues the branch's slope
-    // (trapezoid residual within a tenth of the step's change, or within the error
-    // bounds) and every rival's residual is at least four times larger; without
+    // A watched match is clear when every rival's trapezoid residual is at least
+    // four times larger (or beyond the error bounds' noise), and in a window also
+    // when the eigenvalue continues the branch's slope (residual within a tenth of
+    // the step's change); without
     // slopes, when the mode shapes correlate (MAC >= mac_min) and no rival's cost
     // is within 0.05. Else the step is ambiguous.
     std::vector<int> match(const std::vector<Mode>& prev, const std::vector<cd>& predicted,
@@ -127,7 +128,10 @@ struct Tracker {
             if (has_slope(p) && has_slope(q) && std::isfinite(p.error_bound) && std::isfinite(q.error_bound)) {
                 const double noise = 4.0 * (p.error_bound + q.error_bound) + 1e-12 * (std::abs(p.lambda) + std::abs(q.lambda));
                 const double change = std::max({std::abs(q.lambda - p.lambda), std::abs(h * p.slope), std::abs(h * q.slope)});
-                if (res(r, c) > 0.1 * change + noise) ambiguous = true;
+                // In a complete spectrum the continuation is among the candidates, so a clear best
+                // suffices (a bearing table's kink bends a branch by O(h) and no bisection straightens
+                // it); a window may have lost it, so there the step must also be consistent.
+                if (window && res(r, c) > 0.1 * change + noise) ambiguous = true;
                 for (size_t k = 0; k < nc; ++k)
                     if (k != c && std::abs(next[cols[k]].lambda - q.lambda) > 1e-8 * std::abs(q.lambda) &&
                         res(r, k) < std::max(4.0 * res(r, c), noise))
