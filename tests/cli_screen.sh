@@ -101,6 +101,30 @@ printf '17,90,3' >> "$dir/resumed.csv"   # a row cut short
 "$cli" screen "$dir/ok.toml" --jobs 2 --resume "$dir/resumed.csv" 2> /dev/null || { echo "FAIL: resume"; fail=1; }
 cmp -s "$dir/all.csv" "$dir/resumed.csv" || { echo "FAIL: resumed file differs from the uninterrupted run"; fail=1; }
 
+# An output that is one of the run's inputs is refused, and the input is left whole.
+cp "$dir/ok.toml" "$dir/keep.toml"
+expect "that file is an input of this run" screen "$dir/ok.toml" --out "$dir/ok.toml"
+cmp -s "$dir/ok.toml" "$dir/keep.toml" || { echo "FAIL: --out on the sweep file changed it"; fail=1; }
+cp "$data/centrifuge.toml" "$dir/scene_copy.toml"
+sed "s|$data/centrifuge.toml|$dir/scene_copy.toml|" "$dir/ok.toml" > "$dir/own_scene.toml"
+expect "that file is an input of this run" screen "$dir/own_scene.toml" --out "$dir/scene_copy.toml"
+cmp -s "$data/centrifuge.toml" "$dir/scene_copy.toml" || { echo "FAIL: --out on the base scene changed it"; fail=1; }
+expect "that file is an input of this run" screen "$dir/ok.toml" --merge "$dir/s0.csv" "$dir/s1.csv" --out "$dir/s1.csv"
+expect "that file is an input of this run" screen "$dir/ok.toml" --resume "$dir/./ok.toml"
+
+# A second writer of a result file another run holds (the same flock as a run
+# takes, here held by flock(1)) is refused, and the file is left as it was.
+cp "$dir/all.csv" "$dir/held.csv"
+flock -x "$dir/held.csv" -c "touch '$dir/ready'; while [ ! -f '$dir/release' ]; do sleep 0.05; done" &
+holder=$!
+for _ in $(seq 1 500); do [ -f "$dir/ready" ] && break; sleep 0.01; done
+expect "another run is writing this result file" screen "$dir/ok.toml" --jobs 1 --resume "$dir/held.csv"
+expect "another run is writing this result file" screen "$dir/ok.toml" --jobs 1 --out "$dir/held.csv"
+expect "another run is writing this result file" screen "$dir/ok.toml" --merge "$dir/s0.csv" "$dir/s1.csv" "$dir/s2.csv" --out "$dir/held.csv"
+touch "$dir/release"
+wait "$holder" 2> /dev/null
+cmp -s "$dir/all.csv" "$dir/held.csv" || { echo "FAIL: a refused writer changed the held file"; fail=1; }
+
 # JSON on stdout: no NaN, one object per design.
 "$cli" screen "$dir/ok.toml" --format json > "$dir/out.json" 2> /dev/null || { echo "FAIL: json run"; fail=1; }
 if grep -qi 'nan' "$dir/out.json"; then echo "FAIL: NaN in JSON"; fail=1; fi

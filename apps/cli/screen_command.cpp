@@ -84,12 +84,18 @@ std::vector<Command> add_screen_commands(CLI::App& app) {
 
         std::vector<ResultRow> rows;
         if (!o->merge.empty()) {
+            std::vector<std::string> inputs = o->merge;
+            inputs.push_back(s.path);
+            inputs.push_back(s.scene);
+            check_output_path(ro.out, inputs, o->resume.empty() ? "--out" : "--resume");
             rows = merge_results(s, o->merge, true);
             if (!ro.out.empty()) {
-                std::ofstream f(ro.out, std::ios::binary | std::ios::trunc);
-                write_results(f, s, rows, TableFormat::Csv);
-                f.close();   // flushes: a full disk shows here, not before
-                if (!f) throw Error(ro.out + ": write failed (disk full?)");
+                std::ostringstream text;
+                write_results(text, s, rows, TableFormat::Csv);
+                ResultFile f(ro.out);   // locked: no other run writes it meanwhile
+                f.truncate(0);
+                f.write(text.str());
+                f.close();   // synced: a full disk shows here
             } else {
                 write_results(os, s, rows, fmt_out);
             }

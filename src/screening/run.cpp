@@ -16,7 +16,99 @@
 #include <sstream>
 #include <thread>
 
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 namespace gyrokit {
+
+void check_output_path(const std::string& out, const std::vector<std::string>& inputs, const std::string& option) {
+    if (out.empty()) return;
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path o = fs::weakly_canonical(fs::absolute(out, ec), ec);
+    for (const auto& in : inputs) {
+        if (in.empty()) continue;
+        std::error_code e1, e2;
+        const bool same = fs::exists(out, e1) && fs::exists(in, e2) ? fs::equivalent(out, in, e1)
+                                                                    : fs::weakly_canonical(fs::absolute(in, e2), e2) == o;
+        if (same)
+            throw InputError(fmt::format("{} {}: that file is an input of this run ({}); writing it would destroy "
+                                         "what the run reads; allowed: a file that is not the sweep, its base scene "
+                                         "or a merged result file",
+                                         option, out, in));
+    }
+}
+
+ResultFile::ResultFile(const std::string& path) : path_(path) {
+    const bool existed = std::filesystem::exists(path);
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (fd_ < 0) throw InputError(fmt::format("{}: cannot write the result file ({})", path, std::strerror(errno)));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+        const int err = errno;
+        ::close(fd_);
+        fd_ = -1;
+        if (err == EWOULDBLOCK)
+            throw InputError(fmt::format("{}: another run is writing this result file (it holds its lock); let it "
+                                         "finish, or stop it, before writing here; allowed: a file no other run writes",
+                                         path));
+        throw InputError(fmt::format("{}: cannot lock the result file ({})", path, std::strerror(err)));
+    }
+    if (!existed) {
+        // The new file's name must survive a power loss as well as its lines.
+        const std::filesystem::path dir = std::filesystem::absolute(path).parent_path();
+        const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        if (dfd >= 0) {
+            ::fsync(dfd);
+            ::close(dfd);
+        }
+    }
+    last_sync_ = std::chrono::steady_clock::now();
+}
+
+ResultFile::~ResultFile() {
+    if (fd_ >= 0) {
+        ::fsync(fd_);
+        ::close(fd_);   // releases the lock
+    }
+}
+
+void ResultFile::truncate(std::size_t bytes) {
+    if (::ftruncate(fd_, static_cast<off_t>(bytes)) != 0 || ::lseek(fd_, 0, SEEK_END) < 0)
+        throw Error(fmt::format("{}: cannot cut the result file to {} bytes ({})", path_, bytes, std::strerror(errno)));
+}
+
+void ResultFile::write(const std::string& text) {
+    const char* p = text.data();
+    std::size_t left = text.size();
+    while (left > 0) {
+        const ssize_t n = ::write(fd_, p, left);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) throw Error(fmt::format("{}: write failed ({})", path_, n < 0 ? std::strerror(errno) : "no progress"));
+        p += n;
+        left -= static_cast<std::size_t>(n);
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_sync_ >= std::chrono::duration<double>(kResultSyncSeconds)) sync();
+}
+
+void ResultFile::sync() {
+    if (::fdatasync(fd_) != 0) throw Error(fmt::format("{}: cannot sync the result file ({})", path_, std::strerror(errno)));
+    last_sync_ = std::chrono::steady_clock::now();
+}
+
+void ResultFile::close() {
+    if (fd_ < 0) return;
+    const int sync_rc = ::fsync(fd_);
+    const int err = errno;
+    const int close_rc = ::close(fd_);
+    fd_ = -1;
+    if (sync_rc != 0 || close_rc != 0)
+        throw Error(fmt::format("{}: write failed at close ({})", path_, std::strerror(sync_rc != 0 ? err : errno)));
+}
 
 namespace {
 
@@ -176,22 +268,27 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
     res.shard_designs = owned.size();
 
     std::set<std::size_t> done;
-    std::ofstream out;
+    check_output_path(opt.out, {s.path, s.scene}, opt.resume ? "--resume" : "--out");
+    // Held from before the file is read back (resume) or cut (a fresh run): a second
+    // writer of the same file is refused instead of interleaving with this one.
+    std::optional<ResultFile> out;
     if (!opt.out.empty()) {
+        out.emplace(opt.out);
         bool need_header = true;
-        if (opt.resume && fs::exists(opt.out)) {
+        if (opt.resume && fs::file_size(opt.out) > 0) {
             ParsedFile pf = parse_result_file(s, opt.out, &opt.shard);
             need_header = !pf.has_header;
-            // Drop the partial last line before appending.
-            fs::resize_file(opt.out, pf.valid_bytes);
+            out->truncate(pf.valid_bytes);   // drop the partial last line before appending
             for (auto& r : pf.rows) done.insert(r.index);
             res.resumed = pf.rows.size();
             res.rows = std::move(pf.rows);
+        } else {
+            out->truncate(0);
         }
-        out.open(opt.out, opt.resume ? std::ios::app | std::ios::binary : std::ios::trunc | std::ios::binary);
-        if (!out) throw InputError(fmt::format("{}: cannot write the result file", opt.out));
-        if (need_header) out << header_line(s) << '\n' << std::flush;
-        if (!out) throw Error(fmt::format("{}: write failed (disk full?)", opt.out));
+        if (need_header) {
+            out->write(header_line(s) + '\n');
+            out->sync();
+        }
     }
     std::vector<std::size_t> todo;
     for (std::size_t i : owned)
@@ -229,10 +326,7 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
                 slots[k].reset();
             }
             ResultRow row = format_row(s, r);
-            if (out.is_open()) {
-                out << csv_line(row.cells) << std::flush;
-                if (!out) throw Error(fmt::format("{}: write failed", opt.out));
-            }
+            if (out) out->write(csv_line(row.cells));
             fresh.push_back(std::move(row));
             ++res.computed;
             if (opt.progress) opt.progress(res.resumed + res.computed, owned.size());
@@ -243,10 +337,7 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
         throw;
     }
     for (auto& t : threads) t.join();
-    if (out.is_open()) {
-        out.close();   // a failure to write the last buffered bytes shows here
-        if (!out) throw Error(fmt::format("{}: write failed (disk full?)", opt.out));
-    }
+    if (out) out->close();   // synced: every row of the run survives a power loss from here
     res.rows.insert(res.rows.end(), std::make_move_iterator(fresh.begin()), std::make_move_iterator(fresh.end()));
     std::stable_sort(res.rows.begin(), res.rows.end(), [](const auto& a, const auto& b) { return a.index < b.index; });
     return res;

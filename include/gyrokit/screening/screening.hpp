@@ -3,6 +3,8 @@
 // an interrupted run, shards. See docs/screening.md.
 #pragma once
 
+#include <chrono>
+
 #include <gyrokit/io/plot.hpp>
 #include <gyrokit/io/table.hpp>
 #include <gyrokit/screening/sweep.hpp>
@@ -65,10 +67,39 @@ struct RunResult {
     std::size_t shard_designs = 0;  // designs owned by the shard
 };
 
+// An output path that is one of the run's inputs (the same file, or the same path
+// where it does not exist yet) is refused with an InputError naming `option`.
+void check_output_path(const std::string& out, const std::vector<std::string>& inputs, const std::string& option);
+
+// Seconds between syncs of a result file to the disk while rows are written.
+constexpr double kResultSyncSeconds = 1.0;
+
+// A result file held for writing: opened (created if missing) and locked
+// exclusively (flock) for the object's lifetime, so a second run writing the same
+// file is refused (InputError) instead of interleaving with this one. Lines are
+// written whole (a kill leaves at most one partial line, which resume drops); the
+// data is synced to the disk at most kResultSyncSeconds after a line and at close,
+// and a new file's directory entry when it is created (docs/reliability.md).
+class ResultFile {
+public:
+    explicit ResultFile(const std::string& path);
+    ~ResultFile();
+    ResultFile(const ResultFile&) = delete;
+    ResultFile& operator=(const ResultFile&) = delete;
+    void truncate(std::size_t bytes);   // cut to `bytes`, then write at the end
+    void write(const std::string& text);
+    void sync();
+    void close();                       // syncs; throws Error where the data did not reach the disk
+private:
+    std::string path_;
+    int fd_ = -1;
+    std::chrono::steady_clock::time_point last_sync_;
+};
+
 // Runs the designs of the shard on `jobs` threads. Rows are written to `out`
-// in design-index order as soon as all earlier rows are done, each flushed, so
-// an interrupted file is always a complete prefix plus at most one partial
-// line. With `resume`, the header must match the sweep, the rows must belong
+// (a ResultFile: locked, synced) in design-index order as soon as all earlier
+// rows are done, so an interrupted file is always a complete prefix plus at most
+// one partial line. `out` may not be the sweep file or its base scene. With `resume`, the header must match the sweep, the rows must belong
 // to this sweep and shard, a partial last line is dropped and redone.
 RunResult run_screening(const Sweep& s, const RunOptions& opt);
 
