@@ -21,6 +21,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace gyrokit {
@@ -66,6 +67,8 @@ ResultFile::ResultFile(const std::string& path) : path_(path) {
             ::close(dfd);
         }
     }
+    struct stat st {};
+    regular_ = ::fstat(fd_, &st) == 0 && S_ISREG(st.st_mode);
     last_sync_ = std::chrono::steady_clock::now();
 }
 
@@ -77,6 +80,7 @@ ResultFile::~ResultFile() {
 }
 
 void ResultFile::truncate(std::size_t bytes) {
+    if (!regular_) return;   // a device or a pipe (/dev/stdout): nothing to cut
     if (::ftruncate(fd_, static_cast<off_t>(bytes)) != 0 || ::lseek(fd_, 0, SEEK_END) < 0)
         throw Error(fmt::format("{}: cannot cut the result file to {} bytes ({})", path_, bytes, std::strerror(errno)));
 }
@@ -96,13 +100,13 @@ void ResultFile::write(const std::string& text) {
 }
 
 void ResultFile::sync() {
-    if (::fdatasync(fd_) != 0) throw Error(fmt::format("{}: cannot sync the result file ({})", path_, std::strerror(errno)));
+    if (regular_ && ::fdatasync(fd_) != 0) throw Error(fmt::format("{}: cannot sync the result file ({})", path_, std::strerror(errno)));
     last_sync_ = std::chrono::steady_clock::now();
 }
 
 void ResultFile::close() {
     if (fd_ < 0) return;
-    const int sync_rc = ::fsync(fd_);
+    const int sync_rc = regular_ ? ::fsync(fd_) : 0;
     const int err = errno;
     const int close_rc = ::close(fd_);
     fd_ = -1;

@@ -93,6 +93,7 @@ public:
 private:
     std::string path_;
     int fd_ = -1;
+    bool regular_ = true;   // a device or pipe is neither cut nor synced
     std::chrono::steady_clock::time_point last_sync_;
 };
 
