@@ -136,4 +136,21 @@ expect "--at 0: node 0 has no free lateral translation" response "$dir/pinned.to
 expect "--at 1.5: axial position 1.5 m is off the shaft; allowed: [0, 1] m" response "$dir/pinned.toml" --at 1.5
 "$cli" response "$dir/pinned.toml" --at 0.5 --format csv | cut -d, -f2 | sort -u | tr '\n' ' ' | grep -qx "dof x2 y2 " ||
     { echo "FAIL: --at 0.5 gives x2, y2"; fail=1; }
+# Inputs that are not regular files, or nested beyond the parser's stack: one line, never a hang.
+printf '[model]\ntype = "matrices"\nM = "M2.mtx"\nK = "/dev/zero"\n' > "$dir/devzero.toml"
+expect "/dev/zero: is not a regular file (a device, FIFO or socket); expected a Matrix Market file" eig "$dir/devzero.toml" --speed 1
+expect "is a directory; expected a scene file" eig "$dir" --speed 1
+expect "/dev/null: is not a regular file" eig /dev/null --speed 1
+ln -s "$dir/loop.toml" "$dir/loop.toml"
+expect "symbolic link that leads nowhere (or in a loop)" eig "$dir/loop.toml" --speed 1
+python3 -c "print('[' + '.'.join(['x'] * 50000) + ']')" > "$dir/deep_header.toml"
+expect "more than 64 levels deep" eig "$dir/deep_header.toml" --speed 1
+python3 -c "print('.'.join(['x'] * 100000) + ' = 1')" > "$dir/deep_key.toml"
+expect "a dotted key more than 64 levels deep" eig "$dir/deep_key.toml" --speed 1
+python3 -c "print('x = ' + '[' * 100000 + ']' * 100000)" > "$dir/deep_array.toml"
+expect "nested more than 64 levels deep" eig "$dir/deep_array.toml" --speed 1
+# Dots inside strings and numbers are no levels.
+printf 'title = "%s"\n[model]\ntype = "matrices"\nM = "M2.mtx"\nK = "M2.mtx"\nx = 1.5\n' "$(python3 -c "print('.' * 1000)")" > "$dir/dotted_title.toml"
+expect "unknown key 'x'" eig "$dir/dotted_title.toml" --speed 1
+
 exit $fail

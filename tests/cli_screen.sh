@@ -125,6 +125,9 @@ touch "$dir/release"
 wait "$holder" 2> /dev/null
 cmp -s "$dir/all.csv" "$dir/held.csv" || { echo "FAIL: a refused writer changed the held file"; fail=1; }
 
+expect "/dev/zero: is not a regular file" screen "$dir/ok.toml" --merge /dev/zero
+expect "is a directory" screen "$dir/ok.toml" --merge "$dir"
+
 # JSON on stdout: no NaN, one object per design.
 "$cli" screen "$dir/ok.toml" --format json > "$dir/out.json" 2> /dev/null || { echo "FAIL: json run"; fail=1; }
 if grep -qi 'nan' "$dir/out.json"; then echo "FAIL: NaN in JSON"; fail=1; fi

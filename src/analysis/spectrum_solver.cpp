@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <fmt/format.h>
 #include <sys/mman.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -351,12 +352,17 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
         std::FILE* f = std::tmpfile();
         if (!f) abandon(fmt::format("cannot create a temporary file for worker process {} of {}; use fewer jobs",
                                     k + 1, workers));
+        const pid_t parent = getpid();
         const pid_t pid = fork();
         if (pid < 0) {
             std::fclose(f);
             abandon(fmt::format("cannot start worker process {} of {} (fork failed); use fewer jobs", k + 1, workers));
         }
         if (pid == 0) {
+            // A worker dies with its parent (a service manager's SIGTERM, the OOM killer's
+            // SIGKILL): never an orphan that holds the parent's pipes open and keeps computing.
+            prctl(PR_SET_PDEATHSIG, SIGKILL);
+            if (getppid() != parent) _exit(1);   // the parent died before the line above
             int status = 0;
             try {
                 SpectrumSolver solve = make();

@@ -2,6 +2,7 @@
 
 #include <gyrokit/core/error.hpp>
 #include "io/toml_keys.hpp"
+#include <gyrokit/core/input_file.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -15,9 +16,9 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 toml::table parse(const std::string& path) {
-    if (!std::filesystem::exists(path)) throw InputError(fmt::format("{}: scene file not found", path));
+    const std::string text = read_toml_text(path, "scene file");
     try {
-        return toml::parse_file(path);
+        return toml::parse(text, path);
     } catch (const toml::parse_error& e) {
         const auto& b = e.source().begin;
         throw InputError(fmt::format("{}: line {}, column {}: {}", path, b.line, b.column, e.description()));

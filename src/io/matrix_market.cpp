@@ -1,5 +1,7 @@
 #include <gyrokit/io/matrix_market.hpp>
 
+#include <gyrokit/core/input_file.hpp>
+
 #include <gyrokit/core/error.hpp>
 
 #include <fmt/format.h>
@@ -72,10 +74,8 @@ std::errc parse(std::string_view s, T& out) {
 class LineReader {
 public:
     explicit LineReader(const std::string& path) : path_(path) {
-        // An ifstream "opens" a directory and then reads nothing; say what it is instead.
-        std::error_code ec;
-        if (std::filesystem::is_directory(path, ec))
-            throw InputError(fmt::format("{}: is a directory; expected a Matrix Market file", path));
+        // An ifstream "opens" a directory and reads nothing, /dev/zero never ends: say what it is instead.
+        check_input_file(path, "Matrix Market file", kMaxDataInputBytes);
         in_.open(path, std::ios::binary);
         if (!in_)
             throw InputError(fmt::format("{}: cannot open file for reading ({})", path, std::strerror(errno)));

@@ -1,5 +1,7 @@
 #include <gyrokit/io/scene.hpp>
 
+#include <gyrokit/core/input_file.hpp>
+
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/bearing_csv.hpp>
 #include "io/fe_scene.hpp"
@@ -138,11 +140,11 @@ std::set<std::string> model_types() {
 }
 
 toml::table parse_scene_file(const std::string& path) {
+    const std::string text = read_toml_text(path, "scene file");
     try {
-        return toml::parse_file(path);
+        return toml::parse(text, path);
     } catch (const toml::parse_error& e) {
         const auto& b = e.source().begin;
-        if (!fs::exists(path)) throw InputError(fmt::format("{}: scene file not found", path));
         throw InputError(fmt::format("{}: line {}, column {}: {}", path, b.line, b.column, e.description()));
     }
 }
@@ -247,6 +249,7 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
 
 Scene parse_scene(const std::string& text, const std::string& origin, const std::string& dir) {
     toml::table root;
+    check_toml_depth(text, origin);
     try {
         root = toml::parse(text, origin);
     } catch (const toml::parse_error& e) {

@@ -1,5 +1,6 @@
 // Parallel run, result files, resume, merge, summary and the safe-region plot.
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/input_file.hpp>
 #include <gyrokit/screening/screening.hpp>
 
 #include <algorithm>
@@ -135,6 +136,7 @@ struct ParsedFile {
 
 ParsedFile parse_result_file(const Sweep& s, const std::string& path, const Shard* shard) {
     ParsedFile pf;
+    check_input_file(path, "result file", kMaxDataInputBytes);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(fmt::format("{}: cannot read the result file", path));
     std::stringstream ss;

@@ -2,6 +2,7 @@
 
 #include <gyrokit/core/error.hpp>
 #include "io/toml_keys.hpp"
+#include <gyrokit/core/input_file.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -271,10 +272,10 @@ Sweep read_sweep(const std::string& path) {
     Sweep s;
     s.path = path;
     toml::table root;
+    const std::string text = read_toml_text(path, "sweep file");
     try {
-        root = toml::parse_file(path);
+        root = toml::parse(text, path);
     } catch (const toml::parse_error& e) {
-        if (!fs::exists(path)) throw InputError(fmt::format("{}: sweep file not found", path));
         const auto& b = e.source().begin;
         throw InputError(fmt::format("{}: line {}, column {}: {}", path, b.line, b.column, e.description()));
     }
