@@ -25,10 +25,37 @@ namespace {
 // A matrix argument: a SciPy sparse matrix (taken as CSC, one copy into Eigen)
 // or anything NumPy turns into a 2-D float array.
 SparseMatrix to_matrix(const py::object& A, const std::string& name) {
-    if (py::hasattr(A, "tocsc")) return A.attr("tocsc")().cast<SparseMatrix>();
+    const py::module_ np = py::module_::import("numpy");
+    // A complex matrix would lose its imaginary part to a cast with only a warning.
+    const auto refuse_complex = [&](const py::object& values) {
+        if (!np.attr("iscomplexobj")(values).cast<bool>()) return;
+        if (np.attr("any")(np.attr("imag")(values)).cast<bool>())
+            throw InputError(name + ": has complex entries; allowed: a real matrix (M, D, G, K, N, K2 are real; a "
+                                    "complex unbalance goes to `unbalance`)");
+    };
+    if (py::hasattr(A, "tocsc")) {
+        // A copy, checked in full (indices in range, indptr monotone) and sorted: the
+        // arrays are then read as they are, and a wrong index would read out of bounds.
+        py::object csc = A.attr("tocsc")(py::arg("copy") = true);
+        try {
+            csc.attr("check_format")(py::arg("full_check") = true);
+        } catch (const py::error_already_set& e) {
+            throw InputError(name + ": not a valid sparse matrix (" + std::string(py::str(e.value())) +
+                             "); allowed: a SciPy sparse matrix with indices in range");
+        }
+        refuse_complex(csc.attr("data"));
+        csc.attr("sort_indices")();
+        csc.attr("sum_duplicates")();
+        return csc.attr("astype")(np.attr("float64")).cast<SparseMatrix>();
+    }
+    py::object source = A;
+    if (np.attr("iscomplexobj")(A).cast<bool>()) {
+        refuse_complex(np.attr("asarray")(A));
+        source = np.attr("real")(np.attr("asarray")(A));   // zero imaginary parts: the real matrix, no warning
+    }
     py::array_t<double, py::array::c_style | py::array::forcecast> a;
     try {
-        a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(A);
+        a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(source);
     } catch (const py::error_already_set&) {
     }
     if (!a || a.ndim() != 2)

@@ -3,6 +3,7 @@
 # names the offending key or value, nothing on stdout.
 set -u
 cli=$1
+data=$(cd "${2:-$(dirname "$0")/../data}" && pwd)
 source "$(dirname "$0")/cli_lib.sh"
 
 good_model='type = "gyrostat"
@@ -93,7 +94,7 @@ expect "unknown command 'xyzzy' (see --help)" xyzzy
 # Conventions that succeed: --version, the command list without arguments, units in any case.
 "$cli" --version | grep -qx "gyrokit [0-9.]*" || { echo "FAIL: --version"; fail=1; }
 "$cli" | grep -q "campbell" || { echo "FAIL: gyrokit alone does not list the commands"; fail=1; }
-"$cli" eig "$dir/ok.toml" --speed 3 --units hz | head -1 | grep -q "3.000000 Hz" || { echo "FAIL: --units hz"; fail=1; }
+"$cli" eig "$dir/ok.toml" --speed 3 --units hz | head -1 | grep -q "at 3 Hz" || { echo "FAIL: --units hz"; fail=1; }
 
 # Speeds that repeat at double precision: one line, exit 2, no hang (each under a
 # 20 s limit: a hang exits 124 and fails).
@@ -152,5 +153,35 @@ expect "nested more than 64 levels deep" eig "$dir/deep_array.toml" --speed 1
 # Dots inside strings and numbers are no levels.
 printf 'title = "%s"\n[model]\ntype = "matrices"\nM = "M2.mtx"\nK = "M2.mtx"\nx = 1.5\n' "$(python3 -c "print('.' * 1000)")" > "$dir/dotted_title.toml"
 expect "unknown key 'x'" eig "$dir/dotted_title.toml" --speed 1
+
+# A bearing table naming a column twice; options listing a value twice; a speed beyond double precision.
+printf 'speed,kxx,kxy,kyx,kyy,cxx,cxy,cyx,cyy,kxx\n0,1e7,0,0,1e7,100,0,0,100,2e7\n1000,1e7,0,0,1e7,100,0,0,100,2e7\n' > "$dir/dupcol.csv"
+cat > "$dir/dupcol.toml" <<END
+[model]
+type = "fe_rotor"
+material = "steel"
+[[model.shaft]]
+length = 1.0
+elements = 4
+outer_diameter = 0.05
+[[model.bearing]]
+z = 0.0
+table = "dupcol.csv"
+[[model.bearing]]
+z = 1.0
+k = 1e7
+[speeds]
+from = 0
+to = 1000
+count = 3
+END
+expect "the header names 'kxx' twice (columns 2 and 10)" eig "$dir/dupcol.toml" --speed 1
+expect "--harmonics '1,1': 1 is listed twice" critical "$data/centrifuge.toml" --harmonics 1,1
+expect "--dofs 'x,x': 'x' is listed twice" response "$data/centrifuge.toml" --dofs x,x
+"$cli" eig "$data/centrifuge.toml" --speed 1e150 > "$dir/out" 2> "$dir/err"
+rc=$?
+if [ "$rc" -ne 3 ] || [ -s "$dir/out" ] || ! grep -q "the eigensolver cannot vouch for this pencil" "$dir/err"; then
+    echo "FAIL: eig at 1e150 rad/s -> exit $rc, expected a solver error (3) and no table"; fail=1
+fi
 
 exit $fail

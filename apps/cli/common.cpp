@@ -3,6 +3,7 @@
 #include <gyrokit/core/error.hpp>
 
 #include <cmath>
+#include <algorithm>
 #include <filesystem>
 #include <fmt/format.h>
 #include <iostream>
@@ -140,15 +141,18 @@ std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>
     while (start <= text.size()) {
         const size_t end = std::min(text.find(',', start), text.size());
         const std::string item = text.substr(start, end - start);
+        long v = 0;
         try {
             size_t pos = 0;
-            const long v = std::stol(item, &pos);
+            v = std::stol(item, &pos);
             if (pos != item.size() || v < 1 || v > 1000) throw std::out_of_range(item);
-            h.push_back(static_cast<int>(v));
         } catch (const std::exception&) {
             throw InputError(fmt::format("{} '{}': allowed: whole numbers in [1, 1000] separated by commas", option,
                                          text));
         }
+        if (std::find(h.begin(), h.end(), static_cast<int>(v)) != h.end())
+            throw InputError(fmt::format("{} '{}': {} is listed twice; allowed: each value once", option, text, v));
+        h.push_back(static_cast<int>(v));
         start = end + 1;
     }
     return h;

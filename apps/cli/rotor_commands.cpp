@@ -70,6 +70,8 @@ std::vector<int> parse_dofs(const std::string& text, const std::vector<std::stri
         if (it == names.end())
             throw InputError(fmt::format("--dofs: '{}' is not a DOF of the model; allowed: names such as {}", name,
                                          names.empty() ? std::string("-") : names.front()));
+        if (std::find(out.begin(), out.end(), static_cast<int>(it - names.begin())) != out.end())
+            throw InputError(fmt::format("--dofs '{}': '{}' is listed twice; allowed: each DOF once", text, name));
         out.push_back(static_cast<int>(it - names.begin()));
         start = end + 1;
     }

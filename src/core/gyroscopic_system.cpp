@@ -237,11 +237,24 @@ void GyroscopicSystem::validate(const std::string& origin) const {
     if (static_cast<int>(dof_names.size()) != n)
         throw InputError(fmt::format("{}: {} DOF names for {} DOFs", origin, dof_names.size(), n));
     for (const auto& b : bearings) b.validate(n);
-    for (const auto& [u, v] : whirl_pairs)
+    std::vector<int> pair_of(static_cast<size_t>(std::max(n, 0)), -1);
+    for (size_t k = 0; k < whirl_pairs.size(); ++k) {
+        const auto [u, v] = whirl_pairs[k];
         if (u < 0 || v < 0 || u >= n || v >= n || u == v)
             throw InputError(fmt::format("{}: whirl pair ({}, {}) is out of range; allowed: two distinct "
                                          "DOF indices in [0, {}]",
                                          origin, u, v, n - 1));
+        // (0, 1) and (1, 0) would call every orbit both forward and backward.
+        for (const int d : {u, v}) {
+            if (pair_of[static_cast<size_t>(d)] >= 0) {
+                const auto [a, b] = whirl_pairs[static_cast<size_t>(pair_of[static_cast<size_t>(d)])];
+                throw InputError(fmt::format("{}: DOF {} is in whirl pairs ({}, {}) and ({}, {}); allowed: each DOF "
+                                             "in at most one pair",
+                                             origin, d, a, b, u, v));
+            }
+            pair_of[static_cast<size_t>(d)] = static_cast<int>(k);
+        }
+    }
     if (!dof_units.empty() && static_cast<int>(dof_units.size()) != n)
         throw InputError(fmt::format("{}: {} DOF units for {} DOFs", origin, dof_units.size(), n));
     if (!node_of_dof.empty() && static_cast<int>(node_of_dof.size()) != n)

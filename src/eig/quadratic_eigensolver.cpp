@@ -232,6 +232,25 @@ QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& 
     s.method = opt.method == EigenMethod::ScaledQZ    ? "scaled QZ"
                : opt.method == EigenMethod::ClassicQZ ? "scaled classic QZ"
                                                       : "state matrix";
+    // An answer QZ cannot stand behind is no answer: every eigenvalue infinite for an
+    // M that is not zero, or a pair far from any eigenpair (QZ's are about 1e-15), happen
+    // only where the pencil's scales span more than double precision resolves (a speed
+    // of 1e150 rad/s on a rotor whose |K| is 1e4). The state-matrix method says instead
+    // which eigenvalues it cannot vouch for.
+    if (qz) {
+        double worst = 0.0;
+        for (const Mode& m : s.modes) worst = std::max(worst, m.backward_error);
+        const bool all_infinite = s.modes.empty() && s.infinite_count > 0 && p.M.norm() > 0.0;
+        if (all_infinite || !(worst <= kDenseVerifyTolerance))
+            throw SolverError(fmt::format(
+                "the eigensolver cannot vouch for this pencil: {}; its coefficients span more than double precision "
+                "resolves (|M| = {:.3g}, |C| = {:.3g}, |K| = {:.3g}); allowed: speeds and parameters whose pencil "
+                "stays within about 1e12 of its natural scale",
+                all_infinite ? fmt::format("all {} eigenvalues came out infinite", s.infinite_count)
+                             : fmt::format("an eigenpair with backward error {:.2g}, above {:.0e}", worst,
+                                           kDenseVerifyTolerance),
+                p.M.norm(), p.C.norm(), p.K.norm()));
+    }
     finish(s, p, whirl_pairs, opt.left_vectors);
     // A printed eigenvalue lies within its printed bound; one whose bound exceeds
     // 1e-6 of its modulus (and the real-axis tolerance) is not vouched for: said.

@@ -53,7 +53,14 @@ BearingTable read_bearing_csv(const std::string& path, int dofs, int dof_x, int 
         if (!header) {
             for (size_t j = 0; j < f.size(); ++j)
                 for (size_t r = 0; r < required.size(); ++r)
-                    if (f[j] == required[r]) column[r] = static_cast<int>(j);
+                    if (f[j] == required[r]) {
+                        // Two columns of one name: which one is meant is not for the reader to guess.
+                        if (column[r] >= 0)
+                            throw InputError(fmt::format("{}: line {}: the header names '{}' twice (columns {} and "
+                                                         "{}); allowed: each column once",
+                                                         path, line_no, required[r], column[r] + 1, j + 1));
+                        column[r] = static_cast<int>(j);
+                    }
             for (size_t r = 0; r < required.size(); ++r)
                 if (column[r] < 0 && !(dofs_given && (r == 1 || r == 2)))
                     throw InputError(fmt::format("{}: line {}: the header has no column '{}'; required: speed, "

@@ -27,7 +27,7 @@ Table eig_table(const QuadraticSpectrum& s, double speed, const SpeedUnit& u, bo
     Table t({u.column("speed"), "index", "re_1_s", "im_rad_s", u.column("frequency"), "whirl", "damping_ratio", "log_dec",
              "backward_error", "error_bound"});
     t.key = "eigenvalues";
-    t.title = "eigenvalues at " + std::to_string(u.factor * speed) + " " + u.name +
+    t.title = fmt::format("eigenvalues at {:.6g} ", u.factor * speed) + u.name +
               (s.infinite_count ? " (" + std::to_string(s.infinite_count) + " infinite eigenvalues omitted)" : "");
     int index = 0;
     const auto add = [&](const Mode& m, bool rigid) {

@@ -391,3 +391,40 @@ def test_mode_shapes_match_the_cli_and_the_eigenvectors():
         assert abs(np.vdot(x, v)) ** 2 / (np.vdot(x, x).real * np.vdot(v, v).real) == pytest.approx(1.0, abs=1e-12)
     frame = ms.to_pandas()
     assert list(frame.columns)[:3] == ["mode", "pair", "unit"]
+
+
+def test_malformed_matrices_and_whirl_pairs_are_refused_not_cast():
+    import warnings
+    M, K = np.eye(4), 100.0 * np.eye(4)
+    with pytest.raises(gk.InputError, match="K: has complex entries"):
+        gk.System(M=M, K=K * (1 + 1j))
+    with pytest.raises(gk.InputError, match="D: has complex entries"):
+        gk.System(M=M, K=K, D=sp.csc_matrix(np.eye(4) * 1j))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")   # a complex matrix with zero imaginary parts is its real part, silently
+        s = gk.System(M=M, K=K.astype(complex))
+    assert gk.eig(s, 0.0).frequencies[0] == pytest.approx(10.0, rel=1e-12)
+    # A CSC matrix whose index arrays are wrong is refused (it was read as is: a segfault).
+    bad = sp.csc_matrix(M)
+    bad.indices[0] = 99
+    with pytest.raises(gk.InputError, match="M: not a valid sparse matrix"):
+        gk.System(M=bad, K=K)
+    bad = sp.csc_matrix(M)
+    bad.indptr[1] = 9
+    with pytest.raises(gk.InputError, match="M: not a valid sparse matrix"):
+        gk.System(M=bad, K=K)
+    # Unsorted indices and duplicates are summed, as SciPy means them.
+    dup = sp.csc_matrix((np.array([0.5, 0.5, 1.0, 1.0, 1.0]), np.array([0, 0, 1, 2, 3]), np.array([0, 2, 3, 4, 5])),
+                        shape=(4, 4))
+    assert gk.eig(gk.System(M=dup, K=K), 0.0).frequencies[0] == pytest.approx(10.0, rel=1e-12)
+    with pytest.raises(gk.InputError, match="in whirl pairs"):
+        gk.System(M=M, K=K, whirl_pairs=[[0, 1], [1, 0]])
+
+
+def test_deep_toml_and_special_files_are_refused(tmp_path):
+    deep = tmp_path / "deep.toml"
+    deep.write_text("[" + ".".join(["x"] * 50000) + "]\n")
+    with pytest.raises(gk.InputError, match="more than 64 levels deep"):
+        gk.load_scene(str(deep))
+    with pytest.raises(gk.InputError, match="is not a regular file"):
+        gk.load_scene("/dev/zero")

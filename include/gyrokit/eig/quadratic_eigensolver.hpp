@@ -25,6 +25,10 @@ std::string to_string(EigenMethod m);
 // its modulus (or below the real-axis tolerance); otherwise the spectrum says so.
 constexpr double kVouchTolerance = 1e-6;
 
+// Every eigenpair the dense solver returns has a backward error at most this
+// (QZ gives about 1e-15); else SolverError, never a table of noise.
+constexpr double kDenseVerifyTolerance = 1e-8;
+
 struct EigenOptions {
     EigenMethod method = EigenMethod::ScaledQZ;
     bool left_vectors = false;   // keep the left vectors in the modes (always computed, for the error bounds)
