@@ -11,7 +11,7 @@ for sig in TERM KILL; do
     "$cli" campbell "$data/fe_rotor.toml" --solver sparse --jobs 2 --speeds 0:4000:2000 > /dev/null 2>&1 &
     pid=$!
     workers=""
-    for _ in $(seq 1 500); do
+    for _ in $(seq 1 3000); do   # up to 30 s: a sanitized build starts slowly
         workers=$(pgrep -P "$pid" | tr '\n' ' ')
         [ -n "$workers" ] && break
         sleep 0.01
@@ -20,7 +20,7 @@ for sig in TERM KILL; do
     kill -"$sig" "$pid"
     wait "$pid" 2> /dev/null
     alive=""
-    for _ in $(seq 1 200); do
+    for _ in $(seq 1 1000); do
         alive=""
         for w in $workers; do kill -0 "$w" 2> /dev/null && alive="$alive $w"; done
         [ -z "$alive" ] && break
