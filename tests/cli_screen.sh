@@ -128,6 +128,16 @@ cmp -s "$dir/all.csv" "$dir/held.csv" || { echo "FAIL: a refused writer changed 
 expect "/dev/zero: is not a regular file" screen "$dir/ok.toml" --merge /dev/zero
 expect "is a directory" screen "$dir/ok.toml" --merge "$dir"
 
+# A 1e8-design grid with --limit 2 costs two designs, not memory per design (1.8 GB before).
+sed -e 's/^count = 4$/count = 10000/' -e 's/^values = \[50.0, 60.0, 74.1333, 90.0, 100.0\]$/from = 50.0\nto = 100.0\ncount = 10000/' "$dir/ok.toml" > "$dir/huge.toml"
+grep -q "count = 10000" "$dir/huge.toml" || { echo "FAIL: could not write the 1e8-design sweep"; fail=1; }
+peak_kb=$(python3 -c 'import resource, subprocess, sys
+subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)' "$cli" screen "$dir/huge.toml" --limit 2 --jobs 2 --out "$dir/huge.csv") ||
+    { echo "FAIL: the 1e8-design sweep with --limit 2"; fail=1; peak_kb=0; }
+[ "$(wc -l < "$dir/huge.csv")" -eq 3 ] || { echo "FAIL: --limit 2 wrote $(wc -l < "$dir/huge.csv") lines"; fail=1; }
+[ "$peak_kb" -lt 500000 ] || { echo "FAIL: the 1e8-design sweep with --limit 2 peaked at $peak_kb KB"; fail=1; }
+
 # JSON on stdout: no NaN, one object per design.
 "$cli" screen "$dir/ok.toml" --format json > "$dir/out.json" 2> /dev/null || { echo "FAIL: json run"; fail=1; }
 if grep -qi 'nan' "$dir/out.json"; then echo "FAIL: NaN in JSON"; fail=1; fi

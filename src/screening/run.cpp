@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <gsl/gsl_errno.h>
+#include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -268,10 +269,8 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
     RunResult res;
     res.columns = result_columns(s);
     const std::size_t n = s.design_count();
-    std::vector<std::size_t> owned;
-    for (std::size_t i = static_cast<std::size_t>(opt.shard.index); i < n; i += static_cast<std::size_t>(opt.shard.count))
-        owned.push_back(i);
-    res.shard_designs = owned.size();
+    const std::size_t first = static_cast<std::size_t>(opt.shard.index), step = static_cast<std::size_t>(opt.shard.count);
+    res.shard_designs = n > first ? (n - first + step - 1) / step : 0;
 
     std::set<std::size_t> done;
     check_output_path(opt.out, {s.path, s.scene}, opt.resume ? "--resume" : "--out");
@@ -296,49 +295,69 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
             out->sync();
         }
     }
-    std::vector<std::size_t> todo;
-    for (std::size_t i : owned)
-        if (!done.count(i)) todo.push_back(i);
-    if (opt.limit > 0 && todo.size() > opt.limit) todo.resize(opt.limit);
+    // The designs of this run are issued one at a time in index order (the k-th
+    // issued is the k-th row written): nothing is allocated per design of the grid,
+    // so a 1e8-design grid with --limit 2 costs two designs.
+    std::size_t remaining = res.shard_designs - std::min(res.shard_designs, done.size());
+    if (opt.limit > 0) remaining = std::min(remaining, opt.limit);
 
     gsl_set_error_handler_off();   // global GSL state: set once before the workers start
-    std::vector<std::optional<DesignResult>> slots(todo.size());
-    std::atomic<std::size_t> next{0};
     std::mutex mu;
     std::condition_variable cv;
+    std::map<std::size_t, DesignResult> ready;   // results not yet written, by issue number
+    std::size_t cursor = first, issued = 0;
+    int running = 0;
+    bool stop = false;
     const auto worker = [&] {
         for (;;) {
-            const std::size_t k = next.fetch_add(1);
-            if (k >= todo.size()) return;
-            DesignResult r = evaluate_design(s, todo[k]);
+            std::size_t k = 0, design = 0;
             {
                 std::lock_guard<std::mutex> lock(mu);
-                slots[k] = std::move(r);
+                while (cursor < n && done.count(cursor)) cursor += step;
+                if (stop || cursor >= n || issued >= remaining) {
+                    --running;
+                    cv.notify_all();
+                    return;
+                }
+                k = issued++;
+                design = cursor;
+                cursor += step;
             }
-            cv.notify_one();
+            DesignResult r = evaluate_design(s, design);
+            {
+                std::lock_guard<std::mutex> lock(mu);
+                ready.emplace(k, std::move(r));
+            }
+            cv.notify_all();
         }
     };
-    const int jobs = std::max(1, std::min<int>(opt.jobs, static_cast<int>(std::max<std::size_t>(todo.size(), 1))));
+    const int jobs = std::max(1, static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(1, opt.jobs)),
+                                                                        std::max<std::size_t>(remaining, 1))));
+    running = jobs;
     std::vector<std::thread> threads;
     for (int t = 0; t < jobs; ++t) threads.emplace_back(worker);
     std::vector<ResultRow> fresh;
     try {
-        for (std::size_t k = 0; k < todo.size(); ++k) {
+        for (std::size_t k = 0;; ++k) {
             DesignResult r;
             {
                 std::unique_lock<std::mutex> lock(mu);
-                cv.wait(lock, [&] { return slots[k].has_value(); });
-                r = std::move(*slots[k]);
-                slots[k].reset();
+                cv.wait(lock, [&] { return ready.count(k) || (running == 0 && k >= issued); });
+                if (!ready.count(k)) break;   // every worker has stopped and every issued design is written
+                r = std::move(ready.at(k));
+                ready.erase(k);
             }
             ResultRow row = format_row(s, r);
             if (out) out->write(csv_line(row.cells));
             fresh.push_back(std::move(row));
             ++res.computed;
-            if (opt.progress) opt.progress(res.resumed + res.computed, owned.size());
+            if (opt.progress) opt.progress(res.resumed + res.computed, res.shard_designs);
         }
     } catch (...) {
-        next = todo.size();   // workers stop after their current design
+        {
+            std::lock_guard<std::mutex> lock(mu);
+            stop = true;   // workers stop after their current design
+        }
         for (auto& t : threads) t.join();
         throw;
     }
