@@ -184,4 +184,13 @@ if [ "$rc" -ne 3 ] || [ -s "$dir/out" ] || ! grep -q "the eigensolver cannot vou
     echo "FAIL: eig at 1e150 rad/s -> exit $rc, expected a solver error (3) and no table"; fail=1
 fi
 
+# A file that is not what it should be is named, never quoted; a huge key is cut.
+printf 'root:secret-hash:19000:0:99999:7:::\n' > "$dir/shadow_like"
+printf '[model]\ntype = "matrices"\nM = "shadow_like"\nK = "M2.mtx"\n' > "$dir/shadow.toml"
+expect "missing banner" eig "$dir/shadow.toml" --speed 1
+if grep -q "secret-hash" "$dir/err"; then echo "FAIL: an error quoted the content of a foreign file"; fail=1; fi
+python3 -c "print('[model]'); print('type = \"matrices\"'); print('k' * 1000000 + ' = 1')" > "$dir/hugekey.toml"
+expect "unknown key 'kkkk" eig "$dir/hugekey.toml" --speed 1
+[ "$(wc -c < "$dir/err")" -lt 2000 ] || { echo "FAIL: the error echoed a 1 MB key"; fail=1; }
+
 exit $fail

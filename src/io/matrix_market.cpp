@@ -160,7 +160,10 @@ Header read_banner(LineReader& r, const std::string& path, bool complex_allowed)
     if (!r.next()) throw InputError(fmt::format("{}: file is empty; expected the banner '{}'", path, kBanner));
     const auto& t = r.tokens();
     if (t.empty() || t[0] != "%%MatrixMarket")
-        r.fail("missing banner; expected '{}' as the first line, got {}", kBanner, quote(r.text()));
+        // Not quoted: a file that is not what it should be (a wrong path: /etc/shadow) is named, never echoed.
+        r.fail("missing banner; expected '{}' as the first line; this file does not start with it (not a Matrix "
+               "Market file?)",
+               kBanner);
     r.expect_tokens(5, "banner", kBanner);
 
     // The qualifiers are case-insensitive in the Matrix Market specification.

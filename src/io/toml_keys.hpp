@@ -25,7 +25,9 @@ public:
             if (!allowed.count(key)) {
                 std::string list;
                 for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-                throw InputError(fmt::format("{}: [{}] unknown key '{}'; allowed: {}", file_, table_, key, list));
+                // A key of any length is named by its first 60 characters.
+                const std::string shown = key.size() > 60 ? key.substr(0, 60) + "..." : key;
+                throw InputError(fmt::format("{}: [{}] unknown key '{}'; allowed: {}", file_, table_, shown, list));
             }
         }
     }
