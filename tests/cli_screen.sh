@@ -75,18 +75,18 @@ expect "--jobs -1" screen "$dir/ok.toml" --jobs -1
 expect "allowed values: table, csv, json" screen "$dir/ok.toml" --format xml
 expect "unsupported extension" screen "$dir/ok.toml" --plot "$dir/x.pdf"
 printf 'design,foo\n' > "$dir/foreign.csv"
-expect "header does not match" screen "$dir/ok.toml" --resume "$dir/foreign.csv"
+expect "no study identity on the first line" screen "$dir/ok.toml" --resume "$dir/foreign.csv"
 
 # Unsharded, sharded and merged, resumed after a kill: the same file.
 "$cli" screen "$dir/ok.toml" --jobs 1 --out "$dir/all.csv" 2> /dev/null || { echo "FAIL: unsharded run"; fail=1; }
-[ "$(wc -l < "$dir/all.csv")" -eq 21 ] || { echo "FAIL: expected 20 rows"; fail=1; }
+[ "$(wc -l < "$dir/all.csv")" -eq 22 ] || { echo "FAIL: expected the identity, the header and 20 rows"; fail=1; }
 for k in 0 1 2; do
     "$cli" screen "$dir/ok.toml" --shard "$k/3" --jobs 2 --out "$dir/s$k.csv" 2> /dev/null || { echo "FAIL: shard $k"; fail=1; }
 done
 "$cli" screen "$dir/ok.toml" --merge "$dir/s0.csv" "$dir/s1.csv" "$dir/s2.csv" --out "$dir/merged.csv" 2> /dev/null
 cmp -s "$dir/all.csv" "$dir/merged.csv" || { echo "FAIL: merged shards differ from the unsharded run"; fail=1; }
 # The same by plain concatenation, as a job array would do it.
-{ head -n 1 "$dir/s0.csv"; tail -q -n +2 "$dir/s0.csv" "$dir/s1.csv" "$dir/s2.csv" | sort -t, -k1,1n; } > "$dir/cat.csv"
+{ head -n 2 "$dir/s0.csv"; tail -q -n +3 "$dir/s0.csv" "$dir/s1.csv" "$dir/s2.csv" | sort -t, -k1,1n; } > "$dir/cat.csv"
 cmp -s "$dir/all.csv" "$dir/cat.csv" || { echo "FAIL: concatenated shards differ from the unsharded run"; fail=1; }
 
 "$cli" screen "$dir/ok.toml" --jobs 1 --resume "$dir/resumed.csv" 2> /dev/null &
@@ -135,8 +135,23 @@ peak_kb=$(python3 -c 'import resource, subprocess, sys
 subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
 print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)' "$cli" screen "$dir/huge.toml" --limit 2 --jobs 2 --out "$dir/huge.csv") ||
     { echo "FAIL: the 1e8-design sweep with --limit 2"; fail=1; peak_kb=0; }
-[ "$(wc -l < "$dir/huge.csv")" -eq 3 ] || { echo "FAIL: --limit 2 wrote $(wc -l < "$dir/huge.csv") lines"; fail=1; }
+[ "$(wc -l < "$dir/huge.csv")" -eq 4 ] || { echo "FAIL: --limit 2 wrote $(wc -l < "$dir/huge.csv") lines"; fail=1; }
 [ "$peak_kb" -lt 500000 ] || { echo "FAIL: the 1e8-design sweep with --limit 2 peaked at $peak_kb KB"; fail=1; }
+
+# A result file of another study (the base scene or a criterion changed since) is refused by
+# --resume and --merge: its rows are not this study's answers.
+cp "$data/centrifuge.toml" "$dir/study_scene.toml"
+sed "s|$data/centrifuge.toml|$dir/study_scene.toml|" "$dir/ok.toml" > "$dir/study.toml"
+"$cli" screen "$dir/study.toml" --jobs 2 --limit 5 --resume "$dir/study.csv" 2> /dev/null || { echo "FAIL: study run"; fail=1; }
+head -n 1 "$dir/study.csv" | grep -q "^# study [0-9a-f]\{16\} " || { echo "FAIL: no study identity line"; fail=1; }
+sed -i 's/^eps = 1.0e-3/eps = 2.0e-3/' "$dir/study_scene.toml"
+grep -q "eps = 2.0e-3" "$dir/study_scene.toml" || { echo "FAIL: could not change the scene"; fail=1; }
+expect "written by another study" screen "$dir/study.toml" --resume "$dir/study.csv"
+expect "written by another study" screen "$dir/study.toml" --merge "$dir/study.csv"
+cp "$data/centrifuge.toml" "$dir/study_scene.toml"
+"$cli" screen "$dir/study.toml" --jobs 2 --resume "$dir/study.csv" 2> /dev/null || { echo "FAIL: the study resumed on its own scene"; fail=1; }
+printf '[criteria.stability]\nup_to = 30.0\n' >> "$dir/study.toml"
+expect "written by another study" screen "$dir/study.toml" --resume "$dir/study.csv"
 
 # JSON on stdout: no NaN, one object per design.
 "$cli" screen "$dir/ok.toml" --format json > "$dir/out.json" 2> /dev/null || { echo "FAIL: json run"; fail=1; }

@@ -406,7 +406,8 @@ TEST_CASE("shards merge to the unsharded table, jobs do not change the rows", "[
     const auto merged = merge_results(s, files, true);
     std::ostringstream os;
     write_results(os, s, merged, TableFormat::Csv);
-    CHECK(os.str() == all);
+    // The file holds the study's identity line first, then the table.
+    CHECK(study_identity_line(s) + "\n" + os.str() == all);
     // A missing shard is detected.
     CHECK_THROWS_AS(merge_results(s, {files[0], files[1]}, true), InputError);
     CHECK_THROWS_AS(merge_results(s, {files[0], files[0]}, false), InputError);

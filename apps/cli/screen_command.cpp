@@ -94,7 +94,7 @@ std::vector<Command> add_screen_commands(CLI::App& app) {
                 write_results(text, s, rows, TableFormat::Csv);
                 ResultFile f(ro.out);   // locked: no other run writes it meanwhile
                 f.truncate(0);
-                f.write(text.str());
+                f.write(study_identity_line(s) + '\n' + text.str());
                 f.close();   // synced: a full disk shows here
             } else {
                 write_results(os, s, rows, fmt_out);

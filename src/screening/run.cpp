@@ -126,9 +126,23 @@ std::string header_line(const Sweep& s) {
     return h;
 }
 
+// FNV-1a, 64 bits: a fingerprint of the study's files, not a cryptographic hash.
+std::uint64_t fnv1a(const std::string& bytes, std::uint64_t h = 1469598103934665603ull) {
+    for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
+    return h;
+}
+
+std::string file_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
 // The complete lines of a result file and the byte length they occupy; a last
 // line without its newline (an interrupted write) is left out.
 struct ParsedFile {
+    bool has_identity = false;
     bool has_header = false;
     std::vector<ResultRow> rows;
     std::size_t valid_bytes = 0;
@@ -136,6 +150,7 @@ struct ParsedFile {
 };
 
 ParsedFile parse_result_file(const Sweep& s, const std::string& path, const Shard* shard) {
+    const std::string identity = study_identity_line(s);
     ParsedFile pf;
     check_input_file(path, "result file", kMaxDataInputBytes);
     std::ifstream in(path, std::ios::binary);
@@ -157,6 +172,19 @@ ParsedFile parse_result_file(const Sweep& s, const std::string& path, const Shar
         if (!line.empty() && line.back() == '\r') line.pop_back();
         ++line_no;
         if (line_no == 1) {
+            // The study's identity: rows of another scene, sweep, criteria or version are not this study's answers.
+            if (line.rfind("# study ", 0) != 0)
+                throw InputError(fmt::format("{}: no study identity on the first line (a file of an older gyrokit, "
+                                             "or not a result file); allowed: a result file of this study ({}), or "
+                                             "a new file",
+                                             path, s.path));
+            if (line != identity)
+                throw InputError(fmt::format("{}: written by another study: its scene, sweep or criteria, or the "
+                                             "gyrokit version, changed since ('{}'; this study: '{}'); allowed: the "
+                                             "result file of this study, or a new file",
+                                             path, line.substr(0, 120), identity));
+            pf.has_identity = true;
+        } else if (line_no == 2) {
             if (line != header)
                 throw InputError(fmt::format("{}: the header does not match the sweep {}; expected '{}'", path,
                                              s.path, header));
@@ -279,10 +307,11 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
     std::optional<ResultFile> out;
     if (!opt.out.empty()) {
         out.emplace(opt.out);
-        bool need_header = true;
+        bool need_header = true, has_identity = false;
         if (opt.resume && fs::file_size(opt.out) > 0) {
             ParsedFile pf = parse_result_file(s, opt.out, &opt.shard);
             need_header = !pf.has_header;
+            has_identity = pf.has_identity;
             out->truncate(pf.valid_bytes);   // drop the partial last line before appending
             for (auto& r : pf.rows) done.insert(r.index);
             res.resumed = pf.rows.size();
@@ -291,7 +320,7 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
             out->truncate(0);
         }
         if (need_header) {
-            out->write(header_line(s) + '\n');
+            out->write((has_identity ? std::string() : study_identity_line(s) + '\n') + header_line(s) + '\n');
             out->sync();
         }
     }
@@ -495,6 +524,13 @@ Figure safe_region_figure(const Sweep& s, const std::vector<ResultRow>& rows, co
         if (!se->x.empty()) p.series.push_back(std::move(*se));
     fig.panels.push_back(std::move(p));
     return fig;
+}
+
+std::string study_identity_line(const Sweep& s) {
+    std::uint64_t h = fnv1a(file_bytes(s.path));
+    h = fnv1a("\x1f" + file_bytes(s.scene), h);
+    h = fnv1a("\x1f" GYROKIT_VERSION, h);
+    return fmt::format("# study {:016x} (sweep, base scene and criteria; gyrokit {})", h, GYROKIT_VERSION);
 }
 
 }  // namespace gyrokit

@@ -71,6 +71,12 @@ struct RunResult {
 // where it does not exist yet) is refused with an InputError naming `option`.
 void check_output_path(const std::string& out, const std::vector<std::string>& inputs, const std::string& option);
 
+// The first line of a result file: "# study <16 hex digits> (…; gyrokit VERSION)",
+// a 64-bit FNV-1a fingerprint of the sweep file (parameters and criteria), its
+// base scene file and gyrokit's version. --resume and --merge refuse a file of
+// another study: rows computed before a change are not this study's answers.
+std::string study_identity_line(const Sweep& s);
+
 // Seconds between syncs of a result file to the disk while rows are written.
 constexpr double kResultSyncSeconds = 1.0;
 
