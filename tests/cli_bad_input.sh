@@ -193,4 +193,8 @@ python3 -c "print('[model]'); print('type = \"matrices\"'); print('k' * 1000000 
 expect "unknown key 'kkkk" eig "$dir/hugekey.toml" --speed 1
 [ "$(wc -c < "$dir/err")" -lt 2000 ] || { echo "FAIL: the error echoed a 1 MB key"; fail=1; }
 
+# A parameter whose matrices overflow the solvers' arithmetic: a range error, not LAPACK's info = -5.
+sed 's/^m = .*/m = 1e308/' "$data/centrifuge.toml" > "$dir/m308.toml"
+expect "allowed: magnitudes up to 1e+150" eig "$dir/m308.toml" --speed 10
+
 exit $fail

@@ -196,6 +196,11 @@ void check_matrix(const SparseMatrix& A, int n, const std::string& origin, const
                 throw InputError(fmt::format("{}: matrix {} has a NaN or infinite entry at ({}, {}); allowed: "
                                              "finite numbers",
                                              origin, name, it.row() + 1, it.col() + 1));
+            else if (std::abs(it.value()) > kMaxMatrixEntry)
+                // The solvers square and scale the entries: beyond this they overflow (LAPACK's info = -5).
+                throw InputError(fmt::format("{}: matrix {} has the entry {:.3g} at ({}, {}); allowed: magnitudes up "
+                                             "to {:.0e} (a parameter of the model far outside physical ranges?)",
+                                             origin, name, it.value(), it.row() + 1, it.col() + 1, kMaxMatrixEntry));
 }
 
 // Largest |A - s A^T| relative to the largest |A|, s = +1 for symmetric, -1 for skew.

@@ -83,6 +83,10 @@ struct SparsePencil {
 };
 SparsePencil to_sparse(const QuadraticPencil& p);
 
+// The largest magnitude of a matrix entry validate() accepts: the solvers form
+// products and squares of entries (norms, scaling), which overflow beyond it.
+constexpr double kMaxMatrixEntry = 1e150;
+
 class GyroscopicSystem {
 public:
     std::vector<std::string> dof_names;
