@@ -197,4 +197,14 @@ expect "unknown key 'kkkk" eig "$dir/hugekey.toml" --speed 1
 sed 's/^m = .*/m = 1e308/' "$data/centrifuge.toml" > "$dir/m308.toml"
 expect "allowed: magnitudes up to 1e+150" eig "$dir/m308.toml" --speed 10
 
+# A DOF no matrix touches (a pencil singular at every lambda): one line for either solver, never a hang.
+printf '%%%%MatrixMarket matrix coordinate real general\n201 201 1\n1 1 1.0\n' > "$dir/one.mtx"
+printf '[model]\ntype = "matrices"\nM = "one.mtx"\nK = "one.mtx"\n' > "$dir/one.toml"
+timeout 60 "$cli" eig "$dir/one.toml" --speed 1 --solver sparse > "$dir/out" 2> "$dir/err"
+rc=$?
+if [ "$rc" -ne 2 ] || ! grep -q "has no mass, stiffness, damping or coupling" "$dir/err"; then
+    echo "FAIL: a DOF no matrix touches, sparse solver -> exit $rc (124: a hang)"; fail=1
+fi
+expect "has no mass, stiffness, damping or coupling" eig "$dir/one.toml" --speed 1 --solver dense
+
 exit $fail

@@ -242,6 +242,31 @@ void GyroscopicSystem::validate(const std::string& origin) const {
     if (static_cast<int>(dof_names.size()) != n)
         throw InputError(fmt::format("{}: {} DOF names for {} DOFs", origin, dof_names.size(), n));
     for (const auto& b : bearings) b.validate(n);
+    // A DOF that no matrix touches (no mass, stiffness, damping or coupling) makes
+    // P(lambda) singular for every lambda: every number is an "eigenvalue", and the
+    // solvers have nothing to find (the sparse LU spun forever on one).
+    {
+        std::vector<char> touched(static_cast<size_t>(n), 0);
+        const auto mark = [&](const SparseMatrix& A) {
+            for (int k = 0; k < A.outerSize(); ++k)
+                for (SparseMatrix::InnerIterator it(A, k); it; ++it)
+                    if (it.value() != 0.0) touched[static_cast<size_t>(it.row())] = touched[static_cast<size_t>(it.col())] = 1;
+        };
+        for (const SparseMatrix* A : {&static_cast<const SparseMatrix&>(M), &static_cast<const SparseMatrix&>(K),
+                                      &static_cast<const SparseMatrix&>(G), &static_cast<const SparseMatrix&>(N),
+                                      &static_cast<const SparseMatrix&>(K2)})
+            if (A->size() > 0) mark(*A);
+        for (const auto& c : damping) mark(c.of_speed ? c.of_speed(0.0) : SparseMatrix(c.D));
+        for (const auto& b : bearings)
+            for (const int d : {b.dof_x, b.dof_y, b.pedestal_x, b.pedestal_y})
+                if (d >= 0 && d < n) touched[static_cast<size_t>(d)] = 1;
+        for (int i = 0; i < n; ++i)
+            if (!touched[static_cast<size_t>(i)])
+                throw InputError(fmt::format("{}: DOF {} ({}) has no mass, stiffness, damping or coupling: the pencil "
+                                             "is singular at every eigenvalue; allowed: every DOF in some matrix",
+                                             origin, i, static_cast<int>(dof_names.size()) == n ? dof_names[static_cast<size_t>(i)]
+                                                                                             : std::to_string(i)));
+    }
     std::vector<int> pair_of(static_cast<size_t>(std::max(n, 0)), -1);
     for (size_t k = 0; k < whirl_pairs.size(); ++k) {
         const auto [u, v] = whirl_pairs[k];
