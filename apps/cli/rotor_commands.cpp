@@ -244,7 +244,8 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     add_motion_option(camp, o->common);
     add_solver_options(camp, o->common);
     camp->add_option("--modes", o->modes, "number of modes to track: the K lowest by frequency (0 = all; sparse: "
-                                          "the K nearest --target, default 6)");
+                                          "the K nearest --target, default 6); default: the scene's, else the "
+                                          "modes in range");
     camp->add_option("--plot", o->common.plot, "draw the diagram into FILE.svg or FILE.png");
     camp->add_option("--harmonics", o->harmonics, "harmonic lines drawn, e.g. 1,2 (default: the scene's, else 1)");
     camp->add_flag("--rows", o->rows, "table format: every row of the diagram instead of the summary");
@@ -282,7 +283,7 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     add_motion_option(crit, o->common);
     add_solver_options(crit, o->common);
     crit->add_option("--harmonics", o->harmonics, "harmonics k, e.g. 1,2 (default: the scene's, else 1)");
-    crit->add_option("--modes", o->modes, "number of modes considered (0 = all)");
+    crit->add_option("--modes", o->modes, "number of modes considered (0 = all); default: the scene's, else the modes in range");
     crit->add_option("--critical-method", o->critical_method,
                      "branches (root finding on tracked modes) or direct (linear eigenproblem; undamped only)")
         ->capture_default_str();
@@ -321,7 +322,8 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     add_common(stab, o->common, true);
     add_motion_option(stab, o->common);
     add_solver_options(stab, o->common);
-    stab->add_option("--modes", o->modes, "number of modes considered (0 = all; sparse: default 6)");
+    stab->add_option("--modes", o->modes, "number of modes considered (0 = all; sparse: default 6); default: the scene's, else the "
+                                          "modes in range");
     cmds.push_back({stab, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
         const int modes = wanted_modes(c, o->modes);
@@ -347,7 +349,8 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     perv->add_option("--tolerance", o->tolerance, "largest residual of a loss (a loss must also be within 1e3 "
                                                   "times the eigenpair's backward error)")
         ->capture_default_str();
-    perv->add_option("--modes", o->modes, "number of modes checked: the K lowest (0 = all; default: the scene's)")
+    perv->add_option("--modes", o->modes, "number of modes checked: the K lowest (0 = all); default: the scene's, else the "
+                                                  "modes in range")
         ->check(CLI::Range(0, 100000000));
     cmds.push_back({perv, [o](std::ostream& out) {
         if (!(o->tolerance > 0.0 && o->tolerance < 1.0))
@@ -375,7 +378,8 @@ std::vector<Command> add_rotor_commands(CLI::App& app) {
     resp->add_option("--at", o->at, "DOFs reported: the lateral translations x, y of the nodes nearest these axial positions (m)");
     resp->add_flag("--extrema", o->extrema, "print the peaks and antiresonances instead of the curve");
     resp->add_flag("--rows", o->rows, "table format: every row of the curve instead of the summary");
-    resp->add_option("--modes", o->modes, "modes checked for stability over the range (0 = all; default: the scene's)")
+    resp->add_option("--modes", o->modes, "modes checked for stability over the range (0 = all); default: the scene's, "
+                                           "else the modes in range")
         ->check(CLI::Range(0, 100000000));
     cmds.push_back({resp, [o](std::ostream& out) {
         if (o->polar && o->common.plot.empty()) throw InputError("--polar: only together with --plot FILE");
