@@ -18,33 +18,15 @@ bool within_band(const Mode& m, double band, double real_tol) {
 
 namespace {
 
-Eigen::VectorXcd times(const SparseMatrix& A, const Eigen::VectorXcd& x) {
-    const Eigen::VectorXd re = A * x.real(), im = A * x.imag();
-    Eigen::VectorXcd y(re.size());
-    y.real() = re;
-    y.imag() = im;
-    return y;
-}
-
-PencilAction action_of(const SparsePencil& p) { return pencil_action(p.M, p.C, p.K, times); }
+PencilAction action_of(const SparsePencil& p) { return sparse_pencil_action(p); }
 
 // Relative backward error of a left vector: |P(l)^H y| / ((|l|^2 |M| + |l| |C| + |K|) |y|).
 double left_backward_error(const SparsePencil& p, const PencilAction& a, cd l, const Eigen::VectorXcd& y) {
     const cd c = std::conj(l);
-    const Eigen::VectorXcd r = (c * c) * times(SparseMatrix(p.M.transpose()), y) +
-                               c * times(SparseMatrix(p.C.transpose()), y) + times(SparseMatrix(p.K.transpose()), y);
+    const Eigen::VectorXcd r = (c * c) * real_times(SparseMatrix(p.M.transpose()), y) +
+                               c * real_times(SparseMatrix(p.C.transpose()), y) + real_times(SparseMatrix(p.K.transpose()), y);
     const double s = std::norm(l) * a.norm_M + std::abs(l) * a.norm_C + a.norm_K;
     return r.norm() / (s * y.norm());
-}
-
-// DOF scaling t_i = 1/sqrt(g^2 |M_ii| + g |C_ii| + |K_ii|), as the solvers scale.
-Eigen::VectorXd dof_scaling(const SparsePencil& p, double g) {
-    Eigen::VectorXd t(p.M.rows());
-    for (Eigen::Index i = 0; i < t.size(); ++i) {
-        const double w = g * g * std::abs(p.M.coeff(i, i)) + g * std::abs(p.C.coeff(i, i)) + std::abs(p.K.coeff(i, i));
-        t(i) = (w > 0.0 && std::isfinite(w)) ? 1.0 / std::sqrt(w) : 1.0;
-    }
-    return t / t.maxCoeff();
 }
 
 struct Shared {
@@ -111,7 +93,7 @@ std::optional<QuadraticSpectrum> reduced_solve(const Shared& sh, double w) {
     }
     split_rigid_body(modes, out.rigid_body, action, out.scale);
     separate_double_whirl(modes, sys.whirl_pairs, out.real_tol, action);
-    const Eigen::VectorXd t = dof_scaling(p, out.scale);
+    const Eigen::VectorXd t = sparse_dof_scaling(p, out.scale);
     const SparsePencil scaled{t.asDiagonal() * p.M * t.asDiagonal(), t.asDiagonal() * p.C * t.asDiagonal(),
                               t.asDiagonal() * p.K * t.asDiagonal()};
     set_error_bounds(modes, action, action_of(scaled), t);

@@ -2,6 +2,7 @@
 
 #include <gyrokit/core/error.hpp>
 #include "eig/lapack.hpp"
+#include <gyrokit/eig/sparse_eigensolver.hpp>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -45,15 +46,6 @@ double QuadraticSpectrum::max_backward_error() const {
 
 namespace {
 
-// Real sparse matrix times complex vector, without a complex copy of the matrix.
-Eigen::VectorXcd times_sparse(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x) {
-    const Eigen::VectorXd re = A * x.real(), im = A * x.imag();
-    Eigen::VectorXcd y(re.size());
-    y.real() = re;
-    y.imag() = im;
-    return y;
-}
-
 // The pencil's action: sparse where the matrices are (a finite-element pencil,
 // a few entries per row: the residuals of hundreds of modes cost a fraction of
 // the dense products), dense otherwise. The sparse copies live in the action.
@@ -64,9 +56,9 @@ PencilAction action_of(const QuadraticPencil& p) {
         const auto s = std::make_shared<const SparsePencil>(to_sparse(p));
         PencilAction a;
         a.apply = [s](const Eigen::VectorXcd& x, Eigen::VectorXcd& Mx, Eigen::VectorXcd& Cx, Eigen::VectorXcd& Kx) {
-            Mx = times_sparse(s->M, x);
-            Cx = times_sparse(s->C, x);
-            Kx = times_sparse(s->K, x);
+            Mx = real_times(s->M, x);
+            Cx = real_times(s->C, x);
+            Kx = real_times(s->K, x);
         };
         a.apply_abs_K = [s](const Eigen::VectorXd& v, Eigen::VectorXd& absKv) { absKv = s->K.cwiseAbs() * v; };
         a.norm_M = p.M.norm();

@@ -11,13 +11,7 @@
 
 namespace gyrokit {
 
-using cd = std::complex<double>;
-using SpC = Eigen::SparseMatrix<cd>;
-
-namespace {
-
-// Real sparse matrix times complex vector, without a complex copy of the matrix.
-Eigen::VectorXcd times(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x) {
+Eigen::VectorXcd real_times(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x) {
     const Eigen::VectorXd re = A * x.real(), im = A * x.imag();
     Eigen::VectorXcd y(re.size());
     y.real() = re;
@@ -25,7 +19,25 @@ Eigen::VectorXcd times(const Eigen::SparseMatrix<double>& A, const Eigen::Vector
     return y;
 }
 
-PencilAction action_of(const SparsePencil& p) { return pencil_action(p.M, p.C, p.K, times); }
+PencilAction sparse_pencil_action(const SparsePencil& p) { return pencil_action(p.M, p.C, p.K, real_times); }
+
+Eigen::VectorXd sparse_dof_scaling(const SparsePencil& p, double scale) {
+    Eigen::VectorXd t(p.M.rows());
+    for (Eigen::Index i = 0; i < t.size(); ++i) {
+        const double w = scale * scale * std::abs(p.M.coeff(i, i)) + scale * std::abs(p.C.coeff(i, i)) +
+                         std::abs(p.K.coeff(i, i));
+        t(i) = (w > 0.0 && std::isfinite(w)) ? 1.0 / std::sqrt(w) : 1.0;
+    }
+    return t;
+}
+
+
+using cd = std::complex<double>;
+using SpC = Eigen::SparseMatrix<cd>;
+
+namespace {
+
+PencilAction action_of(const SparsePencil& p) { return sparse_pencil_action(p); }
 
 }  // namespace
 
@@ -288,12 +300,7 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
     const double scale = natural_frequency_scale(p.M.diagonal(), p.K.diagonal(), action.norm_M, action.norm_K);
     const double real_tol = 1e-7 * scale;
     // DOF scaling for the condition estimate of P(sigma) (as the dense solver scales).
-    Eigen::VectorXd t(n);
-    for (int i = 0; i < n; ++i) {
-        const double w = scale * scale * std::abs(p.M.coeff(i, i)) + scale * std::abs(p.C.coeff(i, i)) +
-                         std::abs(p.K.coeff(i, i));
-        t(i) = (w > 0.0 && std::isfinite(w)) ? 1.0 / std::sqrt(w) : 1.0;
-    }
+    const Eigen::VectorXd t = sparse_dof_scaling(p, scale);
 
     SparseSpectrum out;
     int reserve = std::max(0, opt.reserve);

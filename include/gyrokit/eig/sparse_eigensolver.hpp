@@ -47,6 +47,16 @@ struct SparseSpectrum {
     std::vector<std::string> notes;
 };
 
+// Real sparse matrix times complex vector, without a complex copy of the matrix.
+Eigen::VectorXcd real_times(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x);
+
+// The action of a sparse pencil (its matrices referenced: they must outlive it).
+PencilAction sparse_pencil_action(const SparsePencil& p);
+
+// The solvers' DOF scaling t_i = 1/sqrt(g^2 |M_ii| + g |C_ii| + |K_ii|), g the
+// natural frequency scale (1 where that is zero or not finite).
+Eigen::VectorXd sparse_dof_scaling(const SparsePencil& p, double scale);
+
 // Inverse iteration on P(lambda) from an approximate eigenpair (m.lambda,
 // m.right), with one sparse LU of P at a point 1e-12 |lambda| off the eigenvalue
 // (so that it is not singular to rounding, yet resolves pairs split by 1e-10):
