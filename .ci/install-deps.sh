@@ -12,6 +12,7 @@ $sudo apt-get install -y -qq --no-install-recommends \
     catch2 gnuplot-nox \
     python3-dev python3-pybind11 python3-numpy python3-scipy python3-pytest python3-pandas python3-matplotlib \
     clang libclang-rt-14-dev \
+    procps util-linux \
     > /dev/null
 # BLIS (serial build) as the libblas.so.3 alternative: vectorized kernels for the
 # matrix-vector products of ARPACK's Arnoldi iteration, and safe to call from
