@@ -150,7 +150,7 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
                     v += z.real().cast<std::complex<double>>() + z.imag().cast<std::complex<double>>();
                 }
                 v /= v.norm();
-                Eigen::VectorXcd r = Eigen::VectorXcd::Random(2 * n);
+                const Eigen::VectorXcd r = fixed_random_vector(2 * n).cast<std::complex<double>>();
                 *start = v + 0.01 * r / r.norm();
             }
             return q;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <arpack/arpack.hpp>
 #include <cmath>
+#include <cstdint>
 #include <fmt/format.h>
 #include <mutex>
 
@@ -20,6 +21,21 @@ Eigen::VectorXcd real_times(const Eigen::SparseMatrix<double>& A, const Eigen::V
 }
 
 PencilAction sparse_pencil_action(const SparsePencil& p) { return pencil_action(p.M, p.C, p.K, real_times); }
+
+Eigen::VectorXd fixed_random_vector(Eigen::Index n) {
+    // splitmix64 from a fixed seed: 53 bits per entry, mapped to [-1, 1].
+    Eigen::VectorXd v(n);
+    std::uint64_t x = 0x9E3779B97F4A7C15ULL;
+    for (Eigen::Index i = 0; i < n; ++i) {
+        x += 0x9E3779B97F4A7C15ULL;
+        std::uint64_t z = x;
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+        z ^= z >> 31;
+        v[i] = 2.0 * (static_cast<double>(z >> 11) * 0x1.0p-53) - 1.0;
+    }
+    return v;
+}
 
 Eigen::VectorXd sparse_dof_scaling(const SparsePencil& p, double scale) {
     Eigen::VectorXd t(p.M.rows());
@@ -149,10 +165,12 @@ std::vector<Ritz> ritz_complex(const SparsePencil& p, const SparseEigenOptions& 
     a_int iparam[11] = {1, 0, opt.max_iterations, 1, 0, 0, 1, 0, 0, 0, 0};   // exact shifts, mode 1 on OP
     a_int ipntr[14] = {};
     a_int ido = 0, info = 0;
-    if (opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0) {
+    // ARPACK starts from resid (info = 1): the caller's start, else a fixed one.
+    if (opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0)
         Eigen::Map<Eigen::VectorXcd>(resid.data(), N) = opt.start;
-        info = 1;   // ARPACK starts from resid
-    }
+    else
+        Eigen::Map<Eigen::VectorXcd>(resid.data(), N) = fixed_random_vector(N).cast<cd>();
+    info = 1;
     while (true) {
         arpack::naupd(ido, arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
                       resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl,
@@ -194,11 +212,12 @@ std::vector<Ritz> ritz_real(const SparsePencil& p, const SparseEigenOptions& opt
     a_int iparam[11] = {1, 0, opt.max_iterations, 1, 0, 0, 1, 0, 0, 0, 0};   // exact shifts, mode 1 on OP
     a_int ipntr[14] = {};
     a_int ido = 0, info = 0;
-    if (opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0) {
+    if (opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0)
         // A real start spanning the same directions as the complex one.
         Eigen::Map<Eigen::VectorXd>(resid.data(), N) = opt.start.real() + opt.start.imag();
-        info = 1;
-    }
+    else
+        Eigen::Map<Eigen::VectorXd>(resid.data(), N) = fixed_random_vector(N);
+    info = 1;
     while (true) {
         arpack::naupd(ido, arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
                       resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl, info);

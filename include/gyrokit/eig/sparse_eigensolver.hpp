@@ -57,6 +57,12 @@ PencilAction sparse_pencil_action(const SparsePencil& p);
 // natural frequency scale (1 where that is zero or not finite).
 Eigen::VectorXd sparse_dof_scaling(const SparsePencil& p, double scale);
 
+// A fixed pseudo-random vector of length n with entries in [-1, 1], the same on
+// every call, in every process and on every machine: ARPACK's own start (LAPACK's
+// dlarnv with a seed it carries from call to call) and std::rand would make a
+// result depend on what was solved before it.
+Eigen::VectorXd fixed_random_vector(Eigen::Index n);
+
 // Inverse iteration on P(lambda) from an approximate eigenpair (m.lambda,
 // m.right), with one sparse LU of P at a point 1e-12 |lambda| off the eigenvalue
 // (so that it is not singular to rounding, yet resolves pairs split by 1e-10):
