@@ -204,6 +204,14 @@ Tracked track(const GyroscopicSystem& s, const SolverOptions& o, const std::vect
     return t;
 }
 
+// The GIL released for a long call that Ctrl-C can stop: SIGINT requests an
+// interrupt, the library notices it at its next safe point (between speeds,
+// designs, ODE steps) and throws Interrupted, raised here as KeyboardInterrupt.
+struct Released {
+    InterruptOnSigint sigint;
+    py::gil_scoped_release free;
+};
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -214,6 +222,8 @@ PYBIND11_MODULE(_core, m) {
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
+        } catch (const Interrupted&) {
+            PyErr_SetNone(PyExc_KeyboardInterrupt);
         } catch (const InputError& e) {
             PyErr_SetString(input_error.ptr(), e.what());
         } catch (const SolverError& e) {
@@ -269,7 +279,7 @@ PYBIND11_MODULE(_core, m) {
         const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
         QuadraticSpectrum sp;
         {
-            py::gil_scoped_release free;
+            Released free;
             sp = choose_solver(s, o).make()(speed);
         }
         return spectrum_dict(sp);
@@ -284,7 +294,7 @@ PYBIND11_MODULE(_core, m) {
         std::vector<ModeShape> shapes;
         std::vector<std::string> notes;
         {
-            py::gil_scoped_release free;
+            Released free;
             shapes = mode_shapes(s, speed, o, &notes);
         }
         const auto k = static_cast<Eigen::Index>(shapes.size());
@@ -347,7 +357,7 @@ PYBIND11_MODULE(_core, m) {
         const std::vector<double> w = checked_speeds(speeds);
         CampbellDiagram cd;
         {
-            py::gil_scoped_release free;
+            Released free;
             Tracked t = track(s, o, w, harmonics, jobs);
             cd = std::move(t.diagram);
             cd.notes.insert(cd.notes.begin(), t.solver.notes.begin(), t.solver.notes.end());
@@ -367,7 +377,7 @@ PYBIND11_MODULE(_core, m) {
             if (h < 1) throw InputError("harmonics: " + std::to_string(h) + " is not allowed; allowed: whole numbers >= 1");
         std::vector<CriticalSpeed> cs;
         {
-            py::gil_scoped_release free;
+            Released free;
             const Tracked t = track(s, o, w, harmonics, jobs);
             cs = critical_speeds(t.solver.make, t.diagram, harmonics, threads(jobs));
             set_amplification_factors(cs, s);
@@ -409,7 +419,7 @@ PYBIND11_MODULE(_core, m) {
         const std::vector<double> w = checked_speeds(speeds);
         std::vector<StabilityChange> ch;
         {
-            py::gil_scoped_release free;
+            Released free;
             const Tracked t = track(s, o, w, harmonics, jobs);
             ch = stability_changes(t.solver.make, t.diagram, threads(jobs));
         }
@@ -447,7 +457,7 @@ PYBIND11_MODULE(_core, m) {
         const std::vector<double> w = checked_speeds(speeds);
         PervasiveReport rep;
         {
-            py::gil_scoped_release free;
+            Released free;
             rep = pervasive_damping(s, w, po);
         }
         py::list damping, whirl;
@@ -478,7 +488,7 @@ PYBIND11_MODULE(_core, m) {
         const SolverKind kind = parse_solver_kind(solver);
         Eigen::MatrixXcd Z(static_cast<Eigen::Index>(w.size()), s.size());
         {
-            py::gil_scoped_release free;
+            Released free;
             s.validate("response: the system");
             for (std::size_t i = 0; i < w.size(); ++i) Z.row(static_cast<Eigen::Index>(i)) = unbalance_response(s, w[i], kind).transpose();
         }
@@ -514,7 +524,7 @@ PYBIND11_MODULE(_core, m) {
             };
         RunResult r;
         {
-            py::gil_scoped_release free;
+            Released free;
             r = run_screening(s, o);
         }
         std::vector<std::vector<std::string>> rows;
@@ -536,7 +546,7 @@ PYBIND11_MODULE(_core, m) {
         const BalancerScene sc = load_balancer_scene(path);
         std::vector<StateStability> t;
         {
-            py::gil_scoped_release free;
+            Released free;
             t = stability_table(sc.params);
         }
         py::list state, alpha, range, stable, stable_eigen;
@@ -584,7 +594,7 @@ PYBIND11_MODULE(_core, m) {
         const BalancerScene sc = load_balancer_scene(path);
         SommerfeldAnalysis a;
         {
-            py::gil_scoped_release free;
+            Released free;
             a = analyse_sommerfeld(sc.params);
         }
         py::dict d;

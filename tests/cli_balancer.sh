@@ -104,4 +104,14 @@ if ! "$cli" balancer "$dir/ok.toml" --simulate --format csv > "$dir/s.csv" 2> "$
    grep -qiE 'nan|inf' "$dir/s.csv" || ! head -1 "$dir/s.csv" | grep -q 'alpha1_deg,alpha2_deg$'; then
     echo "FAIL: balancer --simulate"; cat "$dir/err" "$dir/s.csv"; fail=1
 fi
+
+# A simulation that cannot end within max_steps (1e6 s: about 2e8 steps) stops
+# within seconds, saying so, instead of at the step limit minutes later.
+start=$(date +%s)
+"$cli" balancer "$data/balancer_bild7.toml" --simulate --duration 1e6 > "$dir/out" 2> "$dir/err"
+rc=$?
+took=$(( $(date +%s) - start ))
+if [ "$rc" -ne 3 ] || [ "$took" -gt 30 ] || ! grep -q "project about .* more than max_steps" "$dir/err"; then
+    echo "FAIL: simulation of 1e6 s: exit $rc after $took s"; cat "$dir/err"; fail=1
+fi
 exit $fail

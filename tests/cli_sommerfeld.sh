@@ -82,6 +82,16 @@ expect "--max-speed" sommerfeld "$dir/ok.toml" --runup --max-speed -1
 expect "plot" sommerfeld "$dir/ok.toml" --plot out.pdf
 expect "--rows" sommerfeld "$dir/ok.toml" --runup --rows
 
+# A run that cannot end within max_steps stops within seconds, saying so (before:
+# a run-up to 1e9 rad/s failed at the step limit after 397 s).
+start=$(date +%s)
+"$cli" sommerfeld "$data/sommerfeld_rotor.toml" --runup --max-speed 1e9 > "$dir/out" 2> "$dir/err"
+rc=$?
+took=$(( $(date +%s) - start ))
+if [ "$rc" -ne 3 ] || [ "$took" -gt 30 ] || ! grep -q "project about .* more than max_steps" "$dir/err"; then
+    echo "FAIL: run-up to 1e9 rad/s: exit $rc after $took s"; cat "$dir/err"; fail=1
+fi
+
 # The first screen: summary and folds, no stationary rows; --rows adds them.
 first=$("$cli" sommerfeld "$data/sommerfeld_rotor.toml" --speeds 0:400:5)
 rows=$("$cli" sommerfeld "$data/sommerfeld_rotor.toml" --speeds 0:400:5 --rows)

@@ -138,6 +138,7 @@ void run_simulation(const Options& o, BalancerScene& sc, TableFormat fmt, std::o
                                      s.ode.rel_tol));
     if (o.averaged && p.drive != Drive::PrescribedSpeed)
         throw InputError("--averaged: the slow-phase equations need a prescribed speed (give --speed)");
+    s.ode.progress = fraction_bar("simulation");
     const SimulationResult r = o.averaged ? simulate_averaged(p, s) : simulate(p, s);
 
     std::vector<Table> tables;

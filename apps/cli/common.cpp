@@ -180,14 +180,28 @@ void write_result(std::ostream& out, const std::vector<Table>& ts, TableFormat f
     std::cerr << "note: CSV holds one table (" << ts.front().key << "); the others with --table " << keys << "\n";
 }
 
+namespace {
+
+void draw_bar(const std::string& what, double fraction, const std::string& count, bool last) {
+    const int width = 40, filled = static_cast<int>(width * std::clamp(fraction, 0.0, 1.0));
+    std::cerr << "\r" << what << " [" << std::string(static_cast<size_t>(filled), '#')
+              << std::string(static_cast<size_t>(width - filled), ' ') << "] " << count << (last ? "\n" : "")
+              << std::flush;
+}
+
+}  // namespace
+
 std::function<void(size_t, size_t)> progress_bar(const std::string& what) {
     if (!isatty(STDERR_FILENO)) return {};
     return [what](size_t done, size_t total) {
-        const int width = 40, filled = static_cast<int>(width * done / std::max<size_t>(total, 1));
-        std::cerr << "\r" << what << " [" << std::string(static_cast<size_t>(filled), '#')
-                  << std::string(static_cast<size_t>(width - filled), ' ') << "] " << done << "/" << total
-                  << (done == total ? "\n" : "") << std::flush;
+        draw_bar(what, static_cast<double>(done) / static_cast<double>(std::max<size_t>(total, 1)),
+                 std::to_string(done) + "/" + std::to_string(total), done == total);
     };
+}
+
+std::function<void(double)> fraction_bar(const std::string& what) {
+    if (!isatty(STDERR_FILENO)) return {};
+    return [what](double f) { draw_bar(what, f, fmt::format("{:3.0f} %", 100.0 * f), f >= 1.0); };
 }
 
 }  // namespace gyrokit::cli

@@ -78,6 +78,8 @@ void plot_if(const std::string& path, const Figure& f);
 void write_result(std::ostream& out, const std::vector<Table>& ts, TableFormat f, const std::string& table);
 // A progress bar on stderr when stderr is a terminal; otherwise nothing.
 std::function<void(size_t, size_t)> progress_bar(const std::string& what);
+// The same bar for a fraction of a time span (an ODE run), in percent.
+std::function<void(double)> fraction_bar(const std::string& what);
 
 // The commands of the rotor analyses: eig, campbell, critical, stability, pervasive, response, export.
 std::vector<Command> add_rotor_commands(CLI::App& app);

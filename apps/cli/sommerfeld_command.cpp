@@ -190,6 +190,7 @@ void run_runup(const Options& o, const BalancerScene& sc, TableFormat fmt, std::
                                      s.ode.rel_tol));
     if (!(s.max_speed > 0.0) || !std::isfinite(s.max_speed))
         throw InputError(fmt::format("--max-speed {}: allowed: a finite number > 0 (rad/s)", s.max_speed));
+    s.ode.progress = fraction_bar("run-up");
     const RunupResult r = simulate_runup(p, s);
     const RunupSummary sm = summarize_runup(p, r);
     const std::size_t nr = p.rollers.size();

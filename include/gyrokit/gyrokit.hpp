@@ -19,6 +19,8 @@
 #include <gyrokit/core/bearing_table.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
+#include <gyrokit/core/input_file.hpp>
+#include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/eig/mode.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>

@@ -1,6 +1,7 @@
 #include <gyrokit/analysis/continuation.hpp>
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/interrupt.hpp>
 
 #include <Eigen/SVD>
 #include <algorithm>
@@ -162,6 +163,7 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     SolverFactory f;
     f.make = [sh]() -> SpectrumSolver {
         return [sh](double w) {
+            throw_if_interrupted();
             if (const auto it = sh->anchors.find(w); it != sh->anchors.end()) return it->second;
             if (std::optional<QuadraticSpectrum> s = reduced_solve(*sh, w)) return std::move(*s);
             QuadraticSpectrum s = full_solve(*sh, w);

@@ -2,6 +2,7 @@
 
 #include <gyrokit/analysis/continuation.hpp>
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/interrupt.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -15,6 +16,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <ctime>
 #include <fmt/format.h>
 #include <sys/mman.h>
 #include <sys/prctl.h>
@@ -41,6 +43,7 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
     const auto model = std::make_shared<const GyroscopicSystem>(sys);
     SolverFactory f{[model, eig]() -> SpectrumSolver {
                 return [model, eig](double w) {
+                    throw_if_interrupted();
                     EigenOptions o = eig;
                     o.left_vectors = true;   // for the slopes
                     QuadraticSpectrum s = solve_at_speed(*model, w, o);
@@ -124,6 +127,7 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
         // Rigid-body eigenvalues seen in the window at the last speed: asked for at once.
         auto rigid = std::make_shared<int>(0);
         return [pencil, whirl_pairs, opt, reuse, start, rigid](double w) {
+            throw_if_interrupted();
             const SparsePencil p = pencil(w);
             SparseEigenOptions o = opt;
             o.shift += std::complex<double>(0.0, opt.shift_order * w);   // continued along nu + k w
@@ -368,6 +372,7 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
                 SpectrumSolver solve = make();
                 std::vector<QuadraticSpectrum> part;
                 for (size_t i = k * n / workers; i < (k + 1) * n / workers; ++i) {
+                    throw_if_interrupted();
                     current[k] = static_cast<long long>(i);
                     part.push_back(task(solve, i));
                     const size_t d = ++*done;
@@ -393,17 +398,34 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
         pids.push_back(pid);
     }
     // Every worker is reaped; one killed by a signal is reported with its task.
+    // Polled, so that an interrupt of the parent alone (Python's Ctrl-C, a notebook's
+    // stop button) stops the workers at once.
     std::exception_ptr crash;
+    bool stopped = false;
     for (size_t k = 0; k < workers; ++k) {
         int status = 0;
-        while (waitpid(pids[k], &status, 0) < 0 && errno == EINTR) {
+        while (true) {
+            const pid_t r = waitpid(pids[k], &status, WNOHANG);
+            if (r == pids[k] || (r < 0 && errno != EINTR)) break;
+            if (!stopped && interrupt_requested()) {
+                stopped = true;
+                for (pid_t pid : pids) kill(pid, SIGKILL);
+            }
+            struct timespec pause {0, 10'000'000};
+            nanosleep(&pause, nullptr);
         }
+        if (stopped) continue;
         if (!crash && WIFSIGNALED(status))
             crash = std::make_exception_ptr(WorkerDied(static_cast<long long>(current[k]), WTERMSIG(status)));
         else if (!crash && WIFEXITED(status) && WEXITSTATUS(status) == 2)
             crash = std::make_exception_ptr(Error("a worker process could not write its results (disk full?)"));
     }
     munmap(current_map, workers * sizeof(std::atomic<long long>));
+    if (stopped) {
+        munmap(shared, sizeof(std::atomic<size_t>));
+        for (std::FILE* f : files) std::fclose(f);
+        throw Interrupted();
+    }
     if (crash) {
         munmap(shared, sizeof(std::atomic<size_t>));
         for (std::FILE* f : files) std::fclose(f);
@@ -453,6 +475,7 @@ std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t 
                     std::lock_guard<std::mutex> lock(report);
                     if (failure) return;
                 }
+                throw_if_interrupted();
                 out[i] = task(solve, i);
                 const size_t d = ++done;
                 if (progress) {

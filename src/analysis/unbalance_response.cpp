@@ -1,6 +1,7 @@
 #include <gyrokit/analysis/unbalance_response.hpp>
 
 #include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <Eigen/SparseLU>
@@ -72,6 +73,7 @@ ResponseCurve unbalance_response(const ResponseSolver& solve, int size, const st
     }
     c.Z.resize(static_cast<Eigen::Index>(speeds.size()), static_cast<Eigen::Index>(c.dofs.size()));
     for (size_t i = 0; i < speeds.size(); ++i) {
+        throw_if_interrupted();
         const Eigen::VectorXcd z = solve(speeds[i]);
         for (size_t k = 0; k < c.dofs.size(); ++k)
             c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) = z(c.dofs[k]);
@@ -135,6 +137,7 @@ std::vector<ResponseExtremum> response_extrema(const ResponseSolver& solve, cons
         auto it = solved.find(w);
         if (it != solved.end()) return it->second;
         Eigen::VectorXd a;
+        throw_if_interrupted();
         try {
             const Eigen::VectorXcd Z = solve(w);
             a.resize(static_cast<Eigen::Index>(c.dofs.size()));

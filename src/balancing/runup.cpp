@@ -123,7 +123,12 @@ RunupResult simulate_runup(const AutobalancerParameters& p, const RunupSettings&
     };
     record(0.0, y.data());
     const OdeRhs f = [&model](double t, const double* st, double* d, const char** why) { return model.rhs(t, st, d, why); };
-    integrate_ode(f, y, 0.0, times, s.ode, record, &r.stats);
+    // The steps follow the fastest oscillation: the rotation once it is fast, the
+    // bearings' natural frequency before.
+    OdeOptions ode = s.ode;
+    const double wn = std::max(p.omega_x(), p.omega_y());
+    ode.work = [s, wn](double t) { return runup_nominal_angle(s, t) + wn * t; };
+    integrate_ode(f, y, 0.0, times, ode, record, &r.stats);
 
     const double dt = tw1 - tw0;
     r.held_nominal = s.max_speed;

@@ -2,10 +2,12 @@
 
 #include <gyrokit/balancing/synchronous_states.hpp>
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/interrupt.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <fmt/format.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
@@ -50,11 +52,77 @@ struct Context {
     unsigned long evaluations = 0;
     const char* why = nullptr;
     std::vector<double> work1, work2;
+    // Watching the run: interrupts, progress, and the projected step count.
+    const OdeOptions* options = nullptr;
+    const gsl_odeiv2_driver* driver = nullptr;
+    double t0 = 0.0, t_end = 0.0;
+    std::chrono::steady_clock::time_point start, last_report;
+    bool interrupted = false, reported = false;
+    std::string hopeless;   // why the run was given up early
+    double steps_ref = -1.0, done_ref = 0.0;   // at the first report: the start's transient left out
+    std::exception_ptr failure;   // thrown by the progress callback: never through GSL's C frames
 };
+
+constexpr double kOdeReportSeconds = 0.5;
+constexpr double kOdeProjectAfterSeconds = 2.0;
+constexpr double kOdeProjectFactor = 1.5;
+
+// Every 1024 right-hand sides: an interrupt stops the run; every half second, the
+// progress callback, and a run whose steps since the first half second project
+// more than 1.5 x max_steps stops then, not at the limit hours later (a run-up to
+// 1e9 rad/s).
+bool keep_going(Context* c, double t) {
+    if ((c->evaluations & 1023u) != 0) return true;
+    if (interrupt_requested()) {
+        c->interrupted = true;
+        c->why = "interrupted";
+        return false;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - c->last_report).count() < kOdeReportSeconds) return true;
+    c->last_report = now;
+    const double span = c->t_end - c->t0;
+    const double fraction = span > 0.0 ? std::clamp((t - c->t0) / span, 0.0, 1.0) : 1.0;
+    if (c->options->progress) {
+        try {
+            c->options->progress(fraction);
+        } catch (...) {
+            c->failure = std::current_exception();
+            c->why = "the progress callback failed";
+            return false;
+        }
+        c->reported = true;
+    }
+    const double wall = std::chrono::duration<double>(now - c->start).count();
+    const double steps = static_cast<double>(c->driver->e->count);
+    double done = fraction;
+    if (c->options->work) {
+        const auto& w = c->options->work;
+        const double w0 = w(c->t0), total = w(c->t_end) - w0;
+        done = total > 0.0 ? std::clamp((w(t) - w0) / total, 0.0, 1.0) : fraction;
+    }
+    if (c->steps_ref < 0.0) {
+        c->steps_ref = steps;
+        c->done_ref = done;
+        return true;
+    }
+    const double projected =
+        done > c->done_ref ? c->steps_ref + (steps - c->steps_ref) / (done - c->done_ref) * (1.0 - c->done_ref) : 0.0;
+    if (wall > kOdeProjectAfterSeconds && projected > kOdeProjectFactor * static_cast<double>(c->options->max_steps)) {
+        c->hopeless = fmt::format(
+            "after {:.3g} s of {:.6g} s, {:.0f} steps project about {:.2g} steps for the run, more than "
+            "max_steps = {}; shorten the run, lower the speed, loosen the tolerances or raise max_steps",
+            t - c->t0, span, steps, projected, c->options->max_steps);
+        c->why = c->hopeless.c_str();
+        return false;
+    }
+    return true;
+}
 
 int c_rhs(double t, const double y[], double dydt[], void* params) {
     auto* c = static_cast<Context*>(params);
     ++c->evaluations;
+    if (!keep_going(c, t)) return GSL_EBADFUNC;
     const char* why = nullptr;
     if (!(*c->f)(t, y, dydt, &why)) {
         c->why = why ? why : "the right-hand side could not be evaluated";
@@ -117,6 +185,10 @@ void integrate_ode(const OdeRhs& f, std::vector<double>& y, double t0, const std
     Context c;
     c.f = &f;
     c.n = y.size();
+    c.options = &o;
+    c.t0 = t0;
+    c.t_end = t_out.empty() ? t0 : t_out.back();
+    c.start = c.last_report = start;
     const Method& m = method(o.method);
     gsl_odeiv2_system sys{&c_rhs, m.implicit ? &c_jac : nullptr, y.size(), &c};
     double h0 = o.h0;
@@ -124,6 +196,7 @@ void integrate_ode(const OdeRhs& f, std::vector<double>& y, double t0, const std
     gsl_odeiv2_driver* d = gsl_odeiv2_driver_alloc_y_new(&sys, *m.type, h0, o.abs_tol, o.rel_tol);
     if (!d) throw SolverError("could not allocate the GSL ODE driver");
     gsl_odeiv2_driver_set_nmax(d, o.max_steps);
+    c.driver = d;
     double t = t0;
     for (double t1 : t_out) {
         // The driver counts steps per call; the limit is meant for the whole run.
@@ -136,6 +209,11 @@ void integrate_ode(const OdeRhs& f, std::vector<double>& y, double t0, const std
                 gsl_odeiv2_driver_set_nmax(d, o.max_steps - used);
                 status = gsl_odeiv2_driver_apply(d, &t, t1, y.data());
             }
+        }
+        if (status != GSL_SUCCESS && (c.interrupted || c.failure)) {
+            gsl_odeiv2_driver_free(d);
+            if (c.failure) std::rethrow_exception(c.failure);
+            throw Interrupted();
         }
         if (status != GSL_SUCCESS) {
             std::string why;
@@ -157,6 +235,7 @@ void integrate_ode(const OdeRhs& f, std::vector<double>& y, double t0, const std
         }
         on_output(t, y.data());
     }
+    if (c.reported) o.progress(1.0);
     if (stats) {
         stats->steps = d->e->count;
         stats->evaluations = c.evaluations;

@@ -5,6 +5,7 @@
 #include <gyrokit/analysis/scalar_search.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/screening/screening.hpp>
 
 #include <algorithm>
@@ -226,6 +227,8 @@ DesignResult evaluate_design(const Sweep& s, std::size_t i) {
     Scene sc;
     try {
         sc = s.loader(overrides);
+    } catch (const Interrupted&) {
+        throw;   // not a property of the design
     } catch (const std::exception& e) {
         r.verdict = Verdict::Error;
         r.reason = one_line(std::string("invalid parameters: ") + e.what());
@@ -243,6 +246,8 @@ DesignResult evaluate_design(const Sweep& s, std::size_t i) {
             if (r.quantities[k] && !std::isfinite(*r.quantities[k]) &&
                 !(qc[k] == "max_amplitude" && *r.quantities[k] > 0.0))
                 throw SolverError(qc[k] + " is not finite");
+    } catch (const Interrupted&) {
+        throw;
     } catch (const std::exception& e) {
         r.verdict = Verdict::Error;
         r.failed.clear();

@@ -1,5 +1,6 @@
 // Parallel run, result files, resume, merge, summary and the safe-region plot.
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/core/input_file.hpp>
 #include <gyrokit/screening/screening.hpp>
 
@@ -7,6 +8,7 @@
 #include <cmath>
 #include <atomic>
 #include <condition_variable>
+#include <exception>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
@@ -337,6 +339,7 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
     std::size_t cursor = first, issued = 0;
     int running = 0;
     bool stop = false;
+    std::exception_ptr failure;   // an interrupt (a design's own errors are its row)
     const auto worker = [&] {
         for (;;) {
             std::size_t k = 0, design = 0;
@@ -352,10 +355,18 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
                 design = cursor;
                 cursor += step;
             }
-            DesignResult r = evaluate_design(s, design);
-            {
+            try {
+                throw_if_interrupted();
+                DesignResult r = evaluate_design(s, design);
                 std::lock_guard<std::mutex> lock(mu);
                 ready.emplace(k, std::move(r));
+            } catch (...) {
+                std::lock_guard<std::mutex> lock(mu);
+                if (!failure) failure = std::current_exception();
+                stop = true;
+                --running;
+                cv.notify_all();
+                return;
             }
             cv.notify_all();
         }
@@ -371,7 +382,8 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
             DesignResult r;
             {
                 std::unique_lock<std::mutex> lock(mu);
-                cv.wait(lock, [&] { return ready.count(k) || (running == 0 && k >= issued); });
+                cv.wait(lock, [&] { return ready.count(k) || failure || (running == 0 && k >= issued); });
+                if (!ready.count(k) && failure) std::rethrow_exception(failure);
                 if (!ready.count(k)) break;   // every worker has stopped and every issued design is written
                 r = std::move(ready.at(k));
                 ready.erase(k);

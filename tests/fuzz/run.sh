@@ -7,6 +7,8 @@
 # Usage: run.sh BUILD_FUZZ_DIR LIMIT [WORK_DIR]
 # SKIP_SEEDS="a.toml b.toml" leaves those data files out of the corpus (a long
 # campaign leaves out fe_rotor_100k.toml: each of its mutations builds 100,000 DOFs).
+# Inputs up to 2 MiB; LONG_SEEDS=1 adds a seed of 1 to 2 MiB per reader (a
+# scene, a matrix, a bearing table, a sweep and a result file of that size).
 set -u
 build=$1 limit=$2
 case $limit in
@@ -32,9 +34,33 @@ seed bearing_csv "$data"/bearings/*.csv
 mkdir -p "$work/sweep"
 sed "s|^scene = \"\\(.*\\)\"|scene = \"$data/\\1\"|" "$data/screen_centrifuge.toml" > "$work/sweep/screen_centrifuge.toml"
 seed results "$here/seeds/results.csv"
+# Small models for the solvers: DOF count, shape bits, then two bytes per entry
+# (docs/reliability.md, "Fuzzing the readers").
+mkdir -p "$work/solvers"
+printf '\x01\x1b\x05\x1e\x00\x00\x00\x00\x05\x22\x00\x00\x09\x1e' > "$work/solvers/one_dof"
+printf '\x02\xff%s' "$(head -c 200 /dev/zero | tr '\0' '\005')" > "$work/solvers/two_dof_all"
+printf '\x04\x5a%s' "$(head -c 300 /dev/zero | tr '\0' '\035')" > "$work/solvers/four_dof"
+if [ "${LONG_SEEDS:-0}" = 1 ]; then
+    big=1100000
+    { cat "$data/fe_rotor.toml"; yes '# a long comment line of a scene file, repeated to pass one mebibyte' | head -c $big; } \
+        > "$work/scene/long_scene.toml"
+    { echo '%%MatrixMarket matrix coordinate real general'; echo '20000 20000 60000'
+      awk 'BEGIN { for (i = 1; i <= 60000; i++) printf "%d %d %.17g\n", (i % 20000) + 1, ((7 * i + int(i / 20000)) % 20000) + 1, i / 3.0 }'; } \
+        > "$work/matrix_market/long.mtx"
+    { echo 'speed,dof_x,dof_y,kxx,kxy,kyx,kyy,cxx,cxy,cyx,cyy'
+      awk 'BEGIN { for (i = 0; i < 30000; i++) printf "%d,0,1,%.9g,0,0,%.9g,2000,0,0,2400\n", i, 2e7 + i, 1.5e7 + i }'; } \
+        > "$work/bearing_csv/long.csv"
+    sed '/^values = /d' "$work/sweep/screen_centrifuge.toml" |
+        awk '{ print } /^name = "model.d_G"/ { printf "values = ["
+               for (i = 0; i < 120000; i++) printf "%s%.6f", (i ? ", " : ""), i / 1000.0; print "]" }' \
+        > "$work/sweep/long_sweep.toml"
+    { head -1 "$here/seeds/results.csv"
+      awk 'BEGIN { for (i = 0; i < 12000; i++) printf "%d,150,0,18.6676024482,22.2183231327,,,0.00243578587443,24,pass,,all criteria met\n", i }'; } \
+        > "$work/results/long.csv"
+fi
 status=0
-for t in scene matrix_market bearing_csv sweep results; do
-    "$build/tests/fuzz/fuzz_$t" "$work/$t" "${budget[@]}" -timeout=60 -rss_limit_mb=2048 \
+for t in scene matrix_market bearing_csv sweep results solvers; do
+    "$build/tests/fuzz/fuzz_$t" "$work/$t" "${budget[@]}" -max_len=2097152 -timeout=60 -rss_limit_mb=2048 \
         -print_final_stats=1 -artifact_prefix="$work/crash_${t}_" > "$work/$t.log" 2>&1
     rc=$?
     runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work/$t.log" | grep -o '[0-9]*$')

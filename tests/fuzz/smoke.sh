@@ -8,7 +8,7 @@ command -v clang++ > /dev/null || { echo "FAIL: clang++ is missing (.ci/install-
 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang \
     -DGYROKIT_FUZZ=ON -DGYROKIT_BUILD_TESTS=OFF -DGYROKIT_BUILD_PYTHON=OFF > "$build.configure.log" 2>&1 ||
     { cat "$build.configure.log"; exit 1; }
-cmake --build "$build" -j2 --target fuzz_scene fuzz_matrix_market fuzz_bearing_csv fuzz_sweep fuzz_results \
+cmake --build "$build" -j2 --target fuzz_scene fuzz_matrix_market fuzz_bearing_csv fuzz_sweep fuzz_results fuzz_solvers \
     > "$build.build.log" 2>&1 || { tail -30 "$build.build.log"; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

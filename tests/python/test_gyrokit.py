@@ -428,3 +428,46 @@ def test_deep_toml_and_special_files_are_refused(tmp_path):
         gk.load_scene(str(deep))
     with pytest.raises(gk.InputError, match="is not a regular file"):
         gk.load_scene("/dev/zero")
+
+
+_INTERRUPTED_CALL = r"""
+import os, signal, sys, threading, time
+import gyrokit as gk
+sc = gk.load_scene(sys.argv[1])
+threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+t = time.time()
+try:
+    gk.campbell(sc, modes=0, jobs=int(sys.argv[2]))   # every mode: about two minutes
+    print("finished")
+except KeyboardInterrupt:
+    print("interrupted after", time.time() - t)
+me = str(os.getpid())
+kids = [p for p in os.listdir("/proc") if p.isdigit() and open(f"/proc/{p}/stat").read().split()[3] == me]
+print("children", len(kids))
+"""
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_ctrl_c_stops_a_long_call(jobs):
+    # Before, a campbell ignored Ctrl-C until it ended (238 s): now SIGINT stops it at
+    # the next speed, as KeyboardInterrupt, with no worker left behind.
+    import sys
+    r = subprocess.run([sys.executable, "-c", _INTERRUPTED_CALL, scene("three_disk_rotor_journal.toml"), str(jobs)],
+                       capture_output=True, text=True, timeout=120, env=dict(os.environ))
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.split("\n")
+    assert lines[0].startswith("interrupted after"), r.stdout
+    assert float(lines[0].split()[-1]) < 20.0
+    assert "children 0" in r.stdout
+
+
+def test_interrupt_is_cleared_after_a_call():
+    # The SIGINT handler is Python's again after the call: a later Ctrl-C is a plain KeyboardInterrupt.
+    import signal
+    before = signal.getsignal(signal.SIGINT)
+    gk.campbell(gk.load_scene(scene("centrifuge.toml")), speeds=np.linspace(0, 100, 5))
+    assert signal.getsignal(signal.SIGINT) is before
+    with pytest.raises(KeyboardInterrupt):
+        os.kill(os.getpid(), signal.SIGINT)
+        for _ in range(1000):
+            pass

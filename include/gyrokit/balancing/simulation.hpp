@@ -26,6 +26,13 @@ struct OdeOptions {
     double rel_tol = 1e-10;
     double h0 = 0.0;          // first step, s (0: a small fraction of the first output interval)
     unsigned long max_steps = 100000000;   // accepted steps over the whole run
+    // Called at most twice a second with the fraction of the time span done (and
+    // once with 1 at the end, if it was called before); e.g. a progress bar.
+    std::function<void(double)> progress;
+    // The work done up to time t, in any unit (e.g. the phase of the fastest
+    // oscillation, rad): the steps so far are projected to the end of the run in
+    // proportion to it. Unset: in proportion to time.
+    std::function<double(double)> work;
 };
 
 struct OdeStats {
@@ -40,7 +47,9 @@ using OdeRhs = std::function<bool(double t, const double* y, double* dydt, const
 // Integrates y from t0 through the increasing times `t_out`, calling
 // on_output(t, y) at each. Throws SolverError naming the time and the reason
 // when the driver fails (step size underflow, no progress, step limit, a
-// right-hand side that cannot be evaluated).
+// right-hand side that cannot be evaluated), and early, after 2 s of wall time,
+// when the steps so far project a run of more than 1.5 x max_steps. Throws
+// Interrupted when a stop is requested (core/interrupt.hpp).
 void integrate_ode(const OdeRhs& f, std::vector<double>& y, double t0, const std::vector<double>& t_out,
                    const OdeOptions& o, const std::function<void(double, const double*)>& on_output,
                    OdeStats* stats = nullptr);
