@@ -153,6 +153,26 @@ cp "$data/centrifuge.toml" "$dir/study_scene.toml"
 printf '[criteria.stability]\nup_to = 30.0\n' >> "$dir/study.toml"
 expect "written by another study" screen "$dir/study.toml" --resume "$dir/study.csv"
 
+# A file the base scene names (a bearing table) is part of the study: edited, the old rows are refused.
+mkdir -p "$dir/tabled/bearings"
+cp "$data/fe_rotor.toml" "$dir/tabled/rotor.toml"
+cp "$data"/bearings/*.csv "$dir/tabled/bearings/"
+cat > "$dir/tabled/sweep.toml" <<END
+scene = "rotor.toml"
+[[parameter]]
+name = "model.E"
+values = [2.0e11, 2.1e11]
+[operating]
+from = 100.0
+to = 200.0
+count = 3
+[criteria.separation]
+margin_percent = 10.0
+END
+"$cli" screen "$dir/tabled/sweep.toml" --limit 1 --out "$dir/tabled/r.csv" > /dev/null 2>&1 || { echo "FAIL: tabled study run"; fail=1; }
+sed -i '3s/^0,/0.0,/' "$dir/tabled/bearings/drive_end.csv"   # the same numbers, other bytes
+expect "written by another study" screen "$dir/tabled/sweep.toml" --resume "$dir/tabled/r.csv"
+
 # JSON on stdout: no NaN, one object per design.
 "$cli" screen "$dir/ok.toml" --format json > "$dir/out.json" 2> /dev/null || { echo "FAIL: json run"; fail=1; }
 if grep -qi 'nan' "$dir/out.json"; then echo "FAIL: NaN in JSON"; fail=1; fi

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <functional>
 #include <gsl/gsl_errno.h>
 #include <map>
 #include <mutex>
@@ -19,6 +20,7 @@
 #include <set>
 #include <sstream>
 #include <thread>
+#include <toml++/toml.h>
 
 #include <cerrno>
 #include <chrono>
@@ -141,6 +143,33 @@ std::string file_bytes(const std::string& path) {
     return ss.str();
 }
 
+// Every string value of the scene file that names a regular file (relative to the
+// scene's directory, as the scene readers resolve them), in document order. A
+// scene that cannot be read names none: loading it reports that.
+std::vector<std::string> named_files(const std::string& scene) {
+    std::vector<std::string> files;
+    toml::table root;
+    try {
+        root = toml::parse(read_toml_text(scene, "scene file"), scene);
+    } catch (const std::exception&) {
+        return files;
+    }
+    const fs::path dir = fs::path(scene).parent_path();
+    const std::function<void(const toml::node&)> walk = [&](const toml::node& n) {
+        if (const auto* t = n.as_table()) {
+            for (const auto& [k, v] : *t) walk(v);
+        } else if (const auto* a = n.as_array()) {
+            for (const auto& v : *a) walk(v);
+        } else if (const auto* str = n.as_string()) {
+            const fs::path p = fs::path(str->get()).is_absolute() ? fs::path(str->get()) : dir / str->get();
+            std::error_code ec;
+            if (!str->get().empty() && fs::is_regular_file(p, ec)) files.push_back(p.string());
+        }
+    };
+    walk(root);
+    return files;
+}
+
 // The complete lines of a result file and the byte length they occupy; a last
 // line without its newline (an interrupted write) is left out.
 struct ParsedFile {
@@ -181,8 +210,8 @@ ParsedFile parse_result_file(const Sweep& s, const std::string& path, const Shar
                                              "a new file",
                                              path, s.path));
             if (line != identity)
-                throw InputError(fmt::format("{}: written by another study: its scene, sweep or criteria, or the "
-                                             "gyrokit version, changed since ('{}'; this study: '{}'); allowed: the "
+                throw InputError(fmt::format("{}: written by another study: its scene, a file the scene names, its "
+                                             "sweep or criteria, or the gyrokit version, changed since ('{}'; this study: '{}'); allowed: the "
                                              "result file of this study, or a new file",
                                              path, line.substr(0, 120), identity));
             pf.has_identity = true;
@@ -541,6 +570,9 @@ Figure safe_region_figure(const Sweep& s, const std::vector<ResultRow>& rows, co
 std::string study_identity_line(const Sweep& s) {
     std::uint64_t h = fnv1a(file_bytes(s.path));
     h = fnv1a("\x1f" + file_bytes(s.scene), h);
+    // The files the scene names (bearing tables, Matrix Market matrices): a
+    // bearing table edited between runs is another study too.
+    for (const std::string& f : named_files(s.scene)) h = fnv1a("\x1f" + f + "\x1f" + file_bytes(f), h);
     h = fnv1a("\x1f" GYROKIT_VERSION, h);
     return fmt::format("# study {:016x} (sweep, base scene and criteria; gyrokit {})", h, GYROKIT_VERSION);
 }
