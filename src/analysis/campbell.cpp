@@ -240,6 +240,7 @@ CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std:
 }
 
 SolverFactory tracking_solver(const SolverFactory& make, const CampbellOptions& co, const std::vector<double>& speeds) {
+    // K modes of a dense solver stay full solves: their stability verdict covers every mode.
     if (!std::isfinite(co.band) || co.modes != 0 || !make.continued || speeds.empty()) return make;
     return make.continued(speeds, co.band, co.threads);
 }
@@ -281,6 +282,7 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
     // among those present at the first speed.
     std::vector<Branch>& br = out.branches;
     if (opt.modes == 0 || t.window) out.band = opt.band;
+    out.partial = t.window;
     std::stable_sort(br.begin(), br.end(), [&](const Branch& a, const Branch& b) {
         const bool a0 = a.points.front().speed == speeds.front(), b0 = b.points.front().speed == speeds.front();
         if (a0 != b0) return a0;

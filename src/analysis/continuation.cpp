@@ -7,7 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <iterator>
+#include <limits>
 #include <map>
+#include <optional>
 
 namespace gyrokit {
 
@@ -30,12 +33,32 @@ double left_backward_error(const SparsePencil& p, const PencilAction& a, cd l, c
     return r.norm() / (s * y.norm());
 }
 
+// A solved speed to continue from: the modes within twice the band (with their
+// slopes) and the rigid-body eigenpairs.
+struct Solved {
+    double w = 0.0;
+    std::vector<Mode> track;
+    std::vector<Mode> rigid;
+};
+
 struct Shared {
     std::shared_ptr<const GyroscopicSystem> model;
     ContinuationOptions opt;
-    Eigen::MatrixXd Q;                              // n x r, orthonormal columns
+    Eigen::MatrixXd Q;                              // n x r, orthonormal columns (empty: not used)
     std::map<double, QuadraticSpectrum> anchors;   // the full solves, kept to the band
+    std::map<double, Solved> anchor_tracks;
 };
+
+// What a full solve leaves to continue from.
+Solved track_of(const QuadraticSpectrum& s, const Shared& sh, double w) {
+    Solved t;
+    t.w = w;
+    for (const Mode& m : s.modes)
+        if (within_band(m, 2.0 * sh.opt.band, s.real_tol)) t.track.push_back(m);
+    set_slopes(t.track, [&](double v) { return sh.model->sparse_at_speed(v); }, w, s.scale);
+    t.rigid = s.rigid_body;
+    return t;
+}
 
 // The modes of a full solve within the band, with slopes.
 QuadraticSpectrum keep_band(QuadraticSpectrum s, const Shared& sh, double w) {
@@ -50,10 +73,111 @@ QuadraticSpectrum keep_band(QuadraticSpectrum s, const Shared& sh, double w) {
     return s;
 }
 
-QuadraticSpectrum full_solve(const Shared& sh, double w) {
+QuadraticSpectrum full_solve(const Shared& sh, double w, Solved* track = nullptr) {
     EigenOptions o = sh.opt.eig;
     o.left_vectors = true;
-    return keep_band(solve_at_speed(*sh.model, w, o), sh, w);
+    QuadraticSpectrum s = solve_at_speed(*sh.model, w, o);
+    if (track) *track = track_of(s, sh, w);
+    return keep_band(std::move(s), sh, w);
+}
+
+// The common end of the continued solves: whirl, rigid-body split, error bounds,
+// order and slopes of the verified pairs.
+QuadraticSpectrum finish(const Shared& sh, const SparsePencil& p, const PencilAction& action, QuadraticSpectrum out,
+                         std::vector<Mode> modes, double w) {
+    const GyroscopicSystem& sys = *sh.model;
+    for (Mode& m : modes) m.whirl = classify_whirl(m.lambda, m.right, sys.whirl_pairs, out.real_tol);
+    split_rigid_body(modes, out.rigid_body, action, out.scale);
+    separate_double_whirl(modes, sys.whirl_pairs, out.real_tol, action);
+    const Eigen::VectorXd t = sparse_dof_scaling(p, out.scale);
+    const SparsePencil scaled{t.asDiagonal() * p.M * t.asDiagonal(), t.asDiagonal() * p.C * t.asDiagonal(),
+                              t.asDiagonal() * p.K * t.asDiagonal()};
+    set_error_bounds(modes, action, action_of(scaled), t);
+    sort_by_frequency(modes);
+    set_slopes(modes, [&](double v) { return sys.sparse_at_speed(v); }, w, out.scale);
+    out.modes = std::move(modes);
+    return out;
+}
+
+QuadraticSpectrum empty_spectrum(const SparsePencil& p, const PencilAction& action, double w) {
+    QuadraticSpectrum out;
+    out.scale = natural_frequency_scale(p.M.diagonal(), p.K.diagonal(), action.norm_M, action.norm_K);
+    out.real_tol = 1e-7 * out.scale;
+    out.partial = true;
+    out.speed = w;
+    return out;
+}
+
+// A pair refined on the full model: verified right and left vectors, conjugated
+// into the upper half plane, exactly real where it is real to the tolerance.
+bool verified(const SparsePencil& p, const PencilAction& action, Mode& m, double tolerance, double real_tol) {
+    if (!(m.backward_error <= tolerance) || m.left.size() == 0 ||
+        !(left_backward_error(p, action, m.lambda, m.left) <= tolerance))
+        return false;
+    if (m.lambda.imag() < 0.0) m.lambda = std::conj(m.lambda), m.right = m.right.conjugate(), m.left = m.left.conjugate();
+    if (std::abs(m.lambda.imag()) <= real_tol) m.lambda = cd(m.lambda.real(), 0.0);
+    return true;
+}
+
+// Two refined pairs on one mode: a mode is missing.
+bool lands_on_another(const std::vector<Mode>& modes, const Mode& m) {
+    for (const Mode& o : modes)
+        if (std::abs(o.lambda - m.lambda) <= 1e-8 * std::abs(m.lambda) && mac(o.right, m.right) > 0.99) return true;
+    return false;
+}
+
+// Step 1: every mode of `from` predicted along its slope and corrected at w.
+std::optional<QuadraticSpectrum> branch_solve(const Shared& sh, const Solved& from, double w, Solved& next) {
+    if (from.track.empty() || w == from.w) return std::nullopt;
+    const GyroscopicSystem& sys = *sh.model;
+    const SparsePencil p = sys.sparse_at_speed(w);
+    const PencilAction action = action_of(p);
+    QuadraticSpectrum out = empty_spectrum(p, action, w);
+    const double h = w - from.w;
+    std::vector<cd> pred;
+    for (const Mode& m : from.track) {
+        if (!std::isfinite(m.slope.real()) || !std::isfinite(m.slope.imag())) return std::nullopt;
+        pred.push_back(m.lambda + h * m.slope);
+    }
+    // The rigid-body pairs stay where they are if they still verify.
+    std::vector<Mode> rigid = from.rigid;
+    for (Mode& r : rigid) {
+        r.backward_error = backward_error(action, r.lambda, r.right);
+        if (!(r.backward_error <= sh.opt.tolerance)) return std::nullopt;
+    }
+    std::vector<Mode> track;
+    for (size_t i = 0; i < from.track.size(); ++i) {
+        // The distance to the nearest other eigenvalue expected at w (the conjugate included).
+        double gap = std::abs(pred[i].imag()) > out.real_tol ? 2.0 * std::abs(pred[i].imag())
+                                                             : std::numeric_limits<double>::infinity();
+        for (size_t j = 0; j < pred.size(); ++j)
+            if (j != i) gap = std::min({gap, std::abs(pred[i] - pred[j]), std::abs(pred[i] - std::conj(pred[j]))});
+        Mode m = from.track[i];
+        m.lambda = pred[i];
+        m.backward_error = std::numeric_limits<double>::infinity();
+        m.left.resize(0);
+        // Refined to 1e-3 of the tolerance where three factorizations get there:
+        // the error bounds then stay near the full solve's.
+        for (int k = 0; k < 3 && !(m.backward_error <= 1e-3 * sh.opt.tolerance); ++k)
+            refine_eigenpair(p, action, m, 1e-3 * sh.opt.tolerance, out.scale);
+        if (!verified(p, action, m, sh.opt.tolerance, out.real_tol)) return std::nullopt;
+        if (!(std::abs(m.lambda - pred[i]) <= 0.3 * gap) || lands_on_another(track, m)) return std::nullopt;
+        track.push_back(std::move(m));
+    }
+    next.w = w;
+    next.rigid = rigid;
+    next.track = track;
+    std::vector<Mode> modes;
+    for (const Mode& m : track)
+        if (within_band(m, sh.opt.band, out.real_tol)) modes.push_back(m);
+    out.rigid_body = std::move(rigid);
+    out = finish(sh, p, action, std::move(out), std::move(modes), w);
+    // The modes beyond the band need slopes too, for the next step.
+    set_slopes(next.track, [&](double v) { return sys.sparse_at_speed(v); }, w, out.scale);
+    if (!sh.opt.eig.left_vectors)
+        for (Mode& m : out.modes) m.left.resize(0);
+    out.method = "continuation (along the branches, verified)";
+    return out;
 }
 
 // The reduced solve at w, or nothing where a pair fails verification.
@@ -61,11 +185,7 @@ std::optional<QuadraticSpectrum> reduced_solve(const Shared& sh, double w) {
     const GyroscopicSystem& sys = *sh.model;
     const SparsePencil p = sys.sparse_at_speed(w);
     const PencilAction action = action_of(p);
-    QuadraticSpectrum out;
-    out.scale = natural_frequency_scale(p.M.diagonal(), p.K.diagonal(), action.norm_M, action.norm_K);
-    out.real_tol = 1e-7 * out.scale;
-    out.partial = true;
-    out.speed = w;
+    QuadraticSpectrum out = empty_spectrum(p, action, w);
     const Eigen::MatrixXd& Q = sh.Q;
     const QuadraticPencil reduced{Q.transpose() * (p.M * Q), Q.transpose() * (p.C * Q), Q.transpose() * (p.K * Q)};
     QuadraticSpectrum r = solve_quadratic(reduced, {sh.opt.eig.method, false}, {});
@@ -79,30 +199,15 @@ std::optional<QuadraticSpectrum> reduced_solve(const Shared& sh, double w) {
         m.right = Q * m.right;
         m.left.resize(0);
         refine_eigenpair(p, action, m, sh.opt.tolerance, out.scale);
-        if (!(m.backward_error <= sh.opt.tolerance) || m.left.size() == 0 ||
-            !(left_backward_error(p, action, m.lambda, m.left) <= sh.opt.tolerance))
-            return std::nullopt;
-        if (m.lambda.imag() < 0.0) m.lambda = std::conj(m.lambda), m.right = m.right.conjugate(), m.left = m.left.conjugate();
-        if (std::abs(m.lambda.imag()) <= out.real_tol) m.lambda = cd(m.lambda.real(), 0.0);
+        if (!verified(p, action, m, sh.opt.tolerance, out.real_tol)) return std::nullopt;
         // Two reduced eigenvalues refined onto one mode: the basis misses a mode there.
-        for (const Mode& o : modes)
-            if (std::abs(o.lambda - m.lambda) <= 1e-8 * std::abs(m.lambda) && mac(o.right, m.right) > 0.99)
-                return std::nullopt;
+        if (lands_on_another(modes, m)) return std::nullopt;
         if (!within_band(m, sh.opt.band, out.real_tol)) continue;
-        m.whirl = classify_whirl(m.lambda, m.right, sys.whirl_pairs, out.real_tol);
         modes.push_back(std::move(m));
     }
-    split_rigid_body(modes, out.rigid_body, action, out.scale);
-    separate_double_whirl(modes, sys.whirl_pairs, out.real_tol, action);
-    const Eigen::VectorXd t = sparse_dof_scaling(p, out.scale);
-    const SparsePencil scaled{t.asDiagonal() * p.M * t.asDiagonal(), t.asDiagonal() * p.C * t.asDiagonal(),
-                              t.asDiagonal() * p.K * t.asDiagonal()};
-    set_error_bounds(modes, action, action_of(scaled), t);
-    sort_by_frequency(modes);
-    set_slopes(modes, [&](double v) { return sys.sparse_at_speed(v); }, w, out.scale);
+    out = finish(sh, p, action, std::move(out), std::move(modes), w);
     if (!sh.opt.eig.left_vectors)
-        for (Mode& m : modes) m.left.resize(0);
-    out.modes = std::move(modes);
+        for (Mode& m : out.modes) m.left.resize(0);
     out.method = fmt::format("continuation (reduced basis of {} vectors, verified)", Q.cols());
     return out;
 }
@@ -131,6 +236,8 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     const SolverFactory dense = dense_solver(*model, full);
     std::vector<QuadraticSpectrum> solved = solve_speeds(dense, anchors, opt.workers);
 
+    const double band = opt.band;
+
     // The basis: real and imaginary parts of the right and left vectors of every
     // mode within twice the band (modes that enter the band between anchors are
     // near it at an anchor), and of the rigid-body eigenvalues.
@@ -142,33 +249,57 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     };
     for (const QuadraticSpectrum& s : solved) {
         for (const Mode& m : s.modes)
-            if (within_band(m, 2.0 * opt.band, s.real_tol)) add(m.right), add(m.left);
+            if (within_band(m, 2.0 * band, s.real_tol)) add(m.right), add(m.left);
         for (const Mode& m : s.rigid_body) add(m.right), add(m.left);
     }
     Eigen::MatrixXd V(n, static_cast<Eigen::Index>(columns.size()));
     for (size_t j = 0; j < columns.size(); ++j) V.col(static_cast<Eigen::Index>(j)) = columns[j];
     int r = 0;
+    Eigen::MatrixXd Q;
     if (V.cols() > 0) {
         Eigen::BDCSVD<Eigen::MatrixXd> svd(V, Eigen::ComputeThinU);
         const Eigen::VectorXd& sv = svd.singularValues();
         while (r < sv.size() && sv(r) > 1e-12 * sv(0)) ++r;
-        sh->Q = svd.matrixU().leftCols(r);
+        Q = svd.matrixU().leftCols(r);
     }
     rep.basis = r;
     rep.used = r > 0 && r <= opt.max_basis_fraction * n;
+    if (rep.used) sh->Q = std::move(Q);
     if (report) *report = rep;
-    if (!rep.used) return dense_solver(*model, opt.eig);
-    for (size_t k = 0; k < anchors.size(); ++k) sh->anchors[anchors[k]] = keep_band(std::move(solved[k]), *sh, anchors[k]);
+    for (size_t k = 0; k < anchors.size(); ++k) {
+        sh->anchor_tracks[anchors[k]] = track_of(solved[k], *sh, anchors[k]);
+        sh->anchors[anchors[k]] = keep_band(std::move(solved[k]), *sh, anchors[k]);
+    }
 
     SolverFactory f;
     f.make = [sh]() -> SpectrumSolver {
-        return [sh](double w) {
+        // This solver's last step along the branches (the speeds of a block come in order).
+        auto last = std::make_shared<std::optional<Solved>>();
+        return [sh, last](double w) {
             throw_if_interrupted();
-            if (const auto it = sh->anchors.find(w); it != sh->anchors.end()) return it->second;
-            if (std::optional<QuadraticSpectrum> s = reduced_solve(*sh, w)) return std::move(*s);
-            QuadraticSpectrum s = full_solve(*sh, w);
-            s.notes.push_back("continuation: a pair failed verification on the reduced basis at some speeds; "
-                              "those speeds were solved in full");
+            if (const auto it = sh->anchors.find(w); it != sh->anchors.end()) {
+                *last = sh->anchor_tracks.at(w);
+                return it->second;
+            }
+            // Continue from the nearest speed solved along the branches or in full.
+            const Solved* from = last->has_value() ? &**last : nullptr;
+            const auto consider = [&](const Solved& s) {
+                if (!from || std::abs(s.w - w) < std::abs(from->w - w)) from = &s;
+            };
+            const auto a = sh->anchor_tracks.lower_bound(w);
+            if (a != sh->anchor_tracks.end()) consider(a->second);
+            if (a != sh->anchor_tracks.begin()) consider(std::prev(a)->second);
+            Solved next;
+            if (from)
+                if (std::optional<QuadraticSpectrum> s = branch_solve(*sh, *from, w, next)) {
+                    *last = std::move(next);
+                    return std::move(*s);
+                }
+            if (sh->Q.cols() > 0)
+                if (std::optional<QuadraticSpectrum> s = reduced_solve(*sh, w)) return std::move(*s);
+            // Verified by the full solve itself (a step near a crossing, a double eigenvalue splitting).
+            QuadraticSpectrum s = full_solve(*sh, w, &next);
+            *last = std::move(next);
             return s;
         };
     };

@@ -149,6 +149,7 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
     // The verdict covers every mode: a dense diagram keeps the untracked ones by eigenvalue;
     // a sparse window covers its tracked modes only, and says so.
     const auto unstable = unstable_ranges(cd, true);
+    window = window || (cd.partial && !std::isfinite(cd.band));   // the K lowest of a continuation
     const std::string which =
         window ? fmt::format("the {} tracked modes (the others are not checked)", cd.branches.size())
                : (std::isfinite(cd.band) ? "every mode in range" : "every mode");

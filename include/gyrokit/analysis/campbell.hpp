@@ -49,6 +49,9 @@ struct CampbellDiagram {
     int ambiguous_steps = 0;        // steps still ambiguous at the refinement limit
     double max_backward_error = 0;
     int rigid_body = 0;             // most rigid-body eigenvalues at one speed (not tracked)
+    // The solver gave a window of modes (a sparse solver, a continuation), not all:
+    // verdicts cover the tracked modes only.
+    bool partial = false;
     std::vector<std::string> notes; // the solvers' notes, each once
     // Dense with opt.modes = K: the branches beyond the K reported, eigenvalues only
     // (no vectors), ids K + 1 on; a dense spectrum is complete, so they cost nothing
@@ -78,8 +81,7 @@ CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std:
 
 // The solver a tracking over `speeds` with `co` stands on, and the critical
 // speeds and stability thresholds after it: with a band (the modes in range) and
-// a dense solver, the continuation on a reduced basis (continuation_solver; the
-// dense solver itself where the basis would not pay); else `make`.
+// a dense solver, the continuation (continuation_solver); else `make`.
 SolverFactory tracking_solver(const SolverFactory& make, const CampbellOptions& co, const std::vector<double>& speeds);
 
 // Dense: every mode of the system, solved with opt.eig.

@@ -25,24 +25,29 @@ struct ContinuationOptions {
 
 // What the continuation did, for the notes and the benchmark.
 struct ContinuationReport {
-    bool used = false;          // false: the basis would not pay; every speed is solved in full
+    bool used = false;          // false: the basis would not pay (the projected solve is skipped)
     int basis = 0;              // dimension of the reduced basis
     int dofs = 0;
     std::vector<double> anchors;   // speeds solved in full to build the basis
 };
 
 // A solver (SolverFactory) for any speed in or near `speeds` that returns the
-// modes within the band: the projected pencil Q^T P(w) Q, Q an orthonormal real
-// basis of the right and left vectors (real and imaginary parts) of every mode
-// within twice the band at the anchor speeds; each of its eigenpairs within the
-// band lifted to the full model, refined by inverse iteration on P(lambda) and
-// kept only if verified (backward errors of the right and left vectors <=
-// opt.tolerance, distinct from the others); a speed where one fails is solved in
-// full. Every mode gets its error bound, whirl and slope as from the dense
-// solver; spectra are partial (the band), `method` names the continuation. At an
-// anchor speed the full solve's modes in the band are returned. If the basis
-// would exceed max_basis_fraction of the DOFs, the plain dense solver is
-// returned (report->used = false).
+// modes within the band, tried in this order:
+// 1. Along the branches: from the nearest speed this solver (or an anchor) has
+//    solved, each mode within twice the band is predicted along its slope and
+//    corrected by inverse iteration on the full P(lambda); the step is taken if
+//    every pair verifies (backward errors of the right and left vectors <=
+//    opt.tolerance), stays within 0.3 of its distance to the nearest other
+//    prediction, and no two pairs land on one mode.
+// 2. The projected pencil Q^T P(w) Q, Q an orthonormal real basis of the right
+//    and left vectors (real and imaginary parts) of every mode within twice the
+//    band at the anchor speeds; each eigenpair within the band lifted to the full
+//    model, refined and verified as above. Skipped if the basis would exceed
+//    max_basis_fraction of the DOFs (report->used = false).
+// 3. A full solve.
+// Every mode gets its error bound, whirl and slope as from the dense solver;
+// spectra are partial (the band), `method` names the path. At an anchor speed
+// the full solve's modes in the band are returned.
 SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model, const std::vector<double>& speeds,
                                   const ContinuationOptions& opt, ContinuationReport* report = nullptr);
 

@@ -44,9 +44,8 @@ struct SolverFactory {
     // frequency nu (rad/s), so that a root search refines a mode on its own shift and
     // the sweep's window cannot move the result. Empty for solvers of every mode.
     std::function<SpectrumSolver(double nu)> centred;
-    // Dense solvers: the continuation on a reduced basis for the modes within
-    // `band` over `speeds` (continuation_solver; itself a dense solver where the
-    // basis would not pay). Empty for the others.
+    // Dense solvers: the continuation (continuation_solver) over `speeds` for the
+    // modes within `band`. Empty for the others.
     std::function<SolverFactory(const std::vector<double>& speeds, double band, Workers workers)> continued;
     SpectrumSolver operator()() const { return make(); }
 };
