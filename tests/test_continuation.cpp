@@ -1,7 +1,7 @@
-// The continuation on a reduced basis against the full dense solve, on every
-// scene in data/ it can run: the same modes within the band at every speed,
-// eigenvalues within the two error bounds each path reports; the tracking along
-// slopes without ambiguity on the three-disk rotor.
+// The continuation (along the branches, and on the projected pencil) against the
+// full dense solve, on every scene in data/ it can run: the same modes within the
+// band at every speed, eigenvalues within the two error bounds each path reports;
+// the tracking along slopes without ambiguity on the three-disk rotor.
 #include "test_helpers.hpp"
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/continuation.hpp>
@@ -66,37 +66,40 @@ TEST_CASE("continuation: the modes in range equal the full solve's within their 
         const double band = excitation_band(grid, sc.harmonics);
         if (!std::isfinite(band)) continue;
         const auto model = std::make_shared<const GyroscopicSystem>(sc.system);
-        ContinuationOptions o;
-        o.band = band;
-        o.anchor_stride = 5;
-        o.max_basis_fraction = 1.0;   // continue even where it would not pay: the answers are what is tested
-        ContinuationReport rep;
-        const SolverFactory cont = continuation_solver(model, grid, o, &rep);
-        REQUIRE(rep.used);
-        ++used;
-        const SpectrumSolver reduced = cont.make(), full = dense_solver(sc.system).make();
-        for (double w : grid) {
-            QuadraticSpectrum f = full(w);
-            std::vector<Mode> kept;
-            for (Mode& m : f.modes)
-                if (within_band(m, band, f.real_tol)) kept.push_back(std::move(m));
-            f.modes = std::move(kept);
-            const QuadraticSpectrum r = reduced(w);
-            for (const Mode& m : r.modes) CHECK(m.backward_error <= 1e-10);
-            same_modes(r, f, band, entry.path().filename().string() + " at " + std::to_string(w) + " rad/s");
-        }
-        // Between the grid speeds too (a root search's speeds).
-        for (size_t k = 0; k + 1 < grid.size(); k += 7) {
-            const double w = 0.5 * (grid[k] + grid[k + 1]);
-            QuadraticSpectrum f = full(w);
-            std::vector<Mode> kept;
-            for (Mode& m : f.modes)
-                if (within_band(m, band, f.real_tol)) kept.push_back(std::move(m));
-            f.modes = std::move(kept);
-            same_modes(reduced(w), f, band, entry.path().filename().string() + " at " + std::to_string(w) + " rad/s");
+        for (const bool along : {true, false}) {
+            ContinuationOptions o;
+            o.band = band;
+            o.anchor_stride = 5;
+            o.max_basis_fraction = 1.0;   // continue even where it would not pay: the answers are what is tested
+            o.along_branches = along;     // each path on its own: along the branches, the projected pencil
+            ContinuationReport rep;
+            const SolverFactory cont = continuation_solver(model, grid, o, &rep);
+            REQUIRE(rep.used);
+            ++used;
+            const SpectrumSolver reduced = cont.make(), full = dense_solver(sc.system).make();
+            for (double w : grid) {
+                QuadraticSpectrum f = full(w);
+                std::vector<Mode> kept;
+                for (Mode& m : f.modes)
+                    if (within_band(m, band, f.real_tol)) kept.push_back(std::move(m));
+                f.modes = std::move(kept);
+                const QuadraticSpectrum r = reduced(w);
+                for (const Mode& m : r.modes) CHECK(m.backward_error <= 1e-10);
+                same_modes(r, f, band, entry.path().filename().string() + " at " + std::to_string(w) + " rad/s");
+            }
+            // Between the grid speeds too (a root search's speeds).
+            for (size_t k = 0; k + 1 < grid.size(); k += 7) {
+                const double w = 0.5 * (grid[k] + grid[k + 1]);
+                QuadraticSpectrum f = full(w);
+                std::vector<Mode> kept;
+                for (Mode& m : f.modes)
+                    if (within_band(m, band, f.real_tol)) kept.push_back(std::move(m));
+                f.modes = std::move(kept);
+                same_modes(reduced(w), f, band, entry.path().filename().string() + " at " + std::to_string(w) + " rad/s");
+            }
         }
     }
-    CHECK(used >= 5);
+    CHECK(used >= 10);
 }
 
 TEST_CASE("three-disk rotor: default Campbell tracks the modes in range without an ambiguous step, and its "
@@ -112,6 +115,12 @@ TEST_CASE("three-disk rotor: default Campbell tracks the modes in range without 
     const SolverFactory solver = tracking_solver(plan.make, co, grid);
     const CampbellDiagram cd = campbell(solver, grid, co);
     CHECK(cd.ambiguous_steps == 0);
+    // Most speeds are stepped along the branches (the anchors and a few steps next to
+    // crossings are full or projected solves).
+    size_t stepped = 0;
+    for (const QuadraticSpectrum& s : solve_speeds(solver, grid, 1))
+        stepped += s.method == "continuation (along the branches, verified)";
+    CHECK(stepped >= grid.size() / 2);
     CHECK(cd.branches.size() >= 8);
     for (const Branch& b : cd.branches)
         for (const BranchPoint& p : b.points) CHECK(p.mode.backward_error <= 1e-10);

@@ -290,7 +290,7 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
             if (a != sh->anchor_tracks.end()) consider(a->second);
             if (a != sh->anchor_tracks.begin()) consider(std::prev(a)->second);
             Solved next;
-            if (from)
+            if (from && sh->opt.along_branches)
                 if (std::optional<QuadraticSpectrum> s = branch_solve(*sh, *from, w, next)) {
                     *last = std::move(next);
                     return std::move(*s);

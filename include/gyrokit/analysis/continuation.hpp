@@ -19,6 +19,7 @@ struct ContinuationOptions {
     // the projected QZ costs about (r/n)^3 of the full one, and the refinement and
     // verification of each pair come on top (measured by gyrokit-bench-campbell).
     double max_basis_fraction = 0.75;
+    bool along_branches = true;  // step 1 below (false: the projected pencil first, for tests and benchmarks)
     EigenOptions eig;           // the full solves' method; left_vectors: keep them in the modes
     Workers workers = 1;        // the anchors' full solves
 };
