@@ -1,6 +1,7 @@
 // A requested interrupt stops the long computations at their next safe point with
 // gyrokit::Interrupted (Python raises it as KeyboardInterrupt), in threads and in
 // worker processes alike, and leaves nothing behind: the next call runs normally.
+#include <gyrokit/analysis/scalar_search.hpp>
 #include <gyrokit/analysis/spectrum_solver.hpp>
 #include <gyrokit/balancing/simulation.hpp>
 #include <gyrokit/core/interrupt.hpp>
@@ -65,4 +66,23 @@ TEST_CASE("an interrupt stops an ODE run within 1024 right-hand sides", "[interr
     y = {1.0, 0.0};
     integrate_ode(f, y, 0.0, {6.283185307179586}, o, [](double, const double*) {});
     CHECK(y[0] == Approx(1.0).margin(1e-6));   // one period of cos
+}
+
+TEST_CASE("an exception in a root search's or a minimum search's function reaches the caller, the GSL solver freed",
+          "[interrupt]") {
+    // Found by fuzz_solvers: the exception unwound through GSL's C frames and leaked the
+    // solver (LeakSanitizer); now it is kept, GSL gets a NaN, and the search rethrows it.
+    int calls = 0;
+    const std::function<double(double)> root = [&calls](double x) {
+        if (++calls > 3) throw SolverError("the function failed");
+        return x - 0.3;
+    };
+    CHECK_THROWS_WITH(find_root(root, 0.0, 1.0, 1e-12), "the function failed");
+    calls = 0;
+    const std::function<double(double)> bowl = [&calls](double x) {
+        if (++calls > 4) throw Interrupted();
+        return (x - 0.3) * (x - 0.3);
+    };
+    CHECK_THROWS_AS(find_smooth_minimum(bowl, 0.0, 0.4, 1.0, 1e-10), Interrupted);
+    CHECK(find_root([](double x) { return x - 0.3; }, 0.0, 1.0, 1e-12) == Approx(0.3).epsilon(1e-11));
 }

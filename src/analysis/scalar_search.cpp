@@ -3,6 +3,8 @@
 #include <gyrokit/core/error.hpp>
 
 #include <cmath>
+#include <exception>
+#include <limits>
 #include <mutex>
 #include <fmt/format.h>
 #include <gsl/gsl_errno.h>
@@ -13,8 +15,23 @@ namespace gyrokit {
 
 namespace {
 
+// The function and the first exception it threw: an exception must not unwind
+// through GSL's C frames (the solver would leak, or the program end), so it is
+// kept here, GSL gets a NaN, and the search rethrows it after freeing the solver.
+struct Call {
+    const std::function<double(double)>* f;
+    std::exception_ptr failure;
+};
+
 double trampoline(double x, void* params) {
-    return (*static_cast<const std::function<double(double)>*>(params))(x);
+    auto* c = static_cast<Call*>(params);
+    if (c->failure) return std::numeric_limits<double>::quiet_NaN();
+    try {
+        return (*c->f)(x);
+    } catch (...) {
+        c->failure = std::current_exception();
+        return std::numeric_limits<double>::quiet_NaN();
+    }
 }
 
 }  // namespace
@@ -29,8 +46,10 @@ double find_root(const std::function<double(double)>& f, double a, double b, dou
     // searches may run on several threads.
     static std::once_flag quiet;
     std::call_once(quiet, [] { gsl_set_error_handler_off(); });
-    gsl_function F{&trampoline, const_cast<std::function<double(double)>*>(&f)};
+    Call call{&f, nullptr};
+    gsl_function F{&trampoline, &call};
     gsl_root_fsolver* s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (!s) throw SolverError("could not allocate the GSL root solver");
     gsl_root_fsolver_set(s, &F, a, b);
     int status = GSL_CONTINUE;
     double x = 0.5 * (a + b);
@@ -41,6 +60,7 @@ double find_root(const std::function<double(double)>& f, double a, double b, dou
         if (gsl_root_fsolver_x_upper(s) - gsl_root_fsolver_x_lower(s) <= 4e-16 * std::fabs(x)) status = GSL_SUCCESS;
     }
     gsl_root_fsolver_free(s);
+    if (call.failure) std::rethrow_exception(call.failure);
     if (status != GSL_SUCCESS)
         throw SolverError(fmt::format("Brent root search on [{}, {}] did not converge to relative "
                                       "tolerance {}; use a finer speed grid",
@@ -75,8 +95,10 @@ double find_smooth_minimum(const std::function<double(double)>& f, double a, dou
     if (!(fm < fa && fm < fb) || !std::isfinite(fm)) return find_minimum(f, a, b, rel_tol);
     static std::once_flag quiet;
     std::call_once(quiet, [] { gsl_set_error_handler_off(); });
-    gsl_function F{&trampoline, const_cast<std::function<double(double)>*>(&f)};
+    Call call{&f, nullptr};
+    gsl_function F{&trampoline, &call};
     gsl_min_fminimizer* s = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
+    if (!s) throw SolverError("could not allocate the GSL minimizer");
     int status = gsl_min_fminimizer_set_with_values(s, &F, m, fm, a, fa, b, fb);
     double x = m;
     for (int it = 0; it < 200 && status == GSL_SUCCESS; ++it) {
@@ -90,6 +112,7 @@ double find_smooth_minimum(const std::function<double(double)>& f, double a, dou
         if (hi - lo <= smooth_minimum_resolution(x, rel_tol)) break;
     }
     gsl_min_fminimizer_free(s);
+    if (call.failure) std::rethrow_exception(call.failure);
     return status == GSL_SUCCESS ? x : find_minimum(f, a, b, rel_tol);
 }
 

@@ -60,7 +60,7 @@ struct Context {
     bool interrupted = false, reported = false;
     std::string hopeless;   // why the run was given up early
     double steps_ref = -1.0, done_ref = 0.0;   // at the first report: the start's transient left out
-    std::exception_ptr failure;   // thrown by the progress callback: never through GSL's C frames
+    std::exception_ptr failure;   // thrown by the right-hand side or the progress callback
 };
 
 constexpr double kOdeReportSeconds = 0.5;
@@ -124,8 +124,14 @@ int c_rhs(double t, const double y[], double dydt[], void* params) {
     ++c->evaluations;
     if (!keep_going(c, t)) return GSL_EBADFUNC;
     const char* why = nullptr;
-    if (!(*c->f)(t, y, dydt, &why)) {
-        c->why = why ? why : "the right-hand side could not be evaluated";
+    try {
+        if (!(*c->f)(t, y, dydt, &why)) {
+            c->why = why ? why : "the right-hand side could not be evaluated";
+            return GSL_EBADFUNC;
+        }
+    } catch (...) {   // rethrown after the driver is freed, never through GSL's C frames
+        c->failure = std::current_exception();
+        c->why = "the right-hand side failed";
         return GSL_EBADFUNC;
     }
     return GSL_SUCCESS;

@@ -80,7 +80,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             require_finite(m.lambda.imag());
         }
     });
-    fuzz::expect_gyrokit_errors_only([&] {
+    // The tracking and its root searches (a dozen solves) on a quarter of the inputs.
+    if ((shape & 3) == 3) fuzz::expect_gyrokit_errors_only([&] {
         const std::vector<double> speeds{0.0, 0.5 * w, w + 1.0};
         const CampbellDiagram cd = campbell(sys, speeds);
         for (const CriticalSpeed& c : critical_speeds(sys, cd, {1})) require_finite(c.speed);

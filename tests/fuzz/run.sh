@@ -55,7 +55,7 @@ if [ "${LONG_SEEDS:-0}" = 1 ]; then
                for (i = 0; i < 120000; i++) printf "%s%.6f", (i ? ", " : ""), i / 1000.0; print "]" }' \
         > "$work/sweep/long_sweep.toml"
     { head -1 "$here/seeds/results.csv"
-      awk 'BEGIN { for (i = 0; i < 12000; i++) printf "%d,150,0,18.6676024482,22.2183231327,,,0.00243578587443,24,pass,,all criteria met\n", i }'; } \
+      awk 'BEGIN { for (i = 0; i < 13000; i++) printf "%d,150,0,18.6676024482,22.2183231327,,,0.00243578587443,24,pass,,all criteria met\n", i }'; } \
         > "$work/results/long.csv"
 fi
 status=0
