@@ -29,6 +29,7 @@ to = 40.0
 count = 41'
 scene missing "$(printf '%s\n' "$good_model" | grep -v '^c_T')"
 scene negative "$(printf '%s\n' "$good_model" | sed 's/^m = 8.0/m = -1.0/')"
+scene subnormal "$(printf '%s\n' "$good_model" | sed 's/^m = 8.0/m = 1e-310/')"
 scene unknown "$good_model
 c_X = 1.0"
 scene badtype "$good_model
@@ -54,6 +55,7 @@ printf '[model]\ntype = "matrices"\nM = "M2.mtx"\nK = "M2.mtx"\n[speeds]\nfrom =
 
 expect "c_T" eig "$dir/missing.toml" --speed 1
 expect "m = -1" eig "$dir/negative.toml" --speed 1
+expect "m = 1e-310: a subnormal number" eig "$dir/subnormal.toml" --speed 1
 expect "unknown key 'c_X'" eig "$dir/unknown.toml" --speed 1
 expect "d_G is not a number" eig "$dir/badtype.toml" --speed 1
 expect "no degree of freedom" eig "$dir/bothrigid.toml" --speed 1

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 #include <optional>
 #include <set>
 #include <string>
@@ -49,7 +50,16 @@ public:
         if (!std::isfinite(*v) || (strict ? *v <= min : *v < min))
             throw InputError(fmt::format("{}: [{}] {} = {}: out of range; allowed: {} {} ({})", file_, table_, key,
                                          *v, strict ? ">" : ">=", min, unit));
+        refuse_subnormal(key, *v);
         return *v;
+    }
+    // A subnormal double (0 < |v| < 2.2e-308) has lost precision, and its products
+    // underflow: never a meaningful parameter, and never silently used.
+    void refuse_subnormal(const std::string& key, double v) const {
+        if (v != 0.0 && std::fabs(v) < std::numeric_limits<double>::min())
+            throw InputError(fmt::format("{}: [{}] {} = {}: a subnormal number, which has lost precision; allowed: 0 "
+                                         "or a magnitude of at least {}",
+                                         file_, table_, key, v, std::numeric_limits<double>::min()));
     }
     double any_number(const std::string& key, const char* unit) const {
         const toml::node* n = t_.get(key);
@@ -58,6 +68,7 @@ public:
         std::optional<double> v = n->value<double>();
         if (!v || !std::isfinite(*v))
             throw InputError(fmt::format("{}: [{}] {} must be a finite number ({})", file_, table_, key, unit));
+        refuse_subnormal(key, *v);
         return *v;
     }
     long long integer(const std::string& key, long long fallback, long long min, long long max) const {
