@@ -14,6 +14,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <thread>
 #include <string>
 
@@ -204,11 +205,26 @@ Tracked track(const GyroscopicSystem& s, const SolverOptions& o, const std::vect
     return t;
 }
 
-// The GIL released for a long call that Ctrl-C can stop: SIGINT requests an
-// interrupt, the library notices it at its next safe point (between speeds,
-// designs, ODE steps) and throws Interrupted, raised here as KeyboardInterrupt.
+// Whether this is Python's main thread, the one its SIGINT handler serves.
+bool on_main_thread() {
+    const py::object threading = py::module_::import("threading");
+    return threading.attr("current_thread")().is(threading.attr("main_thread")());
+}
+
+// The GIL released for a long call that Ctrl-C can stop: on the main thread,
+// SIGINT requests an interrupt, the library notices it at its next safe point
+// (between speeds, designs, ODE steps) and throws Interrupted, raised here as
+// KeyboardInterrupt; one that came after the last safe point goes back to
+// Python's handler when the call returns. A call from another thread leaves
+// SIGINT to Python (the main thread's KeyboardInterrupt).
+struct MaybeSigint {
+    std::optional<InterruptOnSigint> scope;
+    explicit MaybeSigint(bool on) {
+        if (on) scope.emplace();
+    }
+};
 struct Released {
-    InterruptOnSigint sigint;
+    MaybeSigint sigint{on_main_thread()};   // first: it asks Python, with the GIL held
     py::gil_scoped_release free;
 };
 
@@ -490,7 +506,10 @@ PYBIND11_MODULE(_core, m) {
         {
             Released free;
             s.validate("response: the system");
-            for (std::size_t i = 0; i < w.size(); ++i) Z.row(static_cast<Eigen::Index>(i)) = unbalance_response(s, w[i], kind).transpose();
+            for (std::size_t i = 0; i < w.size(); ++i) {
+                throw_if_interrupted();
+                Z.row(static_cast<Eigen::Index>(i)) = unbalance_response(s, w[i], kind).transpose();
+            }
         }
         return Z;
     }, py::arg("system"), py::arg("speeds"), py::arg("solver"));

@@ -170,6 +170,11 @@ count = 3
 margin_percent = 10.0
 END
 "$cli" screen "$dir/tabled/sweep.toml" --limit 1 --out "$dir/tabled/r.csv" > /dev/null 2>&1 || { echo "FAIL: tabled study run"; fail=1; }
+# The same study run from its own folder (the table's path as written, not as resolved, counts).
+cp "$dir/tabled/r.csv" "$dir/tabled/r2.csv"
+cli_abs=$(cd "$(dirname "$cli")" && pwd)/$(basename "$cli")
+(cd "$dir/tabled" && "$cli_abs" screen sweep.toml --resume r2.csv > /dev/null 2>&1) ||
+    { echo "FAIL: the tabled study resumed from its own folder"; fail=1; }
 sed -i '3s/^0,/0.0,/' "$dir/tabled/bearings/drive_end.csv"   # the same numbers, other bytes
 expect "written by another study" screen "$dir/tabled/sweep.toml" --resume "$dir/tabled/r.csv"
 

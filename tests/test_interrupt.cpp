@@ -11,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 #include <cerrno>
+#include <csignal>
 #include <sys/wait.h>
 #include <vector>
 
@@ -85,4 +86,30 @@ TEST_CASE("an exception in a root search's or a minimum search's function reache
     };
     CHECK_THROWS_AS(find_smooth_minimum(bowl, 0.0, 0.4, 1.0, 1e-10), Interrupted);
     CHECK(find_root([](double x) { return x - 0.3; }, 0.0, 1.0, 1e-12) == Approx(0.3).epsilon(1e-11));
+}
+
+namespace {
+volatile std::sig_atomic_t g_previous_handler_calls = 0;
+extern "C" void count_sigint(int) { g_previous_handler_calls = g_previous_handler_calls + 1; }
+}  // namespace
+
+TEST_CASE("a SIGINT that no safe point reported goes to the previous handler when the scope ends", "[interrupt]") {
+    struct sigaction mine {}, before {};
+    mine.sa_handler = count_sigint;
+    sigemptyset(&mine.sa_mask);
+    sigaction(SIGINT, &mine, &before);
+    g_previous_handler_calls = 0;
+    {
+        const InterruptOnSigint scope;
+        raise(SIGINT);   // caught by the scope: a request, not the previous handler
+        CHECK(interrupt_requested());
+        CHECK(g_previous_handler_calls == 0);
+    }
+    CHECK(g_previous_handler_calls == 1);   // handed back, once
+    CHECK_FALSE(interrupt_requested());
+    {
+        const InterruptOnSigint scope;   // no SIGINT: nothing handed back
+    }
+    CHECK(g_previous_handler_calls == 1);
+    sigaction(SIGINT, &before, nullptr);
 }

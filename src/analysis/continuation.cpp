@@ -39,6 +39,9 @@ struct Solved {
     double w = 0.0;
     std::vector<Mode> track;
     std::vector<Mode> rigid;
+    // The smallest modulus of the modes beyond the tracked ones at the last full
+    // solve: a corrected mode must not slide onto one of them either.
+    double beyond = std::numeric_limits<double>::infinity();
 };
 
 struct Shared {
@@ -54,7 +57,10 @@ Solved track_of(const QuadraticSpectrum& s, const Shared& sh, double w) {
     Solved t;
     t.w = w;
     for (const Mode& m : s.modes)
-        if (within_band(m, 2.0 * sh.opt.band, s.real_tol)) t.track.push_back(m);
+        if (within_band(m, 2.0 * sh.opt.band, s.real_tol))
+            t.track.push_back(m);
+        else
+            t.beyond = std::min(t.beyond, std::abs(m.lambda));
     set_slopes(t.track, [&](double v) { return sh.model->sparse_at_speed(v); }, w, s.scale);
     t.rigid = s.rigid_body;
     return t;
@@ -139,11 +145,17 @@ std::optional<QuadraticSpectrum> branch_solve(const Shared& sh, const Solved& fr
         if (!std::isfinite(m.slope.real()) || !std::isfinite(m.slope.imag())) return std::nullopt;
         pred.push_back(m.lambda + h * m.slope);
     }
-    // The rigid-body pairs stay where they are if they still verify.
+    // The rigid-body pairs stay where they are if they still verify and the damping
+    // and gyroscopic terms do not act on them (C x = 0): then the zero eigenvalue keeps
+    // its multiplicity. A free rotor's tilt, which gyroscopic coupling turns into a
+    // nutation mode leaving zero, fails this and goes to the next path.
     std::vector<Mode> rigid = from.rigid;
     for (Mode& r : rigid) {
         r.backward_error = backward_error(action, r.lambda, r.right);
-        if (!(r.backward_error <= sh.opt.tolerance)) return std::nullopt;
+        Eigen::VectorXcd Mx, Cx, Kx;
+        action.apply(r.right, Mx, Cx, Kx);
+        const double c_scale = (action.norm_C + out.scale * action.norm_M) * r.right.norm();
+        if (!(r.backward_error <= sh.opt.tolerance) || !(Cx.norm() <= sh.opt.tolerance * c_scale)) return std::nullopt;
     }
     std::vector<Mode> track;
     for (size_t i = 0; i < from.track.size(); ++i) {
@@ -152,6 +164,7 @@ std::optional<QuadraticSpectrum> branch_solve(const Shared& sh, const Solved& fr
                                                              : std::numeric_limits<double>::infinity();
         for (size_t j = 0; j < pred.size(); ++j)
             if (j != i) gap = std::min({gap, std::abs(pred[i] - pred[j]), std::abs(pred[i] - std::conj(pred[j]))});
+        if (std::isfinite(from.beyond)) gap = std::min(gap, std::abs(from.beyond - std::abs(pred[i])));
         Mode m = from.track[i];
         m.lambda = pred[i];
         m.backward_error = std::numeric_limits<double>::infinity();
@@ -167,6 +180,7 @@ std::optional<QuadraticSpectrum> branch_solve(const Shared& sh, const Solved& fr
     next.w = w;
     next.rigid = rigid;
     next.track = track;
+    next.beyond = from.beyond;
     std::vector<Mode> modes;
     for (const Mode& m : track)
         if (within_band(m, sh.opt.band, out.real_tol)) modes.push_back(m);

@@ -323,7 +323,7 @@ QuadraticSpectrum get_spectrum(std::FILE* f) {
 }
 
 // Blocks of tasks in forked workers. A worker writes 1 + its spectra, or 0 +
-// the error kind (1 input, 2 solver, 3 other) + message, to its file.
+// the error kind (1 input, 2 solver, 3 other, 4 interrupted) + message, to its file.
 std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_t n, size_t workers,
                                                 const WorkerTask& task,
                                                 const std::function<void(size_t, size_t)>& progress) {
@@ -381,7 +381,10 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
                 put<char>(f, 1);
                 for (const auto& s : part) put_spectrum(f, s);
             } catch (const std::exception& e) {
-                const int kind = dynamic_cast<const InputError*>(&e) ? 1 : dynamic_cast<const SolverError*>(&e) ? 2 : 3;
+                const int kind = dynamic_cast<const InputError*>(&e)    ? 1
+                                 : dynamic_cast<const SolverError*>(&e) ? 2
+                                 : dynamic_cast<const Interrupted*>(&e) ? 4
+                                                                        : 3;
                 const std::string what = e.what();
                 try {
                     put<char>(f, 0);
@@ -398,8 +401,8 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
         pids.push_back(pid);
     }
     // Every worker is reaped; one killed by a signal is reported with its task.
-    // Polled, so that an interrupt of the parent alone (Python's Ctrl-C, a notebook's
-    // stop button) stops the workers at once.
+    // Polled, so that an interrupt requested in the parent alone (request_interrupt
+    // from another thread, a handler that does not reach the workers) stops them at once.
     std::exception_ptr crash;
     bool stopped = false;
     for (size_t k = 0; k < workers; ++k) {
@@ -409,7 +412,7 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
             if (r == pids[k] || (r < 0 && errno != EINTR)) break;
             if (!stopped && interrupt_requested()) {
                 stopped = true;
-                for (pid_t pid : pids) kill(pid, SIGKILL);
+                for (size_t j = k; j < workers; ++j) kill(pids[j], SIGKILL);   // the ones not yet reaped
             }
             struct timespec pause {0, 10'000'000};
             nanosleep(&pause, nullptr);
@@ -445,6 +448,7 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
                 const std::string what = get_string(f);
                 if (kind == 1) throw InputError(what);
                 if (kind == 2) throw SolverError(what);
+                if (kind == 4) throw Interrupted();
                 throw Error(what);
             }
         } catch (...) {

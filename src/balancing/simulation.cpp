@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <memory>
 #include <fmt/format.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
@@ -71,8 +72,20 @@ constexpr double kOdeProjectFactor = 1.5;
 // progress callback, and a run whose steps since the first half second project
 // more than 1.5 x max_steps stops then, not at the limit hours later (a run-up to
 // 1e9 rad/s).
+bool watch(Context* c, double t);
+
 bool keep_going(Context* c, double t) {
     if ((c->evaluations & 1023u) != 0) return true;
+    try {   // nothing may unwind through GSL's C frames
+        return watch(c, t);
+    } catch (...) {
+        c->failure = std::current_exception();
+        c->why = "the progress callback or the work function failed";
+        return false;
+    }
+}
+
+bool watch(Context* c, double t) {
     if (interrupt_requested()) {
         c->interrupted = true;
         c->why = "interrupted";
@@ -84,13 +97,7 @@ bool keep_going(Context* c, double t) {
     const double span = c->t_end - c->t0;
     const double fraction = span > 0.0 ? std::clamp((t - c->t0) / span, 0.0, 1.0) : 1.0;
     if (c->options->progress) {
-        try {
-            c->options->progress(fraction);
-        } catch (...) {
-            c->failure = std::current_exception();
-            c->why = "the progress callback failed";
-            return false;
-        }
+        c->options->progress(fraction);
         c->reported = true;
     }
     const double wall = std::chrono::duration<double>(now - c->start).count();
@@ -199,7 +206,10 @@ void integrate_ode(const OdeRhs& f, std::vector<double>& y, double t0, const std
     gsl_odeiv2_system sys{&c_rhs, m.implicit ? &c_jac : nullptr, y.size(), &c};
     double h0 = o.h0;
     if (!(h0 > 0.0)) h0 = t_out.empty() ? 1e-6 : std::max(1e-12, 1e-3 * std::fabs(t_out.front() - t0));
-    gsl_odeiv2_driver* d = gsl_odeiv2_driver_alloc_y_new(&sys, *m.type, h0, o.abs_tol, o.rel_tol);
+    // Freed on every way out, an exception of on_output or the progress callback included.
+    const std::unique_ptr<gsl_odeiv2_driver, void (*)(gsl_odeiv2_driver*)> owner(
+        gsl_odeiv2_driver_alloc_y_new(&sys, *m.type, h0, o.abs_tol, o.rel_tol), &gsl_odeiv2_driver_free);
+    gsl_odeiv2_driver* const d = owner.get();
     if (!d) throw SolverError("could not allocate the GSL ODE driver");
     gsl_odeiv2_driver_set_nmax(d, o.max_steps);
     c.driver = d;
@@ -217,7 +227,6 @@ void integrate_ode(const OdeRhs& f, std::vector<double>& y, double t0, const std
             }
         }
         if (status != GSL_SUCCESS && (c.interrupted || c.failure)) {
-            gsl_odeiv2_driver_free(d);
             if (c.failure) std::rethrow_exception(c.failure);
             throw Interrupted();
         }
@@ -235,7 +244,6 @@ void integrate_ode(const OdeRhs& f, std::vector<double>& y, double t0, const std
                                         "method"; break;
                 default: why = gsl_strerror(status);
             }
-            gsl_odeiv2_driver_free(d);
             throw SolverError(fmt::format("ODE integration ({}, abs_tol {}, rel_tol {}) failed at t = {:.9g} s: {}",
                                           m.name, o.abs_tol, o.rel_tol, t, why));
         }
@@ -247,7 +255,6 @@ void integrate_ode(const OdeRhs& f, std::vector<double>& y, double t0, const std
         stats->evaluations = c.evaluations;
         stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
-    gsl_odeiv2_driver_free(d);
 }
 
 namespace {

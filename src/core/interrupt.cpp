@@ -1,6 +1,7 @@
 #include <gyrokit/core/interrupt.hpp>
 
 #include <atomic>
+#include <exception>
 #include <mutex>
 
 namespace gyrokit {
@@ -40,7 +41,12 @@ InterruptOnSigint::~InterruptOnSigint() {
     const std::lock_guard<std::mutex> lock(g_install);
     if (--g_scopes > 0) return;
     sigaction(SIGINT, &g_previous, nullptr);
+    const bool pending = interrupt_requested();
     clear_interrupt();
+    // A SIGINT after the last safe point: the previous handler gets it now (Python
+    // raises KeyboardInterrupt at its next instruction). Not while Interrupted is
+    // thrown: that one already reports it.
+    if (pending && std::uncaught_exceptions() == 0) raise(SIGINT);
 }
 
 }  // namespace gyrokit

@@ -74,6 +74,7 @@ std::vector<double> numbers(const TomlKeys& e, const char* key, std::size_t coun
         if (!d || !std::isfinite(*d))
             throw InputError(fmt::format("{} entry {} is not a finite number; allowed: {}", e.where(key), v.size() + 1,
                                          want));
+        e.refuse_subnormal(fmt::format("{}[{}]", key, v.size()), *d);
         v.push_back(*d);
     }
     if (count ? v.size() != count : v.size() < 2)

@@ -57,8 +57,8 @@ public:
     // underflow: never a meaningful parameter, and never silently used.
     void refuse_subnormal(const std::string& key, double v) const {
         if (v != 0.0 && std::fabs(v) < std::numeric_limits<double>::min())
-            throw InputError(fmt::format("{}: [{}] {} = {}: a subnormal number, which has lost precision; allowed: 0 "
-                                         "or a magnitude of at least {}",
+            throw InputError(fmt::format("{}: [{}] {} = {}: a subnormal number, which has lost precision; allowed: "
+                                         "magnitudes of at least {}",
                                          file_, table_, key, v, std::numeric_limits<double>::min()));
     }
     double any_number(const std::string& key, const char* unit) const {

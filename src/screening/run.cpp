@@ -20,6 +20,8 @@
 #include <set>
 #include <sstream>
 #include <thread>
+#include <utility>
+#include <vector>
 #include <toml++/toml.h>
 
 #include <cerrno>
@@ -143,11 +145,22 @@ std::string file_bytes(const std::string& path) {
     return ss.str();
 }
 
+// A file's bytes folded into the hash in pieces (a named matrix may be gigabytes).
+std::uint64_t fnv1a_file(const std::string& path, std::uint64_t h) {
+    std::ifstream in(path, std::ios::binary);
+    std::vector<char> buf(1 << 16);
+    while (in.read(buf.data(), static_cast<std::streamsize>(buf.size())) || in.gcount() > 0)
+        h = fnv1a(std::string(buf.data(), static_cast<size_t>(in.gcount())), h);
+    return h;
+}
+
 // Every string value of the scene file that names a regular file (relative to the
-// scene's directory, as the scene readers resolve them), in document order. A
-// scene that cannot be read names none: loading it reports that.
-std::vector<std::string> named_files(const std::string& scene) {
-    std::vector<std::string> files;
+// scene's directory, as the scene readers resolve them), in document order, as
+// {the value as written, the resolved path}: the value, not the path, enters the
+// identity, so that a study run from another folder is the same study. A scene
+// that cannot be read names none: loading it reports that.
+std::vector<std::pair<std::string, std::string>> named_files(const std::string& scene) {
+    std::vector<std::pair<std::string, std::string>> files;
     toml::table root;
     try {
         root = toml::parse(read_toml_text(scene, "scene file"), scene);
@@ -163,7 +176,7 @@ std::vector<std::string> named_files(const std::string& scene) {
         } else if (const auto* str = n.as_string()) {
             const fs::path p = fs::path(str->get()).is_absolute() ? fs::path(str->get()) : dir / str->get();
             std::error_code ec;
-            if (!str->get().empty() && fs::is_regular_file(p, ec)) files.push_back(p.string());
+            if (!str->get().empty() && fs::is_regular_file(p, ec)) files.emplace_back(str->get(), p.string());
         }
     };
     walk(root);
@@ -572,7 +585,7 @@ std::string study_identity_line(const Sweep& s) {
     h = fnv1a("\x1f" + file_bytes(s.scene), h);
     // The files the scene names (bearing tables, Matrix Market matrices): a
     // bearing table edited between runs is another study too.
-    for (const std::string& f : named_files(s.scene)) h = fnv1a("\x1f" + f + "\x1f" + file_bytes(f), h);
+    for (const auto& [written, path] : named_files(s.scene)) h = fnv1a_file(path, fnv1a("\x1f" + written + "\x1f", h));
     h = fnv1a("\x1f" GYROKIT_VERSION, h);
     return fmt::format("# study {:016x} (sweep, base scene and criteria; gyrokit {})", h, GYROKIT_VERSION);
 }

@@ -25,7 +25,8 @@ void throw_if_interrupted();
 // For its lifetime, SIGINT requests an interrupt instead of running the previous
 // handler (Python's, which would only act after the call returns). Nested and
 // concurrent scopes share one installation; the last one out restores the old
-// handler and clears the request. interrupted() says whether SIGINT arrived.
+// handler, clears the request and, if a SIGINT came that no Interrupted reported
+// (it arrived after the last safe point), raises it again for the old handler.
 class InterruptOnSigint {
 public:
     InterruptOnSigint();
