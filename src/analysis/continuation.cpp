@@ -72,7 +72,9 @@ QuadraticSpectrum keep_band(QuadraticSpectrum s, const Shared& sh, double w) {
     for (Mode& m : s.modes)
         if (within_band(m, sh.opt.band, s.real_tol)) kept.push_back(std::move(m));
     s.modes = std::move(kept);
-    s.partial = true;
+    // Every mode within the band, as a full solve cut at the band: not a sparse
+    // window whose edge moves (the tracker's stricter window rules do not apply).
+    s.partial = false;
     set_slopes(s.modes, [&](double v) { return sh.model->sparse_at_speed(v); }, w, s.scale);
     if (!sh.opt.eig.left_vectors)
         for (Mode& m : s.modes) m.left.resize(0);
@@ -109,7 +111,7 @@ QuadraticSpectrum empty_spectrum(const SparsePencil& p, const PencilAction& acti
     QuadraticSpectrum out;
     out.scale = natural_frequency_scale(p.M.diagonal(), p.K.diagonal(), action.norm_M, action.norm_K);
     out.real_tol = 1e-7 * out.scale;
-    out.partial = true;
+    out.partial = false;   // as keep_band
     out.speed = w;
     return out;
 }

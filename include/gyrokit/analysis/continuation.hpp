@@ -47,7 +47,8 @@ struct ContinuationReport {
 //    max_basis_fraction of the DOFs (report->used = false).
 // 3. A full solve.
 // Every mode gets its error bound, whirl and slope as from the dense solver;
-// spectra are partial (the band), `method` names the path. At an anchor speed
+// spectra hold every mode within the band (not marked partial: the band is not a
+// moving window), `method` names the path. At an anchor speed
 // the full solve's modes in the band are returned.
 SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model, const std::vector<double>& speeds,
                                   const ContinuationOptions& opt, ContinuationReport* report = nullptr);
