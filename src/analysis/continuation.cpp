@@ -127,6 +127,19 @@ bool verified(const SparsePencil& p, const PencilAction& action, Mode& m, double
     return true;
 }
 
+// Mode m started at `predicted` and corrected on the full pencil: refined to 1e-3
+// of the tolerance where three factorizations get there (the error bounds then
+// stay near the full solve's), then verified.
+bool corrected(const SparsePencil& p, const PencilAction& action, Mode& m, cd predicted, double tolerance,
+               double scale, double real_tol) {
+    m.lambda = predicted;
+    m.backward_error = std::numeric_limits<double>::infinity();
+    m.left.resize(0);
+    for (int k = 0; k < 3 && !(m.backward_error <= 1e-3 * tolerance); ++k)
+        refine_eigenpair(p, action, m, 1e-3 * tolerance, scale);
+    return verified(p, action, m, tolerance, real_tol);
+}
+
 // Two refined pairs on one mode: a mode is missing.
 bool lands_on_another(const std::vector<Mode>& modes, const Mode& m) {
     for (const Mode& o : modes)
@@ -168,14 +181,7 @@ std::optional<QuadraticSpectrum> branch_solve(const Shared& sh, const Solved& fr
             if (j != i) gap = std::min({gap, std::abs(pred[i] - pred[j]), std::abs(pred[i] - std::conj(pred[j]))});
         if (std::isfinite(from.beyond)) gap = std::min(gap, std::abs(from.beyond - std::abs(pred[i])));
         Mode m = from.track[i];
-        m.lambda = pred[i];
-        m.backward_error = std::numeric_limits<double>::infinity();
-        m.left.resize(0);
-        // Refined to 1e-3 of the tolerance where three factorizations get there:
-        // the error bounds then stay near the full solve's.
-        for (int k = 0; k < 3 && !(m.backward_error <= 1e-3 * sh.opt.tolerance); ++k)
-            refine_eigenpair(p, action, m, 1e-3 * sh.opt.tolerance, out.scale);
-        if (!verified(p, action, m, sh.opt.tolerance, out.real_tol)) return std::nullopt;
+        if (!corrected(p, action, m, pred[i], sh.opt.tolerance, out.scale, out.real_tol)) return std::nullopt;
         if (!(std::abs(m.lambda - pred[i]) <= 0.3 * gap) || lands_on_another(track, m)) return std::nullopt;
         track.push_back(std::move(m));
     }
@@ -320,6 +326,27 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
         };
     };
     return f;
+}
+
+std::optional<Mode> follow_mode(const std::function<SparsePencil(double)>& pencil,
+                                const std::vector<std::pair<int, int>>& whirl_pairs, const Mode& from, double w,
+                                cd predicted, double reach, double tolerance) {
+    if (!(reach > 0.0) || from.right.size() == 0) return std::nullopt;
+    const SparsePencil p = pencil(w);
+    const PencilAction action = action_of(p);
+    const QuadraticSpectrum frame = empty_spectrum(p, action, w);
+    Mode m = from;
+    if (!corrected(p, action, m, predicted, tolerance, frame.scale, frame.real_tol)) return std::nullopt;
+    // The same mode: near its prediction, with (nearly) the same shape.
+    if (!(std::abs(m.lambda - predicted) <= reach) || !(mac(m.right, from.right) >= 0.9)) return std::nullopt;
+    std::vector<Mode> one{std::move(m)};
+    one[0].whirl = classify_whirl(one[0].lambda, one[0].right, whirl_pairs, frame.real_tol);
+    const Eigen::VectorXd t = sparse_dof_scaling(p, frame.scale);
+    const SparsePencil scaled{t.asDiagonal() * p.M * t.asDiagonal(), t.asDiagonal() * p.C * t.asDiagonal(),
+                              t.asDiagonal() * p.K * t.asDiagonal()};
+    set_error_bounds(one, action, action_of(scaled), t);
+    set_slopes(one, pencil, w, frame.scale);
+    return std::move(one[0]);
 }
 
 }  // namespace gyrokit

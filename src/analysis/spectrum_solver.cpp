@@ -120,6 +120,10 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
         o.shift_order = 0.0;
         return sparse_solver(pencil, whirl_pairs, o, true).make();
     };
+    f.follow = [pencil, whirl_pairs, tol = opt.verify_tolerance](const Mode& from, double w,
+                                                                  std::complex<double> predicted, double reach) {
+        return follow_mode(pencil, whirl_pairs, from, w, predicted, reach, tol);
+    };
     f.make = [pencil, whirl_pairs, opt, reuse]() -> SpectrumSolver {
         // The state vectors [lambda x; x] of the last speed's modes, summed: a
         // start vector rich in the wanted invariant subspace.

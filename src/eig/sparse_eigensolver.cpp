@@ -1,6 +1,7 @@
 #include <gyrokit/eig/sparse_eigensolver.hpp>
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/interrupt.hpp>
 
 #include <Eigen/SparseLU>
 #include <algorithm>
@@ -71,7 +72,47 @@ struct Ritz {
 
 struct ArnoldiSize {
     a_int N, nev, ncv;
+    // The values that must converge when not all do: those of the wanted modes
+    // (real shift: with their conjugates), without the margin at the window's edge.
+    a_int wanted;
 };
+
+// Restart budgets: a quick one, then the full one. The window's margin values may
+// sit in a dense cluster (a train of equal spans): the wanted values then converge
+// in a few restarts and the margin only after hundreds. Once the wanted ones have
+// converged and no other Ritz value can be nearer the shift, they are the result.
+constexpr int kQuickRestarts = 20;
+std::vector<a_int> restart_budgets(int max_iterations) {
+    if (max_iterations <= kQuickRestarts) return {max_iterations};
+    return {kQuickRestarts, max_iterations};
+}
+
+// After a stop at the restart limit: `converged` holds the wanted count of values
+// with the largest |theta| (nearest the shift), and every other Ritz value of the
+// Arnoldi matrix (`ritz`, with error estimates `bounds`) lies farther from the
+// shift than the farthest of them, by more than its estimate.
+// Values that `counts` rejects (conjugates below the real axis for a complex
+// shift) do not count towards `wanted`.
+template <class Counts>
+bool wanted_complete(std::vector<cd> converged, const std::vector<cd>& ritz, const std::vector<double>& bounds,
+                     a_int wanted, const Counts& counts) {
+    if (wanted < 1) return false;
+    std::sort(converged.begin(), converged.end(), [](cd a, cd b) { return std::abs(a) > std::abs(b); });
+    double edge = -1.0;
+    a_int seen = 0;
+    for (const cd c : converged)
+        if (counts(c) && ++seen == wanted) {
+            edge = std::abs(c);
+            break;
+        }
+    if (edge < 0.0) return false;
+    for (size_t k = 0; k < ritz.size(); ++k) {
+        bool found = false;
+        for (const cd c : converged) found = found || std::abs(c - ritz[k]) <= 1e-8 * std::abs(c);
+        if (!found && !(std::abs(ritz[k]) + std::abs(bounds[k]) < (1.0 - 1e-8) * edge)) return false;
+    }
+    return true;
+}
 
 // P(sigma) is singular or too nearly so for shift-invert (the shift sits on
 // an eigenvalue: sigma = 0 with rigid-body modes); the caller moves the shift.
@@ -126,17 +167,20 @@ void apply_operator(const LU& lu, const Eigen::SparseMatrix<Scalar>& M, const Ei
     Eigen::Map<Vec>(y + n, n) = w2;
 }
 
-void check_arnoldi(const char* routine, a_int info, const a_int* iparam, const SparseEigenOptions& opt,
-                   const ArnoldiSize& sz) {
-    // info 1 with every wanted value converged (a defective rigid-body block can
-    // keep ARPACK restarting) is a result: each pair is verified afterwards.
-    if (info == 1 && iparam[4] >= sz.nev) return;
-    if (info == 1)
-        throw SolverError(fmt::format("ARPACK reached {} restarts with {} of {} Ritz values converged; raise "
-                                      "the number of Lanczos vectors (lanczos_vectors = {}) or move the target closer "
-                                      "to the wanted modes",
-                                      opt.max_iterations, iparam[4], sz.nev, sz.ncv));
-    if (info != 0)
+// Stopped at the restart limit with `converged` of the wanted values: a result only
+// if they are complete (wanted_complete), else this error.
+SolverError not_converged(const SparseEigenOptions& opt, const ArnoldiSize& sz, a_int converged) {
+    return SolverError(fmt::format("ARPACK reached {} restarts with {} of {} Ritz values converged; raise the number "
+                                   "of Lanczos vectors (lanczos_vectors = {}) or move the target closer to the wanted "
+                                   "modes",
+                                   opt.max_iterations, converged, sz.nev, sz.ncv));
+}
+
+void check_arnoldi(const char* routine, a_int info, const ArnoldiSize& sz) {
+    // info 1 (the restart limit) is decided by the caller: every value converged
+    // (a defective rigid-body block can keep ARPACK restarting), or the wanted
+    // ones complete (a cluster at the margin); each pair is verified afterwards.
+    if (info != 0 && info != 1)
         throw SolverError(fmt::format("ARPACK {} failed with info = {}; raise lanczos_vectors = {}", routine, info,
                                       sz.ncv));
 }
@@ -159,39 +203,67 @@ std::vector<Ritz> ritz_complex(const SparsePencil& p, const SparseEigenOptions& 
     const SpC Mc = p.M.cast<cd>(), CsM = p.C.cast<cd>() + s * p.M.cast<cd>();
     const std::lock_guard<std::mutex> one_at_a_time(arpack_mutex());
     const a_int N = sz.N, nev = sz.nev, ncv = sz.ncv, lworkl = 3 * ncv * ncv + 5 * ncv;
-    std::vector<cd> resid(static_cast<size_t>(N)), V(static_cast<size_t>(N * ncv)), workd(3 * static_cast<size_t>(N)),
-        workl(static_cast<size_t>(lworkl));
-    std::vector<double> rwork(static_cast<size_t>(ncv));
-    a_int iparam[11] = {1, 0, opt.max_iterations, 1, 0, 0, 1, 0, 0, 0, 0};   // exact shifts, mode 1 on OP
-    a_int ipntr[14] = {};
-    a_int ido = 0, info = 0;
-    // ARPACK starts from resid (info = 1): the caller's start, else a fixed one.
-    if (opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0)
-        Eigen::Map<Eigen::VectorXcd>(resid.data(), N) = opt.start;
-    else
-        Eigen::Map<Eigen::VectorXcd>(resid.data(), N) = fixed_random_vector(N).cast<cd>();
-    info = 1;
-    while (true) {
-        arpack::naupd(ido, arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
-                      resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl,
-                      rwork.data(), info);
-        if (ido != -1 && ido != 1) break;
-        apply_operator(lu, Mc, CsM, s, workd.data() + ipntr[0] - 1, workd.data() + ipntr[1] - 1, n);
-    }
-    check_arnoldi("znaupd", info, iparam, opt, sz);
+    const std::vector<a_int> budgets = restart_budgets(opt.max_iterations);
+    for (size_t stage = 0; stage < budgets.size(); ++stage) {
+        const bool last = stage + 1 == budgets.size();
+        std::vector<cd> resid(static_cast<size_t>(N)), V(static_cast<size_t>(N * ncv)),
+            workd(3 * static_cast<size_t>(N)), workl(static_cast<size_t>(lworkl));
+        std::vector<double> rwork(static_cast<size_t>(ncv));
+        a_int iparam[11] = {1, 0, budgets[stage], 1, 0, 0, 1, 0, 0, 0, 0};   // exact shifts, mode 1 on OP
+        a_int ipntr[14] = {};
+        a_int ido = 0, info = 0;
+        // ARPACK starts from resid (info = 1): the caller's start, else a fixed one.
+        if (opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0)
+            Eigen::Map<Eigen::VectorXcd>(resid.data(), N) = opt.start;
+        else
+            Eigen::Map<Eigen::VectorXcd>(resid.data(), N) = fixed_random_vector(N).cast<cd>();
+        info = 1;
+        while (true) {
+            throw_if_interrupted();
+            arpack::naupd(ido, arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
+                          resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl,
+                          rwork.data(), info);
+            if (ido != -1 && ido != 1) break;
+            apply_operator(lu, Mc, CsM, s, workd.data() + ipntr[0] - 1, workd.data() + ipntr[1] - 1, n);
+        }
+        check_arnoldi("znaupd", info, sz);
+        if (info == 1 && iparam[4] < 1) {
+            if (!last) continue;
+            throw not_converged(opt, sz, iparam[4]);
+        }
+        // The Ritz values of the Arnoldi matrix and their estimates, for wanted_complete.
+        std::vector<cd> ritz(static_cast<size_t>(ncv));
+        std::vector<double> bounds(static_cast<size_t>(ncv));
+        for (a_int k = 0; k < ncv; ++k) {
+            ritz[static_cast<size_t>(k)] = workl[static_cast<size_t>(ipntr[5] - 1 + k)];
+            bounds[static_cast<size_t>(k)] = std::abs(workl[static_cast<size_t>(ipntr[7] - 1 + k)]);
+        }
 
-    std::vector<cd> d(static_cast<size_t>(nev + 1)), Z(static_cast<size_t>(N * nev)), workev(2 * static_cast<size_t>(ncv));
-    std::vector<a_int> select(static_cast<size_t>(ncv));
-    a_int info2 = 0;
-    arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), d.data(), Z.data(), N, cd(0.0), workev.data(),
-                  arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance, resid.data(), ncv,
-                  V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl, rwork.data(), info2);
-    if (info2 != 0) throw SolverError(fmt::format("ARPACK zneupd failed with info = {}", info2));
-    iterations = static_cast<int>(iparam[2]);
-    std::vector<Ritz> out;
-    for (a_int j = 0; j < iparam[4]; ++j)
-        out.push_back({d[static_cast<size_t>(j)], Eigen::Map<const Eigen::VectorXcd>(Z.data() + j * N, N)});
-    return out;
+        std::vector<cd> d(static_cast<size_t>(nev + 1)), Z(static_cast<size_t>(N * nev)),
+            workev(2 * static_cast<size_t>(ncv));
+        std::vector<a_int> select(static_cast<size_t>(ncv));
+        a_int info2 = 0;
+        arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), d.data(), Z.data(), N, cd(0.0), workev.data(),
+                      arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance, resid.data(),
+                      ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl, rwork.data(), info2);
+        if (info2 != 0) throw SolverError(fmt::format("ARPACK zneupd failed with info = {}", info2));
+        iterations = static_cast<int>(iparam[2]);
+        const a_int found = std::min<a_int>(iparam[4], nev);
+        // Upper half-plane eigenvalues count (the modes); their conjugates do not.
+        const auto upper = [&](cd theta) {
+            const cd l = s + 1.0 / theta;
+            return l.imag() >= -1e-7 * std::abs(l);
+        };
+        if (info == 1 && found < nev && !wanted_complete({d.begin(), d.begin() + found}, ritz, bounds, sz.wanted, upper)) {
+            if (!last) continue;
+            throw not_converged(opt, sz, iparam[4]);
+        }
+        std::vector<Ritz> out;
+        for (a_int j = 0; j < found; ++j)
+            out.push_back({d[static_cast<size_t>(j)], Eigen::Map<const Eigen::VectorXcd>(Z.data() + j * N, N)});
+        return out;
+    }
+    return {};
 }
 
 // Real shift: the operator is real, so real Arnoldi (dnaupd) on a real LU
@@ -207,57 +279,82 @@ std::vector<Ritz> ritz_real(const SparsePencil& p, const SparseEigenOptions& opt
     const SpD CsM = p.C + s * p.M;
     const std::lock_guard<std::mutex> one_at_a_time(arpack_mutex());
     const a_int N = sz.N, nev = sz.nev, ncv = sz.ncv, lworkl = 3 * ncv * ncv + 6 * ncv;
-    std::vector<double> resid(static_cast<size_t>(N)), V(static_cast<size_t>(N * ncv)),
-        workd(3 * static_cast<size_t>(N)), workl(static_cast<size_t>(lworkl));
-    a_int iparam[11] = {1, 0, opt.max_iterations, 1, 0, 0, 1, 0, 0, 0, 0};   // exact shifts, mode 1 on OP
-    a_int ipntr[14] = {};
-    a_int ido = 0, info = 0;
-    if (opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0)
-        // A real start spanning the same directions as the complex one.
-        Eigen::Map<Eigen::VectorXd>(resid.data(), N) = opt.start.real() + opt.start.imag();
-    else
-        Eigen::Map<Eigen::VectorXd>(resid.data(), N) = fixed_random_vector(N);
-    info = 1;
-    while (true) {
-        arpack::naupd(ido, arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
-                      resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl, info);
-        if (ido != -1 && ido != 1) break;
-        apply_operator(lu, p.M, CsM, s, workd.data() + ipntr[0] - 1, workd.data() + ipntr[1] - 1, n);
-    }
-    check_arnoldi("dnaupd", info, iparam, opt, sz);
-
-    // dneupd may return one value more than nev (a conjugate pair across the edge).
-    std::vector<double> dr(static_cast<size_t>(nev + 1)), di(static_cast<size_t>(nev + 1)),
-        Z(static_cast<size_t>(N * (nev + 1))), workev(3 * static_cast<size_t>(ncv));
-    std::vector<a_int> select(static_cast<size_t>(ncv));
-    a_int info2 = 0;
-    arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), dr.data(), di.data(), Z.data(), N, 0.0, 0.0,
-                  workev.data(), arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
-                  resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl, info2);
-    if (info2 != 0) throw SolverError(fmt::format("ARPACK dneupd failed with info = {}", info2));
-    iterations = static_cast<int>(iparam[2]);
-    std::vector<Ritz> out;
-    const a_int found = std::min<a_int>(iparam[4], nev + 1);
-    for (a_int j = 0; j < found; ++j) {
-        const Eigen::Map<const Eigen::VectorXd> re(Z.data() + j * N, N);
-        const cd theta(dr[static_cast<size_t>(j)], di[static_cast<size_t>(j)]);
-        if (theta.imag() == 0.0) {
-            out.push_back({theta, re.cast<cd>()});
-        } else if (theta.imag() > 0.0 && j + 1 < found) {
-            // A pair: columns j and j + 1 hold the real and imaginary part of
-            // the vector of the value with positive imaginary part.
-            const Eigen::Map<const Eigen::VectorXd> im(Z.data() + (j + 1) * N, N);
-            Eigen::VectorXcd z(N);
-            z.real() = re;
-            z.imag() = im;
-            out.push_back({theta, z});
-            out.push_back({std::conj(theta), z.conjugate()});
-            ++j;
+    const std::vector<a_int> budgets = restart_budgets(opt.max_iterations);
+    for (size_t stage = 0; stage < budgets.size(); ++stage) {
+        const bool last = stage + 1 == budgets.size();
+        std::vector<double> resid(static_cast<size_t>(N)), V(static_cast<size_t>(N * ncv)),
+            workd(3 * static_cast<size_t>(N)), workl(static_cast<size_t>(lworkl));
+        a_int iparam[11] = {1, 0, budgets[stage], 1, 0, 0, 1, 0, 0, 0, 0};   // exact shifts, mode 1 on OP
+        a_int ipntr[14] = {};
+        a_int ido = 0, info = 0;
+        if (opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0)
+            // A real start spanning the same directions as the complex one.
+            Eigen::Map<Eigen::VectorXd>(resid.data(), N) = opt.start.real() + opt.start.imag();
+        else
+            Eigen::Map<Eigen::VectorXd>(resid.data(), N) = fixed_random_vector(N);
+        info = 1;
+        while (true) {
+            throw_if_interrupted();
+            arpack::naupd(ido, arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
+                          resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl, info);
+            if (ido != -1 && ido != 1) break;
+            apply_operator(lu, p.M, CsM, s, workd.data() + ipntr[0] - 1, workd.data() + ipntr[1] - 1, n);
         }
-    }
-    return out;
-}
+        check_arnoldi("dnaupd", info, sz);
+        if (info == 1 && iparam[4] < 1) {
+            if (!last) continue;
+            throw not_converged(opt, sz, iparam[4]);
+        }
+        // The Ritz values of the Arnoldi matrix and their estimates, for wanted_complete.
+        std::vector<cd> ritz(static_cast<size_t>(ncv));
+        std::vector<double> bounds(static_cast<size_t>(ncv));
+        for (a_int k = 0; k < ncv; ++k) {
+            ritz[static_cast<size_t>(k)] = cd(workl[static_cast<size_t>(ipntr[5] - 1 + k)],
+                                              workl[static_cast<size_t>(ipntr[6] - 1 + k)]);
+            bounds[static_cast<size_t>(k)] = workl[static_cast<size_t>(ipntr[7] - 1 + k)];
+        }
 
+        // dneupd may return one value more than nev (a conjugate pair across the edge).
+        std::vector<double> dr(static_cast<size_t>(nev + 1)), di(static_cast<size_t>(nev + 1)),
+            Z(static_cast<size_t>(N * (nev + 1))), workev(3 * static_cast<size_t>(ncv));
+        std::vector<a_int> select(static_cast<size_t>(ncv));
+        a_int info2 = 0;
+        arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), dr.data(), di.data(), Z.data(), N, 0.0, 0.0,
+                      workev.data(), arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
+                      resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl, info2);
+        if (info2 != 0) throw SolverError(fmt::format("ARPACK dneupd failed with info = {}", info2));
+        iterations = static_cast<int>(iparam[2]);
+        const a_int found = std::min<a_int>(iparam[4], nev + 1);
+        if (info == 1 && found < nev) {
+            std::vector<cd> converged;
+            for (a_int j = 0; j < found; ++j) converged.emplace_back(dr[static_cast<size_t>(j)], di[static_cast<size_t>(j)]);
+            if (!wanted_complete(converged, ritz, bounds, sz.wanted, [](cd) { return true; })) {
+                if (!last) continue;
+                throw not_converged(opt, sz, iparam[4]);
+            }
+        }
+        std::vector<Ritz> out;
+        for (a_int j = 0; j < found; ++j) {
+            const Eigen::Map<const Eigen::VectorXd> re(Z.data() + j * N, N);
+            const cd theta(dr[static_cast<size_t>(j)], di[static_cast<size_t>(j)]);
+            if (theta.imag() == 0.0) {
+                out.push_back({theta, re.cast<cd>()});
+            } else if (theta.imag() > 0.0 && j + 1 < found) {
+                // A pair: columns j and j + 1 hold the real and imaginary part of
+                // the vector of the value with positive imaginary part.
+                const Eigen::Map<const Eigen::VectorXd> im(Z.data() + (j + 1) * N, N);
+                Eigen::VectorXcd z(N);
+                z.real() = re;
+                z.imag() = im;
+                out.push_back({theta, z});
+                out.push_back({std::conj(theta), z.conjugate()});
+                ++j;
+            }
+        }
+        return out;
+    }
+    return {};
+}
 
 }  // namespace
 
@@ -329,6 +426,8 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
         ArnoldiSize sz;
         sz.N = 2 * n;
         sz.nev = std::min<a_int>(2 * opt.modes + 2 + reserve, sz.N - 2);
+        // A real shift brings each mode's conjugate along; a complex one counts modes.
+        sz.wanted = std::min<a_int>((opt.shift.imag() == 0.0 ? 2 : 1) * opt.modes + reserve, sz.nev);
         sz.ncv = opt.lanczos_vectors > 0 ? opt.lanczos_vectors : std::max<a_int>(2 * sz.nev + 1, 30);
         sz.ncv = std::min<a_int>(sz.ncv, sz.N);
         if (sz.ncv <= sz.nev + 1)

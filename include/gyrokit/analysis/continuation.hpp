@@ -6,7 +6,11 @@
 
 #include <gyrokit/analysis/spectrum_solver.hpp>
 
+#include <complex>
+#include <functional>
 #include <memory>
+#include <optional>
+#include <utility>
 #include <vector>
 
 namespace gyrokit {
@@ -52,6 +56,16 @@ struct ContinuationReport {
 // the full solve's modes in the band are returned.
 SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model, const std::vector<double>& speeds,
                                   const ContinuationOptions& opt, ContinuationReport* report = nullptr);
+
+// One mode followed to speed w (a root search along one branch): `from`, a
+// verified mode of a nearby speed, started at `predicted` and corrected by
+// inverse iteration on the full P(lambda) at w (up to three factorizations, as
+// step 1 above). Kept if its right and left vectors verify to `tolerance`, it lies
+// within `reach` of the prediction and its shape has MAC >= 0.9 with `from`'s;
+// then with whirl, error bound and slope as from the solvers. Nothing otherwise.
+std::optional<Mode> follow_mode(const std::function<SparsePencil(double)>& pencil,
+                                const std::vector<std::pair<int, int>>& whirl_pairs, const Mode& from, double w,
+                                std::complex<double> predicted, double reach, double tolerance = 1e-10);
 
 // Whether a mode lies within the band: an oscillating one by its frequency, a
 // real (overdamped) one by its modulus.

@@ -44,6 +44,12 @@ struct SolverFactory {
     // frequency nu (rad/s), so that a root search refines a mode on its own shift and
     // the sweep's window cannot move the result. Empty for solvers of every mode.
     std::function<SpectrumSolver(double nu)> centred;
+    // Window solvers: a mode followed from a nearby speed to w by inverse iteration
+    // on the full pencil (follow_mode: predicted eigenvalue, reach), for a root
+    // search along one branch at the cost of a few factorizations instead of a
+    // window; nothing where the step does not verify (then the window is solved).
+    std::function<std::optional<Mode>(const Mode& from, double w, std::complex<double> predicted, double reach)>
+        follow;
     // Dense solvers: the continuation (continuation_solver) over `speeds` for the
     // modes within `band`. Empty for the others.
     std::function<SolverFactory(const std::vector<double>& speeds, double band, Workers workers)> continued;

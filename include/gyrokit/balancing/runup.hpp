@@ -18,7 +18,11 @@ struct RunupSettings {
     double max_speed = 0.0;            // rad/s
     double rise = 0.0, hold = 0.0, fall = 0.0;   // durations of the three phases, s
     std::vector<double> alpha;         // initial roller phases relative to the rotor, rad
-    OdeOptions ode{OdeMethod::Rk8pd, 1e-9, 1e-9};
+    OdeOptions ode = [] {
+        OdeOptions o;
+        o.abs_tol = o.rel_tol = 1e-9;
+        return o;
+    }();
     int history_points = 2000;         // uniform samples over the whole run
     double hold_window = 0.25;         // held speeds: means over this final fraction of the hold phase
 
