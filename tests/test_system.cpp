@@ -88,6 +88,16 @@ TEST_CASE("system: the automatic choice by size, dense refused above its limit",
     CHECK(sparse.kind == SolverKind::Sparse);
     CHECK(sparse.modes == kDefaultSparseModes);
     CHECK(sparse.notes.size() == 1);   // the default window is said
+    // The modes in range: dense (every mode, continued) up to kAutoDenseInRangeDofs.
+    const GyroscopicSystem mid = shaft(99), above = shaft(101);   // about 400 DOFs, either side
+    CHECK(mid.size() > kAutoSparseDofs);
+    CHECK(mid.size() <= kAutoDenseInRangeDofs);
+    CHECK(above.size() > kAutoDenseInRangeDofs);
+    SolverOptions in_range;
+    in_range.modes = kModesInRange;
+    CHECK(choose_solver(mid, in_range).kind == SolverKind::Dense);
+    CHECK(choose_solver(mid, {}).kind == SolverKind::Sparse);
+    CHECK(choose_solver(above, in_range).kind == SolverKind::Sparse);
     SolverOptions dense;
     dense.kind = SolverKind::Dense;
     CHECK_THROWS_WITH(choose_solver(huge, dense), Catch::Contains("above the dense limit of 3000"));

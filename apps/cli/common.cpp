@@ -31,7 +31,9 @@ void add_motion_option(CLI::App* c, Common& o) {
 void add_solver_options(CLI::App* c, Common& o) {
     c->add_option("--solver", o.solver, "eigensolver: dense (all modes, scaled QZ), sparse (ARPACK shift-invert, a "
                                         "few modes near --target) or auto (sparse above " +
-                                            std::to_string(kAutoSparseDofs) + " DOFs); default: the scene's, else auto");
+                                            std::to_string(kAutoSparseDofs) + " DOFs, above " +
+                                            std::to_string(kAutoDenseInRangeDofs) +
+                                            " for the modes in range); default: the scene's, else auto");
     c->add_option("--target", o.target, "frequency (in --units) the sparse search centres on; default 0: the lowest modes");
     c->add_option("--target-order", o.target_order,
                   "sparse: move the search centre with the speed, to --target + ORDER * speed (1: follow the 1x "

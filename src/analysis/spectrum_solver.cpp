@@ -41,7 +41,8 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
                                      sys.size(), kDenseLimit));
     // The solvers share ownership of one copy: a temporary system outlives the call.
     const auto model = std::make_shared<const GyroscopicSystem>(sys);
-    SolverFactory f{[model, eig]() -> SpectrumSolver {
+    SolverFactory f;
+    f.make = [model, eig]() -> SpectrumSolver {
                 return [model, eig](double w) {
                     throw_if_interrupted();
                     EigenOptions o = eig;
@@ -52,8 +53,7 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
                         for (Mode& m : s.modes) m.left.resize(0);
                     return s;
                 };
-            },
-            true};
+            };
     f.continued = [model, eig](const std::vector<double>& speeds, double band, Workers workers) {
         ContinuationOptions o;
         o.band = band;
@@ -189,9 +189,10 @@ std::string to_string(SolverKind k) {
     return "auto";
 }
 
-SolverKind resolve_solver_kind(int dofs, SolverKind requested) {
+SolverKind resolve_solver_kind(int dofs, SolverKind requested, int modes) {
     if (requested != SolverKind::Auto) return requested;
-    return dofs > kAutoSparseDofs ? SolverKind::Sparse : SolverKind::Dense;
+    return dofs > (modes == kModesInRange ? kAutoDenseInRangeDofs : kAutoSparseDofs) ? SolverKind::Sparse
+                                                                                     : SolverKind::Dense;
 }
 
 SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt) {
@@ -206,7 +207,7 @@ SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt
         throw InputError(fmt::format("lanczos_vectors = {}: allowed: 0 (automatic) or more", opt.lanczos_vectors));
     const int n = sys.size();
     SolverChoice c;
-    c.kind = resolve_solver_kind(n, opt.kind);
+    c.kind = resolve_solver_kind(n, opt.kind, opt.modes);
     if (c.kind == SolverKind::Dense) {
         c.modes = std::max(0, opt.modes);   // every mode is computed; a target does not matter
         c.make = dense_solver(sys, opt.eig);

@@ -76,6 +76,12 @@ std::string to_string(SolverKind k);
 
 // Auto: the sparse solver above this many DOFs, the dense one up to it.
 constexpr int kAutoSparseDofs = 200;
+// Auto for the modes in range (kModesInRange): the dense solver up to this many
+// DOFs. Its continuation tracks every mode in range, where a sparse window holds
+// a fixed number that need not reach the band; measured on data/compressor336.toml
+// (stability, 151 speeds, 2 threads: dense 5.7 s, every mode in range; a sparse
+// window 1.0 s) and on the same rotor in 168 elements (672 DOFs: 32 s and 2.4 s).
+constexpr int kAutoDenseInRangeDofs = 400;
 // The dense solver refuses models above this many DOFs (its 2n x 2n QZ needs
 // O(n^2) memory and O(n^3) time: minutes and gigabytes beyond it).
 constexpr int kDenseLimit = 3000;
@@ -104,8 +110,9 @@ struct SolverChoice {
     SolverFactory make;
     std::vector<std::string> notes;       // e.g. the default number of sparse modes
 };
-// Auto resolved by size (kAutoSparseDofs).
-SolverKind resolve_solver_kind(int dofs, SolverKind requested);
+// Auto resolved by size: kAutoSparseDofs, or kAutoDenseInRangeDofs where `modes`
+// is kModesInRange.
+SolverKind resolve_solver_kind(int dofs, SolverKind requested, int modes = 0);
 // Validates the options (InputError naming the field) and the system, and makes the solver.
 SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt);
 
