@@ -52,6 +52,34 @@ GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_le
     return g;
 }
 
+GeneralizedEigen lapack_dgeev(Eigen::MatrixXd A) {
+    const lapack_int n = static_cast<lapack_int>(A.rows());
+    Eigen::VectorXd wr(n), wi(n);
+    Eigen::MatrixXd vr(n, n);
+    double vl = 0.0;
+    const lapack_int info =
+        LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'V', n, A.data(), n, wr.data(), wi.data(), &vl, 1, vr.data(), n);
+    if (info != 0)
+        throw SolverError(fmt::format("LAPACK dgeev (the state matrix's QR) failed with info = {}; the matrix may "
+                                      "contain NaN or be too badly scaled",
+                                      info));
+    GeneralizedEigen g;
+    g.alpha.resize(n);
+    g.right.resize(n, n);
+    // Complex pairs are stored as (real part, imaginary part) in consecutive columns.
+    for (lapack_int j = 0; j < n; ++j) {
+        g.alpha(j) = {wr(j), wi(j)};
+        if (wi(j) == 0.0) {
+            g.right.col(j) = vr.col(j).cast<std::complex<double>>();
+        } else if (wi(j) > 0.0 && j + 1 < n) {
+            g.right.col(j).real() = vr.col(j);
+            g.right.col(j).imag() = vr.col(j + 1);
+            g.right.col(j + 1) = g.right.col(j).conjugate();
+        }
+    }
+    return g;
+}
+
 GeneralizedEigen lapack_zggev(Eigen::MatrixXcd A, Eigen::MatrixXcd B) {
     const lapack_int n = static_cast<lapack_int>(A.rows());
     Eigen::VectorXcd al(n), be(n);

@@ -18,6 +18,10 @@ struct GeneralizedEigen {
 // Hessenberg-triangular reduction) by default, dggev (the classic single-shift
 // QZ) with `classic`. Throws SolverError if QZ fails.
 GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_left, bool classic = false);
+// Standard eigenproblem A v = lambda v (dgeev: balancing, Hessenberg QR), right
+// eigenvectors only (alpha holds the eigenvalues, beta is empty). Throws SolverError
+// if QR fails.
+GeneralizedEigen lapack_dgeev(Eigen::MatrixXd A);
 // Complex pencil (zggev), right eigenvectors only.
 GeneralizedEigen lapack_zggev(Eigen::MatrixXcd A, Eigen::MatrixXcd B);
 

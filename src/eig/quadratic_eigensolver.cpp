@@ -170,43 +170,102 @@ QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left, bool
     return s;
 }
 
+// The state-matrix pairs are refined towards this backward error (the sparse
+// solver's verification tolerance).
+constexpr double kStateVerifyTolerance = 1e-10;
+
 QuadraticSpectrum solve_state(const QuadraticPencil& p) {
     const int n = static_cast<int>(p.M.rows());
     const PencilAction action = action_of(p);
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(p.M);
-    if (!lu.isInvertible())
-        throw SolverError("the state-matrix method needs an invertible M, and M is singular; "
-                          "use the QZ method (method = qz)");
+    // Scaled as for QZ: DOF scaling T and the time scale g (lambda = g mu), so that
+    // the state matrix of a fine FE model is not dominated by its highest modes.
+    const Eigen::VectorXd t = dof_scaling(p);
+    const double g = natural_scale(p);
+    const Eigen::MatrixXd Ms = (g * g) * (t.asDiagonal() * p.M * t.asDiagonal());
+    const Eigen::MatrixXd Cs = g * (t.asDiagonal() * p.C * t.asDiagonal());
+    const Eigen::MatrixXd Ks = t.asDiagonal() * p.K * t.asDiagonal();
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Ms);
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
     A.topRightCorner(n, n).setIdentity();
-    A.bottomLeftCorner(n, n) = -lu.solve(p.K);
-    A.bottomRightCorner(n, n) = -lu.solve(p.C);
-    Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
-    if (es.info() != Eigen::Success)
-        throw SolverError("the state-matrix eigensolver did not converge; use the QZ method (method = qz)");
-    // Left eigenvectors w^H A = lambda w^H are the rows of V^{-1}; the quadratic's
-    // is y = M^{-T} w2 (w2 the lower half), since y^H P(lambda) = 0 follows.
-    const Eigen::PartialPivLU<Eigen::MatrixXcd> vlu(es.eigenvectors());
-    const Eigen::MatrixXcd W = vlu.inverse().adjoint();
-    const Eigen::MatrixXcd Y = Eigen::FullPivLU<Eigen::MatrixXd>(p.M.transpose()).solve(Eigen::MatrixXd::Identity(n, n)).cast<cd>() * W.bottomRows(n);
+    A.bottomLeftCorner(n, n) = -lu.solve(Ks);
+    A.bottomRightCorner(n, n) = -lu.solve(Cs);
+    // A zero pivot can pass the condition estimate and leave infinities instead.
+    if (!(lu.rcond() > 1e-14) || !A.allFinite())
+        throw SolverError("the state-matrix method needs an invertible M, and M is singular; "
+                          "use the QZ method (method = qz)");
+    const GeneralizedEigen ev = lapack_dgeev(std::move(A));   // eigenvector [x; mu x]
+    const SparsePencil sp{p.M.sparseView(), p.C.sparseView(), p.K.sparseView()};
+    const PencilAction sa = sparse_pencil_action(sp);
     QuadraticSpectrum s;
     s.scale = natural_scale(p);
     s.real_tol = 1e-7 * s.scale;
     for (int j = 0; j < 2 * n; ++j) {
         Mode m;
-        m.lambda = es.eigenvalues()(j);
+        m.lambda = g * ev.alpha(j);
         if (m.lambda.imag() < -1e-7 * std::max(std::abs(m.lambda), s.scale)) continue;
-        m.right = unit_vector(es.eigenvectors().col(j).head(n));
-        m.left = unit_vector(Y.col(j));
-        m.backward_error = backward_error(action, m.lambda, m.right);
-        // The left vector from V^-1 may be far off where V is ill-conditioned; the
-        // condition number it gives is then no bound: such a mode gets none (infinite).
+        // The better half (the top where |mu| > 1 loses to rounding less), unscaled.
+        const Eigen::VectorXcd top = t.asDiagonal() * ev.right.col(j).head(n);
+        const Eigen::VectorXcd bottom = t.asDiagonal() * ev.right.col(j).tail(n);
+        const double et = backward_error(sa, m.lambda, top), eb = backward_error(sa, m.lambda, bottom);
+        m.right = unit_vector(et <= eb ? top : bottom);
+        m.backward_error = std::min(et, eb);
+        s.modes.push_back(std::move(m));
+    }
+    // Each pair refined and given its left vector on the quadratic itself (one sparse
+    // LU of P near lambda: inverse iteration, two-sided Rayleigh quotient), as the
+    // sparse solver verifies its pairs; the error bounds follow from both vectors.
+    std::vector<Mode> raw = s.modes;
+    // Aimed below the tolerance, to the level QZ reaches: the bounds then match QZ's.
+    for (Mode& m : s.modes) refine_eigenpair(sp, sa, m, 1e-6 * kStateVerifyTolerance, s.scale);
+    // Two vectors of one double eigenvalue turned to one direction: the later keeps
+    // its own vector and eigenvalue (its left vector from the refinement stays).
+    for (size_t i = 0; i < s.modes.size(); ++i)
+        for (size_t k = 0; k < i; ++k)
+            if (std::abs(s.modes[i].lambda - s.modes[k].lambda) <= 1e-8 * std::abs(s.modes[i].lambda) &&
+                mac(s.modes[i].right, s.modes[k].right) > 0.999 && raw[i].backward_error <= kStateVerifyTolerance) {
+                s.modes[i].lambda = raw[i].lambda;
+                s.modes[i].right = raw[i].right;
+                s.modes[i].backward_error = raw[i].backward_error;
+                break;
+            }
+    // A double eigenvalue (an isotropic rotor at standstill): its left vectors from
+    // separate refinements are any two of its left plane, so y^H P' x may nearly
+    // vanish and inflate the condition number. Turned biorthogonal to the right
+    // vectors (Y^H P'(lambda) X = I), as QZ's are, they give the bounds QZ gives.
+    std::vector<bool> done(s.modes.size(), false);
+    for (size_t i = 0; i < s.modes.size(); ++i) {
+        if (done[i] || s.modes[i].left.size() != n) continue;
+        std::vector<size_t> group{i};
+        for (size_t k = i + 1; k < s.modes.size(); ++k)
+            if (!done[k] && s.modes[k].left.size() == n &&
+                std::abs(s.modes[k].lambda - s.modes[i].lambda) <= 1e-6 * std::abs(s.modes[i].lambda))
+                group.push_back(k);
+        for (size_t k : group) done[k] = true;
+        if (group.size() < 2) continue;
+        const Eigen::Index k = static_cast<Eigen::Index>(group.size());
+        Eigen::MatrixXcd X(n, k), Y(n, k);
+        for (Eigen::Index c = 0; c < k; ++c) {
+            X.col(c) = s.modes[group[static_cast<size_t>(c)]].right;
+            Y.col(c) = s.modes[group[static_cast<size_t>(c)]].left;
+        }
+        const cd l = s.modes[i].lambda;
+        Eigen::MatrixXcd dX(n, k);   // P'(lambda) X
+        for (Eigen::Index c = 0; c < k; ++c)
+            dX.col(c) = (2.0 * l) * real_times(sp.M, X.col(c)) + real_times(sp.C, X.col(c));
+        const Eigen::MatrixXcd D = Y.adjoint() * dX;
+        const Eigen::FullPivLU<Eigen::MatrixXcd> dlu(D);
+        if (!dlu.isInvertible()) continue;
+        const Eigen::MatrixXcd Yb = Y * dlu.inverse().adjoint();
+        for (Eigen::Index c = 0; c < k; ++c) s.modes[group[static_cast<size_t>(c)]].left = unit_vector(Yb.col(c));
+    }
+    const Eigen::SparseMatrix<double> Mt = sp.M.transpose(), Ct = sp.C.transpose(), Kt = sp.K.transpose();
+    for (Mode& m : s.modes) {
+        // A left vector that does not solve y^H P(lambda) = 0 gives no bound (infinite).
+        if (m.left.size() != n) continue;
         const cd l = std::conj(m.lambda);
-        const Eigen::VectorXcd r = (l * l) * (p.M.transpose() * m.left) + l * (p.C.transpose() * m.left) +
-                                   p.K.transpose() * m.left;
+        const Eigen::VectorXcd r = (l * l) * real_times(Mt, m.left) + l * real_times(Ct, m.left) + real_times(Kt, m.left);
         const double a = std::abs(m.lambda);
         if (!(r.norm() <= 1e-8 * (a * a * action.norm_M + a * action.norm_C + action.norm_K))) m.left.resize(0);
-        s.modes.push_back(std::move(m));
     }
     return s;
 }
