@@ -1,6 +1,6 @@
 // The solvers on fuzzed small models: 1 to 6 DOFs, M, D, G, K and N with entries
 // from 1e-30 to 1e30 and exact zeros (singular and structurally singular pencils,
-// extreme scales, asymmetric M), at fuzzed speeds. Validation, the dense QZ, the
+// extreme scales, asymmetric M), at fuzzed speeds. Validation, the dense QZ and state matrix, the
 // sparse shift-invert Arnoldi, a Campbell diagram with its critical speeds and
 // the unbalance response may refuse with gyrokit's errors; they may not crash,
 // hang, or report an eigenvalue or critical speed that is not finite, or an
@@ -66,6 +66,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
     fuzz::expect_gyrokit_errors_only([&] {
         const QuadraticSpectrum s = solve_at_speed(sys, w, {});
+        for (const Mode& m : s.modes) {
+            require_finite(m.lambda.real());
+            require_finite(m.lambda.imag());
+        }
+    });
+    // The state-matrix method: scaled state matrix, dgeev, refinement on the quadratic.
+    fuzz::expect_gyrokit_errors_only([&] {
+        const QuadraticSpectrum s = solve_at_speed(sys, w, {EigenMethod::StateMatrix, false});
         for (const Mode& m : s.modes) {
             require_finite(m.lambda.real());
             require_finite(m.lambda.imag());
