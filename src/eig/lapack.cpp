@@ -52,13 +52,12 @@ GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_le
     return g;
 }
 
-GeneralizedEigen lapack_dgeev(Eigen::MatrixXd A) {
+GeneralizedEigen lapack_dgeev(Eigen::MatrixXd A, bool want_left) {
     const lapack_int n = static_cast<lapack_int>(A.rows());
     Eigen::VectorXd wr(n), wi(n);
-    Eigen::MatrixXd vr(n, n);
-    double vl = 0.0;
-    const lapack_int info =
-        LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'V', n, A.data(), n, wr.data(), wi.data(), &vl, 1, vr.data(), n);
+    Eigen::MatrixXd vl(want_left ? n : 1, want_left ? n : 1), vr(n, n);
+    const lapack_int info = LAPACKE_dgeev(LAPACK_COL_MAJOR, want_left ? 'V' : 'N', 'V', n, A.data(), n, wr.data(),
+                                          wi.data(), vl.data(), want_left ? n : 1, vr.data(), n);
     if (info != 0)
         throw SolverError(fmt::format("LAPACK dgeev (the state matrix's QR) failed with info = {}; the matrix may "
                                       "contain NaN or be too badly scaled",
@@ -66,16 +65,21 @@ GeneralizedEigen lapack_dgeev(Eigen::MatrixXd A) {
     GeneralizedEigen g;
     g.alpha.resize(n);
     g.right.resize(n, n);
+    if (want_left) g.left.resize(n, n);
     // Complex pairs are stored as (real part, imaginary part) in consecutive columns.
+    const auto unpack = [&](const Eigen::MatrixXd& v, Eigen::MatrixXcd& out, lapack_int j) {
+        if (wi(j) == 0.0) {
+            out.col(j) = v.col(j).cast<std::complex<double>>();
+        } else if (wi(j) > 0.0 && j + 1 < n) {
+            out.col(j).real() = v.col(j);
+            out.col(j).imag() = v.col(j + 1);
+            out.col(j + 1) = out.col(j).conjugate();
+        }
+    };
     for (lapack_int j = 0; j < n; ++j) {
         g.alpha(j) = {wr(j), wi(j)};
-        if (wi(j) == 0.0) {
-            g.right.col(j) = vr.col(j).cast<std::complex<double>>();
-        } else if (wi(j) > 0.0 && j + 1 < n) {
-            g.right.col(j).real() = vr.col(j);
-            g.right.col(j).imag() = vr.col(j + 1);
-            g.right.col(j + 1) = g.right.col(j).conjugate();
-        }
+        unpack(vr, g.right, j);
+        if (want_left) unpack(vl, g.left, j);
     }
     return g;
 }

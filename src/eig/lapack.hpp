@@ -18,10 +18,10 @@ struct GeneralizedEigen {
 // Hessenberg-triangular reduction) by default, dggev (the classic single-shift
 // QZ) with `classic`. Throws SolverError if QZ fails.
 GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_left, bool classic = false);
-// Standard eigenproblem A v = lambda v (dgeev: balancing, Hessenberg QR), right
-// eigenvectors only (alpha holds the eigenvalues, beta is empty). Throws SolverError
-// if QR fails.
-GeneralizedEigen lapack_dgeev(Eigen::MatrixXd A);
+// Standard eigenproblem A v = lambda v (dgeev: balancing, Hessenberg QR): alpha holds
+// the eigenvalues (beta is empty), right and optionally left (u^H A = lambda u^H)
+// eigenvectors. Throws SolverError if QR fails.
+GeneralizedEigen lapack_dgeev(Eigen::MatrixXd A, bool want_left = false);
 // Complex pencil (zggev), right eigenvectors only.
 GeneralizedEigen lapack_zggev(Eigen::MatrixXcd A, Eigen::MatrixXcd B);
 

@@ -173,6 +173,9 @@ QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left, bool
 // The state-matrix pairs are refined towards this backward error (the sparse
 // solver's verification tolerance).
 constexpr double kStateVerifyTolerance = 1e-10;
+// A pair straight from the state matrix whose right and left vectors both have
+// backward errors below this on the quadratic is kept as it is.
+constexpr double kStateRoundingLevel = 1e-14;
 
 QuadraticSpectrum solve_state(const QuadraticPencil& p) {
     const int n = static_cast<int>(p.M.rows());
@@ -193,7 +196,13 @@ QuadraticSpectrum solve_state(const QuadraticPencil& p) {
     if (!(lu.rcond() > 1e-14) || !A.allFinite())
         throw SolverError("the state-matrix method needs an invertible M, and M is singular; "
                           "use the QZ method (method = qz)");
-    const GeneralizedEigen ev = lapack_dgeev(std::move(A));   // eigenvector [x; mu x]
+    // A sparse (banded FE) pencil refines every pair with a cheap sparse LU, which also
+    // gives its left vector; a dense one takes the left vectors from dgeev (a quarter
+    // more QR time) and factorizes only where a pair is not at rounding level: n dense
+    // LUs would cost O(n^4).
+    const auto nonzeros = [](const Eigen::MatrixXd& X) { return (X.array() != 0.0).count(); };
+    const bool sparse_pencil = nonzeros(p.M) + nonzeros(p.C) + nonzeros(p.K) < Eigen::Index(n) * n / 2;
+    const GeneralizedEigen ev = lapack_dgeev(std::move(A), !sparse_pencil);   // right [x; mu x], left [u1; u2]
     const SparsePencil sp{p.M.sparseView(), p.C.sparseView(), p.K.sparseView()};
     const PencilAction sa = sparse_pencil_action(sp);
     QuadraticSpectrum s;
@@ -209,14 +218,37 @@ QuadraticSpectrum solve_state(const QuadraticPencil& p) {
         const double et = backward_error(sa, m.lambda, top), eb = backward_error(sa, m.lambda, bottom);
         m.right = unit_vector(et <= eb ? top : bottom);
         m.backward_error = std::min(et, eb);
+        // The quadratic's left vector from the state matrix's u = [u1; u2]: y = T M~^-T u2
+        // (u^H A = mu u^H gives (M~^-T u2)^H P~(mu) = 0, and P~ = T P T).
+        if (!sparse_pencil) {
+            const Eigen::VectorXcd u2 = ev.left.col(j).tail(n);
+            Eigen::VectorXcd y(n);
+            y.real() = lu.transpose().solve(Eigen::VectorXd(u2.real()));
+            y.imag() = lu.transpose().solve(Eigen::VectorXd(u2.imag()));
+            m.left = unit_vector(t.asDiagonal() * y);
+        }
         s.modes.push_back(std::move(m));
     }
-    // Each pair refined and given its left vector on the quadratic itself (one sparse
-    // LU of P near lambda: inverse iteration, two-sided Rayleigh quotient), as the
-    // sparse solver verifies its pairs; the error bounds follow from both vectors.
+    // Pairs that are not at rounding level on the quadratic itself (the right or the left
+    // vector) are refined there (one sparse LU of P near lambda: inverse iteration, the
+    // two-sided Rayleigh quotient, a new left vector), as the sparse solver verifies its
+    // pairs; the others need no factorization. The error bounds follow from both vectors.
+    const Eigen::SparseMatrix<double> Mt = sp.M.transpose(), Ct = sp.C.transpose(), Kt = sp.K.transpose();
+    const auto left_error = [&](const Mode& m) {
+        const cd l = std::conj(m.lambda);
+        const Eigen::VectorXcd r =
+            (l * l) * real_times(Mt, m.left) + l * real_times(Ct, m.left) + real_times(Kt, m.left);
+        const double a = std::abs(m.lambda);
+        return r.norm() / ((a * a * sa.norm_M + a * sa.norm_C + sa.norm_K) * m.left.norm());
+    };
     std::vector<Mode> raw = s.modes;
-    // Aimed below the tolerance, to the level QZ reaches: the bounds then match QZ's.
-    for (Mode& m : s.modes) refine_eigenpair(sp, sa, m, 1e-6 * kStateVerifyTolerance, s.scale);
+    for (Mode& m : s.modes)
+        if (m.left.size() != n || !(m.backward_error <= kStateRoundingLevel) ||
+            !(left_error(m) <= kStateRoundingLevel)) {
+            // Aimed at the level QZ reaches: the bounds then match QZ's.
+            refine_eigenpair(sp, sa, m, 1e-6 * kStateVerifyTolerance, s.scale);
+            ++s.refined;
+        }
     // Two vectors of one double eigenvalue turned to one direction: the later keeps
     // its own vector and eigenvalue (its left vector from the refinement stays).
     for (size_t i = 0; i < s.modes.size(); ++i)
@@ -258,7 +290,6 @@ QuadraticSpectrum solve_state(const QuadraticPencil& p) {
         const Eigen::MatrixXcd Yb = Y * dlu.inverse().adjoint();
         for (Eigen::Index c = 0; c < k; ++c) s.modes[group[static_cast<size_t>(c)]].left = unit_vector(Yb.col(c));
     }
-    const Eigen::SparseMatrix<double> Mt = sp.M.transpose(), Ct = sp.C.transpose(), Kt = sp.K.transpose();
     for (Mode& m : s.modes) {
         // A left vector that does not solve y^H P(lambda) = 0 gives no bound (infinite).
         if (m.left.size() != n) continue;
