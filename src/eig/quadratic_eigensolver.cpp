@@ -250,7 +250,7 @@ QuadraticSpectrum solve_state(const QuadraticPencil& p) {
             ++s.refined;
         }
     // Two vectors of one double eigenvalue turned to one direction: the later keeps
-    // its own vector and eigenvalue (its left vector from the refinement stays).
+    // its own vector and eigenvalue (and dgeev's left vector where there is one).
     for (size_t i = 0; i < s.modes.size(); ++i)
         for (size_t k = 0; k < i; ++k)
             if (std::abs(s.modes[i].lambda - s.modes[k].lambda) <= 1e-8 * std::abs(s.modes[i].lambda) &&
@@ -258,6 +258,7 @@ QuadraticSpectrum solve_state(const QuadraticPencil& p) {
                 s.modes[i].lambda = raw[i].lambda;
                 s.modes[i].right = raw[i].right;
                 s.modes[i].backward_error = raw[i].backward_error;
+                if (raw[i].left.size() == n) s.modes[i].left = raw[i].left;   // dgeev's, where it gave one
                 break;
             }
     // A double eigenvalue (an isotropic rotor at standstill): its left vectors from
