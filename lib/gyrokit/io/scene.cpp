@@ -4,10 +4,10 @@
 
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/bearing_csv.hpp>
-#include "io/fe_scene.hpp"
-#include "io/fluid_scene.hpp"
+#include "gyrokit/io/detail/fe_scene.hpp"
+#include "gyrokit/io/detail/fluid_scene.hpp"
 #include <gyrokit/io/matrix_market.hpp>
-#include "io/toml_keys.hpp"
+#include "gyrokit/io/detail/toml_keys.hpp"
 #include <gyrokit/models/gyrostat.hpp>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "io/fe_scene.hpp"
+#include "gyrokit/io/detail/fe_scene.hpp"
 
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/speed_range.hpp>

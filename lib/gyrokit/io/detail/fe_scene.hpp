@@ -5,7 +5,7 @@
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 
-#include "io/toml_keys.hpp"
+#include "gyrokit/io/detail/toml_keys.hpp"
 
 #include <string>
 

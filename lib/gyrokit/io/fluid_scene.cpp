@@ -1,4 +1,4 @@
-#include "io/fluid_scene.hpp"
+#include "gyrokit/io/detail/fluid_scene.hpp"
 
 #include <gyrokit/core/error.hpp>
 

@@ -1,4 +1,4 @@
-#include "eig/lapack.hpp"
+#include "gyrokit/eig/detail/lapack.hpp"
 
 #include <gyrokit/core/error.hpp>
 

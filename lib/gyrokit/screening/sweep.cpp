@@ -1,7 +1,7 @@
 #include <gyrokit/screening/sweep.hpp>
 
 #include <gyrokit/core/error.hpp>
-#include "io/toml_keys.hpp"
+#include "gyrokit/io/detail/toml_keys.hpp"
 #include <gyrokit/core/input_file.hpp>
 
 #include <algorithm>
