@@ -6,6 +6,7 @@
 // solve's in units of the sum of the two error bounds.
 // Exit status: 0 success, 2 bad input, 1 anything else.
 #include "bench_common.hpp"
+#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/continuation.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>

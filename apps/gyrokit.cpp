@@ -58,24 +58,6 @@ std::string option_hint(const CLI::App& app, int argc, char** argv) {
     return "";
 }
 
-// The library names its option fields; the command line calls them by its flags.
-std::string with_flags(std::string m) {
-    static const std::pair<const char*, const char*> fields[] = {
-        {"lanczos_vectors = ", "--lanczos "}, {"method = qz", "--method qz"}, {"modes = ", "--modes "},
-        {"target_order = ", "--target-order "}, {"solver '", "--solver '"}, {"directory ", "--dir "}};
-    // Only where a field starts a clause: "[analysis] modes = 3" in a scene message stays a key.
-    const auto starts_clause = [&](std::size_t at) {
-        for (const char* before : {"(", "raise ", ": ", "; "})
-            if (at >= std::strlen(before) && m.compare(at - std::strlen(before), std::strlen(before), before) == 0)
-                return true;
-        return at == 0;
-    };
-    for (const auto& [field, flag] : fields)
-        for (std::size_t at = m.find(field); at != std::string::npos; at = m.find(field, at + 1))
-            if (starts_clause(at)) m.replace(at, std::strlen(field), flag);
-    return m;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -128,10 +110,10 @@ int main(int argc, char** argv) {
         std::cout.flush();
         if (!std::cout) throw Error("cannot write the output (disk full, or the reading end was closed)");
     } catch (const InputError& e) {
-        std::cerr << "error: " << with_flags(e.what()) << "\n";
+        std::cerr << "error: " << e.message(cli::flag_words) << "\n";
         return 2;
     } catch (const SolverError& e) {
-        std::cerr << "solver error: " << with_flags(e.what()) << "\n";
+        std::cerr << "solver error: " << e.message(cli::flag_words) << "\n";
         return 3;
     } catch (const std::exception& e) {
         std::cerr << "error: " << e.what() << "\n";

@@ -2,6 +2,7 @@
 // library's system, scene and analyses with NumPy/SciPy arrays in and out.
 // The Python layer (gyrokit/__init__.py) adds keyword defaults from scenes,
 // result classes with to_pandas() and plot().
+#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/gyrokit.hpp>
 
 #include <pybind11/complex.h>
@@ -183,10 +184,19 @@ py::dict campbell_dict(const CampbellDiagram& cd) {
 }
 
 // Speeds solved in parallel on threads: a Python host must not fork.
+// Python's keyword arguments for the library's option fields.
+std::string keyword_words(const std::string& field) {
+    if (field == "lanczos_vectors") return "lanczos =";
+    return "";   // the others are named as in the library
+}
+
+// The library's parallelism rule; its note (jobs capped to the cores) as a Python warning.
 Workers threads(int jobs) {
-    if (jobs < 0) throw InputError("jobs = " + std::to_string(jobs) + ": allowed: 0 (all cores) or a count");
-    const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    return Workers{jobs == 0 ? cores : std::min(jobs, cores), WorkerKind::Threads};
+    std::vector<std::string> notes;
+    const int count = worker_count(jobs, &notes);
+    for (const auto& n : notes)
+        py::module_::import("warnings").attr("warn")(spell_fields(n, keyword_words), py::module_::import("builtins").attr("RuntimeWarning"));
+    return Workers{count, WorkerKind::Threads};
 }
 
 // The solver the options choose and the Campbell diagram it tracks over w (without the interpreter).
@@ -195,10 +205,10 @@ struct Tracked {
     CampbellDiagram diagram;
 };
 Tracked track(const GyroscopicSystem& s, const SolverOptions& o, const std::vector<double>& w,
-              const std::vector<int>& harmonics, int jobs) {
+              const std::vector<int>& harmonics, Workers workers) {
     Tracked t;
     t.solver = choose_solver(s, o);
-    CampbellOptions co = tracking_options(t.solver, o.modes, w, harmonics, threads(jobs));
+    CampbellOptions co = tracking_options(t.solver, o.modes, w, harmonics, workers);
     co.eig = o.eig;
     t.solver.make = tracking_solver(t.solver.make, co, w);
     t.diagram = campbell(t.solver.make, w, co);
@@ -241,11 +251,11 @@ PYBIND11_MODULE(_core, m) {
         } catch (const Interrupted&) {
             PyErr_SetNone(PyExc_KeyboardInterrupt);
         } catch (const InputError& e) {
-            PyErr_SetString(input_error.ptr(), e.what());
+            PyErr_SetString(input_error.ptr(), e.message(keyword_words).c_str());
         } catch (const SolverError& e) {
-            PyErr_SetString(solver_error.ptr(), e.what());
+            PyErr_SetString(solver_error.ptr(), e.message(keyword_words).c_str());
         } catch (const Error& e) {
-            PyErr_SetString(error.ptr(), e.what());
+            PyErr_SetString(error.ptr(), e.message(keyword_words).c_str());
         }
     });
 
@@ -371,10 +381,11 @@ PYBIND11_MODULE(_core, m) {
                          int jobs) {
         const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
         const std::vector<double> w = checked_speeds(speeds);
+        const Workers workers = threads(jobs);
         CampbellDiagram cd;
         {
             Released free;
-            Tracked t = track(s, o, w, harmonics, jobs);
+            Tracked t = track(s, o, w, harmonics, workers);
             cd = std::move(t.diagram);
             cd.notes.insert(cd.notes.begin(), t.solver.notes.begin(), t.solver.notes.end());
             if (std::isfinite(cd.band)) cd.notes.push_back(out_of_range_note(cd, SpeedUnit::parse("rad/s")));
@@ -389,13 +400,14 @@ PYBIND11_MODULE(_core, m) {
                                 int jobs) {
         const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
         const std::vector<double> w = checked_speeds(speeds);
+        const Workers workers = threads(jobs);
         for (int h : harmonics)
             if (h < 1) throw InputError("harmonics: " + std::to_string(h) + " is not allowed; allowed: whole numbers >= 1");
         std::vector<CriticalSpeed> cs;
         {
             Released free;
-            const Tracked t = track(s, o, w, harmonics, jobs);
-            cs = critical_speeds(t.solver.make, t.diagram, harmonics, threads(jobs));
+            const Tracked t = track(s, o, w, harmonics, workers);
+            cs = critical_speeds(t.solver.make, t.diagram, harmonics, workers);
             set_amplification_factors(cs, s);
         }
         const auto n = static_cast<py::ssize_t>(cs.size());
@@ -433,11 +445,12 @@ PYBIND11_MODULE(_core, m) {
                           int jobs) {
         const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
         const std::vector<double> w = checked_speeds(speeds);
+        const Workers workers = threads(jobs);
         std::vector<StabilityChange> ch;
         {
             Released free;
-            const Tracked t = track(s, o, w, harmonics, jobs);
-            ch = stability_changes(t.solver.make, t.diagram, threads(jobs));
+            const Tracked t = track(s, o, w, harmonics, workers);
+            ch = stability_changes(t.solver.make, t.diagram, workers);
         }
         const auto n = static_cast<py::ssize_t>(ch.size());
         py::array_t<double> speed(n), bound(n);

@@ -58,6 +58,15 @@ grep -q "<svg" "$dir/friswell.svg" || { echo "FAIL: friswell_5_9_1 Campbell plot
 # Bad options.
 expect "--solver 'fast': allowed: auto, dense, sparse" campbell "$data/fe_rotor.toml" --solver fast
 expect "--lanczos -1" eig "$data/fe_rotor.toml" --speed 0 --lanczos -1
+# The library names its option fields structurally; the command line writes its flags.
+expect "--lanczos 3: must exceed 2 * modes + 3" eig "$data/fe_rotor.toml" --speed 0 --solver sparse --lanczos 3 --modes 6
+expect "--motion 'sideways': allowed: lateral, all, axial, torsional" eig "$data/fe_rotor.toml" --speed 0 --motion sideways
+expect "--motion 'all' does not apply to" eig "$data/centrifuge.toml" --speed 0 --motion all
+# One parallelism rule: more jobs than cores are capped, with a note.
+"$cli" campbell "$data/fe_rotor.toml" --jobs 100000 --speeds 0:100:3 2>&1 >/dev/null | grep -q "^note: --jobs 100000 capped to the" ||
+    { echo "FAIL: campbell --jobs 100000 without the note on the cap"; fail=1; }
+"$cli" screen "$data/screen_centrifuge.toml" --jobs 100000 --limit 1 --out "$dir/capped.csv" 2>&1 >/dev/null | grep -q "^note: --jobs 100000 capped to the" ||
+    { echo "FAIL: screen --jobs 100000 without the note on the cap"; fail=1; }
 expect "--dofs: 'x99' is not a DOF" response "$data/fe_rotor.toml" --dofs x99 --speeds 1:2:2
 
 # Bearing tables: one speed, unsorted speeds, a DOF index out of range.

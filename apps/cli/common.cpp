@@ -1,5 +1,6 @@
 #include "cli/common.hpp"
 
+#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <cmath>
@@ -56,6 +57,16 @@ SolverChoice plan_solver(const Context& c, int modes) {
     return choice;
 }
 
+std::string flag_words(const std::string& field) {
+    static const std::pair<const char*, const char*> flags[] = {
+        {"directory", "--dir"},       {"jobs", "--jobs"},     {"lanczos_vectors", "--lanczos"},
+        {"method", "--method"},       {"modes", "--modes"},   {"motion", "--motion"},
+        {"solver", "--solver"},       {"target", "--target"}, {"target_order", "--target-order"}};
+    for (const auto& [name, flag] : flags)
+        if (field == name) return flag;
+    return "";
+}
+
 void require_dense(const Context& c, const std::string& command) {
     if (c.scene.dofs() > kDenseLimit)
         throw InputError(fmt::format("{}: gyrokit {} needs the dense model, which exists up to {} DOFs; this model "
@@ -63,18 +74,7 @@ void require_dense(const Context& c, const std::string& command) {
                                      c.scene.path, command, kDenseLimit, c.scene.dofs()));
 }
 
-Scene load_motion_scene(const Common& o) {
-    try {
-        return load_scene(o.scene, {}, o.motion);
-    } catch (const InputError& e) {
-        // The library names the motion; on the command line it is the option.
-        const std::string what = e.what();
-        if (!o.motion.empty() && what.rfind("motion '", 0) == 0) throw InputError("--" + what);
-        if (!o.motion.empty() && what.find(": motion '") != std::string::npos)
-            throw InputError("--motion " + o.motion + ": " + what);
-        throw;
-    }
-}
+Scene load_motion_scene(const Common& o) { return load_scene(o.scene, {}, o.motion); }
 
 Context open_scene(const Common& o, bool need_speeds) {
     Context c;
@@ -83,16 +83,11 @@ Context open_scene(const Common& o, bool need_speeds) {
     c.eig.method = parse_eigen_method(o.method);
     check_plot_path(o.plot);
     if (o.lanczos < 0) throw InputError(fmt::format("--lanczos {}: allowed: 0 (automatic) or a count", o.lanczos));
-    if (o.jobs < 0) throw InputError(fmt::format("--jobs {}: allowed: 0 (all cores) or a count", o.jobs));
     if (!o.solver.empty() && o.solver != "auto" && o.solver != "dense" && o.solver != "sparse")
         throw InputError("--solver '" + o.solver + "': allowed: auto, dense, sparse");
-    // More workers than cores only add processes, memory and temporary files.
-    const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    c.jobs = o.jobs > 0 ? o.jobs : cores;
-    if (c.jobs > cores) {
-        std::cerr << "note: --jobs " << c.jobs << " capped to the " << cores << " cores of this machine\n";
-        c.jobs = cores;
-    }
+    std::vector<std::string> notes;
+    c.jobs = worker_count(o.jobs, &notes);
+    for (const auto& n : notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
     c.scene = load_motion_scene(o);
     c.solver = c.scene.solver_options();
     c.solver.eig = c.eig;

@@ -2,7 +2,7 @@
 // parsing of speeds and harmonics, plotting.
 #pragma once
 
-#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 #include <gyrokit/io/plot.hpp>
@@ -24,6 +24,10 @@ struct Command {
     std::function<void(std::ostream&)> run;
 };
 
+// The command line's words for the library's option fields (Error::message,
+// notes): modes -> "--modes", lanczos_vectors -> "--lanczos", ...
+std::string flag_words(const std::string& field);
+
 // Options every scene command shares.
 struct Common {
     std::string scene, format = "table", units = "rad/s", speeds, method = "qz", plot;
@@ -36,7 +40,7 @@ struct Common {
 void add_common(CLI::App* c, Common& o, bool with_speeds);
 // --motion: an FE rotor's DOF set (lateral, all, axial, torsional) in place of the scene's.
 void add_motion_option(CLI::App* c, Common& o);
-// The scene with --motion applied; errors about the motion name the option.
+// The scene with --motion applied.
 Scene load_motion_scene(const Common& o);
 // --solver, --target, --target-order, --lanczos, --jobs.
 void add_solver_options(CLI::App* c, Common& o);

@@ -1,4 +1,5 @@
 // eig, campbell, critical, stability, pervasive, response, export.
+#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>

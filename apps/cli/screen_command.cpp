@@ -60,11 +60,12 @@ std::vector<Command> add_screen_commands(CLI::App& app) {
         const TableFormat fmt_out = parse_table_format(o->format);
         check_plot_path(o->plot);
         if (!o->out.empty() && !o->resume.empty()) throw InputError("--out and --resume: give one of them");
-        if (o->jobs < 0 || o->jobs > 4096) throw InputError(fmt::format("--jobs {}: allowed: 1 to 4096", o->jobs));
         if (o->limit < 0) throw InputError(fmt::format("--limit {}: allowed: >= 0", o->limit));
         RunOptions ro;
         ro.shard = Shard::parse(o->shard);
-        ro.jobs = o->jobs > 0 ? o->jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+        std::vector<std::string> notes;
+        ro.jobs = worker_count(o->jobs, &notes);
+        for (const auto& n : notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
         ro.out = o->resume.empty() ? o->out : o->resume;
         ro.resume = !o->resume.empty();
         ro.limit = static_cast<std::size_t>(o->limit);

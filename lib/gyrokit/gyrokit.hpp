@@ -8,7 +8,9 @@
 #include <gyrokit/analysis/mode_shapes.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
 #include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/analysis/workers.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/balancing/autobalancer.hpp>
 #include <gyrokit/balancing/balancer_scene.hpp>

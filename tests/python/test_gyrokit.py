@@ -348,8 +348,14 @@ def test_fluid_rotor_from_keywords_and_bad_arguments():
         gk.System(M=np.ones(4), K=K)
     with pytest.raises(gk.InputError, match="unbalance has 3 entries"):
         gk.System(M=M, K=K, unbalance=np.ones(3))
-    with pytest.raises(gk.InputError, match="jobs"):
+    with pytest.raises(gk.InputError, match="jobs = -2: allowed"):
         gk.campbell(gk.System(M=M, K=K), [0.0, 1.0], jobs=-2)
+    # The library's option fields in Python's keywords (lanczos, not lanczos_vectors);
+    # more jobs than cores: capped, with a warning (the CLI's note).
+    with pytest.raises(gk.InputError, match=r"^lanczos = 3: must exceed"):
+        gk.eig(gk.load_scene(scene("fe_rotor.toml")), 0.0, solver="sparse", modes=6, lanczos=3)
+    with pytest.warns(RuntimeWarning, match="jobs = 100000 capped to the"):
+        gk.campbell(gk.System(M=M, K=K), [0.0, 1.0], jobs=100000)
     with pytest.raises(gk.InputError, match="finite number"):
         gk.gyrostat(A_G=float("inf"))
     assert "Campbell diagram" in gk.campbell.__doc__

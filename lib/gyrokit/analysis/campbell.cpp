@@ -1,3 +1,4 @@
+#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/campbell.hpp>
 
 #include <gyrokit/analysis/assignment.hpp>

@@ -1,3 +1,4 @@
+#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 
 #include <gyrokit/analysis/scalar_search.hpp>

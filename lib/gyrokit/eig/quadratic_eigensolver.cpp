@@ -195,7 +195,7 @@ QuadraticSpectrum solve_state(const QuadraticPencil& p) {
     // A zero pivot can pass the condition estimate and leave infinities instead.
     if (!(lu.rcond() > 1e-14) || !A.allFinite())
         throw SolverError("the state-matrix method needs an invertible M, and M is singular; "
-                          "use the QZ method (method = qz)");
+                          "use the QZ method (" + option_field("method") + " qz)");
     // A sparse (banded FE) pencil refines every pair with a cheap sparse LU, which also
     // gives its left vector; a dense one takes the left vectors from dgeev (a quarter
     // more QR time) and factorizes only where a pair is not at rounding level: n dense
@@ -351,7 +351,7 @@ QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& 
         s.notes.push_back(fmt::format("{} of {} eigenvalues have an error bound above {} of their modulus: the {} "
                                       "method cannot vouch for them{}",
                                       loose, s.modes.size(), kVouchTolerance, s.method,
-                                      opt.method == EigenMethod::StateMatrix ? "; use the QZ method (method = qz)"
+                                      opt.method == EigenMethod::StateMatrix ? "; use the QZ method (" + option_field("method") + " qz)"
                                                                              : " (see the error_bound column)"));
     return s;
 }

@@ -177,9 +177,9 @@ void apply_operator(const LU& lu, const Eigen::SparseMatrix<Scalar>& M, const Ei
 // if they are complete (wanted_complete), else this error.
 SolverError not_converged(const SparseEigenOptions& opt, const ArnoldiSize& sz, a_int converged) {
     return SolverError(fmt::format("ARPACK reached {} restarts with {} of {} Ritz values converged; raise the number "
-                                   "of Lanczos vectors (lanczos_vectors = {}) or move the target closer to the wanted "
+                                   "of Lanczos vectors ({} {}) or move the target closer to the wanted "
                                    "modes",
-                                   opt.max_iterations, converged, sz.nev, sz.ncv));
+                                   opt.max_iterations, converged, sz.nev, option_field("lanczos_vectors"), sz.ncv));
 }
 
 void check_arnoldi(const char* routine, a_int info, const ArnoldiSize& sz) {
@@ -187,8 +187,8 @@ void check_arnoldi(const char* routine, a_int info, const ArnoldiSize& sz) {
     // (a defective rigid-body block can keep ARPACK restarting), or the wanted
     // ones complete (a cluster at the margin); each pair is verified afterwards.
     if (info != 0 && info != 1)
-        throw SolverError(fmt::format("ARPACK {} failed with info = {}; raise lanczos_vectors = {}", routine, info,
-                                      sz.ncv));
+        throw SolverError(fmt::format("ARPACK {} failed with info = {}; raise {} {}", routine, info,
+                                      option_field("lanczos_vectors"), sz.ncv));
 }
 
 // Complex shift: complex Arnoldi (znaupd) on the complex operator.
@@ -414,8 +414,8 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
     const int n = static_cast<int>(p.M.rows());
     if (n < 2) throw InputError("the sparse eigensolver needs at least 2 DOFs; use the dense solver");
     if (opt.modes < 1 || 2 * opt.modes + 2 > 2 * n - 1)
-        throw InputError(fmt::format("modes = {}: allowed for this model with {} DOFs: 1 to {}", opt.modes, n,
-                                     std::max(1, n - 2)));
+        throw InputError(fmt::format("{} {}: allowed for this model with {} DOFs: 1 to {}", option_field("modes"),
+                                     opt.modes, n, std::max(1, n - 2)));
     if (!(opt.verify_tolerance > 0.0 && opt.verify_tolerance < 1.0))
         throw InputError(fmt::format("verify_tolerance {}: allowed: 0 < tolerance < 1", opt.verify_tolerance));
     const PencilAction action = action_of(p);
@@ -437,7 +437,8 @@ SparseSpectrum solve_quadratic_sparse(const SparsePencil& p, const SparseEigenOp
         sz.ncv = opt.lanczos_vectors > 0 ? opt.lanczos_vectors : std::max<a_int>(2 * sz.nev + 1, 30);
         sz.ncv = std::min<a_int>(sz.ncv, sz.N);
         if (sz.ncv <= sz.nev + 1)
-            throw InputError(fmt::format("lanczos_vectors = {}: must exceed 2 * modes + 3 = {}", sz.ncv, sz.nev + 1));
+            throw InputError(fmt::format("{} {}: must exceed 2 * modes + 3 = {}", option_field("lanczos_vectors"),
+                                             sz.ncv, sz.nev + 1));
         // The shift, moved off a singular P(sigma) in steps of the natural scale.
         SparseEigenOptions o = opt;
         std::string why;

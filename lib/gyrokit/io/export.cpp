@@ -35,7 +35,7 @@ ExportReport export_matrices(const GyroscopicSystem& sys, double w, const std::s
     sys.validate("export");
     std::error_code ec;
     fs::create_directories(dir, ec);
-    if (ec) throw InputError(fmt::format("directory {}: cannot create it: {}", dir, ec.message()));
+    if (ec) throw InputError(fmt::format("{} {}: cannot create it: {}", option_field("directory"), dir, ec.message()));
     ExportReport report;
     const auto put = [&](const std::string& name, const auto& A, const std::string& what) {
         write_matrix_market((fs::path(dir) / (name + ".mtx")).string(), A, what);

@@ -1,3 +1,4 @@
+#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/io/reports.hpp>
 
 #include <fmt/format.h>

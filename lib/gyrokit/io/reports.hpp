@@ -2,6 +2,7 @@
 // Speeds and frequencies are converted to the chosen unit; re and im stay in 1/s.
 #pragma once
 
+#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/mode_shapes.hpp>

@@ -1,3 +1,4 @@
+#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/io/scene.hpp>
 
 #include <gyrokit/core/input_file.hpp>
@@ -173,14 +174,14 @@ Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
     if (!fe_motion.empty()) {
         // The DOF set of an FE rotor in place of the scene's motion and dofs_per_node.
         if (fe_motion != "lateral" && fe_motion != "all" && fe_motion != "axial" && fe_motion != "torsional")
-            throw InputError("motion '" + fe_motion + "': allowed: lateral, all, axial, torsional");
+            throw InputError(option_field("motion") + " '" + fe_motion + "': allowed: lateral, all, axial, torsional");
         toml::table* model = root.get_as<toml::table>("model");
         const auto* given = model ? model->get_as<std::string>("type") : nullptr;
         const std::string type = given ? given->get() : "(none)";
         if (type != "fe_rotor")
-            throw InputError(fmt::format("{}: motion '{}' does not apply to a [model] of type {}; allowed: a "
+            throw InputError(fmt::format("{} '{}' does not apply to {}, a [model] of type {}; allowed: a "
                                          "[model] of type fe_rotor",
-                                         path, fe_motion, type));
+                                         option_field("motion"), fe_motion, path, type));
         model->erase("dofs_per_node");
         model->insert_or_assign("motion", fe_motion);
     }

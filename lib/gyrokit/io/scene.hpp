@@ -1,7 +1,7 @@
 // Scene files (TOML): a model and the analysis settings. See docs/scene_format.md.
 #pragma once
 
-#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/models/fe_rotor.hpp>

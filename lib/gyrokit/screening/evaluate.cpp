@@ -1,4 +1,5 @@
 // Criteria evaluation of one design.
+#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>

@@ -1,0 +1,58 @@
+// Which solver a model gets: the options every front end fills from the
+// scene's [analysis], its flags or keyword arguments, and the one rule that
+// resolves `auto` and validates them.
+#pragma once
+
+#include <gyrokit/analysis/spectrum_solver.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+enum class SolverKind { Auto, Dense, Sparse };
+SolverKind parse_solver_kind(const std::string& name);   // "auto" | "dense" | "sparse"
+std::string to_string(SolverKind k);
+
+// Auto: the sparse solver above this many DOFs, the dense one up to it.
+constexpr int kAutoSparseDofs = 200;
+// Auto for the modes in range (kModesInRange): the dense solver up to this many
+// DOFs. Its continuation tracks every mode in range, where a sparse window holds
+// a fixed number that need not reach the band; measured on data/compressor336.toml
+// (stability, 151 speeds, 2 threads: dense 5.7 s, every mode in range; a sparse
+// window 1.0 s) and on the same rotor in 168 elements (672 DOFs: 32 s and 2.4 s).
+constexpr int kAutoDenseInRangeDofs = 400;
+// Modes the sparse solver computes when none are asked for.
+constexpr int kDefaultSparseModes = 6;
+
+// `modes` not given: the modes in the range the speeds excite (tracking_options);
+// to a solver it means every mode (dense) or kDefaultSparseModes (sparse).
+constexpr int kModesInRange = -1;
+
+// The fields carry the names of the scene's [analysis] keys (and the CLI's options).
+struct SolverOptions {
+    SolverKind kind = SolverKind::Auto;   // solver
+    EigenOptions eig;                     // dense: scaled QZ or state matrix
+    int modes = 0;                        // modes wanted; 0: all (dense) or kDefaultSparseModes (sparse);
+                                          // kModesInRange: as 0, the tracking keeps those in range
+    std::optional<double> target;         // rad/s: the sparse search centre (default 0: the lowest modes)
+    double target_order = 0.0;            // the centre moves as target + target_order * speed
+    int lanczos_vectors = 0;              // sparse: Arnoldi vectors, 0 = automatic
+    bool reuse = true;                    // sparse: start each speed from the last one's vectors
+};
+
+struct SolverChoice {
+    SolverKind kind = SolverKind::Dense;  // Dense or Sparse, never Auto
+    int modes = 0;                        // the number of modes (sparse: the window size; dense: as asked)
+    SolverFactory make;
+    std::vector<std::string> notes;       // e.g. the default number of sparse modes
+};
+// Auto resolved by size: kAutoSparseDofs, or kAutoDenseInRangeDofs where `modes`
+// is kModesInRange.
+SolverKind resolve_solver_kind(int dofs, SolverKind requested, int modes = 0);
+// Validates the options (InputError naming the field) and the system, and makes the solver.
+SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt);
+
+
+}  // namespace gyrokit
