@@ -3,7 +3,7 @@
 // coupling between two disks against the closed form.
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
-#include <gyrokit/io/reports.hpp>
+#include <gyrokit/reports/reports.hpp>
 #include <gyrokit/io/scene.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 

@@ -1,5 +1,5 @@
 // The model summary: its numbers against the model's own description.
-#include <gyrokit/io/reports.hpp>
+#include <gyrokit/reports/reports.hpp>
 #include <gyrokit/io/scene.hpp>
 
 #include <catch2/catch.hpp>

@@ -7,7 +7,7 @@
 #include "cli/common.hpp"
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/export.hpp>
-#include <gyrokit/io/reports.hpp>
+#include <gyrokit/reports/reports.hpp>
 
 #include <algorithm>
 #include <fmt/format.h>

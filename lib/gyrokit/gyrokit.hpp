@@ -31,7 +31,7 @@
 #include <gyrokit/io/export.hpp>
 #include <gyrokit/io/matrix_market.hpp>
 #include <gyrokit/io/plot.hpp>
-#include <gyrokit/io/reports.hpp>
+#include <gyrokit/reports/reports.hpp>
 #include <gyrokit/io/scene.hpp>
 #include <gyrokit/io/table.hpp>
 #include <gyrokit/models/fe_rotor.hpp>

@@ -1,0 +1,192 @@
+#include <gyrokit/reports/campbell_reports.hpp>
+
+#include <gyrokit/reports/detail/cells.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+
+namespace gyrokit {
+
+using detail::ll;
+using detail::mode_cells;
+using detail::speed_label;
+using detail::unit_of;
+using detail::units_in;
+
+std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const SpeedUnit& u) {
+    std::vector<std::string> out;
+    for (const UnstableRange& r : unstable_ranges(cd, true)) {
+        char line[256];
+        std::snprintf(line, sizeof line, "mode %d is unstable from %.6g to %.6g %s (Re lambda up to %.4g 1/s)",
+                      r.branch, u.factor * r.from, u.factor * r.to, u.name.c_str(), r.max_real);
+        out.emplace_back(line);
+    }
+    return out;
+}
+
+std::string out_of_range_note(const CampbellDiagram& cd, const SpeedUnit& u) {
+    if (!std::isfinite(cd.band)) return "";
+    if (cd.out_of_range.empty())   // a solver of the band alone (continuation, a sparse window) has not computed them
+        return fmt::format("modes above {:.6g} {} ({} times the highest excitation) are out of range, not judged; "
+                           "--modes 0 judges every mode",
+                           u.factor * cd.band, u.name, kBandMargin);
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const Branch& b : cd.out_of_range)
+        for (const auto& p : b.points) lowest = std::min(lowest, p.mode.frequency());
+    return fmt::format("{} modes stay above {:.6g} {} over the range ({} times the highest excitation; the lowest at "
+                       "{:.6g} {}): out of range, not judged; --modes 0 judges every mode",
+                       cd.out_of_range.size(), u.factor * cd.band, u.name, kBandMargin, u.factor * lowest, u.name);
+}
+
+Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u) {
+    Table t({u.column("speed"), "mode", "re_1_s", "im_rad_s", u.column("frequency"), "whirl", "damping_ratio", "log_dec"});
+    t.key = "campbell";
+    t.title = "Campbell diagram";
+    // Rows by speed, then mode.
+    std::vector<size_t> next(cd.branches.size(), 0);
+    for (double w : cd.speeds)
+        for (size_t b = 0; b < cd.branches.size(); ++b) {
+            const auto& pts = cd.branches[b].points;
+            if (next[b] < pts.size() && pts[next[b]].speed == w) {
+                std::vector<Cell> row{u.factor * w, ll(cd.branches[b].id)};
+                for (auto& c : mode_cells(pts[next[b]].mode, u)) row.push_back(c);
+                t.add_row(std::move(row));
+                ++next[b];
+            }
+        }
+    return t;
+}
+
+Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& critical, const SpeedUnit& u,
+                       const std::string& plot_file, bool window) {
+    Table t({"quantity", "value"});
+    t.key = "summary";
+    t.title = "Campbell diagram: summary (all rows: --rows, or --format csv|json)";
+    const auto speed = [&](double w) { return fmt::format("{:.6g} {}", u.factor * w, u.name); };
+    t.add_row({std::string("modes tracked"), std::to_string(cd.branches.size())});
+    if (!cd.speeds.empty())
+        t.add_row({std::string("speed range"), fmt::format("{} to {} ({} speeds, {} inserted by refinement)",
+                                                            speed(cd.speeds.front()), speed(cd.speeds.back()),
+                                                            cd.speeds.size(), cd.inserted_speeds)});
+    std::size_t forward = 0, damped = 0;
+    for (const auto& c : critical) {
+        if (!c.api684_critical()) ++damped;
+        else forward += c.mode.whirl == Whirl::Forward;
+    }
+    t.add_row({std::string("critical speeds"),
+               critical.empty() ? std::string("none in the range")
+               : fmt::format("{} in the range (API 684: amplification factor >= {}), {} of them forward whirl{} "
+                             "(tables below)",
+                             critical.size() - damped, kApi684CriticalAmplification, forward,
+                             damped ? fmt::format("; {} heavily damped crossings (not critical)", damped)
+                                    : std::string())});
+    // The least damped oscillating mode over the range, untracked ones included.
+    const BranchPoint* least = nullptr;
+    int least_branch = 0;
+    std::vector<const Branch*> all;
+    for (const auto* list : {&cd.branches, &cd.untracked})
+        for (const auto& b : *list) all.push_back(&b);
+    for (const Branch* bp : all)
+        for (const auto& p : bp->points)
+            if (p.mode.frequency() > 0 && (!least || p.mode.damping_ratio() < least->mode.damping_ratio()))
+                least = &p, least_branch = bp->id;
+    if (least)
+        t.add_row({std::string("least damping"), fmt::format("damping ratio {:.4g}: mode {} ({}) at {}",
+                                                              least->mode.damping_ratio(), least_branch,
+                                                              to_string(least->mode.whirl), speed(least->speed))});
+    // The verdict covers every mode: a dense diagram keeps the untracked ones by eigenvalue;
+    // a sparse window covers its tracked modes only, and says so.
+    const auto unstable = unstable_ranges(cd, true);
+    window = window || (cd.partial && !std::isfinite(cd.band));   // the K lowest of a continuation
+    const std::string which =
+        window ? fmt::format("the {} tracked modes (the others are not checked)", cd.branches.size())
+               : (std::isfinite(cd.band) ? "every mode in range" : "every mode");
+    std::string verdict = unstable.empty() ? fmt::format("{} stable over the range (no real part beyond its error "
+                                                         "bound)",
+                                                         which)
+                                           : "";
+    // Modes are numbered by frequency at the first speed, so the lowest ones are the tracked ones.
+    for (const auto& r : unstable)
+        verdict += fmt::format("{}mode {} unstable from {} to {}{}", verdict.empty() ? "" : "; ", r.branch,
+                               speed(r.from), speed(r.to),
+                               r.branch > static_cast<int>(cd.branches.size()) ? " (not tracked: --modes 0 tracks it)"
+                                                                                : "");
+    if (!unstable.empty() && window)
+        verdict += fmt::format("; modes beyond the {} tracked are not checked", cd.branches.size());
+    t.add_row({std::string("stability"), verdict});
+    if (std::isfinite(cd.band)) t.add_row({std::string("out of range"), out_of_range_note(cd, u)});
+    if (cd.rigid_body > 0)
+        t.add_row({std::string("rigid-body eigenvalues"), fmt::format("{} (not modes, not tracked)", cd.rigid_body)});
+    t.add_row({std::string("largest backward error"), fmt::format("{:.2g}", cd.max_backward_error)});
+    if (cd.ambiguous_steps > 0)
+        t.add_row({std::string("ambiguous steps"), fmt::format("{} (use a finer --speeds grid)", cd.ambiguous_steps)});
+    t.add_row({std::string("plot"), plot_file.empty() ? std::string("none (--plot FILE.svg draws one)") : plot_file});
+    return t;
+}
+
+Figure campbell_figure(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& cs,
+                       const std::vector<int>& harmonics, const SpeedUnit& u, const std::string& title) {
+    Figure f;
+    f.title = title.empty() ? "Campbell diagram" : title;
+    Panel freq{speed_label(u), "frequency [" + u.name + "]", "", false, {}, 0.0, {}, {}, {}};
+    Panel damp{speed_label(u), "damping ratio", "", false, {}, {}, {}, {}, {}};
+    bool fwd_labelled = false, bwd_labelled = false;
+    for (const Branch& b : cd.branches) {
+        // Split the branch into runs of one whirl direction so each gets its style.
+        size_t i = 0;
+        while (i < b.points.size()) {
+            const Whirl w = b.points[i].mode.whirl;
+            Series s, d;
+            for (; i < b.points.size() && b.points[i].mode.whirl == w; ++i) {
+                s.x.push_back(u.factor * b.points[i].speed);
+                s.y.push_back(u.factor * b.points[i].mode.frequency());
+                d.x.push_back(s.x.back());
+                d.y.push_back(b.points[i].mode.damping_ratio());
+            }
+            if (i < b.points.size()) {   // join to the next run
+                s.x.push_back(u.factor * b.points[i].speed);
+                s.y.push_back(u.factor * b.points[i].mode.frequency());
+            }
+            const bool fwd = w == Whirl::Forward, bwd = w == Whirl::Backward;
+            s.color = d.color = fwd ? "#d62728" : bwd ? "#1f77b4" : "#7f7f7f";
+            s.style = d.style = bwd ? "dashed" : "lines";
+            if (fwd && !fwd_labelled) { s.label = "forward whirl"; fwd_labelled = true; }
+            if (bwd && !bwd_labelled) { s.label = "backward whirl"; bwd_labelled = true; }
+            freq.series.push_back(std::move(s));
+            damp.series.push_back(std::move(d));
+        }
+    }
+    if (!cd.speeds.empty()) {
+        const double w0 = cd.speeds.front(), w1 = cd.speeds.back();
+        for (int k : harmonics)
+            freq.series.push_back({{u.factor * w0, u.factor * w1}, {u.factor * k * w0, u.factor * k * w1},
+                                   std::to_string(k) + "x", "dashed", "#000000"});
+        double fmax = 0.0;
+        for (const Branch& b : cd.branches)
+            for (const auto& p : b.points) fmax = std::max(fmax, u.factor * p.mode.frequency());
+        // Frequencies beyond twice the highest harmonic line cross none of them: the axis stops
+        // there, so that a stiff local mode (a journal on its oil film) does not flatten the rest.
+        // The lowest branch stays in view when it lies above every line.
+        int kmax = 1;
+        for (int k : harmonics) kmax = std::max(kmax, k);
+        double lowest = 0.0;
+        if (!cd.branches.empty())
+            for (const auto& p : cd.branches.front().points) lowest = std::max(lowest, u.factor * p.mode.frequency());
+        fmax = std::min(fmax, std::max(2.0 * kmax * u.factor * w1, 1.1 * lowest));
+        if (fmax > 0.0) freq.ymax = 1.05 * fmax;
+    }
+    Series crit{{}, {}, "critical speeds", "points", "#2ca02c"};
+    for (const auto& c : cs) {
+        crit.x.push_back(u.factor * c.speed);
+        crit.y.push_back(u.factor * c.mode.frequency());
+    }
+    if (!crit.x.empty()) freq.series.push_back(std::move(crit));
+    f.panels = {std::move(freq), std::move(damp)};
+    return f;
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,242 @@
+#include <gyrokit/reports/model_reports.hpp>
+
+#include <gyrokit/reports/detail/cells.hpp>
+#include <gyrokit/analysis/solver_choice.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+
+namespace gyrokit {
+
+using detail::ll;
+using detail::mode_cells;
+using detail::speed_label;
+using detail::unit_of;
+using detail::units_in;
+
+namespace {
+
+// A solid cylinder of mass m with the inertias Ip = m r^2 / 2 and Id = m (3 r^2 + w^2) / 12:
+// the radius and width a disk given by (m, Id, Ip) would have.
+std::pair<double, double> disk_cylinder(const FeDisk& d) {
+    if (d.mass <= 0.0) return {0.0, 0.0};
+    const double r = std::sqrt(2.0 * d.polar_inertia / d.mass);
+    const double w2 = 12.0 * d.diametral_inertia / d.mass - 3.0 * r * r;
+    return {r, w2 > 0.0 ? std::sqrt(w2) : 0.0};
+}
+
+}  // namespace
+
+namespace {
+
+// The shaft node a speed-dependent bearing stands at (-1: none): its x DOF's node, or
+// the node of the pedestal it acts on (a held shaft: px<node>).
+int bearing_node(const GyroscopicSystem& s, const BearingTable& b) {
+    if (s.node_of_dof.empty()) return -1;
+    const int node = s.node_of_dof[static_cast<size_t>(b.dof_x)];
+    const std::string& name = s.dof_names[static_cast<size_t>(b.dof_x)];
+    if (node < 0 && name.rfind("px", 0) == 0) return std::stoi(name.substr(2));
+    return node;
+}
+
+}  // namespace
+
+Table model_summary(const Scene& sc) {
+    Table t({"quantity", "value", "unit"});
+    t.key = "model";
+    t.title = "model " + sc.path + (sc.title.empty() ? std::string() : ": " + sc.title);
+    const GyroscopicSystem& s = sc.system;
+    const auto add = [&](const std::string& q, const Cell& v, const std::string& unit = "") {
+        t.add_row({q, v, unit});
+    };
+    add("type", sc.model_type);
+    add("dofs", ll(s.size()));
+    if (!s.dof_units.empty()) {
+        std::vector<std::string> seen;
+        for (const auto& u : s.dof_units)
+            if (std::find(seen.begin(), seen.end(), u) == seen.end()) seen.push_back(u);
+        for (const auto& u : seen)
+            add("dofs_in_" + u, ll(static_cast<int>(std::count(s.dof_units.begin(), s.dof_units.end(), u))));
+    }
+    add("whirl_pairs", ll(static_cast<int>(s.whirl_pairs.size())));
+    if (!s.node_z.empty()) {
+        add("nodes", ll(static_cast<int>(s.node_z.size())));
+        add("length", *std::max_element(s.node_z.begin(), s.node_z.end()) -
+                          *std::min_element(s.node_z.begin(), s.node_z.end()), "m");
+    }
+    // Mass that a unit translation along u of every free translational pair moves: r^T M r
+    // (nodes a support holds are not in the system, so their share is not either).
+    if (!s.dof_units.empty()) {
+        Eigen::VectorXd r = Eigen::VectorXd::Zero(s.size());
+        for (const auto& [u, v] : s.whirl_pairs)
+            if (s.dof_units[static_cast<size_t>(u)] == "m") r(u) = 1.0;
+        if (r.sum() > 0) add("translating_mass", r.dot(SparseMatrix(s.M) * r), "kg");
+    }
+    add("nonzeros_M_K", ll(static_cast<int>(s.M.nonZeros() + s.K.nonZeros())));
+    add("gyroscopic", std::string(s.G.nonZeros() > 0 && s.G.norm() > 0 ? "yes" : "no"));
+    // Circulatory forces: a speed-proportional N, or a skew part of the stiffness (cross-coupled
+    // bearings, constant or speed-dependent: the usual cause of oil whip).
+    {
+        const bool skew_K = SparseMatrix(s.K - SparseMatrix(s.K.transpose())).norm() > 0.0;
+        const bool skew_tables = std::any_of(s.bearings.begin(), s.bearings.end(), [](const BearingTable& b) {
+            return std::any_of(b.speeds.begin(), b.speeds.end(), [&](double w) {
+                const Eigen::Matrix2d k = b.at(w).K;
+                return k(0, 1) != k(1, 0);
+            });
+        });
+        std::vector<std::string> why;
+        if (s.has_circulatory()) why.push_back("N per unit speed");
+        if (skew_K || skew_tables) why.push_back("cross-coupled stiffness");
+        add("circulatory", why.empty() ? std::string("no") : fmt::format("yes ({})", fmt::join(why, ", ")));
+    }
+    add("speed_squared_stiffness", std::string(s.has_speed_squared_stiffness() ? "yes" : "no"));
+    std::string damping;
+    for (const auto& n : s.damping_names()) damping += (damping.empty() ? "" : ", ") + n;
+    add("damping", damping.empty() ? std::string("none") : damping);
+    add("bearing_tables", ll(static_cast<int>(s.bearings.size())));
+    add("unbalance", std::string(s.unbalance.size() > 0 && s.unbalance.norm() > 0 ? "yes" : "no"));
+    if (s.size() <= kAutoSparseDofs) {
+        const QuadraticSpectrum sp = solve_at_speed(s, 0.0);
+        add("rigid_body_eigenvalues_at_rest", ll(static_cast<int>(sp.rigid_body.size())));
+        if (!sp.modes.empty()) add("lowest_frequency_at_rest", sp.modes.front().frequency(), "rad/s");
+    } else {
+        add("rigid_body_eigenvalues_at_rest", std::string("not computed (sparse model)"));
+    }
+    if (sc.fe_rotor) {
+        const FeRotor& r = *sc.fe_rotor;
+        add("elements", ll(static_cast<int>(r.elements.size())));
+        add("motion", std::string(to_string(r.motion)));
+        add("dofs_per_node", ll(dofs_per_node(r.motion)));
+        add("couplings", ll(static_cast<int>(std::count_if(r.elements.begin(), r.elements.end(),
+                                                            [](const FeShaftElement& e) { return e.coupling.has_value(); }))));
+        double shaft = 0.0, dmin = 1e300, dmax = 0.0;
+        for (const auto& e : r.elements) {
+            shaft += fe_element_mass(e);   // couplings: their mass
+            if (e.coupling) continue;
+            for (const double d : {e.outer_diameter, e.outer_diameter_end.value_or(e.outer_diameter)}) {
+                dmin = std::min(dmin, d);
+                dmax = std::max(dmax, d);
+            }
+        }
+        add("shaft_mass", shaft, "kg");
+        double disks = 0.0;
+        for (const auto& d : r.disks) disks += d.mass;
+        add("total_mass", shaft + disks, "kg");
+        add("shaft_outer_diameter_min", dmin, "m");
+        add("shaft_outer_diameter_max", dmax, "m");
+        add("shear_deformation", std::string(r.shear_deformation ? "yes" : "no"));
+        add("rotary_inertia", std::string(r.rotary_inertia ? "yes" : "no"));
+        int k = 0;
+        for (const auto& d : r.disks) {
+            const std::string p = fmt::format("disk{}_", ++k);
+            add(p + "z", s.node_z[static_cast<size_t>(d.node)], "m");
+            add(p + "mass", d.mass, "kg");
+            add(p + "Id", d.diametral_inertia, "kg m^2");
+            add(p + "Ip", d.polar_inertia, "kg m^2");
+        }
+        k = 0;
+        for (const auto& b : r.bearings)
+            add(fmt::format("bearing{}_z", ++k), s.node_z[static_cast<size_t>(b.node)], "m");
+        for (const auto& b : s.bearings)
+            if (const int node = bearing_node(s, b); node >= 0)
+                add(fmt::format("bearing{}_z", ++k), s.node_z[static_cast<size_t>(node)], "m");
+        k = 0;
+        for (const auto& sp : r.supports)
+            add(fmt::format("support{}_z", ++k), s.node_z[static_cast<size_t>(sp.node)], "m");
+        k = 0;
+        for (const auto& p : r.pedestals) {
+            const std::string key = fmt::format("pedestal{}_", ++k);
+            add(key + "z", s.node_z[static_cast<size_t>(p.node)], "m");
+            add(key + "mass", p.mass, "kg");
+            add(key + "kxx", p.kxx, "N/m");
+            add(key + "kyy", p.kyy, "N/m");
+            add(key + "cxx", p.cxx, "N s/m");
+            add(key + "cyy", p.cyy, "N s/m");
+        }
+    }
+    return t;
+}
+
+Figure fe_rotor_figure(const FeRotor& r, const GyroscopicSystem& sys, const std::string& title) {
+    Figure f;
+    f.title = title.empty() ? std::string("Finite-element rotor") : title;
+    Panel p{"z [m]", "radius [m]", "", false, {}, {}, {}, {}, {}};
+    std::vector<double> z(static_cast<size_t>(r.node_count()), 0.0);
+    for (size_t e = 0; e < r.elements.size(); ++e) z[e + 1] = z[e] + r.elements[e].length;
+    // Shaft outline: outer radius above and below the axis, the bore dashed.
+    Series top, bottom, bore_top, bore_bottom;
+    top.label = "shaft";
+    top.color = bottom.color = "#1f77b4";
+    bore_top.color = bore_bottom.color = "#1f77b4";
+    bore_top.style = bore_bottom.style = "dashed";
+    for (size_t e = 0; e < r.elements.size(); ++e) {
+        const FeShaftElement& el = r.elements[e];
+        if (el.coupling) {   // no outline: a gap in the drawn shaft
+            for (Series* s : {&top, &bottom, &bore_top, &bore_bottom}) s->x.push_back(NAN), s->y.push_back(NAN);
+            continue;
+        }
+        // Both ends of the element: a step between uniform elements, a slope along a cone.
+        const double ends[2][2] = {{el.outer_diameter / 2, el.inner_diameter / 2},
+                                   {el.outer_diameter_end.value_or(el.outer_diameter) / 2,
+                                    el.inner_diameter_end.value_or(el.inner_diameter) / 2}};
+        for (int k = 0; k < 2; ++k) {
+            const double x = z[e + k], ro = ends[k][0], ri = ends[k][1];
+            top.x.push_back(x), top.y.push_back(ro);
+            bottom.x.push_back(x), bottom.y.push_back(-ro);
+            bore_top.x.push_back(x), bore_top.y.push_back(ri > 0 ? ri : NAN);
+            bore_bottom.x.push_back(x), bore_bottom.y.push_back(ri > 0 ? -ri : NAN);
+        }
+    }
+    p.series = {top, bottom, bore_top, bore_bottom};
+    Series disks;
+    disks.label = "disks (solid cylinders of their m, Id, Ip)";
+    disks.color = "#d62728";
+    for (const auto& d : r.disks) {
+        const auto [rad, width] = disk_cylinder(d);
+        const double zc = z[static_cast<size_t>(d.node)], h = std::max(width, 1e-3 * z.back()) / 2;
+        for (const auto& [x, y] : std::vector<std::pair<double, double>>{
+                 {zc - h, -rad}, {zc - h, rad}, {zc + h, rad}, {zc + h, -rad}, {zc - h, -rad}})
+            disks.x.push_back(x), disks.y.push_back(y);
+        disks.x.push_back(NAN), disks.y.push_back(NAN);
+    }
+    if (!r.disks.empty()) p.series.push_back(disks);
+    // Bearings and supports below the shaft at their nodes.
+    const auto marks = [&](const std::vector<int>& nodes, const std::string& label, const std::string& color) {
+        Series m;
+        m.label = label;
+        m.style = "points";
+        m.color = color;
+        for (const int n : nodes) {
+            double ro = 0.0;
+            if (n > 0) {
+                const FeShaftElement& left = r.elements[static_cast<size_t>(n - 1)];
+                ro = std::max(ro, left.outer_diameter_end.value_or(left.outer_diameter) / 2);
+            }
+            if (n < static_cast<int>(r.elements.size())) ro = std::max(ro, r.elements[static_cast<size_t>(n)].outer_diameter / 2);
+            m.x.push_back(z[static_cast<size_t>(n)]);
+            m.y.push_back(-1.5 * ro);
+        }
+        if (!nodes.empty()) p.series.push_back(m);
+    };
+    std::vector<int> bearing_nodes, support_nodes, nodes;
+    for (const auto& b : r.bearings) bearing_nodes.push_back(b.node);
+    for (const auto& b : sys.bearings)
+        if (const int node = bearing_node(sys, b); node >= 0) bearing_nodes.push_back(node);
+    for (const auto& s : r.supports) support_nodes.push_back(s.node);
+    marks(bearing_nodes, "bearings", "#2ca02c");
+    marks(support_nodes, "rigid supports", "#000000");
+    Series axis;
+    axis.label = "nodes";
+    axis.style = "points";
+    axis.color = "#7f7f7f";
+    for (const double x : z) axis.x.push_back(x), axis.y.push_back(0.0);
+    p.series.push_back(axis);
+    f.panels = {p};
+    return f;
+}
+
+}  // namespace gyrokit

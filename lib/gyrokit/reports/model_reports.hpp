@@ -1,0 +1,26 @@
+// What a model is: its summary table and, for an FE rotor, its drawing.
+// Speeds and frequencies in the chosen unit; re and im stay in 1/s.
+#pragma once
+
+#include <gyrokit/io/plot.hpp>
+#include <gyrokit/io/scene.hpp>
+#include <gyrokit/io/table.hpp>
+#include <gyrokit/models/fe_rotor.hpp>
+
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+// What a model is, for checking one's own: DOFs by unit, nodes and length, mass
+// of a rigid translation, the speed-dependent terms, damping components, bearing
+// tables, unbalance, rigid-body eigenvalues at standstill (models up to
+// kAutoSparseDofs DOFs; larger ones say "not computed"); for FE rotors the
+// elements, sections, disks, bearings and supports. Rows: quantity, value, unit.
+Table model_summary(const Scene& scene);
+// An FE rotor's geometry along z: the shaft sections (outer and inner radius),
+// the disks (radius and width of the solid cylinder with their mass, Id and Ip),
+// bearings and supports at their nodes, the nodes on the axis.
+Figure fe_rotor_figure(const FeRotor& rotor, const GyroscopicSystem& system, const std::string& title);
+
+}  // namespace gyrokit

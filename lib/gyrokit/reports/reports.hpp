@@ -1,0 +1,10 @@
+// Analysis results as tables (stable column names, see docs/cli.md) and figures,
+// one header per family; this one includes them all.
+#pragma once
+
+#include <gyrokit/reports/campbell_reports.hpp>
+#include <gyrokit/reports/critical_reports.hpp>
+#include <gyrokit/reports/mode_shape_reports.hpp>
+#include <gyrokit/reports/model_reports.hpp>
+#include <gyrokit/reports/response_reports.hpp>
+#include <gyrokit/reports/spectrum_reports.hpp>

@@ -1,0 +1,183 @@
+#include <gyrokit/reports/response_reports.hpp>
+
+#include <gyrokit/reports/detail/cells.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+
+namespace gyrokit {
+
+using detail::ll;
+using detail::mode_cells;
+using detail::speed_label;
+using detail::unit_of;
+using detail::units_in;
+
+Table response_table(const std::vector<std::string>& names, const std::vector<std::string>& units,
+                     const ResponseCurve& c, const SpeedUnit& u) {
+    Table t({u.column("speed"), "dof", "unit", "amplitude", "phase_deg"});
+    t.key = "response";
+    t.title = "unbalance response z = Re(Z e^{i w t}); amplitude |Z| in the DOF's unit, phase arg Z in degrees";
+    for (size_t i = 0; i < c.speeds.size(); ++i)
+        for (size_t k = 0; k < c.dofs.size(); ++k) {
+            const auto z = c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k));
+            t.add_row({u.factor * c.speeds[i], names[static_cast<size_t>(c.dofs[k])], unit_of(units, c.dofs[k]),
+                       std::abs(z), std::abs(z) == 0.0 ? 0.0 : std::arg(z) * 180.0 / M_PI});
+        }
+    return t;
+}
+
+namespace {
+
+// Maxima by unit (first-seen order), then by amplitude, largest first.
+std::vector<ResponseMaximum> by_unit_and_size(const std::vector<std::string>& units,
+                                              std::vector<ResponseMaximum> m) {
+    std::vector<int> dofs;
+    for (const auto& x : m) dofs.push_back(x.dof);
+    const std::vector<std::string> order = units_in(units, dofs);
+    const auto rank = [&](int dof) {
+        return std::find(order.begin(), order.end(), unit_of(units, dof)) - order.begin();
+    };
+    // Amplitudes equal to 9 digits (x and y of an isotropic rotor) keep the model's DOF order, whatever rounding says.
+    const auto size = [](double a) { return std::stod(fmt::format("{:.9g}", a)); };
+    std::stable_sort(m.begin(), m.end(), [&](const ResponseMaximum& a, const ResponseMaximum& b) {
+        if (rank(a.dof) != rank(b.dof)) return rank(a.dof) < rank(b.dof);
+        return size(a.amplitude) != size(b.amplitude) ? size(a.amplitude) > size(b.amplitude) : a.dof < b.dof;
+    });
+    return m;
+}
+
+}  // namespace
+
+Table response_summary(const std::vector<std::string>& names, const std::vector<std::string>& units,
+                       const std::vector<ResponseMaximum>& maxima, const SpeedUnit& u, std::size_t limit) {
+    Table t({"dof", "unit", "max_amplitude", u.column("speed"), "where"});
+    t.key = "response_maxima";
+    std::size_t left_out = 0, in_unit = 0;
+    std::string unit;
+    for (const auto& m : by_unit_and_size(units, maxima)) {
+        if (unit_of(units, m.dof) != unit) unit = unit_of(units, m.dof), in_unit = 0;
+        if (limit > 0 && in_unit++ >= limit) {
+            ++left_out;
+            continue;
+        }
+        t.add_row({names[static_cast<size_t>(m.dof)], unit_of(units, m.dof), m.amplitude, u.factor * m.speed,
+                   std::string(!m.bounded ? "undamped resonance (unbounded)"
+                               : m.refined ? "peak (refined)"
+                                           : "range end")});
+    }
+    const auto unbounded = std::count_if(maxima.begin(), maxima.end(), [](const ResponseMaximum& m) { return !m.bounded; });
+    t.title = "largest unbalance response per DOF (peaks refined between grid speeds)" +
+              (left_out ? fmt::format("; {} smaller ones left out", left_out) : std::string()) +
+              (unbounded ? fmt::format("; {} DOF(s) pass an undamped resonance (damping ratio below 6e-7): "
+                                       "unbounded there, add damping to the model",
+                                       unbounded)
+                         : std::string());
+    return t;
+}
+
+std::vector<int> largest_responses(const std::vector<std::string>& units, const std::vector<ResponseMaximum>& maxima,
+                                   std::size_t per_unit) {
+    std::vector<int> out;
+    std::size_t in_unit = 0;
+    std::string unit;
+    for (const auto& m : by_unit_and_size(units, maxima)) {
+        if (unit_of(units, m.dof) != unit) unit = unit_of(units, m.dof), in_unit = 0;
+        if (in_unit++ < per_unit) out.push_back(m.dof);
+    }
+    return out;
+}
+
+Table extrema_table(const std::vector<std::string>& names, const std::vector<std::string>& units,
+                    const std::vector<ResponseExtremum>& e, const SpeedUnit& u) {
+    Table t({"dof", "unit", "kind", u.column("speed"), "amplitude"});
+    t.key = "response_peaks";
+    t.title = "response peaks and antiresonances";
+    for (const auto& x : e)
+        t.add_row({names[static_cast<size_t>(x.dof)], unit_of(units, x.dof),
+                   std::string(!x.bounded ? "unbounded peak" : x.peak ? "peak" : "antiresonance"),
+                   u.factor * x.speed, x.amplitude});
+    return t;
+}
+
+namespace {
+
+// Columns of the curve to draw: `shown` (model DOFs), or all.
+std::vector<size_t> columns_shown(const ResponseCurve& c, const std::vector<int>& shown) {
+    std::vector<size_t> cols;
+    for (size_t k = 0; k < c.dofs.size(); ++k)
+        if (shown.empty() || std::find(shown.begin(), shown.end(), c.dofs[k]) != shown.end()) cols.push_back(k);
+    return cols;
+}
+
+std::string amplitude_label(const std::string& unit, const char* what) {
+    return unit.empty() ? std::string(what) : std::string(what) + " [" + unit + "]";
+}
+
+}  // namespace
+
+Figure response_figure(const std::vector<std::string>& names, const std::vector<std::string>& units,
+                       const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
+                       const std::vector<int>& shown) {
+    Figure f;
+    f.title = title.empty() ? "Unbalance response" : title;
+    const std::vector<size_t> cols = columns_shown(c, shown);
+    std::vector<int> dofs;
+    for (const size_t k : cols) dofs.push_back(c.dofs[k]);
+    Panel ph{speed_label(u), "phase [deg]", "", false, {}, -180.0, 180.0, {}, {}};
+    for (const std::string& unit : units_in(units, dofs)) {
+        Panel amp{speed_label(u), amplitude_label(unit, "amplitude |Z|"), "", true, {}, {}, {}, {}, {}};
+        for (const size_t k : cols) {
+            if (unit_of(units, c.dofs[k]) != unit) continue;
+            Series a, p;
+            a.label = p.label = names[static_cast<size_t>(c.dofs[k])];
+            for (size_t i = 0; i < c.speeds.size(); ++i) {
+                const auto z = c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k));
+                a.x.push_back(u.factor * c.speeds[i]);
+                a.y.push_back(std::abs(z));
+                p.x.push_back(a.x.back());
+                p.y.push_back(std::abs(z) == 0.0 ? 0.0 : std::arg(z) * 180.0 / M_PI);
+            }
+            amp.series.push_back(std::move(a));
+            ph.series.push_back(std::move(p));
+        }
+        f.panels.push_back(std::move(amp));
+    }
+    f.panels.push_back(std::move(ph));
+    return f;
+}
+
+Figure response_polar_figure(const std::vector<std::string>& names, const std::vector<std::string>& units,
+                             const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
+                             const std::vector<int>& shown) {
+    Figure f;
+    f.title = (title.empty() ? std::string("Unbalance response") : title) +
+              fmt::format(" (polar, {:.6g} to {:.6g} {})", u.factor * c.speeds.front(), u.factor * c.speeds.back(),
+                          u.name);
+    const std::vector<size_t> cols = columns_shown(c, shown);
+    std::vector<int> dofs;
+    for (const size_t k : cols) dofs.push_back(c.dofs[k]);
+    for (const std::string& unit : units_in(units, dofs)) {
+        Panel p{amplitude_label(unit, "Re Z"), amplitude_label(unit, "Im Z"), "", false, {}, {}, {}, {}, {}};
+        p.equal_axes = true;
+        for (const size_t k : cols) {
+            if (unit_of(units, c.dofs[k]) != unit) continue;
+            Series s;
+            s.label = names[static_cast<size_t>(c.dofs[k])];
+            for (size_t i = 0; i < c.speeds.size(); ++i) {
+                const auto z = c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k));
+                s.x.push_back(z.real());
+                s.y.push_back(z.imag());
+            }
+            p.series.push_back(std::move(s));
+        }
+        f.panels.push_back(std::move(p));
+    }
+    return f;
+}
+
+}  // namespace gyrokit
