@@ -64,7 +64,9 @@ int main(int argc, char** argv) {
     CLI::App app{"gyrokit: Campbell diagrams, critical speeds, pervasive damping and unbalance response "
                  "of gyroscopic systems"};
     app.require_subcommand(1);
-    std::vector<cli::Command> commands = cli::add_rotor_commands(app);
+    std::vector<cli::Command> commands = cli::add_spectrum_commands(app);
+    for (auto& c : cli::add_tracking_commands(app)) commands.push_back(std::move(c));
+    for (auto& c : cli::add_response_commands(app)) commands.push_back(std::move(c));
     // Further command groups register here, one line each.
     for (auto& c : cli::add_balancer_commands(app)) commands.push_back(std::move(c));
     for (auto& c : cli::add_fluid_commands(app)) commands.push_back(std::move(c));

@@ -200,19 +200,24 @@ Workers threads(int jobs) {
 }
 
 // The solver the options choose and the Campbell diagram it tracks over w (without the interpreter).
-struct Tracked {
-    SolverChoice solver;   // its make: the solver the tracking stood on (tracking_solver)
-    CampbellDiagram diagram;
-};
-Tracked track(const GyroscopicSystem& s, const SolverOptions& o, const std::vector<double>& w,
-              const std::vector<int>& harmonics, Workers workers) {
-    Tracked t;
-    t.solver = choose_solver(s, o);
-    CampbellOptions co = tracking_options(t.solver, o.modes, w, harmonics, workers);
-    co.eig = o.eig;
-    t.solver.make = tracking_solver(t.solver.make, co, w);
-    t.diagram = campbell(t.solver.make, w, co);
-    return t;
+// The study every front end runs, from the call's arguments.
+StudyOptions study(const SolverOptions& o, const std::vector<double>& w, const std::vector<int>& harmonics,
+                   Workers workers) {
+    StudyOptions so;
+    so.solver = o;
+    so.speeds = w;
+    so.harmonics = harmonics;
+    so.workers = workers;
+    return so;
+}
+
+// A study's notes and warnings as the result's lists, option fields as keywords.
+void put_diagnostics(py::dict& d, const Diagnostics& diagnostics) {
+    py::list notes, warnings;
+    for (const Diagnostic& x : diagnostics)
+        (x.level == Diagnostic::Level::Warning ? warnings : notes).append(spell_fields(x.text, keyword_words));
+    d["notes"] = notes;
+    d["warnings"] = warnings;
 }
 
 // Whether this is Python's main thread, the one its SIGINT handler serves.
@@ -382,15 +387,14 @@ PYBIND11_MODULE(_core, m) {
         const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
         const std::vector<double> w = checked_speeds(speeds);
         const Workers workers = threads(jobs);
-        CampbellDiagram cd;
+        CampbellStudy st;
         {
             Released free;
-            Tracked t = track(s, o, w, harmonics, workers);
-            cd = std::move(t.diagram);
-            cd.notes.insert(cd.notes.begin(), t.solver.notes.begin(), t.solver.notes.end());
-            if (std::isfinite(cd.band)) cd.notes.push_back(out_of_range_note(cd, SpeedUnit::parse("rad/s")));
+            st = campbell_study(s, study(o, w, harmonics, workers));
         }
-        return campbell_dict(cd);
+        py::dict d = campbell_dict(st.diagram);
+        put_diagnostics(d, st.diagnostics);
+        return d;
     }, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"), py::arg("modes"), py::arg("target"),
           py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
 
@@ -403,13 +407,12 @@ PYBIND11_MODULE(_core, m) {
         const Workers workers = threads(jobs);
         for (int h : harmonics)
             if (h < 1) throw InputError("harmonics: " + std::to_string(h) + " is not allowed; allowed: whole numbers >= 1");
-        std::vector<CriticalSpeed> cs;
+        CriticalSpeedStudy st;
         {
             Released free;
-            const Tracked t = track(s, o, w, harmonics, workers);
-            cs = critical_speeds(t.solver.make, t.diagram, harmonics, workers);
-            set_amplification_factors(cs, s);
+            st = critical_speed_study(s, study(o, w, harmonics, workers));
         }
+        const std::vector<CriticalSpeed>& cs = st.critical;
         const auto n = static_cast<py::ssize_t>(cs.size());
         py::array_t<double> speed(n), damping(n), amplification(n);
         py::array_t<int> harmonic(n), branch(n);
@@ -435,6 +438,7 @@ PYBIND11_MODULE(_core, m) {
         d["amplification"] = amplification;
         d["af_method"] = af_method;
         d["api684_critical"] = critical;
+        put_diagnostics(d, st.tracked.diagnostics);
         return d;
     }, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"), py::arg("modes"),
           py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
@@ -446,12 +450,12 @@ PYBIND11_MODULE(_core, m) {
         const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
         const std::vector<double> w = checked_speeds(speeds);
         const Workers workers = threads(jobs);
-        std::vector<StabilityChange> ch;
+        StabilityStudy st;
         {
             Released free;
-            const Tracked t = track(s, o, w, harmonics, workers);
-            ch = stability_changes(t.solver.make, t.diagram, workers);
+            st = stability_study(s, study(o, w, harmonics, workers));
         }
+        const std::vector<StabilityChange>& ch = st.changes;
         const auto n = static_cast<py::ssize_t>(ch.size());
         py::array_t<double> speed(n), bound(n);
         py::array_t<int> branch(n);
@@ -467,6 +471,7 @@ PYBIND11_MODULE(_core, m) {
         d["bounds"] = bound;
         d["branch"] = branch;
         d["becomes_unstable"] = unstable;
+        put_diagnostics(d, st.tracked.diagnostics);
         return d;
     }, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"), py::arg("modes"),
           py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
@@ -512,10 +517,13 @@ PYBIND11_MODULE(_core, m) {
     }, py::arg("system"), py::arg("speeds"), py::arg("tolerance"), py::arg("solver"), py::arg("modes"),
           py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
 
-    m.def("response", [](const GyroscopicSystem& s, const std::vector<double>& speeds, const std::string& solver) {
+    m.def("response", [](const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
+                         const std::string& solver, int modes, const py::object& target, double target_order) {
         const std::vector<double> w = checked_speeds(speeds);
-        const SolverKind kind = parse_solver_kind(solver);
+        const SolverOptions o = solver_options(solver, modes, target, target_order, "qz", 0);
+        const SolverKind kind = resolve_solver_kind(s.size(), o.kind);
         Eigen::MatrixXcd Z(static_cast<Eigen::Index>(w.size()), s.size());
+        Diagnostics warnings;
         {
             Released free;
             s.validate("response: the system");
@@ -523,9 +531,15 @@ PYBIND11_MODULE(_core, m) {
                 throw_if_interrupted();
                 Z.row(static_cast<Eigen::Index>(i)) = unbalance_response(s, w[i], kind).transpose();
             }
+            // The CLI's check: where a mode is unstable, the response is no steady state.
+            warnings = response_stability_warnings(s, study(o, w, harmonics, Workers{1, WorkerKind::Threads}));
         }
-        return Z;
-    }, py::arg("system"), py::arg("speeds"), py::arg("solver"));
+        py::dict d;
+        d["Z"] = Z;
+        put_diagnostics(d, warnings);
+        return d;
+    }, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"), py::arg("modes"),
+          py::arg("target"), py::arg("target_order"));
 
     m.def("screen", [](const std::string& path, const py::object& names, const py::object& designs, int jobs,
                        const py::object& progress) {

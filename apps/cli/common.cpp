@@ -1,6 +1,7 @@
 #include "cli/common.hpp"
 
 #include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/core/bearing_table.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <cmath>
@@ -57,11 +58,38 @@ SolverChoice plan_solver(const Context& c, int modes) {
     return choice;
 }
 
+StudyOptions study_of(const Context& c, int modes, const std::vector<int>& harmonics, bool quiet) {
+    StudyOptions s;
+    s.solver = c.solver;
+    s.solver.modes = modes;
+    s.speeds = c.speeds;
+    s.harmonics = harmonics;
+    s.workers = c.jobs;
+    s.unit = c.unit;
+    if (!quiet) s.progress = progress_bar("speeds");
+    return s;
+}
+
+int wanted_modes(const Context& c, int modes) { return modes >= 0 ? modes : c.scene.modes; }
+
+void print_diagnostics(const Diagnostics& d, std::initializer_list<Diagnostic::Topic> skip) {
+    for (const Diagnostic& x : d) {
+        if (std::find(skip.begin(), skip.end(), x.topic) != skip.end()) continue;
+        std::cerr << (x.level == Diagnostic::Level::Warning ? "warning: " : "note: ") << spell_fields(x.text, flag_words)
+                  << "\n";
+    }
+}
+
+void note_extrapolation(const Context& c, double speed) {
+    for (const auto& n : extrapolation_notes(c.scene.system.bearings, speed, speed)) std::cerr << "note: " << n << "\n";
+}
+
 std::string flag_words(const std::string& field) {
     static const std::pair<const char*, const char*> flags[] = {
         {"directory", "--dir"},       {"jobs", "--jobs"},     {"lanczos_vectors", "--lanczos"},
         {"method", "--method"},       {"modes", "--modes"},   {"motion", "--motion"},
-        {"solver", "--solver"},       {"target", "--target"}, {"target_order", "--target-order"}};
+        {"solver", "--solver"},       {"speeds", "--speeds"}, {"target", "--target"},
+        {"target_order", "--target-order"}};
     for (const auto& [name, flag] : flags)
         if (field == name) return flag;
     return "";

@@ -8,6 +8,7 @@
 #include <gyrokit/io/plot.hpp>
 #include <gyrokit/io/scene.hpp>
 #include <gyrokit/io/table.hpp>
+#include <gyrokit/study/rotor_study.hpp>
 
 #include <CLI/CLI.hpp>
 #include <functional>
@@ -60,6 +61,16 @@ struct Context {
 // The library's solver choice (choose_solver) for `modes` modes (0: all, or the
 // sparse default); its notes go to stderr.
 SolverChoice plan_solver(const Context& c, int modes);
+// The study of a command: the scene's options with the flags in their place,
+// `modes` as wanted_modes gives it, a progress bar unless `quiet`.
+StudyOptions study_of(const Context& c, int modes, const std::vector<int>& harmonics, bool quiet = false);
+// --modes given (>= 0), else the scene's [analysis] modes.
+int wanted_modes(const Context& c, int modes);
+// Diagnostics on stderr ("note: ", "warning: "), option fields as flags; topics in
+// `skip` are left out (the output already shows them).
+void print_diagnostics(const Diagnostics& d, std::initializer_list<Diagnostic::Topic> skip = {});
+// Notes on speed-dependent bearings used beyond their tables at one speed.
+void note_extrapolation(const Context& c, double speed);
 // Whether the choice is the sparse solver (without building one).
 bool use_sparse(const Context& c);
 // Throws InputError naming `command` when the model is above the dense limit.
@@ -85,8 +96,12 @@ std::function<void(size_t, size_t)> progress_bar(const std::string& what);
 // The same bar for a fraction of a time span (an ODE run), in percent.
 std::function<void(double)> fraction_bar(const std::string& what);
 
-// The commands of the rotor analyses: eig, campbell, critical, stability, pervasive, response, export.
-std::vector<Command> add_rotor_commands(CLI::App& app);
+// The commands of the rotor analyses at one speed: eig, model, modes, export.
+std::vector<Command> add_spectrum_commands(CLI::App& app);
+// Over speed: campbell, critical, stability, pervasive.
+std::vector<Command> add_tracking_commands(CLI::App& app);
+// The unbalance response: response.
+std::vector<Command> add_response_commands(CLI::App& app);
 
 // The auto-balancer command: balancer (synchronous states, --simulate).
 std::vector<Command> add_balancer_commands(CLI::App& app);

@@ -11,6 +11,8 @@
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/spectrum_solver.hpp>
 #include <gyrokit/analysis/workers.hpp>
+#include <gyrokit/core/diagnostics.hpp>
+#include <gyrokit/study/rotor_study.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/balancing/autobalancer.hpp>
 #include <gyrokit/balancing/balancer_scene.hpp>

@@ -8,6 +8,8 @@ when no verified answer was found). See docs/python.md.
 """
 from __future__ import annotations
 
+import warnings as _warnings
+
 import numpy as _np
 
 from ._core import Error, InputError, Scene, SolverError, System, __version__
@@ -126,6 +128,7 @@ class CampbellResult(_Result):
         self.max_backward_error = d["max_backward_error"]
         self.rigid_body = d["rigid_body"]
         self.notes = list(d["notes"])
+        self.warnings = list(d["warnings"])
 
     def to_pandas(self):
         """One row per speed and branch: the CLI's campbell table."""
@@ -170,6 +173,8 @@ class CriticalSpeeds(_Result):
         self.damping_ratio = d["damping_ratio"]
         self.amplification = d["amplification"]
         self.af_method = list(d["af_method"])
+        self.notes = list(d["notes"])
+        self.warnings = list(d["warnings"])
         self.api684_critical = d["api684_critical"]
 
     def to_pandas(self):
@@ -188,6 +193,8 @@ class StabilityChanges(_Result):
         self.bounds = d["bounds"]
         self.branch = d["branch"]
         self.becomes_unstable = d["becomes_unstable"]
+        self.notes = list(d["notes"])
+        self.warnings = list(d["warnings"])
 
     def to_pandas(self):
         return self._frame({"speed": self.speeds, "bound": self.bounds, "branch": self.branch,
@@ -337,7 +344,9 @@ class PervasiveLosses(_Result):
 class Response(_Result):
     """Steady unbalance response: complex amplitudes Z[i, k] of DOF dofs[k] at speeds[i]; amplitude, phase (deg)."""
 
-    def __init__(self, speeds, dofs, Z):
+    def __init__(self, speeds, dofs, Z, d=None):
+        self.notes = list(d["notes"]) if d else []
+        self.warnings = list(d["warnings"]) if d else []
         self.speeds = _np.asarray(speeds, dtype=float)
         self.dofs = list(dofs)
         self.amplitudes = Z
@@ -369,19 +378,23 @@ def pervasive(model, speeds=None, *, tolerance=1e-8, solver=None, modes=None, ta
                                            lanczos=int(lanczos), jobs=int(jobs), **o))
 
 
-def response(model, speeds=None, *, dofs=None, solver=None) -> Response:
+def response(model, speeds=None, *, dofs=None, solver=None, harmonics=None, modes=None) -> Response:
     """Unbalance response at `speeds` of the named DOFs (default: all), by a dense or (solver "sparse";
-    "auto" above 200 DOFs) sparse LU of the dynamic stiffness."""
-    system, o = _options(model, solver, None, None, None)
-    Z = _core.response(system, _speeds(model, speeds), o["solver"])
+    "auto" above 200 DOFs) sparse LU of the dynamic stiffness. As the CLI, the modes (`modes`, default
+    those in range) are tracked over the range: each unstable range is a RuntimeWarning and in `warnings`
+    (the response there is not a steady state)."""
+    system, o = _options(model, solver, modes, None, None)
     names = system.dof_names
-    if dofs is None:
-        return Response(_speeds(model, speeds), names, Z)
-    missing = [d for d in dofs if d not in names]
+    missing = [d for d in (dofs or []) if d not in names]
     if missing:
         raise InputError(f"dofs: {missing[0]!r} is not a DOF of the model; allowed: names such as {names[0]!r}")
-    cols = [names.index(d) for d in dofs]
-    return Response(_speeds(model, speeds), list(dofs), Z[:, cols])
+    d = _core.response(system, _speeds(model, speeds), _harmonics(model, harmonics), **o)
+    for w in d["warnings"]:
+        _warnings.warn(w, RuntimeWarning, stacklevel=2)
+    if dofs is None:
+        return Response(_speeds(model, speeds), names, d["Z"], d)
+    cols = [names.index(x) for x in dofs]
+    return Response(_speeds(model, speeds), list(dofs), d["Z"][:, cols], d)
 
 
 # Models from keyword parameters, with the key names, checks and messages of scene files

@@ -93,6 +93,7 @@ class CampbellResult:
     max_backward_error: float
     rigid_body: int
     notes: list[str]
+    warnings: list[str]
     def to_pandas(self) -> Any: ...
     def plot(self, ax: Any = ..., harmonics: Sequence[int] = ...) -> Any: ...
 
@@ -105,6 +106,8 @@ class CriticalSpeeds:
     amplification: npt.NDArray[np.float64]
     af_method: list[str]
     api684_critical: npt.NDArray[np.bool_]
+    notes: list[str]
+    warnings: list[str]
     def to_pandas(self) -> Any: ...
 
 class StabilityChanges:
@@ -112,6 +115,8 @@ class StabilityChanges:
     bounds: npt.NDArray[np.float64]
     branch: npt.NDArray[np.int32]
     becomes_unstable: npt.NDArray[np.bool_]
+    notes: list[str]
+    warnings: list[str]
     def to_pandas(self) -> Any: ...
 
 def load_scene(path: Union[str, PathLike[str]], overrides: Optional[Mapping[str, float]] = ...) -> Scene: ...
@@ -167,6 +172,8 @@ class Response:
     amplitudes: npt.NDArray[np.complex128]
     amplitude: npt.NDArray[np.float64]
     phase: npt.NDArray[np.float64]  # degrees
+    notes: list[str]
+    warnings: list[str]
     def to_pandas(self) -> Any: ...
     def plot(self, ax: Any = ...) -> Any: ...
 
@@ -175,7 +182,8 @@ def pervasive(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, tolerance:
               target_order: Optional[float] = ..., method: str = ..., lanczos: int = ...,
               jobs: int = ...) -> PervasiveLosses: ...
 def response(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, dofs: Optional[Sequence[str]] = ...,
-             solver: Optional[str] = ...) -> Response: ...
+             solver: Optional[str] = ..., harmonics: Optional[Sequence[int]] = ...,
+             modes: Optional[int] = ...) -> Response: ...
 def gyrostat(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
              **keys: Any) -> Scene: ...
 def fe_rotor(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,

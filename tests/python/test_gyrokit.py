@@ -238,7 +238,13 @@ def test_pervasive_and_response_match_the_cli():
         assert p.damping[k] == r["damping"] and p.mode[k] == int(r["mode"]) and p.whirl[k] == r["whirl"]
         assert p.speeds[k] == pytest.approx(float(r["speed_rad_s"]), rel=RTOL)
     f = gk.load_scene(scene("fe_rotor.toml"))
-    resp = gk.response(f, np.linspace(10, 600, 3), dofs=["x12", "y12"])
+    # The CLI's stability check of the response runs in Python too: the same warning, as a RuntimeWarning.
+    with pytest.warns(RuntimeWarning, match="mode 2 is unstable from"):
+        resp = gk.response(f, np.linspace(10, 600, 3), dofs=["x12", "y12"])
+    err = subprocess.run([CLI, "response", scene("fe_rotor.toml"), "--speeds", "10:600:3", "--dofs", "x12,y12"],
+                         check=True, capture_output=True, text=True).stderr
+    assert resp.warnings and [f"warning: {w}" for w in resp.warnings] == \
+        [line for line in err.splitlines() if line.startswith("warning: ")]
     rows = cli("response", scene("fe_rotor.toml"), "--speeds", "10:600:3", "--dofs", "x12,y12")
     assert len(rows) == resp.amplitude.size
     for k, r in enumerate(rows):
@@ -478,3 +484,16 @@ def test_interrupt_is_cleared_after_a_call():
         os.kill(os.getpid(), signal.SIGINT)
         for _ in range(1000):
             pass
+
+
+@pytest.mark.parametrize("name", ["fe_rotor.toml", "three_disk_rotor_journal.toml", "ross_rotor_example/scene.toml", "compressor.toml"])
+def test_the_cli_and_python_run_one_study_with_the_same_notes(name):
+    # One pipeline (the library's study layer) behind both: the same critical speeds and the same notes and
+    # warnings, the CLI's on stderr, Python's in the result.
+    c = gk.critical_speeds(gk.load_scene(scene(name)))
+    run = subprocess.run([CLI, "critical", scene(name), "--format", "csv"], check=True, capture_output=True, text=True)
+    rows = list(csv.DictReader(io.StringIO(run.stdout)))
+    assert [float(r["speed_rad_s"]) for r in rows] == pytest.approx(list(c.speeds), rel=RTOL)
+    lines = run.stderr.splitlines()
+    assert [f"note: {n}" for n in c.notes] == [x for x in lines if x.startswith("note: ")]
+    assert [f"warning: {w}" for w in c.warnings] == [x for x in lines if x.startswith("warning: ")]

@@ -8,6 +8,7 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/screening/screening.hpp>
+#include <gyrokit/study/rotor_study.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -36,13 +37,12 @@ double separation_margin(double wc, double from, double to) {
 void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion& c, std::size_t& q,
                       DesignResult& r) {
     const double w_scan = s.op_to * (1.0 + c.margin_percent / 100.0) * 1.05;
-    // The scene's solver choice: dense for small designs, sparse (a window of
-    // modes near the scene's target) for large ones.
-    const SolverChoice solver = choose_solver(sc.system, sc.solver_options());
-    CampbellOptions co;
-    co.modes = solver.modes;
-    const CampbellDiagram cd = campbell(solver.make, SpeedRange{0.0, w_scan, c.count}.points(), co);
-    const std::vector<CriticalSpeed> cs = critical_speeds(solver.make, cd, c.harmonics);
+    // The study the CLI and Python run on the design's scene (its solver and
+    // modes), over the scan range with the criterion's harmonics.
+    StudyOptions so = study_options(sc);
+    so.speeds = SpeedRange{0.0, w_scan, c.count}.points();
+    so.harmonics = c.harmonics;
+    const std::vector<CriticalSpeed> cs = critical_speed_study(sc.system, so).critical;
     const CriticalSpeed* worst = nullptr;
     double best = inf;
     for (const auto& x : cs) {
@@ -67,12 +67,12 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
 
 void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& c, std::size_t& q,
                      DesignResult& r) {
-    const SolverChoice solver = choose_solver(sc.system, sc.solver_options());
-    CampbellOptions co;
-    // Stability is about every mode: a dense spectrum has them all, so all are tracked (and refined).
-    co.modes = solver.kind == SolverKind::Dense ? 0 : solver.modes;
-    const CampbellDiagram cd = campbell(solver.make, SpeedRange{0.0, c.up_to, c.count}.points(), co);
-    const std::vector<StabilityChange> changes = stability_changes(solver.make, cd);
+    // The stability study of the CLI and Python: the modes in range unless the scene asks for others.
+    StudyOptions so = study_options(sc);
+    so.speeds = SpeedRange{0.0, c.up_to, c.count}.points();
+    const StabilityStudy st = stability_study(sc.system, so);
+    const CampbellDiagram& cd = st.tracked.diagram;
+    const std::vector<StabilityChange>& changes = st.changes;
     double onset = inf;
     const Branch* which = nullptr;
     for (const Branch& b : cd.branches) {

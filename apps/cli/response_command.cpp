@@ -1,0 +1,158 @@
+// response: the unbalance response over speed.
+#include <gyrokit/analysis/unbalance_response.hpp>
+#include "cli/common.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/reports/reports.hpp>
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <iostream>
+#include <memory>
+
+namespace gyrokit::cli {
+
+namespace {
+
+struct Options {
+    Common common;
+    std::string dofs, nodes, at;
+    int modes = -1;
+    bool extrema = false, rows = false, polar = false;
+};
+
+// The items of a comma-separated list.
+std::vector<std::string> split_list(const std::string& text) {
+    std::vector<std::string> out;
+    size_t start = 0;
+    while (!text.empty() && start <= text.size()) {
+        const size_t end = std::min(text.find(',', start), text.size());
+        out.push_back(text.substr(start, end - start));
+        start = end + 1;
+    }
+    return out;
+}
+
+// The response outputs: DOFs by name (--dofs), the DOFs in metres of nodes
+// (--nodes) and of the nodes nearest axial positions (--at, m); empty: all.
+std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys);
+
+// DOF indices from a list of names (empty: all).
+std::vector<int> parse_dofs(const std::string& text, const std::vector<std::string>& names) {
+    std::vector<int> out;
+    size_t start = 0;
+    while (!text.empty() && start <= text.size()) {
+        const size_t end = std::min(text.find(',', start), text.size());
+        const std::string name = text.substr(start, end - start);
+        const auto it = std::find(names.begin(), names.end(), name);
+        if (it == names.end())
+            throw InputError(fmt::format("--dofs: '{}' is not a DOF of the model; allowed: names such as {}", name,
+                                         names.empty() ? std::string("-") : names.front()));
+        if (std::find(out.begin(), out.end(), static_cast<int>(it - names.begin())) != out.end())
+            throw InputError(fmt::format("--dofs '{}': '{}' is listed twice; allowed: each DOF once", text, name));
+        out.push_back(static_cast<int>(it - names.begin()));
+        start = end + 1;
+    }
+    return out;
+}
+
+std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys) {
+    std::vector<int> out = parse_dofs(o.dofs, sys.dof_names);
+    const auto add_node = [&](int node) {
+        const std::vector<int> dofs = sys.node_translations(node);
+        // Nothing would mean every DOF: a node held by a support is an error, not "all".
+        if (dofs.empty())
+            throw InputError(fmt::format("node {} has no free lateral translation (a support holds it, or the "
+                                         "model has no lateral DOFs); allowed: a node with free x or y",
+                                         node));
+        for (const int k : dofs)
+            if (std::find(out.begin(), out.end(), k) == out.end()) out.push_back(k);
+    };
+    for (const std::string& item : split_list(o.nodes)) {
+        try {
+            size_t pos = 0;
+            const int node = std::stoi(item, &pos);
+            if (pos != item.size()) throw std::invalid_argument(item);
+            add_node(node);
+        } catch (const InputError& e) {
+            throw InputError("--nodes " + item + ": " + e.what());
+        } catch (const std::exception&) {
+            throw InputError("--nodes '" + o.nodes + "': allowed: node numbers separated by commas");
+        }
+    }
+    for (const std::string& item : split_list(o.at)) {
+        double z = 0.0;
+        try {
+            size_t pos = 0;
+            z = std::stod(item, &pos);
+            if (pos != item.size()) throw std::invalid_argument(item);
+        } catch (const std::exception&) {
+            throw InputError("--at '" + o.at + "': allowed: axial positions in m separated by commas");
+        }
+        try {
+            add_node(sys.nearest_node(z));
+        } catch (const InputError& e) {
+            throw InputError("--at " + item + ": " + e.what());
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<Command> add_response_commands(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    std::vector<Command> cmds;
+
+    auto* resp = app.add_subcommand("response", "unbalance response: amplitude and phase per DOF");
+    add_common(resp, o->common, true);
+    add_motion_option(resp, o->common);
+    add_solver_options(resp, o->common);
+    resp->add_option("--plot", o->common.plot, "draw amplitude (one panel per unit) and phase into FILE.svg or FILE.png");
+    resp->add_flag("--polar", o->polar, "with --plot: a polar plot (Im Z against Re Z) instead of amplitude and phase");
+    resp->add_option("--dofs", o->dofs, "DOFs reported, by name, e.g. x3,y3 (default: all)");
+    resp->add_option("--nodes", o->nodes, "DOFs reported: the lateral translations x, y of these nodes, e.g. 12,20");
+    resp->add_option("--at", o->at, "DOFs reported: the lateral translations x, y of the nodes nearest these axial positions (m)");
+    resp->add_flag("--extrema", o->extrema, "print the peaks and antiresonances instead of the curve");
+    resp->add_flag("--rows", o->rows, "table format: every row of the curve instead of the summary");
+    resp->add_option("--modes", o->modes, "modes checked for stability over the range (0 = all); default: the scene's, "
+                                           "else the modes in range")
+        ->check(CLI::Range(0, 100000000));
+    cmds.push_back({resp, [o](std::ostream& out) {
+        if (o->polar && o->common.plot.empty()) throw InputError("--polar: only together with --plot FILE");
+        const Context c = open_scene(o->common, true);
+        const Scene& sc = c.scene;
+        const std::vector<int> outputs = response_outputs(*o, sc.system);
+        // The sparse LU of the dynamic stiffness where the solver choice is sparse.
+        const SolverKind kind = use_sparse(c) ? SolverKind::Sparse : SolverKind::Dense;
+        const std::vector<std::string>& names = sc.system.dof_names;
+        const std::vector<std::string>& units = sc.system.dof_units;
+        const ResponseSolver solve = [&](double w) { return unbalance_response(sc.system, w, kind); };
+        for (const auto& n : extrapolation_notes(sc.system.bearings, c.speeds.front(), c.speeds.back()))
+            std::cerr << "note: " << n << "\n";
+        const ResponseCurve rc = unbalance_response(solve, sc.dofs(), c.speeds, outputs);
+        print_diagnostics(
+            response_stability_warnings(sc.system, study_of(c, wanted_modes(c, o->modes), c.scene.harmonics, true)));
+        const bool summary = c.format == TableFormat::Text && !o->rows && !o->extrema;
+        // Peaks refined between grid speeds: the summary, --extrema, and the choice of curves to draw.
+        std::vector<ResponseExtremum> extrema;
+        if (summary || o->extrema || (!o->common.plot.empty() && outputs.empty()))
+            extrema = response_extrema(solve, rc, !o->extrema);
+        if (o->extrema)
+            write_table(out, extrema_table(names, units, extrema, c.unit), c.format);
+        else if (summary)
+            write_table(out, response_summary(names, units, response_maxima(rc, extrema), c.unit, 8), c.format);
+        else
+            write_table(out, response_table(names, units, rc, c.unit), c.format);
+        if (o->common.plot.empty()) return;
+        // Many DOFs: the six largest of each unit, so the legend stays readable.
+        const std::vector<int> shown =
+            !outputs.empty() || rc.dofs.size() <= 6 ? std::vector<int>{}
+                                                    : largest_responses(units, response_maxima(rc, extrema), 6);
+        plot_if(o->common.plot, o->polar ? response_polar_figure(names, units, rc, c.unit, sc.title, shown)
+                                         : response_figure(names, units, rc, c.unit, sc.title, shown));
+    }});
+
+    return cmds;
+}
+
+}  // namespace gyrokit::cli

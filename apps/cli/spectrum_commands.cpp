@@ -1,0 +1,128 @@
+// eig, model, modes, export: the model and its modes at one speed.
+#include <gyrokit/analysis/mode_shapes.hpp>
+#include <gyrokit/io/export.hpp>
+#include "cli/common.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/reports/reports.hpp>
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <iostream>
+#include <memory>
+
+namespace gyrokit::cli {
+
+namespace {
+
+struct Options {
+    Common common;
+    std::string speed, dir, select, per = "node";
+    int modes = -1;
+    bool rigid_body = false;
+};
+
+}  // namespace
+
+std::vector<Command> add_spectrum_commands(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    std::vector<Command> cmds;
+
+    auto* eig = app.add_subcommand("eig", "all eigenvalues at one speed");
+    add_common(eig, o->common, false);
+    add_motion_option(eig, o->common);
+    add_solver_options(eig, o->common);
+    eig->add_option("--speed", o->speed, "spin speed (in --units)")->required();
+    eig->add_option("--modes", o->modes, "sparse solver: number of modes near --target (default: the scene's, else 6)");
+    eig->add_flag("--rigid-body", o->rigid_body, "list the rigid-body eigenvalues (lambda = 0) after the modes");
+    cmds.push_back({eig, [o](std::ostream& out) {
+        const Context c = open_scene(o->common, false);
+        const double w = parse_speed(o->speed, "--speed", c.unit);
+        note_extrapolation(c, w);
+        const SolverChoice plan = plan_solver(c, wanted_modes(c, o->modes));
+        const QuadraticSpectrum s = plan.make()(w);
+        for (const auto& n : s.notes) std::cerr << "note: " << n << "\n";
+        if (!o->rigid_body && !s.rigid_body.empty())
+            std::cerr << "note: " << rigid_body_note(s.rigid_body, c.scene.dof_names()) << " (--rigid-body lists them)\n";
+        write_table(out, eig_table(s, w, c.unit, o->rigid_body), c.format);
+    }});
+
+    auto* model = app.add_subcommand("model", "what the scene's model is: DOFs, mass, nodes, damping, bearings; "
+                                              "--plot draws an FE rotor");
+    model->add_option("scene", o->common.scene, "scene file (TOML)")->required();
+    model->add_option("--format", o->common.format, "output format: table, csv or json")->capture_default_str();
+    model->add_option("--plot", o->common.plot, "FE rotors: draw the shaft, disks and bearings into FILE.svg|.png");
+    add_motion_option(model, o->common);
+    cmds.push_back({model, [o](std::ostream& out) {
+        const TableFormat format = parse_format(o->common);
+        check_plot_path(o->common.plot);
+        const Scene sc = load_motion_scene(o->common);
+        if (!o->common.plot.empty() && !sc.fe_rotor)
+            throw InputError("--plot: draws finite-element rotors; this model is " + sc.model_type);
+        write_table(out, model_summary(sc), format);
+        if (sc.fe_rotor) plot_if(o->common.plot, fe_rotor_figure(*sc.fe_rotor, sc.system, sc.title));
+    }});
+
+    auto* modes = app.add_subcommand("modes", "mode shapes at one speed: orbits per node (or entries per DOF)");
+    add_common(modes, o->common, false);
+    add_motion_option(modes, o->common);
+    add_solver_options(modes, o->common);
+    modes->add_option("--speed", o->speed, "spin speed (in --units); default 0")->default_str("0");
+    modes->add_option("--modes", o->modes, "number of modes (the lowest, or the sparse window; default: the "
+                                           "scene's, else all dense / 6 sparse)")
+        ->check(CLI::Range(0, 100000000));
+    modes->add_option("--mode", o->select, "only these modes, by number from 1: K or K,L,...");
+    modes->add_option("--per", o->per, "node: one row per whirl pair (orbit); dof: one row per DOF")
+        ->capture_default_str();
+    modes->add_option("--plot", o->common.plot, "draw the shapes along the axis (or the orbits) into FILE.svg|.png");
+    cmds.push_back({modes, [o](std::ostream& out) {
+        const Context c = open_scene(o->common, false);
+        if (o->per != "node" && o->per != "dof")
+            throw InputError("--per '" + o->per + "': allowed: node, dof");
+        const double w = o->speed.empty() ? 0.0 : parse_speed(o->speed, "--speed", c.unit);
+        note_extrapolation(c, w);
+        SolverOptions so = c.solver;
+        so.modes = wanted_modes(c, o->modes);
+        std::vector<std::string> notes;
+        std::vector<ModeShape> shapes = mode_shapes(c.scene.system, w, so, &notes);
+        for (const auto& n : notes) std::cerr << "note: " << n << "\n";
+        if (!o->select.empty()) {
+            std::vector<ModeShape> chosen;
+            for (const int k : parse_harmonics(o->select, {}, "--mode")) {
+                if (k > static_cast<int>(shapes.size()))
+                    throw InputError(shapes.empty() ? fmt::format("--mode {}: no mode was computed at this speed", k)
+                                                    : fmt::format("--mode {}: allowed: 1 to {} (the modes computed)",
+                                                                  k, shapes.size()));
+                chosen.push_back(shapes[static_cast<size_t>(k - 1)]);
+            }
+            shapes = std::move(chosen);
+        }
+        const auto& sys = c.scene.system;
+        const bool per_dof = o->per == "dof" || sys.whirl_pairs.empty();
+        Table detail = per_dof ? mode_dof_table(shapes, sys.dof_names, sys.dof_units, w, c.unit)
+                               : mode_orbit_table(shapes, w, c.unit);
+        // A person reads the list first; a script gets one table.
+        if (c.format == TableFormat::Text)
+            write_tables(out, {mode_list_table(shapes, sys.dof_names, w, c.unit), detail}, c.format);
+        else
+            write_table(out, detail, c.format);
+        plot_if(o->common.plot, mode_shape_figure(shapes, w, c.unit, c.scene.title));
+    }});
+
+    auto* exp = app.add_subcommand("export", "M, D, G, K, N and the state matrices as Matrix Market");
+    add_common(exp, o->common, false);
+    add_motion_option(exp, o->common);
+    exp->add_option("--speed", o->speed, "spin speed for the assembled matrices (in --units)")->required();
+    exp->add_option("--dir", o->dir, "output directory (created if missing)")->required();
+    cmds.push_back({exp, [o](std::ostream&) {
+        const Context c = open_scene(o->common, false);
+        const double w = parse_speed(o->speed, "--speed", c.unit);
+        note_extrapolation(c, w);
+        const ExportReport r = export_matrices(c.scene.system, w, o->dir);
+        for (const auto& n : r.notes) std::cerr << "note: " << n << "\n";
+        std::cerr << "wrote the matrices at " << c.unit.factor * w << " " << c.unit.name << " into " << o->dir
+                  << "\n";
+    }});
+    return cmds;
+}
+
+}  // namespace gyrokit::cli

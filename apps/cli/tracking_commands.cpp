@@ -1,0 +1,146 @@
+// campbell, critical, stability, pervasive: the modes over speed.
+#include <gyrokit/analysis/pervasive_damping.hpp>
+#include "cli/common.hpp"
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/reports/reports.hpp>
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <iostream>
+#include <memory>
+
+namespace gyrokit::cli {
+
+namespace {
+
+struct Options {
+    Common common;
+    std::string harmonics, critical_method = "branches";
+    int modes = -1;
+    double tolerance = 1e-8;
+    bool rows = false;
+};
+
+}  // namespace
+
+std::vector<Command> add_tracking_commands(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    std::vector<Command> cmds;
+
+    auto* camp = app.add_subcommand("campbell", "modes tracked over speed (Campbell diagram)");
+    add_common(camp, o->common, true);
+    add_motion_option(camp, o->common);
+    add_solver_options(camp, o->common);
+    camp->add_option("--modes", o->modes, "number of modes to track: the K lowest by frequency (0 = all; sparse: "
+                                          "the K nearest --target, default 6); default: the scene's, else the "
+                                          "modes in range");
+    camp->add_option("--plot", o->common.plot, "draw the diagram into FILE.svg or FILE.png");
+    camp->add_option("--harmonics", o->harmonics, "harmonic lines drawn, e.g. 1,2 (default: the scene's, else 1)");
+    camp->add_flag("--rows", o->rows, "table format: every row of the diagram instead of the summary");
+    cmds.push_back({camp, [o](std::ostream& out) {
+        const Context c = open_scene(o->common, true);
+        const auto h = parse_harmonics(o->harmonics, c.scene.harmonics);
+        const StudyOptions so = study_of(c, wanted_modes(c, o->modes), h);
+        const CampbellStudy st = campbell_study(c.scene.system, so);
+        const CampbellDiagram& cd = st.diagram;
+        // The first screen (table format): a summary and the critical speeds; the rows on request.
+        const bool summary = c.format == TableFormat::Text && !o->rows;
+        std::vector<CriticalSpeed> cs;
+        if (summary || !o->common.plot.empty()) cs = critical_speeds_of(c.scene.system, st, so);
+        if (summary) {
+            // A sparse window's verdict covers its modes only (a dense diagram keeps every mode).
+            const bool window = st.plan.kind == SolverKind::Sparse;
+            write_table(out, campbell_summary(cd, cs, c.unit, o->common.plot, window), c.format);
+            out << "\n";
+            write_tables(out, critical_tables(cs, c.unit), c.format);
+        } else {
+            write_table(out, campbell_table(cd, c.unit), c.format);
+        }
+        if (!o->common.plot.empty()) plot_if(o->common.plot, campbell_figure(cd, cs, h, c.unit, c.scene.title));
+        // The summary names the modes out of range in a row of its own.
+        if (summary)
+            print_diagnostics(st.diagnostics, {Diagnostic::Topic::OutOfRange});
+        else
+            print_diagnostics(st.diagnostics);
+    }});
+
+    auto* crit = app.add_subcommand("critical", "critical speeds: crossings with the k x speed lines");
+    add_common(crit, o->common, true);
+    add_motion_option(crit, o->common);
+    add_solver_options(crit, o->common);
+    crit->add_option("--harmonics", o->harmonics, "harmonics k, e.g. 1,2 (default: the scene's, else 1)");
+    crit->add_option("--modes", o->modes, "number of modes considered (0 = all); default: the scene's, else the modes in range");
+    crit->add_option("--critical-method", o->critical_method,
+                     "branches (root finding on tracked modes) or direct (linear eigenproblem; undamped only)")
+        ->capture_default_str();
+    cmds.push_back({crit, [o](std::ostream& out) {
+        if (o->critical_method != "branches" && o->critical_method != "direct")
+            throw InputError("--critical-method '" + o->critical_method + "': allowed: branches, direct");
+        const Context c = open_scene(o->common, true);
+        const auto h = parse_harmonics(o->harmonics, c.scene.harmonics);
+        std::vector<CriticalSpeed> cs;
+        if (o->critical_method == "direct") {
+            require_dense(c, "critical --critical-method direct");
+            for (int k : h) {
+                auto d = critical_speeds_direct(c.scene.system, k, c.speeds.front(), c.speeds.back());
+                cs.insert(cs.end(), d.begin(), d.end());
+            }
+            std::sort(cs.begin(), cs.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
+            set_amplification_factors(cs, c.scene.system);
+        } else {
+            const CriticalSpeedStudy st = critical_speed_study(c.scene.system, study_of(c, wanted_modes(c, o->modes), h));
+            cs = st.critical;
+            print_diagnostics(st.tracked.diagnostics);
+        }
+        // A person reads the critical speeds and the heavily damped crossings apart; a script gets one table.
+        if (c.format == TableFormat::Text)
+            write_tables(out, critical_tables(cs, c.unit), c.format);
+        else
+            write_table(out, critical_table(cs, c.unit), c.format);
+    }});
+
+    auto* stab = app.add_subcommand("stability", "speeds where a mode becomes unstable or stable again");
+    add_common(stab, o->common, true);
+    add_motion_option(stab, o->common);
+    add_solver_options(stab, o->common);
+    stab->add_option("--modes", o->modes, "number of modes considered (0 = all; sparse: default 6); default: the scene's, else the "
+                                          "modes in range");
+    cmds.push_back({stab, [o](std::ostream& out) {
+        const Context c = open_scene(o->common, true);
+        const StabilityStudy st =
+            stability_study(c.scene.system, study_of(c, wanted_modes(c, o->modes), c.scene.harmonics));
+        write_table(out, stability_table(st.changes, c.unit), c.format);
+        // The table is the verdict on stability; rigid-body and ambiguity notes belong to the diagram.
+        print_diagnostics(st.tracked.diagnostics, {Diagnostic::Topic::RigidBody, Diagnostic::Topic::Ambiguity,
+                                                   Diagnostic::Topic::Instability});
+    }});
+
+    auto* perv = app.add_subcommand("pervasive", "Hautus pervasive-damping check for each damping component");
+    add_common(perv, o->common, true);
+    add_motion_option(perv, o->common);
+    add_solver_options(perv, o->common);
+    perv->add_option("--tolerance", o->tolerance, "largest residual of a loss (a loss must also be within 1e3 "
+                                                  "times the eigenpair's backward error)")
+        ->capture_default_str();
+    perv->add_option("--modes", o->modes, "number of modes checked: the K lowest (0 = all); default: the scene's, else the "
+                                                  "modes in range")
+        ->check(CLI::Range(0, 100000000));
+    cmds.push_back({perv, [o](std::ostream& out) {
+        if (!(o->tolerance > 0.0 && o->tolerance < 1.0))
+            throw InputError(fmt::format("--tolerance {}: allowed: 0 < tolerance < 1", o->tolerance));
+        const Context c = open_scene(o->common, true);
+        PervasiveOptions po;
+        po.tolerance = o->tolerance;
+        po.modes = wanted_modes(c, o->modes);
+        po.solver = c.solver;
+        po.threads = c.jobs;
+        if (use_sparse(c) && po.modes == 0)
+            std::cerr << "note: the sparse solver checks the " << kDefaultSparseModes
+                      << " modes nearest the target; set --modes K for another number\n";
+        write_table(out, pervasive_table(pervasive_damping(c.scene.system, c.speeds, po), c.unit), c.format);
+    }});
+
+    return cmds;
+}
+
+}  // namespace gyrokit::cli

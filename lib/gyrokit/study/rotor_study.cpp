@@ -1,0 +1,105 @@
+#include <gyrokit/study/rotor_study.hpp>
+
+#include <gyrokit/core/bearing_table.hpp>
+#include <gyrokit/reports/campbell_reports.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace gyrokit {
+
+namespace {
+
+using Level = Diagnostic::Level;
+using Topic = Diagnostic::Topic;
+
+// What the tracked diagram says besides its rows.
+void diagram_diagnostics(const CampbellDiagram& cd, const SpeedUnit& u, Diagnostics& d) {
+    add_notes(d, Topic::Solver, cd.notes);
+    if (cd.rigid_body > 0)
+        d.push_back({Level::Note, Topic::RigidBody,
+                     fmt::format("{} rigid-body eigenvalues (lambda = 0: free motion of a singular K) are not modes "
+                                 "and are not tracked",
+                                 cd.rigid_body)});
+    if (cd.ambiguous_steps > 0)
+        d.push_back({Level::Note, Topic::Ambiguity,
+                     fmt::format("{} speed steps stayed ambiguous at the refinement limit; use a finer speed grid",
+                                 cd.ambiguous_steps)});
+    for (const auto& w : instability_warnings(cd, u)) d.push_back({Level::Warning, Topic::Instability, w});
+    if (std::isfinite(cd.band)) d.push_back({Level::Note, Topic::OutOfRange, out_of_range_note(cd, u)});
+}
+
+}  // namespace
+
+StudyOptions study_options(const Scene& scene) {
+    StudyOptions o;
+    o.solver = scene.solver_options();
+    o.solver.modes = scene.modes;
+    o.harmonics = scene.harmonics;
+    if (scene.speeds) o.speeds = scene.speeds->points();
+    return o;
+}
+
+CampbellStudy campbell_study(const GyroscopicSystem& sys, const StudyOptions& opt) {
+    if (opt.speeds.empty())
+        throw InputError(option_field("speeds") + " (none): allowed: at least one speed in rad/s");
+    CampbellStudy s;
+    s.plan = choose_solver(sys, opt.solver);
+    add_notes(s.diagnostics, Topic::Solver, s.plan.notes);
+    add_notes(s.diagnostics, Topic::Extrapolation,
+              extrapolation_notes(sys.bearings, opt.speeds.front(), opt.speeds.back()));
+    CampbellOptions co = tracking_options(s.plan, opt.solver.modes, opt.speeds, opt.harmonics, opt.workers);
+    co.eig = opt.solver.eig;
+    co.progress = opt.progress;
+    s.solver = tracking_solver(s.plan.make, co, opt.speeds);
+    s.diagram = campbell(s.solver, opt.speeds, co);
+    diagram_diagnostics(s.diagram, opt.unit, s.diagnostics);
+    return s;
+}
+
+std::vector<CriticalSpeed> critical_speeds_of(const GyroscopicSystem& sys, const CampbellStudy& tracked,
+                                              const StudyOptions& opt) {
+    std::vector<CriticalSpeed> cs = critical_speeds(tracked.solver, tracked.diagram, opt.harmonics, opt.workers);
+    set_amplification_factors(cs, sys);
+    return cs;
+}
+
+CriticalSpeedStudy critical_speed_study(const GyroscopicSystem& sys, const StudyOptions& opt) {
+    CriticalSpeedStudy s;
+    s.tracked = campbell_study(sys, opt);
+    s.critical = critical_speeds_of(sys, s.tracked, opt);
+    return s;
+}
+
+StabilityStudy stability_study(const GyroscopicSystem& sys, const StudyOptions& opt) {
+    StabilityStudy s;
+    s.tracked = campbell_study(sys, opt);
+    s.changes = stability_changes(s.tracked.solver, s.tracked.diagram, opt.workers);
+    if (s.changes.empty())
+        s.tracked.diagnostics.push_back(
+            {Level::Note, Topic::Verdict,
+             std::string("no mode changes stability in the range; ") +
+                 (unstable_ranges(s.tracked.diagram).empty()
+                      ? "none is unstable (neutral modes: Re lambda within its error bound)"
+                      : "some are unstable throughout")});
+    return s;
+}
+
+Diagnostics response_stability_warnings(const GyroscopicSystem& sys, const StudyOptions& opt) {
+    StudyOptions o = opt;
+    if (o.speeds.size() > 21) {
+        o.speeds.clear();
+        const double from = opt.speeds.front(), to = opt.speeds.back();
+        for (int k = 0; k <= 20; ++k) o.speeds.push_back(from + (to - from) * k / 20.0);
+    }
+    o.progress = {};
+    Diagnostics out;
+    for (const Diagnostic& d : campbell_study(sys, o).diagnostics)
+        if (d.topic == Topic::Instability)
+            out.push_back({Level::Warning, Topic::Instability,
+                           d.text + "; the unbalance response there is not a steady state"});
+    return out;
+}
+
+}  // namespace gyrokit

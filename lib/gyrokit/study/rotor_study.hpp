@@ -1,0 +1,66 @@
+// The rotor analyses as every front end runs them: the CLI, Python and the
+// screening call these, so that the same study gives the same results and the
+// same notes everywhere. Options are merged once (the scene's [analysis] and
+// [speeds], then the caller's), the solver is chosen by the library's rule, the
+// modes in range are tracked by default, and what the run has to say comes back
+// as typed diagnostics.
+#pragma once
+
+#include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/analysis/workers.hpp>
+#include <gyrokit/core/diagnostics.hpp>
+#include <gyrokit/core/speed_range.hpp>
+#include <gyrokit/io/scene.hpp>
+
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+namespace gyrokit {
+
+struct StudyOptions {
+    SolverOptions solver;            // modes: kModesInRange unless asked
+    std::vector<double> speeds;      // rad/s
+    std::vector<int> harmonics{1};
+    Workers workers;
+    SpeedUnit unit;                  // the unit the diagnostics name speeds in
+    std::function<void(std::size_t, std::size_t)> progress;   // speeds solved, of all
+};
+
+// The scene's defaults: [analysis] solver options, modes and harmonics, [speeds].
+StudyOptions study_options(const Scene& scene);
+
+// A tracked Campbell diagram and what it stood on.
+struct CampbellStudy {
+    SolverChoice plan;       // the solver choice (its notes are in diagnostics)
+    SolverFactory solver;    // the tracking solver (the continuation where it is used)
+    CampbellDiagram diagram;
+    Diagnostics diagnostics; // solver, extrapolation, rigid-body, ambiguity, instability, out of range
+};
+CampbellStudy campbell_study(const GyroscopicSystem& sys, const StudyOptions& opt);
+
+// The critical speeds of the tracked modes, with API 684 amplification factors.
+struct CriticalSpeedStudy {
+    CampbellStudy tracked;
+    std::vector<CriticalSpeed> critical;
+};
+CriticalSpeedStudy critical_speed_study(const GyroscopicSystem& sys, const StudyOptions& opt);
+// The same on a tracked diagram (the Campbell summary lists them too).
+std::vector<CriticalSpeed> critical_speeds_of(const GyroscopicSystem& sys, const CampbellStudy& tracked,
+                                              const StudyOptions& opt);
+
+// The speeds where a tracked mode changes stability; a Verdict note where none does.
+struct StabilityStudy {
+    CampbellStudy tracked;
+    std::vector<StabilityChange> changes;
+};
+StabilityStudy stability_study(const GyroscopicSystem& sys, const StudyOptions& opt);
+
+// The steady unbalance response is no state the rotor reaches where a mode is
+// unstable: the modes are tracked over the range (at most 21 speeds of it, a
+// bounded cost next to the response itself) and every unstable range is a warning.
+Diagnostics response_stability_warnings(const GyroscopicSystem& sys, const StudyOptions& opt);
+
+}  // namespace gyrokit
