@@ -63,7 +63,15 @@ printf 'scene = "nounbalance_scene.toml"\n[operating]\nfrom = 1.0\nto = 2.0\n[cr
 expect "unknown key 'c_X'" screen "$dir/unknown.toml"
 expect "empty range" screen "$dir/empty.toml"
 expect "is empty" screen "$dir/emptyvalues.toml"
-expect "numeric key of the scene's [model] table" screen "$dir/notmodel.toml"
+expect "a path to a numeric value of the scene's [model]" screen "$dir/notmodel.toml"
+# Paths into the elements of an FE rotor: what exists is named.
+for bad in 'model.bearing[7].kxx|model.bearing has 2 entries; allowed: model.bearing[0] to model.bearing[1], or model.bearing[*]' \
+           'model.material|model.material is not a number in the scene' \
+           'model.shaft[2].length|[model.shaft[2]] length = -1: out of range'; do
+    printf 'scene = "%s/three_disk_rotor.toml"\n[[parameter]]\nname = "%s"\nvalues = [-1.0]\n[operating]\nfrom = 100.0\nto = 200.0\n[criteria.stability]\nup_to = 300.0\n' \
+        "$data" "${bad%%|*}" > "$dir/path.toml"
+    expect "${bad#*|}" screen "$dir/path.toml"
+done
 expect "no balancer model in scene" screen "$dir/balancer.toml"
 expect "'z' is not a DOF" screen "$dir/dofs.toml"
 expect "needs from and to" screen "$dir/lhsvalues.toml"

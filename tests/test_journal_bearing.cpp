@@ -297,7 +297,7 @@ TEST_CASE("journal bearing in a scene: bad input names the key, value and range"
     const auto message = test::scene_error;
     std::string neg = film_rotor();
     neg.replace(neg.find("clearance = 50e-6"), 17, "clearance = -5e-6");
-    CHECK(message(neg).find("[model.bearing[1]] clearance = -5e-06: out of range; allowed: > 0 (m)") !=
+    CHECK(message(neg).find("[model.bearing[0]] clearance = -5e-06: out of range; allowed: > 0 (m)") !=
           std::string::npos);
     std::string wide = film_rotor();
     wide.replace(wide.find("clearance = 50e-6"), 17, "clearance = 0.03");

@@ -110,20 +110,20 @@ TEST_CASE("materials, disk geometry and speed units: bad input names the key, va
     CHECK(message(rotor("material = \"unobtainium\"", disk)) ==
           "bad.toml: [model] material = 'unobtainium' is unknown; allowed: steel, stainless, aluminium, titanium");
     CHECK(message(rotor("material = \"steel\"", "outer_diameter = 0.2\ninner_diameter = 0.2\nwidth = 0.05")) ==
-          "bad.toml: [model.disk[1]] inner_diameter = 0.2 is not below outer_diameter = 0.2; allowed: 0 <= inner < outer (m)");
+          "bad.toml: [model.disk[0]] inner_diameter = 0.2 is not below outer_diameter = 0.2; allowed: 0 <= inner < outer (m)");
     CHECK(message(rotor("material = \"steel\"", "outer_diameter = 0.2\nwidth = 0.05\nmass = 3")).find(
-              "[model.disk[1]] mass is given together with outer_diameter") != std::string::npos);
-    CHECK(message(rotor("material = \"steel\"", "outer_diameter = 0.2")).find("[model.disk[1]] key 'width' is missing") !=
+              "[model.disk[0]] mass is given together with outer_diameter") != std::string::npos);
+    CHECK(message(rotor("material = \"steel\"", "outer_diameter = 0.2")).find("[model.disk[0]] key 'width' is missing") !=
           std::string::npos);
     CHECK(message(rotor("material = \"steel\"", "outer_diameter = 0.2\nwidth = -0.05")).find(
-              "[model.disk[1]] width = -0.05: out of range") != std::string::npos);
+              "[model.disk[0]] width = -0.05: out of range") != std::string::npos);
     CHECK(message(rotor("material = \"steel\"", "width = 0.05\nmass = 3")).find("width needs outer_diameter") !=
           std::string::npos);
     CHECK(message(rotor("material = \"steel\"", disk, "[speeds]\nfrom = 0\nto = 10\ncount = 3\nunits = \"deg/s\"")) ==
           "bad.toml: [speeds] units = 'deg/s': allowed: rad/s, Hz, rpm");
     const std::string twice = "material = \"a\"\n[[model.materials]]\nname = \"a\"\nE = 1e11\ndensity = 5000\n"
                               "[[model.materials]]\nname = \"a\"\nE = 2e11\ndensity = 6000";
-    CHECK(message(rotor(twice, disk)) == "bad.toml: [model.materials[2]] name = 'a' names a material twice; allowed: "
+    CHECK(message(rotor(twice, disk)) == "bad.toml: [model.materials[1]] name = 'a' names a material twice; allowed: "
                                          "each name once");
     // A range in rpm is checked in rpm.
     CHECK(message(rotor("material = \"steel\"", disk, "[speeds]\nfrom = 3000\nto = 1000\ncount = 3\nunits = \"rpm\""))
@@ -131,11 +131,11 @@ TEST_CASE("materials, disk geometry and speed units: bad input names the key, va
     // A disk off the shaft (the rotor is 1.2 m long).
     std::string off = rotor("material = \"steel\"", disk);
     off.replace(off.find("z = 0.6\n"), 8, "z = 1.9\n");
-    CHECK(message(off).find("[model.disk[1]] z = 1.9 m is not a node of the mesh") != std::string::npos);
+    CHECK(message(off).find("[model.disk[0]] z = 1.9 m is not a node of the mesh") != std::string::npos);
     // Hostile sizes: sections whose elements add up past the limit are refused before any is stored.
     const std::string big = "[model]\ntype = \"fe_rotor\"\nmaterial = \"steel\"\n"
                             "[[model.shaft]]\nlength = 1\nelements = 2\nouter_diameter = 0.05\n"
                             "[[model.shaft]]\nlength = 1\nelements = 4999998\nouter_diameter = 0.05\n";
-    CHECK(message(big) == "bad.toml: [model.shaft[2]] elements = 4999998 makes 5000000 elements in all; allowed: at "
+    CHECK(message(big) == "bad.toml: [model.shaft[1]] elements = 4999998 makes 5000000 elements in all; allowed: at "
                           "most 4999999 (20,000,000 DOFs)");
 }

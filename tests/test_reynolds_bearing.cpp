@@ -519,16 +519,16 @@ TEST_CASE("reynolds bearing in an fe_rotor scene: solution = finite_difference a
         CHECK(m.find(what) != std::string::npos);
         CHECK(m.find('\n') == std::string::npos);
     };
-    refused("solution = \"exact\"\n", "[model.bearing[1]] solution = 'exact': allowed: finite_difference, short");
+    refused("solution = \"exact\"\n", "[model.bearing[0]] solution = 'exact': allowed: finite_difference, short");
     refused("solution = \"finite_difference\"\ngrid_circumferential = 8\n",
-            "[model.bearing[1]] grid_circumferential = 8: out of range; allowed: [16, 2880]");
+            "[model.bearing[0]] grid_circumferential = 8: out of range; allowed: [16, 2880]");
     refused("solution = \"finite_difference\"\ngrid_circumferential = 121\n",
-            "[model.bearing[1]]: grid_circumferential = 121; allowed: an even number from 16 to 2880");
+            "[model.bearing[0]]: grid_circumferential = 121; allowed: an even number from 16 to 2880");
     refused("solution = \"finite_difference\"\ngrid_axial = 2\n",
-            "[model.bearing[1]] grid_axial = 2: out of range; allowed: [4, 256]");
+            "[model.bearing[0]] grid_axial = 2: out of range; allowed: [4, 256]");
     refused("solution = \"finite_difference\"\ngrid_axial = 30\n",
-            "[model.bearing[1]]: grid_axial = 30; allowed: a multiple of 4 from 4 to 256");
+            "[model.bearing[0]]: grid_axial = 30; allowed: a multiple of 4 from 4 to 256");
     refused("solution = \"finite_difference\"\ngrid_axial = 32.0\n",
-            "[model.bearing[1]] grid_axial must be a whole number in [4, 256]");
-    refused("grid_axial = 32\n", "[model.bearing[1]] grid_axial is given with solution = \"short\"");
+            "[model.bearing[0]] grid_axial must be a whole number in [4, 256]");
+    refused("grid_axial = 32\n", "[model.bearing[0]] grid_axial is given with solution = \"short\"");
 }

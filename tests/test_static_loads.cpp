@@ -102,5 +102,5 @@ TEST_CASE("static loads: fluid films with load = auto in a scene", "[fe_rotor][s
                                  "[[model.disk]]\nz = 1000\nmass = 200.0\n"
                                  "[[model.bearing]]\nz = 0\n" + film + "[[model.bearing]]\nz = 500\n" + film;
     CHECK_THAT(test::scene_error(overhung),
-               Catch::Contains("[model.bearing[1]] load = \"auto\"") && Catch::Contains("lifts the journal off"));
+               Catch::Contains("[model.bearing[0]] load = \"auto\"") && Catch::Contains("lifts the journal off"));
 }

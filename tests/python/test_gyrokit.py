@@ -192,6 +192,21 @@ def test_screen_gives_the_verdicts_of_the_cli():
     np.testing.assert_array_equal(listed.parameters["model.c_G"], [d["model.c_G"] for d in designs])
 
 
+def test_screen_varies_elements_by_path_in_the_cli_and_python_alike():
+    # Bearing stiffness (a tied parameter: both bearings, kxx and kyy) x mid-section diameter, 3 x 3.
+    sweep = scene("screen_three_disk.toml")
+    r = gk.screen(sweep, jobs=2)
+    rows = cli("screen", sweep, "--jobs", "2")
+    assert len(rows) == len(r.verdict) == 9
+    assert list(r.parameters) == ["k_bearing", "model.shaft[2].outer_diameter"]
+    for k, row in enumerate(rows):
+        assert r.verdict[k] == row["verdict"] and r.reason[k] == row["reason"]
+        for q, values in r.quantities.items():
+            assert (np.isnan(values[k]) and row[q] == "") or values[k] == float(row[q])
+    # Each swept value changes the rotor: no two designs give the same critical speed.
+    assert len(set(r.quantities["critical_speed_rpm"])) == 9
+
+
 def test_screen_refuses_bad_designs():
     sweep = scene("screen_centrifuge.toml")
     with pytest.raises(gk.InputError, match="differ"):

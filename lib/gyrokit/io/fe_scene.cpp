@@ -28,11 +28,9 @@ void for_each_entry(const TomlKeys& k, const std::string& name, bool required, c
     const toml::array* a = n->as_array();
     if (!a || !a->is_array_of_tables())
         throw InputError(k.where(name) + " must be an array of tables [[model." + name + "]]");
+    // Numbered from 0, as a sweep's parameter paths address them (model.bearing[0].kxx).
     int i = 0;
-    for (const auto& e : *a) {
-        ++i;
-        f(TomlKeys(k.file(), fmt::format("model.{}[{}]", name, i), *e.as_table()));
-    }
+    for (const auto& e : *a) f(TomlKeys(k.file(), fmt::format("model.{}[{}]", name, i++), *e.as_table()));
 }
 
 // Lengths as the scene writes them: `length_unit` = "m" (default) or "mm" in [model].

@@ -150,15 +150,96 @@ toml::table parse_scene_file(const std::string& path) {
     }
 }
 
-void apply_overrides(toml::table& root, const std::string& path, const std::map<std::string, double>& overrides) {
-    for (const auto& [name, value] : overrides) {
-        const size_t dot = name.find('.');
-        toml::table* t = dot == std::string::npos ? nullptr : root.get_as<toml::table>(name.substr(0, dot));
-        if (!t)
-            throw InputError(fmt::format("{}: parameter '{}' does not name TABLE.KEY of the scene; e.g. model.c_G",
-                                         path, name));
-        t->insert_or_assign(name.substr(dot + 1), value);
+// One step of a parameter path: a key, and for an array of tables [[...]] the
+// entry ([i], from 0) or every entry ([*]).
+struct PathStep {
+    std::string key;
+    bool indexed = false, every = false;
+    std::size_t index = 0;
+};
+
+std::vector<PathStep> parse_path(const std::string& file, const std::string& name) {
+    const auto bad = [&](const std::string& why) {
+        return InputError(fmt::format("{}: parameter '{}': {}; allowed: TABLE.KEY, or through arrays of tables "
+                                      "TABLE.ARRAY[i].KEY (i from 0) or TABLE.ARRAY[*].KEY (every entry), e.g. "
+                                      "model.c_G, model.bearing[0].kxx, model.shaft[*].outer_diameter",
+                                      file, name, why));
+    };
+    std::vector<PathStep> steps;
+    std::size_t at = 0;
+    while (at <= name.size()) {
+        const std::size_t dot = std::min(name.find('.', at), name.size());
+        std::string part = name.substr(at, dot - at);
+        PathStep s;
+        const std::size_t open = part.find('[');
+        if (open != std::string::npos) {
+            if (part.back() != ']') throw bad("'" + part + "' does not end its index with ]");
+            const std::string index = part.substr(open + 1, part.size() - open - 2);
+            s.indexed = true;
+            if (index == "*") {
+                s.every = true;
+            } else if (!index.empty() && index.size() <= 9 && index.find_first_not_of("0123456789") == std::string::npos) {
+                s.index = std::stoul(index);
+            } else {
+                throw bad("'[" + index + "]' is not an index");
+            }
+            part = part.substr(0, open);
+        }
+        if (part.empty()) throw bad("an empty key");
+        s.key = part;
+        steps.push_back(s);
+        at = dot + 1;
     }
+    if (steps.size() < 2) throw bad("no key below a table");
+    if (steps.back().indexed) throw bad("the last step indexes an array; a parameter is a number");
+    return steps;
+}
+
+// Names the keys of `t` one can go on through (tables and arrays of tables).
+std::string inner_keys(const toml::table& t) {
+    std::string list;
+    for (const auto& [k, v] : t) {
+        const toml::array* a = v.as_array();
+        if (v.is_table()) list += (list.empty() ? "" : ", ") + std::string(k.str());
+        if (a && a->is_array_of_tables() && !a->empty())
+            list += fmt::format("{}{}[0..{}]", list.empty() ? "" : ", ", k.str(), a->size() - 1);
+    }
+    return list.empty() ? std::string("none") : list;
+}
+
+void assign_path(toml::table& t, const std::vector<PathStep>& steps, std::size_t i, double value,
+                 const std::string& where, const std::string& file, const std::string& name) {
+    const PathStep& s = steps[i];
+    const std::string here = where.empty() ? s.key : where + "." + s.key;
+    if (i + 1 == steps.size()) {
+        const toml::node* old = t.get(s.key);
+        if (old && !old->is_number())
+            throw InputError(fmt::format("{}: parameter '{}': {} is not a number in the scene; allowed: a numeric key",
+                                         file, name, here));
+        t.insert_or_assign(s.key, value);
+        return;
+    }
+    toml::node* n = t.get(s.key);
+    toml::array* a = n ? n->as_array() : nullptr;
+    if (!n || (s.indexed && !(a && a->is_array_of_tables())) || (!s.indexed && !n->is_table()))
+        throw InputError(fmt::format("{}: parameter '{}': {} is not {}; allowed below {}: {}", file, name,
+                                     here + (s.indexed ? "[...]" : ""),
+                                     s.indexed ? "an array of tables of the scene" : "a table of the scene",
+                                     where.empty() ? std::string("the top") : where,
+                                     inner_keys(t)));
+    if (!s.indexed) return assign_path(*n->as_table(), steps, i + 1, value, here, file, name);
+    if (a->empty())
+        throw InputError(fmt::format("{}: parameter '{}': {} has no entries", file, name, here));
+    if (!s.every && s.index >= a->size())
+        throw InputError(fmt::format("{}: parameter '{}': {} has {} entries; allowed: {}[0] to {}[{}], or {}[*]", file,
+                                     name, here, a->size(), here, here, a->size() - 1, here));
+    for (std::size_t k = 0; k < a->size(); ++k)
+        if (s.every || k == s.index)
+            assign_path(*a->get(k)->as_table(), steps, i + 1, value, fmt::format("{}[{}]", here, k), file, name);
+}
+
+void apply_overrides(toml::table& root, const std::string& path, const std::map<std::string, double>& overrides) {
+    for (const auto& [name, value] : overrides) assign_path(root, parse_path(path, name), 0, value, "", path, name);
 }
 
 }  // namespace

@@ -223,11 +223,9 @@ DesignResult evaluate_design(const Sweep& s, std::size_t i) {
     r.parameters = s.design(i);
     const std::vector<std::string> qc = quantity_columns(s);
     r.quantities.assign(qc.size(), std::nullopt);
-    std::map<std::string, double> overrides;
-    for (std::size_t j = 0; j < s.parameters.size(); ++j) overrides[s.parameters[j].name] = r.parameters[j];
     Scene sc;
     try {
-        sc = s.loader(overrides);
+        sc = s.loader(design_overrides(s, r.parameters));
     } catch (const Interrupted&) {
         throw;   // not a property of the design
     } catch (const std::exception& e) {

@@ -72,13 +72,20 @@ const toml::table& sub_table(const toml::table& root, const std::string& file, c
 
 SweepParameter read_parameter(const std::string& file, const toml::table& t, std::size_t i, Sampling sampling) {
     TomlKeys k(file, fmt::format("parameter {}", i + 1), t);
-    k.only({"name", "from", "to", "count", "values", "scale"});
+    k.only({"name", "paths", "from", "to", "count", "values", "scale"});
     SweepParameter p;
     p.name = k.choice("name", "", {});
     if (p.name.empty()) throw InputError(k.where("name") + " is missing; required: a scene key such as \"model.c_G\"");
-    if (p.name.rfind("model.", 0) != 0 || p.name.size() <= 6 || p.name.find('.', 6) != std::string::npos)
-        throw InputError(fmt::format("{} = '{}': allowed: a numeric key of the scene's [model] table, e.g. model.c_G",
-                                     k.where("name"), p.name));
+    if (k.has("paths")) {
+        p.paths = strings_of(k, "paths");
+        if (p.paths.empty()) throw InputError(k.where("paths") + " is empty; allowed: one or more scene paths");
+    }
+    // Each path goes below [model]; what it names is checked against the scene (check_parameter).
+    for (const std::string& path : p.paths.empty() ? std::vector<std::string>{p.name} : p.paths)
+        if (path.rfind("model.", 0) != 0 || path.size() <= 6)
+            throw InputError(fmt::format("{} = '{}': allowed: a path to a numeric value of the scene's [model], e.g. "
+                                         "model.c_G, model.bearing[0].kxx, model.shaft[*].outer_diameter",
+                                         k.where(p.paths.empty() ? "name" : "paths"), path));
     p.log_scale = k.choice("scale", "linear", {"linear", "log"}) == "log";
     if (k.has("values")) {
         if (sampling == Sampling::LatinHypercube)
@@ -114,8 +121,11 @@ void check_parameter(const Sweep& s, const SweepParameter& p) {
     if (candidates.empty()) candidates = {p.from, p.to, map_unit(p, 0.5)};
     std::string first_error;
     for (double v : candidates) {
+        std::map<std::string, double> overrides;
+        for (const std::string& path : p.paths.empty() ? std::vector<std::string>{p.name} : p.paths)
+            overrides[path] = v;
         try {
-            s.loader({{p.name, v}});
+            s.loader(overrides);
             return;
         } catch (const InputError& e) {
             if (first_error.empty()) first_error = e.what();
@@ -188,6 +198,20 @@ Shard Shard::parse(const std::string& text) {
     return s;
 }
 
+std::map<std::string, double> design_overrides(const Sweep& s, const std::vector<double>& values) {
+    std::map<std::string, double> o;
+    for (std::size_t j = 0; j < s.parameters.size() && j < values.size(); ++j) {
+        const SweepParameter& p = s.parameters[j];
+        for (const std::string& path : p.paths.empty() ? std::vector<std::string>{p.name} : p.paths) {
+            if (o.count(path))
+                throw InputError(fmt::format("{}: path '{}' is set by two parameters; allowed: each path once", s.path,
+                                             path));
+            o[path] = values[j];
+        }
+    }
+    return o;
+}
+
 void finalize_sweep(Sweep& s) {
     if (!s.loader) {
         const std::string scene = s.scene;
@@ -197,6 +221,7 @@ void finalize_sweep(Sweep& s) {
     for (const auto& p : s.parameters)
         if (!names.insert(p.name).second)
             throw InputError(fmt::format("{}: parameter '{}' appears twice", s.path, p.name));
+    design_overrides(s, std::vector<double>(s.parameters.size(), 0.0));   // no path set twice
     if (s.sampling == Sampling::LatinHypercube && s.parameters.empty())
         throw InputError(s.path + ": Latin hypercube sampling needs at least one [[parameter]]");
     if (s.sampling == Sampling::List) {

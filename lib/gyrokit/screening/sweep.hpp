@@ -15,13 +15,16 @@
 
 namespace gyrokit {
 
-// One varied scene key, e.g. "model.c_G".
+// One varied scene value: a path such as "model.c_G", "model.bearing[0].kxx" or
+// "model.shaft[*].outer_diameter" (every entry), or a name with several tied
+// `paths` that take the same value.
 struct SweepParameter {
     std::string name;
     double from = 0, to = 0;       // range (grid with count, or Latin hypercube)
     int count = 0;                 // grid points (grid with from/to)
     std::vector<double> values;    // explicit grid values (instead of from/to/count)
     bool log_scale = false;        // points equally spaced in log(value)
+    std::vector<std::string> paths;   // tied paths, one value; empty: `name` is the path
 };
 
 // List: the designs are given one by one (`Sweep::designs`), e.g. from a script.
@@ -96,6 +99,9 @@ struct Sweep {
 // the file and the key: unknown parameters, empty ranges, criteria that the
 // scene cannot evaluate (no unbalance, no damping, no balancer model).
 Sweep read_sweep(const std::string& path);
+
+// The scene overrides of one design: each parameter's value at each of its paths.
+std::map<std::string, double> design_overrides(const Sweep& s, const std::vector<double>& values);
 
 // Checks a sweep assembled in code (parameters, ranges, criteria, loader set)
 // and fills `lhs`; read_sweep calls it too.

@@ -1,0 +1,111 @@
+// A sweep parameter addresses any numeric value of a scene by a path through its
+// arrays of tables (model.bearing[1].kxx, model.shaft[*].outer_diameter): each
+// swept value changes exactly the element it names, as a hand-edited scene does.
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/scene.hpp>
+#include <gyrokit/screening/sweep.hpp>
+
+#include "test_helpers.hpp"
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <sstream>
+
+using namespace gyrokit;
+
+namespace {
+
+const std::string kScene = std::string(GYROKIT_DATA_DIR) + "/three_disk_rotor.toml";
+
+std::string text_of(const std::string& path) {
+    std::ifstream f(path);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+// The scene text with the `nth` (from 0) occurrence of `from` replaced by `to`.
+std::string edited(std::string text, const std::string& from, const std::string& to, int nth) {
+    std::size_t at = 0;
+    for (int k = 0; k <= nth; ++k) {
+        at = text.find(from, k == 0 ? 0 : at + 1);
+        REQUIRE(at != std::string::npos);
+    }
+    return text.replace(at, from.size(), to);
+}
+
+void require_equal(const GyroscopicSystem& a, const GyroscopicSystem& b) {
+    REQUIRE(a.size() == b.size());
+    CHECK((a.M.dense() - b.M.dense()).norm() == 0.0);
+    CHECK((a.K.dense() - b.K.dense()).norm() == 0.0);
+    CHECK((a.G.dense() - b.G.dense()).norm() == 0.0);
+    CHECK((a.damping_matrix(0.0) - b.damping_matrix(0.0)).norm() == 0.0);
+}
+
+std::string refusal(const std::map<std::string, double>& o) {
+    try {
+        load_scene(kScene, o);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "accepted";
+}
+
+}  // namespace
+
+TEST_CASE("a sweep path changes exactly the element it names, as a hand-edited scene") {
+    const std::string text = text_of(kScene);
+    const Scene base = load_scene(kScene);
+    SECTION("one bearing's stiffness") {
+        const Scene swept = load_scene(kScene, {{"model.bearing[1].kxx", 3e7}});
+        const Scene hand = parse_scene(edited(text, "kxx = 2e7", "kxx = 3e7", 1), kScene, GYROKIT_DATA_DIR);
+        require_equal(swept.system, hand.system);
+        CHECK((swept.system.K.dense() - base.system.K.dense()).norm() == Approx(1e7));   // one entry, the second bearing
+    }
+    SECTION("one section's diameter: the mesh is rebuilt") {
+        const Scene swept = load_scene(kScene, {{"model.shaft[2].outer_diameter", 0.11}});
+        const Scene hand =
+            parse_scene(edited(text, "outer_diameter = 0.10\n", "outer_diameter = 0.11\n", 0), kScene, GYROKIT_DATA_DIR);
+        require_equal(swept.system, hand.system);
+        CHECK((swept.system.M.dense() - base.system.M.dense()).norm() > 0.0);
+    }
+    SECTION("every entry, and several tied paths") {
+        const Scene swept = load_scene(kScene, {{"model.bearing[*].kxx", 3e7}, {"model.bearing[*].kyy", 3e7}});
+        std::string t = text;
+        for (int k = 0; k < 2; ++k) t = edited(t, "kxx = 2e7", "kxx = 3e7", 0);
+        for (int k = 0; k < 2; ++k) t = edited(t, "kyy = 1.5e7", "kyy = 3e7", 0);
+        require_equal(swept.system, parse_scene(t, kScene, GYROKIT_DATA_DIR).system);
+    }
+}
+
+TEST_CASE("a bad sweep path is one line naming the path and what exists") {
+    CHECK(refusal({{"model.bearing[7].kxx", 1e7}}) ==
+          kScene + ": parameter 'model.bearing[7].kxx': model.bearing has 2 entries; allowed: model.bearing[0] to "
+                   "model.bearing[1], or model.bearing[*]");
+    CHECK_THAT(refusal({{"model.material", 1.0}}),
+               Catch::Contains("parameter 'model.material': model.material is not a number in the scene"));
+    CHECK_THAT(refusal({{"model.bearings[0].kxx", 1.0}}),
+               Catch::Contains("model.bearings[...] is not an array of tables of the scene; allowed below model: "
+                               "bearing[0..1], disk[0..2], shaft[0..4]"));
+    CHECK_THAT(refusal({{"model.bearing[x].kxx", 1.0}}), Catch::Contains("'[x]' is not an index"));
+    CHECK_THAT(refusal({{"model.bearing[0]", 1.0}}), Catch::Contains("the last step indexes an array"));
+    // A geometry value that breaks the mesh: the reader's message, naming the element as the path does.
+    CHECK_THAT(refusal({{"model.shaft[1].length", -0.25}}),
+               Catch::Contains("[model.shaft[1]] length = -0.25: out of range"));
+    CHECK_THAT(refusal({{"model.disk[0].z", 0.37}}), Catch::Contains("[model.disk[0]] z = 0.37 m is not a node"));
+}
+
+TEST_CASE("a tied sweep parameter sets each of its paths, and a path set twice is refused") {
+    Sweep s;
+    s.path = "test sweep";
+    s.scene = kScene;
+    SweepParameter k{"k_bearing", 0, 0, 0, {1e7, 2e7}, false, {"model.bearing[*].kxx", "model.bearing[*].kyy"}};
+    SweepParameter d{"model.shaft[2].outer_diameter", 0, 0, 0, {0.1}, false, {}};
+    s.parameters = {k, d};
+    const auto o = design_overrides(s, {2e7, 0.1});
+    CHECK(o == std::map<std::string, double>{{"model.bearing[*].kxx", 2e7},
+                                             {"model.bearing[*].kyy", 2e7},
+                                             {"model.shaft[2].outer_diameter", 0.1}});
+    s.parameters[1].paths = {"model.bearing[*].kyy"};
+    CHECK_THROWS_WITH(design_overrides(s, {2e7, 0.1}), Catch::Contains("path 'model.bearing[*].kyy' is set by two parameters"));
+}
