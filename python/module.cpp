@@ -243,6 +243,32 @@ struct Released {
     py::gil_scoped_release free;
 };
 
+// The sweep file's study, on its own designs or on `designs` (values in the order
+// of `names`; a name of the sweep keeps its tied paths).
+Sweep sweep_with(const std::string& path, const py::object& names, const py::object& designs) {
+    Sweep s = read_sweep(path);
+    if (designs.is_none()) return s;
+    // The sweep's criteria and operating range on the given designs.
+    const std::vector<SweepParameter> declared = s.parameters;
+    s.parameters.clear();
+    s.plot_axes.clear();
+    s.sampling = Sampling::List;
+    s.designs = designs.cast<std::vector<std::vector<double>>>();
+    for (const auto& n : names.cast<std::vector<std::string>>()) {
+        SweepParameter p;
+        p.name = n;
+        for (const auto& d : declared)
+            if (d.name == n) p.paths = d.paths;
+        s.parameters.push_back(p);
+    }
+    for (std::size_t j = 0; j < s.parameters.size(); ++j)
+        for (const auto& d : s.designs)
+            if (j < d.size()) s.parameters[j].values.push_back(d[j]);
+    finalize_sweep(s);
+    for (auto& p : s.parameters) p.values.clear();
+    return s;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -543,24 +569,7 @@ PYBIND11_MODULE(_core, m) {
 
     m.def("screen", [](const std::string& path, const py::object& names, const py::object& designs, int jobs,
                        const py::object& progress) {
-        Sweep s = read_sweep(path);
-        if (!designs.is_none()) {
-            // The sweep's criteria and operating range on the given designs.
-            s.parameters.clear();
-            s.plot_axes.clear();
-            s.sampling = Sampling::List;
-            s.designs = designs.cast<std::vector<std::vector<double>>>();
-            for (const auto& n : names.cast<std::vector<std::string>>()) {
-                SweepParameter p;
-                p.name = n;
-                s.parameters.push_back(p);
-            }
-            for (std::size_t j = 0; j < s.parameters.size(); ++j)
-                for (const auto& d : s.designs)
-                    if (j < d.size()) s.parameters[j].values.push_back(d[j]);
-            finalize_sweep(s);
-            for (auto& p : s.parameters) p.values.clear();
-        }
+        const Sweep s = sweep_with(path, names, designs);
         RunOptions o;
         o.jobs = threads(jobs).count;
         if (!progress.is_none())
@@ -587,6 +596,50 @@ PYBIND11_MODULE(_core, m) {
         d["unit"] = s.unit.name;
         return d;
     }, py::arg("sweep"), py::arg("names"), py::arg("designs"), py::arg("jobs"), py::arg("progress"));
+
+    // One design of the study, for a caller's executor (a process pool, a Dask
+    // cluster): the row run_screening would write for it.
+    m.def("screen_design", [](const std::string& path, const py::object& names, const py::object& designs,
+                              std::size_t index) {
+        const Sweep s = sweep_with(path, names, designs);
+        if (index >= s.design_count())
+            throw InputError("design " + std::to_string(index) + ": allowed: 0 to " +
+                             std::to_string(s.design_count() == 0 ? 0 : s.design_count() - 1));
+        ResultRow row;
+        {
+            Released free;
+            row = format_row(s, evaluate_design(s, index));
+        }
+        return row.cells;
+    }, py::arg("sweep"), py::arg("names"), py::arg("designs"), py::arg("index"));
+
+    // What a study is before it runs: its columns, parameters, quantities, unit and design count.
+    m.def("screen_plan", [](const std::string& path, const py::object& names, const py::object& designs) {
+        const Sweep s = sweep_with(path, names, designs);
+        py::dict d;
+        d["columns"] = result_columns(s);
+        std::vector<std::string> p;
+        for (const auto& x : s.parameters) p.push_back(x.name);
+        d["parameters"] = p;
+        d["quantities"] = quantity_columns(s);
+        d["unit"] = s.unit.name;
+        d["designs"] = s.design_count();
+        return d;
+    }, py::arg("sweep"), py::arg("names"), py::arg("designs"));
+
+    // The row of a design that could not be evaluated where it ran (a worker lost):
+    // verdict error with `reason`, so that no design is silently missing.
+    m.def("screen_error_row", [](const std::string& path, const py::object& names, const py::object& designs,
+                                 std::size_t index, const std::string& reason) {
+        const Sweep s = sweep_with(path, names, designs);
+        DesignResult r;
+        r.index = index;
+        r.parameters = s.design(index);
+        r.quantities.assign(quantity_columns(s).size(), std::nullopt);
+        r.verdict = Verdict::Error;
+        r.reason = reason;
+        return format_row(s, r).cells;
+    }, py::arg("sweep"), py::arg("names"), py::arg("designs"), py::arg("index"), py::arg("reason"));
 
     m.def("balancer", [](const std::string& path) {
         const BalancerScene sc = load_balancer_scene(path);

@@ -307,10 +307,41 @@ class ScreenResult(_Result):
         return ax
 
 
-def screen(sweep, designs=None, *, jobs=0, progress=None) -> ScreenResult:
+def _screen_one(sweep, names, values, index):
+    """One design of a study (module level, so that process pools and Dask workers can run it)."""
+    return _core.screen_design(sweep, names, values, index)
+
+
+def _screen_on(executor, sweep, names, values, progress):
+    """The designs of a study on a concurrent.futures.Executor (a process pool, Dask's client.get_executor()):
+    the rows of the threaded run; a design whose task failed (a worker killed, a lost connection) is an error
+    row with the failure, never missing."""
+    plan = _core.screen_plan(sweep, names, values)
+    total = plan["designs"]
+    futures = [executor.submit(_screen_one, sweep, names, values, i) for i in range(total)]
+    rows = []
+    for i, f in enumerate(futures):
+        try:
+            rows.append(list(f.result()))
+        except (KeyboardInterrupt, InputError):
+            for g in futures:
+                g.cancel()
+            raise
+        except Exception as e:   # the task, not the design, failed: say so in the design's row
+            reason = f"not evaluated: the executor's task failed ({type(e).__name__}: {e})".replace("\n", " ")
+            rows.append(list(_core.screen_error_row(sweep, names, values, i, reason)))
+        if progress is not None:
+            progress(i + 1, total)
+    return ScreenResult(dict(columns=plan["columns"], rows=rows, parameters=plan["parameters"],
+                             quantities=plan["quantities"], unit=plan["unit"]))
+
+
+def screen(sweep, designs=None, *, jobs=0, progress=None, executor=None) -> ScreenResult:
     """A design study: the criteria of the sweep file `sweep` on its own designs, or on `designs`, a list of
     dicts {parameter: value} (e.g. {"model.c_G": 400.0}). Designs run on `jobs` threads (0 = all cores) with
-    the interpreter released; `progress(done, total)` is called after each design."""
+    the interpreter released, or, with `executor` (any concurrent.futures.Executor: a process pool, a Dask
+    cluster's client.get_executor()), one task per design there, with the same rows; a task that fails gives
+    its design an error row. `progress(done, total)` is called after each design."""
     names = values = None
     if designs is not None:
         designs = list(designs)
@@ -321,6 +352,8 @@ def screen(sweep, designs=None, *, jobs=0, progress=None) -> ScreenResult:
             if list(d) != names:
                 raise InputError(f"designs[{i}]: parameters {sorted(d)} differ from those of designs[0] {sorted(names)}")
         values = [[float(d[n]) for n in names] for d in designs]
+    if executor is not None:
+        return _screen_on(executor, str(sweep), names, values, progress)
     return ScreenResult(_core.screen(str(sweep), names, values, int(jobs), progress))
 
 

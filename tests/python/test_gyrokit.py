@@ -512,3 +512,54 @@ def test_the_cli_and_python_run_one_study_with_the_same_notes(name):
     lines = run.stderr.splitlines()
     assert [f"note: {n}" for n in c.notes] == [x for x in lines if x.startswith("note: ")]
     assert [f"warning: {w}" for w in c.warnings] == [x for x in lines if x.startswith("warning: ")]
+
+
+def _rows(r):
+    return list(zip(r.design, r.verdict, r.reason, *[list(v) for v in r.quantities.values()]))
+
+
+def test_screen_on_a_process_pool_and_a_dask_cluster_gives_the_threaded_rows():
+    from concurrent.futures import ProcessPoolExecutor
+    sweep = scene("screen_centrifuge.toml")
+    threaded = gk.screen(sweep, jobs=2)
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        pooled = gk.screen(sweep, executor=pool)
+    assert pooled.columns == threaded.columns
+    np.testing.assert_array_equal(pooled.design, threaded.design)
+    assert pooled.verdict == threaded.verdict and pooled.reason == threaded.reason
+    for q in threaded.quantities:
+        np.testing.assert_array_equal(pooled.quantities[q], threaded.quantities[q])
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        on_dask = gk.screen(sweep, executor=client.get_executor())
+    assert on_dask.verdict == threaded.verdict and on_dask.reason == threaded.reason
+    for q in threaded.quantities:
+        np.testing.assert_array_equal(on_dask.quantities[q], threaded.quantities[q])
+
+
+class _KillsDesign:
+    """An executor whose worker process dies while it runs design `index` (a node lost mid-run)."""
+
+    def __init__(self, pool, index):
+        self.pool, self.index = pool, index
+
+    def submit(self, fn, *args):
+        if args[-1] == self.index:
+            return self.pool.submit(os._exit, 9)
+        return self.pool.submit(fn, *args)
+
+
+def test_a_worker_killed_mid_run_leaves_its_designs_reported_not_lost():
+    from concurrent.futures import ProcessPoolExecutor
+    sweep = scene("screen_centrifuge.toml")
+    threaded = gk.screen(sweep, jobs=2)
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        r = gk.screen(sweep, executor=_KillsDesign(pool, 5))
+    assert len(r.verdict) == len(threaded.verdict) == 24
+    np.testing.assert_array_equal(r.design, np.arange(24))
+    assert r.verdict[5] == "error" and "task failed" in r.reason[5]
+    # Every design is either the threaded run's row or an error row naming the failed task.
+    for k in range(24):
+        assert (r.verdict[k], r.reason[k]) == (threaded.verdict[k], threaded.reason[k]) or \
+            (r.verdict[k] == "error" and "task failed" in r.reason[k])
