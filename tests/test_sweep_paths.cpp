@@ -3,12 +3,15 @@
 // swept value changes exactly the element it names, as a hand-edited scene does.
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/scene.hpp>
+#include <gyrokit/screening/screening.hpp>
 #include <gyrokit/screening/sweep.hpp>
+#include <gyrokit/study/rotor_study.hpp>
 
 #include "test_helpers.hpp"
 #include <catch2/catch.hpp>
 
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 using namespace gyrokit;
@@ -108,4 +111,55 @@ TEST_CASE("a tied sweep parameter sets each of its paths, and a path set twice i
                                              {"model.shaft[2].outer_diameter", 0.1}});
     s.parameters[1].paths = {"model.bearing[*].kyy"};
     CHECK_THROWS_WITH(design_overrides(s, {2e7, 0.1}), Catch::Contains("path 'model.bearing[*].kyy' is set by two parameters"));
+}
+
+TEST_CASE("API 684 separation margin from the amplification factor: the closed form and its caps") {
+    // None below AF 2.5; below the range 17 (1 - 1/(AF - 1.5)) up to 16 %, above it 10 % more up to 26 %.
+    CHECK(api684_required_margin(2.4, false) == 0.0);
+    CHECK(api684_required_margin(2.4, true) == 0.0);
+    CHECK(api684_required_margin(2.5, false) == Approx(0.0).margin(1e-12));
+    CHECK(api684_required_margin(2.5, true) == Approx(10.0));
+    CHECK(api684_required_margin(3.5, false) == Approx(8.5));
+    CHECK(api684_required_margin(3.5, true) == Approx(18.5));
+    CHECK(api684_required_margin(18.5, false) == Approx(16.0));   // 17 (1 - 1/17) = 16: the cap begins
+    CHECK(api684_required_margin(100.0, false) == 16.0);
+    CHECK(api684_required_margin(100.0, true) == 26.0);
+    CHECK(api684_required_margin(std::numeric_limits<double>::infinity(), true) == 26.0);   // undamped
+    CHECK(api684_required_margin(std::numeric_limits<double>::quiet_NaN(), true) == 0.0);
+}
+
+TEST_CASE("screening with rule api684 judges each critical speed by the margin its amplification factor needs") {
+    Sweep s;
+    s.path = "test sweep";
+    s.scene = kScene;
+    s.unit = SpeedUnit::parse("rpm");
+    s.op_from = 3000.0 / s.unit.factor;
+    s.op_to = 12000.0 / s.unit.factor;
+    SeparationCriterion sep;
+    sep.api684 = true;
+    sep.margin_percent = 26.0;
+    s.criteria.separation = sep;
+    s.sampling = Sampling::List;
+    s.parameters = {SweepParameter{"k", 0, 0, 0, {}, false, {"model.bearing[*].kxx", "model.bearing[*].kyy"}}};
+    s.designs = {{1e7}, {2e7}};
+    finalize_sweep(s);
+    // Soft bearings: every crossing heavily damped (checked apart: AF < 2.5), so no margin is needed.
+    StudyOptions so = study_options(load_scene(kScene, {{"model.bearing[*].kxx", 1e7}, {"model.bearing[*].kyy", 1e7}}));
+    so.speeds = SpeedRange{0.0, s.op_to * 1.26 * 1.05, 121}.points();
+    for (const CriticalSpeed& c : critical_speed_study(load_scene(kScene, {{"model.bearing[*].kxx", 1e7},
+                                                                           {"model.bearing[*].kyy", 1e7}}).system,
+                                                       so).critical)
+        CHECK(c.amplification < kApi684CriticalAmplification);
+    CHECK(evaluate_design(s, 0).verdict == Verdict::Pass);
+    // Stiffer: a critical speed inside the range fails; its required margin is the closed form of its AF.
+    const DesignResult r = evaluate_design(s, 1);
+    REQUIRE(r.verdict == Verdict::Fail);
+    REQUIRE(r.quantities.size() == 4);
+    const double af = *r.quantities[3], sm = *r.quantities[1];
+    CHECK(af >= kApi684CriticalAmplification);
+    CHECK(sm < 0.0);   // inside the operating range
+    const bool above = *r.quantities[0] > 12000.0;
+    CHECK(*r.quantities[2] == Approx(above ? std::min(10.0 + 17.0 * (1.0 - 1.0 / (af - 1.5)), 26.0)
+                                           : std::min(17.0 * (1.0 - 1.0 / (af - 1.5)), 16.0)));
+    CHECK_THAT(r.reason, Catch::Contains("AF ") && Catch::Contains("lies inside the operating range"));
 }

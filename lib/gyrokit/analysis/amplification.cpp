@@ -13,6 +13,12 @@ namespace gyrokit {
 
 std::string to_string(AmplificationMethod m) { return m == AmplificationMethod::HalfPower ? "half-power" : "1/(2 zeta)"; }
 
+double api684_required_margin(double af, bool above) {
+    if (std::isnan(af) || af < kApi684CriticalAmplification) return 0.0;
+    const double rise = 17.0 * (1.0 - 1.0 / (af - 1.5));   // 0 at AF 2.5, 17 as AF grows (1 for AF infinite)
+    return above ? std::min(10.0 + rise, 26.0) : std::min(rise, 16.0);
+}
+
 namespace {
 
 double from_damping(const Mode& m) {

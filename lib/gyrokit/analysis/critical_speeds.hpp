@@ -33,6 +33,13 @@ struct CriticalSpeed {
     bool api684_critical() const { return !(amplification < kApi684CriticalAmplification); }
 };
 
+// The separation margin (percent) a critical speed with amplification factor `af`
+// needs from the operating range (API 617 7th ed. 2.6.2.10, API RP 684 SP6.8.2.10):
+// none below AF 2.5 (critically damped); below the range min(17 (1 - 1/(AF - 1.5)), 16),
+// above it min(10 + 17 (1 - 1/(AF - 1.5)), 26). The margin is taken from the
+// minimum operating speed below and from the maximum continuous speed above.
+double api684_required_margin(double af, bool above);
+
 // Amplification factors of critical speeds (API 684, section 2.8): the half-power
 // method on the unbalance response, AF = N_peak / (N_2 - N_1) with N_1, N_2 the
 // speeds where the amplitude of the probe DOF (the mode's largest translation)

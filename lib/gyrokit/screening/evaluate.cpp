@@ -43,26 +43,31 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
     so.speeds = SpeedRange{0.0, w_scan, c.count}.points();
     so.harmonics = c.harmonics;
     const std::vector<CriticalSpeed> cs = critical_speed_study(sc.system, so).critical;
+    // The critical speed with the least margin to spare (its margin less the one it needs).
     const CriticalSpeed* worst = nullptr;
-    double best = inf;
+    double worst_sm = inf, worst_required = 0.0, spare = inf;
     for (const auto& x : cs) {
         if (c.forward_only && x.mode.whirl != Whirl::Forward) continue;
+        if (c.api684 && !x.api684_critical()) continue;   // heavily damped: no margin required
         const double sm = separation_margin(x.speed, s.op_from, s.op_to);
-        if (sm < best) best = sm, worst = &x;
+        const double required = c.api684 ? api684_required_margin(x.amplification, x.speed > s.op_to) : c.margin_percent;
+        if (sm - required < spare) spare = sm - required, worst = &x, worst_sm = sm, worst_required = required;
     }
     if (worst) {
         r.quantities[q] = worst->speed * s.unit.factor;
-        r.quantities[q + 1] = best;
-        if (best < c.margin_percent) {
+        r.quantities[q + 1] = worst_sm;
+        if (c.api684) r.quantities[q + 2] = worst_required, r.quantities[q + 3] = worst->amplification;
+        if (spare < 0.0) {
             r.failed.push_back("separation");
-            r.reason += fmt::format("{}separation: critical speed {:.6g} {} ({}x, {} whirl, branch {}) {}, required "
+            r.reason += fmt::format("{}separation: critical speed {:.6g} {} ({}x, {} whirl, branch {}{}) {}, required "
                                     "{:.3g}%",
                                     r.reason.empty() ? "" : "; ", worst->speed * s.unit.factor, s.unit.name,
                                     worst->harmonic, to_string(worst->mode.whirl), worst->branch,
-                                    position_text(best, worst->speed, s), c.margin_percent);
+                                    c.api684 ? fmt::format(", AF {:.3g}", worst->amplification) : "",
+                                    position_text(worst_sm, worst->speed, s), worst_required);
         }
     }
-    q += 2;
+    q += c.api684 ? 4 : 2;
 }
 
 void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& c, std::size_t& q,
@@ -203,6 +208,8 @@ std::vector<std::string> quantity_columns(const Sweep& s) {
     std::vector<std::string> c;
     // Speeds in the sweep's unit, named with it (critical_speed_rad_s, ..._hz, ..._rpm).
     if (s.criteria.separation) c.insert(c.end(), {s.unit.column("critical_speed"), "separation_percent"});
+    if (s.criteria.separation && s.criteria.separation->api684)
+        c.insert(c.end(), {"required_separation_percent", "amplification_factor"});
     if (s.criteria.stability) c.push_back(s.unit.column("instability_onset"));
     if (s.criteria.pervasive) c.push_back(s.unit.column("pervasive_loss"));
     if (s.criteria.response) c.insert(c.end(), {"max_amplitude", s.unit.column("max_amplitude_speed")});

@@ -357,9 +357,13 @@ Sweep read_sweep(const std::string& path) {
                                          "{}", path, s.scene));
         if (ct.contains("separation")) {
             TomlKeys c(path, "criteria.separation", sub_table(ct, path + ": criteria", "separation"));
-            c.only({"margin_percent", "whirl", "harmonics", "count"});
+            c.only({"margin_percent", "rule", "whirl", "harmonics", "count"});
             SeparationCriterion sc;
-            sc.margin_percent = c.number("margin_percent", 15.0, 0, false, "%");
+            sc.api684 = c.choice("rule", "margin", {"margin", "api684"}) == "api684";
+            if (sc.api684 && c.has("margin_percent"))
+                throw InputError(c.where("margin_percent") + ": not used with rule = \"api684\" (the margin follows "
+                                 "each critical speed's amplification factor)");
+            sc.margin_percent = sc.api684 ? 26.0 : c.number("margin_percent", 15.0, 0, false, "%");
             sc.forward_only = c.choice("whirl", "all", {"all", "forward"}) == "forward";
             if (c.has("harmonics")) {
                 for (double h : numbers_of(c, "harmonics")) {

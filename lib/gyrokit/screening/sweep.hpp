@@ -38,6 +38,9 @@ struct SeparationCriterion {
     bool forward_only = false;       // count forward-whirl crossings only
     std::vector<int> harmonics;      // lines k w (default: the scene's)
     int count = 121;                 // Campbell grid from 0 to to (1 + margin) * 1.05
+    // rule "api684": each critical speed's margin from its amplification factor
+    // (api684_required_margin; none below AF 2.5) instead of margin_percent.
+    bool api684 = false;
 };
 
 // No mode with Re(lambda) > 0 from speed 0 up to `up_to`.
