@@ -679,7 +679,7 @@ PYBIND11_MODULE(_core, m) {
             x["range"] = v.range.name;
             x["from"] = v.range.from;
             x["to"] = v.range.to;
-            x["balances"] = !v.compensating.empty();
+            x["balances"] = v.balances();
             x["stable_compensating"] = v.compensating;
             x["stable_other"] = v.other;
             x["disputed"] = v.disputed;

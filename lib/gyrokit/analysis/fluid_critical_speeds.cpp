@@ -76,4 +76,21 @@ FluidCriticalSpeeds fluid_critical_speeds(const FluidRotor& f) {
     return cs;
 }
 
+FillSweep fill_sweep(const FluidRotorParameters& p, const std::vector<double>& fills) {
+    FillSweep out;
+    for (double R0 : fills) {
+        FluidRotorParameters q = p;
+        q.R0 = R0;
+        const FluidRotor f = build_fluid_rotor(q);
+        try {
+            out.speeds.push_back(fluid_critical_speeds(f));
+        } catch (const SolverError&) {
+            ++out.skipped;
+            continue;
+        }
+        out.fills.push_back(R0);
+    }
+    return out;
+}
+
 }  // namespace gyrokit

@@ -34,4 +34,14 @@ std::vector<double> critical_speeds_damped(const FluidRotor& f, double w_lo, dou
 // undamped or rigid critical speed.
 FluidCriticalSpeeds fluid_critical_speeds(const FluidRotor& f);
 
+// Critical speeds over fill levels (free-surface radii R0, m) of the rotor `p`.
+// A level exactly at a sloshing resonance has no undamped answer: it is left out
+// and counted, so that a sweep does not fail for one unlucky point.
+struct FillSweep {
+    std::vector<double> fills;                 // R0 of the levels with an answer, m
+    std::vector<FluidCriticalSpeeds> speeds;   // one per entry of fills
+    int skipped = 0;
+};
+FillSweep fill_sweep(const FluidRotorParameters& p, const std::vector<double>& fills);
+
 }  // namespace gyrokit

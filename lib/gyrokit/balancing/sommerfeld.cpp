@@ -193,6 +193,13 @@ std::vector<StationaryPoint> stationary_states(const SommerfeldAnalysis& a, doub
     return out;
 }
 
+QuasiStaticRunup quasi_static_runup(const SommerfeldAnalysis& a, double Omega) {
+    if (!a.has_jump) return QuasiStaticRunup::Continuous;
+    if (Omega < a.jump_down.point.nominal) return QuasiStaticRunup::BelowResonance;
+    if (Omega < a.jump_up.point.nominal) return QuasiStaticRunup::Captured;
+    return QuasiStaticRunup::Passes;
+}
+
 std::vector<StationaryPoint> stationary_curve(const SommerfeldAnalysis& a, double p_max, int points) {
     if (!(p_max > 0.0) || points < 2) throw InputError("sommerfeld: the curve needs p_max > 0 and >= 2 points");
     std::vector<StationaryPoint> out;

@@ -90,6 +90,17 @@ StationaryPoint curve_point(const SommerfeldAnalysis& a, double p);
 // solutions (increasing hanging speed) and, if it exists, the synchronous state.
 std::vector<StationaryPoint> stationary_states(const SommerfeldAnalysis& a, double Omega);
 
+// Where a slow (quasi-static) run-up from rest to the nominal speed Omega ends: the
+// rotor follows the resonance branch up to its fold, so between jump_down and
+// jump_up it stays captured below the resonance although a faster state exists.
+enum class QuasiStaticRunup {
+    Continuous,       // no fold: the rotor speed follows the nominal speed
+    BelowResonance,   // Omega below jump_down: one state only
+    Captured,         // jump_down <= Omega < jump_up: held on the resonance branch
+    Passes,           // Omega >= jump_up: jumps up at jump_up
+};
+QuasiStaticRunup quasi_static_runup(const SommerfeldAnalysis& a, double Omega);
+
 // The non-synchronous curve sampled in p over (0, p_max] (for plots).
 std::vector<StationaryPoint> stationary_curve(const SommerfeldAnalysis& a, double p_max, int points);
 

@@ -219,6 +219,24 @@ std::vector<double> damped_equilibrium(const AutobalancerParameters& p, double O
                                   Omega));
 }
 
+NearestState nearest_stable_state(const AutobalancerParameters& p, double Omega, const std::vector<double>& alpha) {
+    NearestState best;
+    if (p.rollers.empty() || !(p.m0 * p.eps0 > 0.0)) return best;
+    for (const auto& s : synchronous_states(p)) {
+        std::vector<double> a;
+        try {
+            a = damped_equilibrium(p, Omega, s.alpha);
+        } catch (const SolverError&) {
+            continue;   // no damped equilibrium near this state
+        }
+        if (!stable_by_eigenvalues(slow_eigenvalues(p, Omega, a, true))) continue;
+        double d = 0.0;
+        for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, phase_distance(a[i], alpha[i]));
+        if (d < best.distance) best = {s.label, a, d};
+    }
+    return best;
+}
+
 void slow_rhs(const AutobalancerParameters& p, double Omega, bool damped, const double* s, double* dsdt) {
     const std::size_t n = p.rollers.size();
     std::vector<double> a(n);

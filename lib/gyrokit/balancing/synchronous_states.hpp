@@ -86,6 +86,8 @@ struct RangeVerdict {
     std::vector<std::string> compensating;   // labels of stable compensating states
     std::vector<std::string> other;          // labels of stable non-compensating states
     std::vector<std::string> disputed;       // criterion and eigenvalues disagree
+    // The answer for this range: a compensating state is stable (the CLI column `balances`).
+    bool balances() const { return !compensating.empty(); }
 };
 std::vector<RangeVerdict> range_verdicts(const std::vector<StateStability>& table);
 
@@ -93,6 +95,18 @@ std::vector<RangeVerdict> range_verdicts(const std::vector<StateStability>& tabl
 // `start`, by Newton's method; with c_x = c_y = 0 this is `start` itself for the
 // states (43)-(48). Throws SolverError if Newton does not converge.
 std::vector<double> damped_equilibrium(const AutobalancerParameters& p, double Omega, std::vector<double> start);
+
+// The stable state of the damped slow model nearest to the phases `alpha` (largest
+// distance of one roller on the circle): which synchronous state a run at speed
+// Omega settled in, to check a simulation against the slow model. Each state
+// (43)-(48) is moved to its damped equilibrium and kept if its eigenvalues are
+// stable. An empty label: no rollers, no rotor unbalance, or no stable state.
+struct NearestState {
+    std::string label;
+    std::vector<double> alpha;   // rad
+    double distance = 1e300;     // rad
+};
+NearestState nearest_stable_state(const AutobalancerParameters& p, double Omega, const std::vector<double>& alpha);
 
 // Right-hand side of the slow equations (state alpha_1, alpha_1', alpha_2, alpha_2').
 void slow_rhs(const AutobalancerParameters& p, double Omega, bool damped, const double* s, double* dsdt);

@@ -2,9 +2,12 @@
 // one header per family; this one includes them all.
 #pragma once
 
+#include <gyrokit/reports/balancer_reports.hpp>
 #include <gyrokit/reports/campbell_reports.hpp>
 #include <gyrokit/reports/critical_reports.hpp>
+#include <gyrokit/reports/fluid_reports.hpp>
 #include <gyrokit/reports/mode_shape_reports.hpp>
 #include <gyrokit/reports/model_reports.hpp>
 #include <gyrokit/reports/response_reports.hpp>
+#include <gyrokit/reports/sommerfeld_reports.hpp>
 #include <gyrokit/reports/spectrum_reports.hpp>

@@ -6,12 +6,15 @@
 #include <gyrokit/io/table.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
 namespace gyrokit::detail {
 
 inline long long ll(int i) { return static_cast<long long>(i); }
+
+inline double degrees(double rad) { return rad * 180.0 / M_PI; }
 
 inline std::vector<Cell> mode_cells(const Mode& m, const SpeedUnit& u) {
     // A real part within its error bound is neutral and shown as 0 (Mode::real_part).
