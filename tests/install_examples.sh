@@ -42,6 +42,12 @@ export PKG_CONFIG_PATH="$libdir/pkgconfig"
 c++ -O1 -o "$dir/own_matrices_pc" "$src/examples/own_matrices.cpp" $(pkg-config --define-prefix --cflags --libs gyrokit) \
     || fail "pkg-config build"
 run "$dir/own_matrices_pc"
+# Every C++ snippet of docs/ compiles against the installed package and runs (from the source folder: data/).
+/usr/bin/python3 "$src/tests/doc_snippets.py" "$src" "$dir/doc_snippets.cpp" || fail "docs snippets: extraction"
+# shellcheck disable=SC2046
+c++ -std=c++17 -O0 -o "$dir/doc_snippets" "$dir/doc_snippets.cpp" $(pkg-config --define-prefix --cflags --libs gyrokit) \
+    > "$dir/out" 2>&1 || { cat "$dir/out"; cat -n "$dir/doc_snippets.cpp"; fail "the C++ of docs/ does not compile"; }
+(cd "$src" && "$dir/doc_snippets") || fail "the C++ of docs/ failed"
 # The Python package from the installed prefix alone (when the build has it).
 if [ -f "$build/python/gyrokit/__init__.py" ]; then
     site=$(dirname "$(find "$dir/prefix" -path '*/gyrokit/__init__.py' | head -1)")
