@@ -24,6 +24,19 @@ using namespace gyrokit;
 
 namespace {
 
+// Python's keyword arguments for the library's option fields.
+std::string keyword_words(const std::string& field) {
+    if (field == "lanczos_vectors") return "lanczos =";
+    return "";   // the others are named as in the library
+}
+
+// Notes with their option fields in Python's keywords.
+std::vector<std::string> spelled(const std::vector<std::string>& notes) {
+    std::vector<std::string> out;
+    for (const auto& n : notes) out.push_back(spell_fields(n, keyword_words));
+    return out;
+}
+
 // A matrix argument: a SciPy sparse matrix (taken as CSC, one copy into Eigen)
 // or anything NumPy turns into a 2-D float array.
 SparseMatrix to_matrix(const py::object& A, const std::string& name) {
@@ -142,7 +155,7 @@ py::dict spectrum_dict(const QuadraticSpectrum& s) {
     d["vectors"] = X;
     d["rigid_body"] = rigid;
     d["method"] = s.method;
-    d["notes"] = s.notes;
+    d["notes"] = spelled(s.notes);
     d["partial"] = s.partial;
     return d;
 }
@@ -184,11 +197,6 @@ py::dict campbell_dict(const CampbellDiagram& cd) {
 }
 
 // Speeds solved in parallel on threads: a Python host must not fork.
-// Python's keyword arguments for the library's option fields.
-std::string keyword_words(const std::string& field) {
-    if (field == "lanczos_vectors") return "lanczos =";
-    return "";   // the others are named as in the library
-}
 
 // The library's parallelism rule; its note (jobs capped to the cores) as a Python warning.
 Workers threads(int jobs) {
@@ -245,7 +253,8 @@ struct Released {
 
 // The sweep file's study, on its own designs or on `designs` (values in the order
 // of `names`; a name of the sweep keeps its tied paths).
-Sweep sweep_with(const std::string& path, const py::object& names, const py::object& designs) {
+Sweep sweep_with(const std::string& path, const py::object& names, const py::object& designs,
+                 bool check_parameters = true) {
     Sweep s = read_sweep(path);
     if (designs.is_none()) return s;
     // The sweep's criteria and operating range on the given designs.
@@ -264,7 +273,7 @@ Sweep sweep_with(const std::string& path, const py::object& names, const py::obj
     for (std::size_t j = 0; j < s.parameters.size(); ++j)
         for (const auto& d : s.designs)
             if (j < d.size()) s.parameters[j].values.push_back(d[j]);
-    finalize_sweep(s);
+    finalize_sweep(s, check_parameters);
     for (auto& p : s.parameters) p.values.clear();
     return s;
 }
@@ -389,7 +398,7 @@ PYBIND11_MODULE(_core, m) {
         d["numbers"] = number;
         d["reference"] = reference;
         d["whirl"] = whirl;
-        d["notes"] = notes;
+        d["notes"] = spelled(notes);
         py::dict orbits;
         orbits["mode"] = orbit_mode;
         orbits["pair"] = orbit_pair;
@@ -599,19 +608,22 @@ PYBIND11_MODULE(_core, m) {
 
     // One design of the study, for a caller's executor (a process pool, a Dask
     // cluster): the row run_screening would write for it.
+    // `number`: the design's number in the caller's study (designs given one by one
+    // are design 0 of a one-design list).
     m.def("screen_design", [](const std::string& path, const py::object& names, const py::object& designs,
-                              std::size_t index) {
-        const Sweep s = sweep_with(path, names, designs);
+                              std::size_t index, std::size_t number) {
+        const Sweep s = sweep_with(path, names, designs, false);
         if (index >= s.design_count())
             throw InputError("design " + std::to_string(index) + ": allowed: 0 to " +
                              std::to_string(s.design_count() == 0 ? 0 : s.design_count() - 1));
-        ResultRow row;
+        DesignResult r;
         {
             Released free;
-            row = format_row(s, evaluate_design(s, index));
+            r = evaluate_design(s, index);
         }
-        return row.cells;
-    }, py::arg("sweep"), py::arg("names"), py::arg("designs"), py::arg("index"));
+        r.index = number;
+        return format_row(s, r).cells;
+    }, py::arg("sweep"), py::arg("names"), py::arg("designs"), py::arg("index"), py::arg("number"));
 
     // What a study is before it runs: its columns, parameters, quantities, unit and design count.
     m.def("screen_plan", [](const std::string& path, const py::object& names, const py::object& designs) {
@@ -630,16 +642,17 @@ PYBIND11_MODULE(_core, m) {
     // The row of a design that could not be evaluated where it ran (a worker lost):
     // verdict error with `reason`, so that no design is silently missing.
     m.def("screen_error_row", [](const std::string& path, const py::object& names, const py::object& designs,
-                                 std::size_t index, const std::string& reason) {
-        const Sweep s = sweep_with(path, names, designs);
+                                 std::size_t index, std::size_t number, const std::string& reason) {
+        const Sweep s = sweep_with(path, names, designs, false);
         DesignResult r;
-        r.index = index;
+        r.index = number;
         r.parameters = s.design(index);
         r.quantities.assign(quantity_columns(s).size(), std::nullopt);
         r.verdict = Verdict::Error;
         r.reason = reason;
         return format_row(s, r).cells;
-    }, py::arg("sweep"), py::arg("names"), py::arg("designs"), py::arg("index"), py::arg("reason"));
+    }, py::arg("sweep"), py::arg("names"), py::arg("designs"), py::arg("index"), py::arg("number"),
+          py::arg("reason"));
 
     m.def("balancer", [](const std::string& path) {
         const BalancerScene sc = load_balancer_scene(path);

@@ -40,7 +40,7 @@ std::vector<Command> add_spectrum_commands(CLI::App& app) {
         note_extrapolation(c, w);
         const SolverChoice plan = plan_solver(c, wanted_modes(c, o->modes));
         const QuadraticSpectrum s = plan.make()(w);
-        for (const auto& n : s.notes) std::cerr << "note: " << n << "\n";
+        for (const auto& n : s.notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
         if (!o->rigid_body && !s.rigid_body.empty())
             std::cerr << "note: " << rigid_body_note(s.rigid_body, c.scene.dof_names()) << " (--rigid-body lists them)\n";
         write_table(out, eig_table(s, w, c.unit, o->rigid_body), c.format);
@@ -84,7 +84,7 @@ std::vector<Command> add_spectrum_commands(CLI::App& app) {
         so.modes = wanted_modes(c, o->modes);
         std::vector<std::string> notes;
         std::vector<ModeShape> shapes = mode_shapes(c.scene.system, w, so, &notes);
-        for (const auto& n : notes) std::cerr << "note: " << n << "\n";
+        for (const auto& n : notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
         if (!o->select.empty()) {
             std::vector<ModeShape> chosen;
             for (const int k : parse_harmonics(o->select, {}, "--mode")) {
@@ -118,7 +118,7 @@ std::vector<Command> add_spectrum_commands(CLI::App& app) {
         const double w = parse_speed(o->speed, "--speed", c.unit);
         note_extrapolation(c, w);
         const ExportReport r = export_matrices(c.scene.system, w, o->dir);
-        for (const auto& n : r.notes) std::cerr << "note: " << n << "\n";
+        for (const auto& n : r.notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
         std::cerr << "wrote the matrices at " << c.unit.factor * w << " " << c.unit.name << " into " << o->dir
                   << "\n";
     }});

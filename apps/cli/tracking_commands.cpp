@@ -110,9 +110,7 @@ std::vector<Command> add_tracking_commands(CLI::App& app) {
         const StabilityStudy st =
             stability_study(c.scene.system, study_of(c, wanted_modes(c, o->modes), c.scene.harmonics));
         write_table(out, stability_table(st.changes, c.unit), c.format);
-        // The table is the verdict on stability; rigid-body and ambiguity notes belong to the diagram.
-        print_diagnostics(st.tracked.diagnostics, {Diagnostic::Topic::RigidBody, Diagnostic::Topic::Ambiguity,
-                                                   Diagnostic::Topic::Instability});
+        print_diagnostics(st.tracked.diagnostics);
     }});
 
     auto* perv = app.add_subcommand("pervasive", "Hautus pervasive-damping check for each damping component");

@@ -307,9 +307,14 @@ class ScreenResult(_Result):
         return ax
 
 
-def _screen_one(sweep, names, values, index):
+def _screen_one(sweep, names, values, index, number):
     """One design of a study (module level, so that process pools and Dask workers can run it)."""
-    return _core.screen_design(sweep, names, values, index)
+    return _core.screen_design(sweep, names, values, index, number)
+
+
+def _one_design(values, i):
+    """What a task needs of design i: its own values (given designs), or its index in the sweep file."""
+    return ([values[i]], 0) if values is not None else (None, i)
 
 
 def _screen_on(executor, sweep, names, values, progress):
@@ -318,7 +323,7 @@ def _screen_on(executor, sweep, names, values, progress):
     row with the failure, never missing."""
     plan = _core.screen_plan(sweep, names, values)
     total = plan["designs"]
-    futures = [executor.submit(_screen_one, sweep, names, values, i) for i in range(total)]
+    futures = [executor.submit(_screen_one, sweep, names, *_one_design(values, i), i) for i in range(total)]
     rows = []
     for i, f in enumerate(futures):
         try:
@@ -329,7 +334,7 @@ def _screen_on(executor, sweep, names, values, progress):
             raise
         except Exception as e:   # the task, not the design, failed: say so in the design's row
             reason = f"not evaluated: the executor's task failed ({type(e).__name__}: {e})".replace("\n", " ")
-            rows.append(list(_core.screen_error_row(sweep, names, values, i, reason)))
+            rows.append(list(_core.screen_error_row(sweep, names, *_one_design(values, i), i, reason)))
         if progress is not None:
             progress(i + 1, total)
     return ScreenResult(dict(columns=plan["columns"], rows=rows, parameters=plan["parameters"],

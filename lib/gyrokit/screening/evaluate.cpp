@@ -42,6 +42,7 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
     StudyOptions so = study_options(sc);
     so.speeds = SpeedRange{0.0, w_scan, c.count}.points();
     so.harmonics = c.harmonics;
+    so.amplification_factors = c.api684;   // only the API 684 rule reads them
     const std::vector<CriticalSpeed> cs = critical_speed_study(sc.system, so).critical;
     // The critical speed with the least margin to spare (its margin less the one it needs).
     const CriticalSpeed* worst = nullptr;
@@ -72,8 +73,10 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
 
 void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& c, std::size_t& q,
                      DesignResult& r) {
-    // The stability study of the CLI and Python: the modes in range unless the scene asks for others.
+    // The stability study of the CLI and Python, but over every mode unless the scene
+    // names a number: a design is judged on all of them (a sparse model: its window).
     StudyOptions so = study_options(sc);
+    if (so.solver.modes == kModesInRange) so.solver.modes = 0;
     so.speeds = SpeedRange{0.0, c.up_to, c.count}.points();
     const StabilityStudy st = stability_study(sc.system, so);
     const CampbellDiagram& cd = st.tracked.diagram;
@@ -247,10 +250,11 @@ DesignResult evaluate_design(const Sweep& s, std::size_t i) {
         if (c.stability) check_stability(s, sc, *c.stability, q, r);
         if (c.pervasive) check_pervasive(s, sc, *c.pervasive, q, r);
         if (c.response) check_response(s, sc, *c.response, q, r);
-        // +inf only as the amplitude at an undamped resonance; anything else non-finite is a failure.
+        // +inf only as the amplitude at an undamped resonance or the amplification factor of an
+        // undamped mode; anything else non-finite is a failure.
         for (std::size_t k = 0; k < qc.size(); ++k)
             if (r.quantities[k] && !std::isfinite(*r.quantities[k]) &&
-                !(qc[k] == "max_amplitude" && *r.quantities[k] > 0.0))
+                !((qc[k] == "max_amplitude" || qc[k] == "amplification_factor") && *r.quantities[k] > 0.0))
                 throw SolverError(qc[k] + " is not finite");
     } catch (const Interrupted&) {
         throw;

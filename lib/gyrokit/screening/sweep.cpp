@@ -212,7 +212,7 @@ std::map<std::string, double> design_overrides(const Sweep& s, const std::vector
     return o;
 }
 
-void finalize_sweep(Sweep& s) {
+void finalize_sweep(Sweep& s, bool check_parameters) {
     if (!s.loader) {
         const std::string scene = s.scene;
         s.loader = [scene](const std::map<std::string, double>& o) { return load_scene(scene, o); };
@@ -281,7 +281,8 @@ void finalize_sweep(Sweep& s) {
                                              s.path, d, s.scene));
         }
     }
-    for (const auto& p : s.parameters) check_parameter(s, p);
+    if (check_parameters)
+        for (const auto& p : s.parameters) check_parameter(s, p);
     if (!s.plot_axes.empty()) {
         if (s.plot_axes.size() != 2)
             throw InputError(s.path + ": [plot] axes must name exactly two parameters");

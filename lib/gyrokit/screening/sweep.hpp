@@ -108,7 +108,9 @@ std::map<std::string, double> design_overrides(const Sweep& s, const std::vector
 
 // Checks a sweep assembled in code (parameters, ranges, criteria, loader set)
 // and fills `lhs`; read_sweep calls it too.
-void finalize_sweep(Sweep& s);
+// `check_parameters` false: the parameters were checked on the whole study
+// already (one design of it evaluated apart, e.g. by a Python executor).
+void finalize_sweep(Sweep& s, bool check_parameters = true);
 
 // Latin hypercube on [0, 1)^d: n points, each coordinate's n strata hit once.
 // Uses std::mt19937_64 with its own mappings to integers and reals, so the

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace gyrokit {
@@ -61,7 +62,7 @@ CampbellStudy campbell_study(const GyroscopicSystem& sys, const StudyOptions& op
 std::vector<CriticalSpeed> critical_speeds_of(const GyroscopicSystem& sys, const CampbellStudy& tracked,
                                               const StudyOptions& opt) {
     std::vector<CriticalSpeed> cs = critical_speeds(tracked.solver, tracked.diagram, opt.harmonics, opt.workers);
-    set_amplification_factors(cs, sys);
+    if (opt.amplification_factors) set_amplification_factors(cs, sys);
     return cs;
 }
 
@@ -76,6 +77,13 @@ StabilityStudy stability_study(const GyroscopicSystem& sys, const StudyOptions& 
     StabilityStudy s;
     s.tracked = campbell_study(sys, opt);
     s.changes = stability_changes(s.tracked.solver, s.tracked.diagram, opt.workers);
+    Diagnostics& d = s.tracked.diagnostics;
+    d.erase(std::remove_if(d.begin(), d.end(),
+                           [](const Diagnostic& x) {
+                               return x.topic == Topic::RigidBody || x.topic == Topic::Ambiguity ||
+                                      x.topic == Topic::Instability;
+                           }),
+            d.end());
     if (s.changes.empty())
         s.tracked.diagnostics.push_back(
             {Level::Note, Topic::Verdict,
@@ -88,14 +96,19 @@ StabilityStudy stability_study(const GyroscopicSystem& sys, const StudyOptions& 
 
 Diagnostics response_stability_warnings(const GyroscopicSystem& sys, const StudyOptions& opt) {
     StudyOptions o = opt;
+    std::sort(o.speeds.begin(), o.speeds.end());
+    o.speeds.erase(std::unique(o.speeds.begin(), o.speeds.end()), o.speeds.end());
+    if (o.speeds.size() < 2) return {};   // no range to track over
     if (o.speeds.size() > 21) {
+        const double from = o.speeds.front(), to = o.speeds.back();
         o.speeds.clear();
-        const double from = opt.speeds.front(), to = opt.speeds.back();
         for (int k = 0; k <= 20; ++k) o.speeds.push_back(from + (to - from) * k / 20.0);
     }
     o.progress = {};
     Diagnostics out;
-    for (const Diagnostic& d : campbell_study(sys, o).diagnostics)
+    const CampbellStudy st = campbell_study(sys, o);
+    add_notes(out, Topic::Solver, st.plan.notes);
+    for (const Diagnostic& d : st.diagnostics)
         if (d.topic == Topic::Instability)
             out.push_back({Level::Warning, Topic::Instability,
                            d.text + "; the unbalance response there is not a steady state"});

@@ -27,6 +27,7 @@ struct StudyOptions {
     Workers workers;
     SpeedUnit unit;                  // the unit the diagnostics name speeds in
     std::function<void(std::size_t, std::size_t)> progress;   // speeds solved, of all
+    bool amplification_factors = true;   // critical speeds: API 684 AF (half-power: some hundred solves each)
 };
 
 // The scene's defaults: [analysis] solver options, modes and harmonics, [speeds].
@@ -52,6 +53,8 @@ std::vector<CriticalSpeed> critical_speeds_of(const GyroscopicSystem& sys, const
                                               const StudyOptions& opt);
 
 // The speeds where a tracked mode changes stability; a Verdict note where none does.
+// Its table is the verdict on stability: the diagram's rigid-body, ambiguity and
+// instability lines are left out of its diagnostics.
 struct StabilityStudy {
     CampbellStudy tracked;
     std::vector<StabilityChange> changes;
@@ -60,7 +63,8 @@ StabilityStudy stability_study(const GyroscopicSystem& sys, const StudyOptions& 
 
 // The steady unbalance response is no state the rotor reaches where a mode is
 // unstable: the modes are tracked over the range (at most 21 speeds of it, a
-// bounded cost next to the response itself) and every unstable range is a warning.
+// bounded cost next to the response itself: sorted, repeated speeds once) and every
+// unstable range is a warning, after the solver choice's notes (how many modes it checks).
 Diagnostics response_stability_warnings(const GyroscopicSystem& sys, const StudyOptions& opt);
 
 }  // namespace gyrokit
