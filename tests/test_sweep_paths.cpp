@@ -110,7 +110,15 @@ TEST_CASE("a tied sweep parameter sets each of its paths, and a path set twice i
                                              {"model.bearing[*].kyy", 2e7},
                                              {"model.shaft[2].outer_diameter", 0.1}});
     s.parameters[1].paths = {"model.bearing[*].kyy"};
-    CHECK_THROWS_WITH(design_overrides(s, {2e7, 0.1}), Catch::Contains("path 'model.bearing[*].kyy' is set by two parameters"));
+    CHECK_THROWS_WITH(design_overrides(s, {2e7, 0.1}), Catch::Contains("can name the same value"));
+    // [*] meets every index, and an index is a number whatever its zeros: these overlap too.
+    s.parameters[1].paths = {"model.bearing[1].kxx"};
+    CHECK_THROWS_WITH(design_overrides(s, {2e7, 0.1}),
+                      Catch::Contains("paths 'model.bearing[*].kxx' and 'model.bearing[1].kxx' can name the same value"));
+    s.parameters[0].paths = {"model.bearing[01].kxx"};
+    CHECK_THROWS_WITH(design_overrides(s, {2e7, 0.1}), Catch::Contains("can name the same value"));
+    s.parameters[0].paths = {"model.bearing[0].kxx"};   // another bearing: fine
+    CHECK(design_overrides(s, {2e7, 0.1}).size() == 2);
 }
 
 TEST_CASE("API 684 separation margin from the amplification factor: the closed form and its caps") {

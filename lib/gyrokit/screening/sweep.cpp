@@ -198,14 +198,46 @@ Shard Shard::parse(const std::string& text) {
     return s;
 }
 
+namespace {
+
+// Whether two parameter paths can name one value: equal step by step, where an
+// index [*] meets any index and [1] meets [01].
+bool overlap(const std::string& a, const std::string& b) {
+    const auto steps = [](const std::string& p) {
+        std::vector<std::pair<std::string, std::string>> out;   // key, index ("" none, "*" every)
+        std::size_t at = 0;
+        while (at <= p.size()) {
+            const std::size_t dot = std::min(p.find('.', at), p.size());
+            const std::string part = p.substr(at, dot - at);
+            const std::size_t open = part.find('[');
+            std::string index = open == std::string::npos ? "" : part.substr(open + 1, part.size() - open - 2);
+            if (!index.empty() && index != "*") index.erase(0, std::min(index.find_first_not_of('0'), index.size() - 1));
+            out.emplace_back(part.substr(0, open), index);
+            at = dot + 1;
+        }
+        return out;
+    };
+    const auto x = steps(a), y = steps(b);
+    if (x.size() != y.size()) return false;
+    for (std::size_t i = 0; i < x.size(); ++i)
+        if (x[i].first != y[i].first ||
+            (x[i].second != y[i].second && x[i].second != "*" && y[i].second != "*"))
+            return false;
+    return true;
+}
+
+}  // namespace
+
 std::map<std::string, double> design_overrides(const Sweep& s, const std::vector<double>& values) {
     std::map<std::string, double> o;
     for (std::size_t j = 0; j < s.parameters.size() && j < values.size(); ++j) {
         const SweepParameter& p = s.parameters[j];
         for (const std::string& path : p.paths.empty() ? std::vector<std::string>{p.name} : p.paths) {
-            if (o.count(path))
-                throw InputError(fmt::format("{}: path '{}' is set by two parameters; allowed: each path once", s.path,
-                                             path));
+            for (const auto& [other, v] : o)
+                if (overlap(path, other))
+                    throw InputError(fmt::format("{}: paths '{}' and '{}' can name the same value; allowed: each "
+                                                 "value set by one path",
+                                                 s.path, other, path));
             o[path] = values[j];
         }
     }
