@@ -14,8 +14,6 @@ namespace gyrokit {
 using detail::ll;
 using detail::mode_cells;
 using detail::speed_label;
-using detail::unit_of;
-using detail::units_in;
 
 std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const SpeedUnit& u) {
     std::vector<std::string> out;

@@ -12,10 +12,6 @@
 namespace gyrokit {
 
 using detail::ll;
-using detail::mode_cells;
-using detail::speed_label;
-using detail::unit_of;
-using detail::units_in;
 
 namespace {
 

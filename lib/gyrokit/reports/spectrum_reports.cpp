@@ -13,9 +13,6 @@ namespace gyrokit {
 
 using detail::ll;
 using detail::mode_cells;
-using detail::speed_label;
-using detail::unit_of;
-using detail::units_in;
 
 Table eig_table(const QuadraticSpectrum& s, double speed, const SpeedUnit& u, bool rigid_body) {
     Table t({u.column("speed"), "index", "re_1_s", "im_rad_s", u.column("frequency"), "whirl", "damping_ratio", "log_dec",
