@@ -120,8 +120,10 @@ const std::map<std::string, ModelReader>& model_readers() {
     static const std::map<std::string, ModelReader> readers = {
         {"fe_rotor",
          [](const TomlKeys& k, const fs::path& dir, Scene& sc) {
-             sc.fe_rotor.emplace();
-             sc.system = fe_rotor_from(k, dir.string(), &*sc.fe_rotor);
+             sc.rotor_model = rotor_model_from(k, dir.string());
+             BuiltRotor built = build(*sc.rotor_model);
+             sc.system = std::move(built.system);
+             sc.fe_rotor = std::move(built.rotor);
          }},
         {"fluid_rotor",
          [](const TomlKeys& k, const fs::path&, Scene& sc) {

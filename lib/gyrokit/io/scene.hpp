@@ -5,6 +5,7 @@
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
+#include <gyrokit/models/rotor_model.hpp>
 #include <gyrokit/models/fluid_rotor.hpp>
 
 #include <map>
@@ -26,7 +27,8 @@ struct Scene {
     int modes = kModesInRange;         // [analysis] modes (0 = all; absent: those in range)
     std::vector<int> harmonics{1};     // [analysis] harmonics
     std::optional<FluidRotorParameters> fluid;   // set for [model] type = "fluid_rotor"
-    std::optional<FeRotor> fe_rotor;   // set for [model] type = "fe_rotor": its geometry (tabulated bearings in system)
+    std::optional<RotorModel> rotor_model;   // set for [model] type = "fe_rotor": the rotor as described
+    std::optional<FeRotor> fe_rotor;   // and its mesh (speed-dependent bearings in system)
 
     int dofs() const { return system.size(); }
     // [analysis] solver, modes, target and target_order as solver options.

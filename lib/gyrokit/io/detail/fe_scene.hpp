@@ -2,8 +2,7 @@
 // described by its geometry and material (see docs/scene_format.md).
 #pragma once
 
-#include <gyrokit/core/gyroscopic_system.hpp>
-#include <gyrokit/models/fe_rotor.hpp>
+#include <gyrokit/models/rotor_model.hpp>
 
 #include "gyrokit/io/detail/toml_keys.hpp"
 
@@ -11,11 +10,9 @@
 
 namespace gyrokit {
 
-// Builds and assembles the rotor. Positions (z, m) of disks, bearings and
-// supports must fall on a node (section ends and their subdivisions); bearing
-// tables are read relative to `dir`. Every error names the table entry, key,
-// value and allowed range.
-// The rotor's description goes to `rotor` if given.
-GyroscopicSystem fe_rotor_from(const TomlKeys& k, const std::string& dir, FeRotor* rotor = nullptr);
+// The rotor's description: every key checked (the error names the table entry, key,
+// value and allowed range); bearing tables are read relative to `dir`. Positions are
+// checked against the mesh when it is built (build(RotorModel)).
+RotorModel rotor_model_from(const TomlKeys& k, const std::string& dir);
 
 }  // namespace gyrokit

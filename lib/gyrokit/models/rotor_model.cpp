@@ -1,0 +1,248 @@
+#include <gyrokit/models/rotor_model.hpp>
+
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/models/materials.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+namespace gyrokit {
+
+namespace {
+
+// An item's name in messages: its origin, or "<kind> <index>" for a model built in code.
+std::string origin_of(const std::string& origin, const char* kind, std::size_t i) {
+    return origin.empty() ? fmt::format("{} {}", kind, i) : origin;
+}
+
+struct Unit {
+    double scale = 1.0;   // metres per printed unit
+    const char* name = "m";
+};
+
+Unit unit_of(const RotorModel& m) {
+    if (m.length_unit == "mm") return {1e-3, "mm"};
+    if (m.length_unit != "m")
+        throw InputError("length_unit = '" + m.length_unit + "'; allowed: \"m\" or \"mm\"");
+    return {};
+}
+
+// The node at axial position z: a node within 1e-9 of the rotor's length.
+int node_at(const std::vector<double>& nodes, double z, const std::string& where, const Unit& unit) {
+    const double L = nodes.back();
+    const auto it = std::lower_bound(nodes.begin(), nodes.end(), z - 1e-9 * L);
+    if (!std::isfinite(z) || it == nodes.end() || std::abs(*it - z) > 1e-9 * L) {
+        double nearest = nodes.front();
+        for (double x : nodes)
+            if (std::abs(x - z) < std::abs(nearest - z)) nearest = x;
+        throw InputError(fmt::format("{} = {} {} is not a node of the mesh; allowed: a section end or "
+                                     "subdivision, the nearest is {:.12g} (rotor length {:.12g})",
+                                     where, z / unit.scale, unit.name, nearest / unit.scale, L / unit.scale));
+    }
+    return static_cast<int>(it - nodes.begin());
+}
+
+// The sections' elements, end to end; the node positions in `z`.
+void mesh_sections(const RotorModel& model, FeRotor& r, std::vector<double>& z) {
+    z.assign(1, 0.0);
+    std::size_t total = 0;
+    for (std::size_t s = 0; s < model.sections.size(); ++s) {
+        const RotorSection& sec = model.sections[s];
+        const int count = sec.shape.coupling ? 1 : sec.elements;
+        if (count < 1 || count > kMaxFeElements || total + static_cast<std::size_t>(count) > kMaxFeElements)
+            throw InputError(fmt::format("{} elements = {} makes {} elements in all; allowed: 1 to {} in all",
+                                         origin_of(sec.origin, "section", s), sec.elements,
+                                         total + static_cast<std::size_t>(std::max(count, 0)), kMaxFeElements));
+        total += static_cast<std::size_t>(count);
+    }
+    r.elements.reserve(total);
+    for (const RotorSection& sec : model.sections) {
+        const int count = sec.shape.coupling ? 1 : sec.elements;
+        FeShaftElement el = sec.shape;
+        el.length = sec.shape.length / count;
+        const bool tapered = sec.shape.outer_diameter_end || sec.shape.inner_diameter_end;
+        const double o0 = sec.shape.outer_diameter, i0 = sec.shape.inner_diameter;
+        const double o1 = sec.shape.outer_diameter_end.value_or(o0), i1 = sec.shape.inner_diameter_end.value_or(i0);
+        for (int i = 0; i < count; ++i) {
+            if (tapered) {
+                // A conical section: each of its elements is a cone of the section's slope.
+                const double a = static_cast<double>(i) / count, b = static_cast<double>(i + 1) / count;
+                el.outer_diameter = o0 + a * (o1 - o0);
+                el.inner_diameter = i0 + a * (i1 - i0);
+                el.outer_diameter_end = o0 + b * (o1 - o0);
+                el.inner_diameter_end = i0 + b * (i1 - i0);
+            }
+            r.elements.push_back(el);
+            z.push_back(z.back() + el.length);
+        }
+    }
+}
+
+// Fluid films with load = "auto": the weight's reactions with every speed-dependent
+// bearing as a rigid support (constant bearings as their springs); films at one node
+// share their node's reaction equally.
+void set_auto_loads(const FeRotor& r, const std::vector<const RotorBearing*>& speed_dependent,
+                    const std::vector<int>& nodes, std::vector<JournalBearing>& films, const Unit& unit) {
+    std::vector<int> auto_nodes;
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+        if (speed_dependent[i]->auto_load) auto_nodes.push_back(nodes[i]);
+    if (auto_nodes.empty()) return;
+    const std::vector<double> reactions = fe_gravity_reactions(r, nodes);
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        const RotorBearing& b = *speed_dependent[i];
+        if (!b.auto_load) continue;
+        const double share =
+            reactions[i] / static_cast<double>(std::count(auto_nodes.begin(), auto_nodes.end(), nodes[i]));
+        if (!(share > 0.0))
+            throw InputError(fmt::format("{} load = \"auto\": the rotor's weight lifts the journal off this "
+                                         "bearing (reaction {:.6g} N at node {}); allowed: a bearing that carries "
+                                         "weight, or load = a number (N) with load_angle",
+                                         b.origin, share, nodes[i]));
+        films[i].load = share;
+        films[i].validate(b.origin, unit.scale, unit.name);
+    }
+}
+
+}  // namespace
+
+BuiltRotor build(const RotorModel& model) {
+    const Unit unit = unit_of(model);
+    BuiltRotor out;
+    FeRotor& r = out.rotor;
+    r.shear_deformation = model.shear_deformation;
+    r.rotary_inertia = model.rotary_inertia;
+    r.motion = model.motion;
+    if (model.sections.empty()) throw InputError("sections: none; required: one or more shaft sections");
+    mesh_sections(model, r, out.node_z);
+    const std::vector<double>& z = out.node_z;
+
+    for (std::size_t i = 0; i < model.disks.size(); ++i) {
+        const RotorDisk& d = model.disks[i];
+        const std::string origin = origin_of(d.origin, "disk", i);
+        FeDisk disk = d.disk;
+        disk.node = node_at(z, d.z, origin + " z", unit);
+        if (d.geometry) {
+            const DiskGeometry& g = *d.geometry;
+            if (!(g.outer_diameter > 0 && g.inner_diameter >= 0 && g.inner_diameter < g.outer_diameter &&
+                  g.width > 0 && g.density > 0 && std::isfinite(g.outer_diameter + g.width + g.density)))
+                throw InputError(fmt::format("{}: geometry outer_diameter = {}, inner_diameter = {}, width = {}, "
+                                             "density = {}; allowed: 0 <= inner < outer, width > 0, density > 0",
+                                             origin, g.outer_diameter, g.inner_diameter, g.width, g.density));
+            const DiskInertia di = disk_inertia(g.outer_diameter, g.inner_diameter, g.width, g.density);
+            disk.mass = di.mass;
+            disk.diametral_inertia = di.diametral_inertia;
+            disk.polar_inertia = di.polar_inertia;
+        }
+        r.disks.push_back(disk);
+    }
+
+    // Speed-dependent bearings, attached once the constrained DOFs are known.
+    std::vector<const RotorBearing*> speed_dependent;
+    std::vector<int> sd_nodes;
+    std::vector<JournalBearing> films;
+    for (std::size_t i = 0; i < model.bearings.size(); ++i) {
+        const RotorBearing& b = model.bearings[i];
+        const int node = node_at(z, b.z, origin_of(b.origin, "bearing", i) + " z", unit);
+        if (b.kind == RotorBearing::Kind::constant) {
+            FeBearing c = b.constant;
+            c.node = node;
+            r.bearings.push_back(c);
+            continue;
+        }
+        if (b.kind == RotorBearing::Kind::fluid_film && !b.auto_load)
+            b.film.validate(origin_of(b.origin, "bearing", i), unit.scale, unit.name);
+        speed_dependent.push_back(&b);
+        sd_nodes.push_back(node);
+        films.push_back(b.film);
+    }
+
+    for (std::size_t i = 0; i < model.supports.size(); ++i) {
+        FeSupport s = model.supports[i].hold;
+        s.node = node_at(z, model.supports[i].z, origin_of(model.supports[i].origin, "support", i) + " z", unit);
+        r.supports.push_back(s);
+    }
+
+    // Pedestals: a mass on springs to the ground under the bearings of its node.
+    for (std::size_t i = 0; i < model.pedestals.size(); ++i) {
+        const std::string where = origin_of(model.pedestals[i].origin, "pedestal", i) + " z";
+        FePedestal p = model.pedestals[i].pedestal;
+        p.node = node_at(z, model.pedestals[i].z, where, unit);
+        const bool carries = std::any_of(r.bearings.begin(), r.bearings.end(),
+                                         [&](const FeBearing& b) { return b.node == p.node; }) ||
+                             std::count(sd_nodes.begin(), sd_nodes.end(), p.node) > 0;
+        if (!carries)
+            throw InputError(fmt::format("{} is at node {}, where no bearing stands; allowed: the z of a bearing "
+                                         "(a pedestal carries the bearings at its node)",
+                                         where, p.node));
+        for (const FePedestal& q : r.pedestals)
+            if (q.node == p.node)
+                throw InputError(fmt::format("{}: a second pedestal at node {}; allowed: one pedestal per bearing "
+                                             "position",
+                                             where, p.node));
+        r.pedestals.push_back(p);
+    }
+
+    const FeRotorMatrices m = r.assemble();
+    out.system = m.to_system();
+    GyroscopicSystem& sys = out.system;
+    // Speed-dependent bearings act on x and y alone: an axial or torsional model has no use for them.
+    if (!r.has_lateral()) return out;
+    set_auto_loads(r, speed_dependent, sd_nodes, films, unit);
+
+    for (std::size_t i = 0; i < speed_dependent.size(); ++i) {
+        const RotorBearing& t = *speed_dependent[i];
+        const int node = sd_nodes[i];
+        const std::string origin = t.origin.empty() ? fmt::format("bearing at node {}", node) : t.origin;
+        const bool on_pedestal =
+            std::any_of(r.pedestals.begin(), r.pedestals.end(), [&](const FePedestal& p) { return p.node == node; });
+        const auto has = [&](const std::string& name) {
+            return std::find(m.dof_names.begin(), m.dof_names.end(), name) != m.dof_names.end();
+        };
+        // A shaft held at a pedestal: the bearing acts between the pedestal and the held
+        // shaft, i.e. from the pedestal to the ground (as a constant bearing does there).
+        const bool pedestal_only = on_pedestal && !has("x" + std::to_string(node)) && !has("y" + std::to_string(node));
+        const auto dof = [&](std::string prefix) {
+            if (pedestal_only && (prefix == "x" || prefix == "y")) prefix = "p" + prefix;
+            const std::string name = prefix + std::to_string(node);
+            const auto it = std::find(m.dof_names.begin(), m.dof_names.end(), name);
+            if (it == m.dof_names.end())
+                throw InputError(fmt::format("{}: the bearing at node {} acts on DOF {}, which a support holds; "
+                                             "allowed: a bearing at a node whose x and y are free",
+                                             origin, node, name));
+            return static_cast<int>(it - m.dof_names.begin());
+        };
+        // Named by kind and node; a second one at the same node gets a suffix (damping
+        // components need unique names).
+        const auto unique_name = [&](const std::string& kind) {
+            std::string name = kind + "_" + std::to_string(node);
+            for (int k = 2; std::any_of(sys.bearings.begin(), sys.bearings.end(),
+                                        [&](const BearingTable& b) { return b.name == name; });
+                 ++k)
+                name = kind + "_" + std::to_string(node) + "_" + std::to_string(k);
+            return name;
+        };
+        if (t.kind == RotorBearing::Kind::fluid_film) {
+            const std::string name = unique_name("fluid_film");
+            const int dx = dof("x"), dy = dof("y");
+            sys.bearings.push_back(journal_bearing_table(films[i], name, dx, dy));
+        } else {
+            BearingTable b = t.table;
+            b.dof_x = dof("x");
+            b.dof_y = dof("y");
+            b.pedestal_x = b.pedestal_y = -1;
+            b.name = t.table_file.empty() ? origin : t.table_file;   // errors name the table
+            b.validate(sys.size());
+            if (t.table_file.empty()) b.name = unique_name("table");
+            sys.bearings.push_back(b);
+        }
+        // On a pedestal: the bearing acts between the shaft and the pedestal.
+        if (on_pedestal && !pedestal_only) {
+            sys.bearings.back().pedestal_x = dof("px");
+            sys.bearings.back().pedestal_y = dof("py");
+        }
+    }
+    return out;
+}
+
+}  // namespace gyrokit

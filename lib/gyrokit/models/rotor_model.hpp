@@ -1,0 +1,98 @@
+// An FE rotor as an engineer describes it: shaft sections along the axis, and disks,
+// bearings of every kind, rigid supports and pedestals at axial positions z. build()
+// meshes it into an FeRotor (elements and nodes), assembles it and attaches the
+// speed-dependent bearings (tables and fluid films, load = "auto" from the rotor's
+// weight). Scene files map their [model] keys to this value (io/scene.hpp) and
+// write_scene writes it back; C++ and Python build it directly.
+//
+// Every value in SI units (m, kg, N, Pa, rad/s). `length_unit` only says how messages
+// print lengths (a scene in mm reports its positions in mm).
+#pragma once
+
+#include <gyrokit/core/bearing_table.hpp>
+#include <gyrokit/core/gyroscopic_system.hpp>
+#include <gyrokit/models/fe_rotor.hpp>
+#include <gyrokit/models/journal_bearing.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gyrokit {
+
+// One shaft section: `elements` equal elements of `shape` (its length is the section's;
+// a tapered section's diameters vary linearly from its start to its end), or a
+// flexible coupling (shape.coupling set: one element of that length).
+struct RotorSection {
+    FeShaftElement shape;
+    int elements = 1;       // >= 1; a coupling: 1
+    std::string origin;     // names the section in messages (a scene: "file: [model.shaft[2]]")
+};
+
+// The hollow cylinder a disk is made of: its mass and inertias follow (disk_inertia).
+struct DiskGeometry {
+    double outer_diameter = 0.0;   // m, > 0
+    double inner_diameter = 0.0;   // m, in [0, outer_diameter)
+    double width = 0.0;            // m, > 0
+    double density = 0.0;          // kg/m^3, > 0
+};
+
+struct RotorDisk {
+    double z = 0.0;                        // m, at a node
+    FeDisk disk;                           // mass, Id, Ip (unless geometry), unbalance; its node is found from z
+    std::optional<DiskGeometry> geometry;  // set: mass, Id and Ip from it
+    std::string origin;
+};
+
+// A bearing at z: constant coefficients, a coefficient table or a fluid-film journal
+// bearing from its geometry.
+struct RotorBearing {
+    enum class Kind { constant, table, fluid_film };
+    Kind kind = Kind::constant;
+    double z = 0.0;
+    FeBearing constant;                    // Kind::constant (its node is found from z)
+    BearingTable table;                    // Kind::table: speeds and rows (its DOFs are found when built)
+    std::string table_file;                // Kind::table read from this CSV file: the table's name, and
+                                           // what a written scene refers to (empty: written inline)
+    JournalBearing film;                   // Kind::fluid_film
+    bool auto_load = false;                // fluid film: its load from the rotor's weight (film.load unused)
+    std::string origin;
+};
+
+struct RotorSupport {
+    double z = 0.0;
+    FeSupport hold;                        // which DOFs are held (its node is found from z)
+    std::string origin;
+};
+
+struct RotorPedestal {
+    double z = 0.0;                        // the position of the bearings it carries
+    FePedestal pedestal;
+    std::string origin;
+};
+
+struct RotorModel {
+    std::vector<RotorSection> sections;    // from z = 0 along +z, one chain
+    std::vector<RotorDisk> disks;
+    std::vector<RotorBearing> bearings;
+    std::vector<RotorSupport> supports;
+    std::vector<RotorPedestal> pedestals;  // at most one per bearing position
+    bool shear_deformation = true;
+    bool rotary_inertia = true;
+    FeMotion motion = FeMotion::lateral;
+    std::string length_unit = "m";         // "m" or "mm": how messages print lengths
+};
+
+struct BuiltRotor {
+    FeRotor rotor;                 // the mesh: elements, and every item at its node
+    std::vector<double> node_z;    // m, z_0 = 0
+    GyroscopicSystem system;       // assembled, speed-dependent bearings attached
+};
+
+// Meshes, validates and assembles. InputError names the item (its origin, or
+// "section 2", "bearing 1", ... when it has none), the value and the allowed range:
+// a position that is not a node, a pedestal without a bearing, a journal lifted off
+// by the rotor's weight, a bearing on held DOFs, and whatever FeRotor::validate refuses.
+BuiltRotor build(const RotorModel& model);
+
+}  // namespace gyrokit
