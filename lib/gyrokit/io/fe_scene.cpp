@@ -226,7 +226,7 @@ RotorSection read_coupling(const TomlKeys& e, const ModelContext& c) {
 RotorSection read_section(const TomlKeys& e, const ModelContext& c, std::size_t before) {
     if (e.choice("type", "beam", {"beam", "coupling"}) == "coupling") return read_coupling(e, c);
     e.only({"type", "length", "elements", "outer_diameter", "inner_diameter", "outer_diameter_end",
-            "inner_diameter_end", "E", "poisson", "density", "material"});
+            "inner_diameter_end", "E", "G", "poisson", "density", "material"});
     const LengthUnit& len = c.len;
     const std::optional<Material> mat = c.material_of(e);
     RotorSection s;
@@ -255,6 +255,8 @@ RotorSection read_section(const TomlKeys& e, const ModelContext& c, std::size_t 
     el.youngs_modulus = e.number("E", mat ? std::optional(mat->youngs_modulus) : c.E0, 0, true, "Pa");
     el.density = e.number("density", mat ? std::optional(mat->density) : c.rho0, 0, true, "kg/m^3");
     el.poisson_ratio = e.has("poisson") ? poisson_of(e, std::nullopt) : mat ? mat->poisson_ratio : c.nu0;
+    // The shear modulus where it is not E / (2 (1 + poisson)) (an orthotropic composite shaft).
+    if (e.has("G")) el.shear_modulus = e.number("G", std::nullopt, 0, true, "Pa");
     return s;
 }
 

@@ -1,0 +1,274 @@
+#include <gyrokit/io/scene_writer.hpp>
+
+#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/core/error.hpp>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <fmt/format.h>
+
+namespace gyrokit {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A finite double in its shortest round-trip form, always a TOML float ("2e+11", "3.0").
+std::string number(double v) {
+    std::string s = fmt::format("{}", v);
+    if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+    return s;
+}
+
+// A TOML basic string: quotes, backslashes and control characters escaped.
+std::string quoted(const std::string& text) {
+    std::string s = "\"";
+    for (const char ch : text) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (c == '"' || c == '\\')
+            s += {'\\', ch};
+        else if (c < 0x20 || c == 0x7f)
+            s += fmt::format("\\u{:04x}", c);
+        else
+            s += ch;
+    }
+    return s + "\"";
+}
+
+double degrees(double rad) { return rad * 180.0 / std::acos(-1.0); }
+
+class Writer {
+public:
+    void key(const char* name, double v) { out_ += fmt::format("{} = {}\n", name, number(v)); }
+    void key(const char* name, int v) { out_ += fmt::format("{} = {}\n", name, v); }
+    void key(const char* name, bool v) { out_ += fmt::format("{} = {}\n", name, v ? "true" : "false"); }
+    void key(const char* name, const std::string& v) { out_ += fmt::format("{} = {}\n", name, quoted(v)); }
+    void key(const char* name, const char* v) { key(name, std::string(v)); }
+    template <class F>
+    void array(const char* name, std::size_t n, const F& value) {
+        out_ += fmt::format("{} = [", name);
+        for (std::size_t i = 0; i < n; ++i) out_ += (i ? ", " : "") + number(value(i));
+        out_ += "]\n";
+    }
+    void harmonics(const std::vector<int>& h) {
+        out_ += "harmonics = [";
+        for (std::size_t i = 0; i < h.size(); ++i) out_ += fmt::format("{}{}", i ? ", " : "", h[i]);
+        out_ += "]\n";
+    }
+    void table(const std::string& header) { out_ += "\n" + header + "\n"; }
+    std::string text() const { return out_; }
+
+private:
+    std::string out_;
+};
+
+void write_section(Writer& w, const RotorSection& s) {
+    w.table("[[model.shaft]]");
+    const FeShaftElement& e = s.shape;
+    if (e.coupling) {
+        const FeCoupling& c = *e.coupling;
+        w.key("type", "coupling");
+        w.key("length", e.length);
+        w.key("k_lateral", c.k_lateral);
+        w.key("k_bending", c.k_bending);
+        w.key("k_axial", c.k_axial);
+        w.key("k_torsion", c.k_torsion);
+        w.key("c_lateral", c.c_lateral);
+        w.key("c_bending", c.c_bending);
+        w.key("c_axial", c.c_axial);
+        w.key("c_torsion", c.c_torsion);
+        w.key("mass", c.mass);
+        w.key("Id", c.diametral_inertia);
+        w.key("Ip", c.polar_inertia);
+        return;
+    }
+    w.key("length", e.length);
+    w.key("elements", s.elements);
+    w.key("outer_diameter", e.outer_diameter);
+    w.key("inner_diameter", e.inner_diameter);
+    if (e.outer_diameter_end) w.key("outer_diameter_end", *e.outer_diameter_end);
+    if (e.inner_diameter_end) w.key("inner_diameter_end", *e.inner_diameter_end);
+    w.key("E", e.youngs_modulus);
+    if (e.shear_modulus != 0.0) w.key("G", e.shear_modulus);
+    w.key("poisson", e.poisson_ratio);
+    w.key("density", e.density);
+}
+
+void write_disk(Writer& w, const RotorDisk& d) {
+    w.table("[[model.disk]]");
+    w.key("z", d.z);
+    if (d.geometry) {
+        w.key("outer_diameter", d.geometry->outer_diameter);
+        w.key("inner_diameter", d.geometry->inner_diameter);
+        w.key("width", d.geometry->width);
+        w.key("density", d.geometry->density);
+    } else {
+        w.key("mass", d.disk.mass);
+        w.key("Id", d.disk.diametral_inertia);
+        w.key("Ip", d.disk.polar_inertia);
+    }
+    w.key("unbalance", d.disk.unbalance);
+    w.key("phase", degrees(d.disk.unbalance_phase));
+}
+
+void write_film(Writer& w, const RotorBearing& b) {
+    const JournalBearing& j = b.film;
+    w.key("type", "fluid_film");
+    w.key("z", b.z);
+    w.key("diameter", j.diameter);
+    w.key("length", j.length);
+    w.key("clearance", j.clearance);
+    w.key("viscosity", j.viscosity);
+    if (b.auto_load)
+        w.key("load", "auto");
+    else
+        w.key("load", j.load);
+    w.key("load_angle", degrees(j.load_angle));
+    w.key("max_eccentricity", j.max_eccentricity);
+    if (j.solution == FilmSolution::finite_difference) {
+        w.key("solution", "finite_difference");
+        w.key("grid_circumferential", j.grid_circumferential);
+        w.key("grid_axial", j.grid_axial);
+    }
+}
+
+void write_bearing(Writer& w, const RotorBearing& b) {
+    w.table("[[model.bearing]]");
+    if (b.kind == RotorBearing::Kind::fluid_film) return write_film(w, b);
+    w.key("z", b.z);
+    if (b.kind == RotorBearing::Kind::table && !b.table_file.empty()) {
+        w.key("table", fs::absolute(b.table_file).lexically_normal().string());
+        return;
+    }
+    if (b.kind == RotorBearing::Kind::table) {
+        const BearingTable& t = b.table;
+        w.array("speeds", t.speeds.size(), [&](std::size_t i) { return t.speeds[i]; });
+        const char* names[2][4] = {{"kxx", "kxy", "kyx", "kyy"}, {"cxx", "cxy", "cyx", "cyy"}};
+        for (int m = 0; m < 2; ++m)
+            for (int k = 0; k < 4; ++k)
+                w.array(names[m][k], t.rows.size(), [&](std::size_t i) {
+                    const Eigen::Matrix2d& A = m == 0 ? t.rows[i].K : t.rows[i].C;
+                    return A(k / 2, k % 2);
+                });
+        return;
+    }
+    const FeBearing& c = b.constant;
+    w.key("kxx", c.kxx);
+    w.key("kxy", c.kxy);
+    w.key("kyx", c.kyx);
+    w.key("kyy", c.kyy);
+    w.key("cxx", c.cxx);
+    w.key("cxy", c.cxy);
+    w.key("cyx", c.cyx);
+    w.key("cyy", c.cyy);
+    w.key("kzz", c.kzz);
+    w.key("czz", c.czz);
+}
+
+void write_support(Writer& w, const RotorSupport& s, std::size_t i) {
+    const FeSupport& h = s.hold;
+    const bool clamped = h.x && h.y && h.theta_x && h.theta_y;
+    const bool pinned = h.x && h.y && !h.theta_x && !h.theta_y;
+    if (!clamped && !pinned)
+        throw InputError(fmt::format("{}: holds x = {}, y = {}, theta_x = {}, theta_y = {}, which a scene cannot "
+                                     "say; allowed in a scene: pinned (x, y) or clamped (x, y, theta_x, theta_y)",
+                                     s.origin.empty() ? fmt::format("support {}", i) : s.origin, h.x, h.y, h.theta_x,
+                                     h.theta_y));
+    w.table("[[model.support]]");
+    w.key("z", s.z);
+    w.key("type", clamped ? "clamped" : "pinned");
+    w.key("axial", h.z);
+    w.key("torsion", h.theta_z);
+}
+
+void write_pedestal(Writer& w, const RotorPedestal& p) {
+    w.table("[[model.pedestal]]");
+    w.key("z", p.z);
+    w.key("mass", p.pedestal.mass);
+    w.key("kxx", p.pedestal.kxx);
+    w.key("kyy", p.pedestal.kyy);
+    w.key("cxx", p.pedestal.cxx);
+    w.key("cyy", p.pedestal.cyy);
+}
+
+void write_settings(Writer& w, const Scene& sc) {
+    if (sc.speeds) {
+        w.table("[speeds]");
+        w.key("from", sc.speeds->from);
+        w.key("to", sc.speeds->to);
+        w.key("count", sc.speeds->count);
+        w.key("units", "rad/s");
+    }
+    w.table("[analysis]");
+    w.key("solver", to_string(sc.solver));
+    if (sc.modes != kModesInRange) w.key("modes", sc.modes);
+    if (sc.target) w.key("target", *sc.target);
+    w.key("target_order", sc.target_order);
+    w.harmonics(sc.harmonics);
+}
+
+}  // namespace
+
+Scene rotor_scene(const RotorModel& model, const std::string& title) {
+    Scene sc;
+    sc.path = title.empty() ? "fe_rotor" : title;
+    sc.title = title;
+    sc.model_type = "fe_rotor";
+    BuiltRotor built = build(model);
+    built.system.validate(sc.path);
+    sc.system = std::move(built.system);
+    sc.fe_rotor = std::move(built.rotor);
+    sc.rotor_model = model;
+    return sc;
+}
+
+std::string scene_text(const Scene& sc) {
+    if (!sc.rotor_model)
+        throw InputError(fmt::format("{}: a [model] of type {} cannot be written; allowed: an fe_rotor model "
+                                     "(read from a scene or built as a RotorModel); keep other scenes' files",
+                                     sc.path, sc.model_type.empty() ? "(none)" : sc.model_type));
+    const RotorModel& m = *sc.rotor_model;
+    Writer w;
+    if (!sc.title.empty()) w.key("title", sc.title);
+    w.table("[model]");
+    w.key("type", "fe_rotor");
+    w.key("motion", to_string(m.motion));
+    w.key("length_unit", "m");
+    w.key("shear_deformation", m.shear_deformation);
+    w.key("rotary_inertia", m.rotary_inertia);
+    for (const RotorSection& s : m.sections) write_section(w, s);
+    for (const RotorDisk& d : m.disks) write_disk(w, d);
+    for (const RotorBearing& b : m.bearings) write_bearing(w, b);
+    for (std::size_t i = 0; i < m.supports.size(); ++i) write_support(w, m.supports[i], i);
+    for (const RotorPedestal& p : m.pedestals) write_pedestal(w, p);
+    write_settings(w, sc);
+    std::string text = w.text();
+    return text.front() == '\n' ? text.substr(1) : text;
+}
+
+void write_scene(const Scene& scene, const std::string& path) {
+    const std::string text = scene_text(scene);
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out.write(text.data(), static_cast<std::streamsize>(text.size()));
+        out.close();
+        if (!out) {
+            const std::string why = std::strerror(errno);
+            std::remove(tmp.c_str());
+            throw InputError(fmt::format("{}: cannot write the scene ({})", path, why));
+        }
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        std::remove(tmp.c_str());
+        throw InputError(fmt::format("{}: cannot write the scene ({})", path, ec.message()));
+    }
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,30 @@
+// Scenes from models built in code, and scenes written back as TOML: a study handed
+// to the CLI, a cluster or a colleague. See docs/scene_format.md, "Writing scenes".
+#pragma once
+
+#include <gyrokit/io/scene.hpp>
+#include <gyrokit/models/rotor_model.hpp>
+
+#include <string>
+
+namespace gyrokit {
+
+// A scene of an FE rotor built in code: the model built and validated (InputError
+// as build() gives it), the analysis settings at their defaults (set them on the
+// result). `title` names the scene in messages ("fe_rotor" if empty).
+Scene rotor_scene(const RotorModel& model, const std::string& title = "");
+
+// The scene as TOML that load_scene and parse_scene read back to the same model and
+// settings: every number in its shortest round-trip form, lengths in m, speeds in
+// rad/s, so the matrices are equal bit for bit; angles (unbalance phase, load angle)
+// are written in degrees, as the format has them, and come back within 1 ulp. A
+// bearing table read from a file is referred to by its absolute path.
+// InputError for what the format cannot say: a scene that is not an fe_rotor built
+// from a RotorModel, a support holding another set of DOFs than pinned or clamped.
+std::string scene_text(const Scene& scene);
+
+// scene_text written to `path` (replaced whole: written to a temporary file beside
+// it, then renamed). InputError if it cannot be written.
+void write_scene(const Scene& scene, const std::string& path);
+
+}  // namespace gyrokit
