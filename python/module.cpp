@@ -5,6 +5,8 @@
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/gyrokit.hpp>
 
+#include "models.hpp"
+
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 #include <pybind11/functional.h>
@@ -253,9 +255,12 @@ struct Released {
 
 // The sweep file's study, on its own designs or on `designs` (values in the order
 // of `names`; a name of the sweep keeps its tied paths).
-Sweep sweep_with(const std::string& path, const py::object& names, const py::object& designs,
+// `scene`: a Scene's (text, name) in place of the sweep's base scene, or None.
+Sweep sweep_with(const std::string& path, const py::object& scene, const py::object& names, const py::object& designs,
                  bool check_parameters = true) {
-    Sweep s = read_sweep(path);
+    const auto [text, name] = scene.is_none() ? std::pair<std::string, std::string>()
+                                              : scene.cast<std::pair<std::string, std::string>>();
+    Sweep s = read_sweep(path, text, name);
     if (designs.is_none()) return s;
     // The sweep's criteria and operating range on the given designs.
     const std::vector<SweepParameter> declared = s.parameters;
@@ -318,8 +323,8 @@ PYBIND11_MODULE(_core, m) {
                    " damping components, " + std::to_string(s.bearings.size()) + " bearing tables>";
         });
 
-    py::class_<Scene>(m, "Scene", "A scene file: a model with its analysis settings")
-        .def_readonly("path", &Scene::path)
+    py::class_<Scene> scene(m, "Scene", "A scene file: a model with its analysis settings");
+    scene.def_readonly("path", &Scene::path)
         .def_readonly("title", &Scene::title)
         .def_readonly("model_type", &Scene::model_type)
         .def_readonly("system", &Scene::system)
@@ -333,6 +338,7 @@ PYBIND11_MODULE(_core, m) {
             const std::vector<double> p = s.speeds->points();
             return py::array_t<double>(static_cast<py::ssize_t>(p.size()), p.data());
         });
+    bind_models(m, scene);
 
     m.def("load_scene", [](const std::string& path, const std::map<std::string, double>& overrides,
                            const std::string& motion) { return load_scene(path, overrides, motion); },
@@ -511,7 +517,8 @@ PYBIND11_MODULE(_core, m) {
     }, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"), py::arg("modes"),
           py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("jobs"));
 
-    m.def("parse_scene", &parse_scene, py::arg("text"), py::arg("origin"), py::arg("dir") = ".");
+    m.def("parse_scene", &parse_scene, py::arg("text"), py::arg("origin"), py::arg("dir") = ".",
+          py::arg("overrides") = std::map<std::string, double>{});
 
     m.def("pervasive", [](const GyroscopicSystem& s, const std::vector<double>& speeds, double tolerance,
                           const std::string& solver, int modes, const py::object& target, double target_order,
@@ -576,9 +583,9 @@ PYBIND11_MODULE(_core, m) {
     }, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"), py::arg("modes"),
           py::arg("target"), py::arg("target_order"));
 
-    m.def("screen", [](const std::string& path, const py::object& names, const py::object& designs, int jobs,
-                       const py::object& progress) {
-        const Sweep s = sweep_with(path, names, designs);
+    m.def("screen", [](const std::string& path, const py::object& scene, const py::object& names,
+                       const py::object& designs, int jobs, const py::object& progress) {
+        const Sweep s = sweep_with(path, scene, names, designs);
         RunOptions o;
         o.jobs = threads(jobs).count;
         if (!progress.is_none())
@@ -604,15 +611,15 @@ PYBIND11_MODULE(_core, m) {
         d["quantities"] = quantity_columns(s);
         d["unit"] = s.unit.name;
         return d;
-    }, py::arg("sweep"), py::arg("names"), py::arg("designs"), py::arg("jobs"), py::arg("progress"));
+    }, py::arg("sweep"), py::arg("scene"), py::arg("names"), py::arg("designs"), py::arg("jobs"), py::arg("progress"));
 
     // One design of the study, for a caller's executor (a process pool, a Dask
     // cluster): the row run_screening would write for it.
     // `number`: the design's number in the caller's study (designs given one by one
     // are design 0 of a one-design list).
-    m.def("screen_design", [](const std::string& path, const py::object& names, const py::object& designs,
-                              std::size_t index, std::size_t number) {
-        const Sweep s = sweep_with(path, names, designs, false);
+    m.def("screen_design", [](const std::string& path, const py::object& scene, const py::object& names,
+                              const py::object& designs, std::size_t index, std::size_t number) {
+        const Sweep s = sweep_with(path, scene, names, designs, false);
         if (index >= s.design_count())
             throw InputError("design " + std::to_string(index) + ": allowed: 0 to " +
                              std::to_string(s.design_count() == 0 ? 0 : s.design_count() - 1));
@@ -623,11 +630,12 @@ PYBIND11_MODULE(_core, m) {
         }
         r.index = number;
         return format_row(s, r).cells;
-    }, py::arg("sweep"), py::arg("names"), py::arg("designs"), py::arg("index"), py::arg("number"));
+    }, py::arg("sweep"), py::arg("scene"), py::arg("names"), py::arg("designs"), py::arg("index"), py::arg("number"));
 
     // What a study is before it runs: its columns, parameters, quantities, unit and design count.
-    m.def("screen_plan", [](const std::string& path, const py::object& names, const py::object& designs) {
-        const Sweep s = sweep_with(path, names, designs);
+    m.def("screen_plan", [](const std::string& path, const py::object& scene, const py::object& names,
+                            const py::object& designs) {
+        const Sweep s = sweep_with(path, scene, names, designs);
         py::dict d;
         d["columns"] = result_columns(s);
         std::vector<std::string> p;
@@ -637,13 +645,14 @@ PYBIND11_MODULE(_core, m) {
         d["unit"] = s.unit.name;
         d["designs"] = s.design_count();
         return d;
-    }, py::arg("sweep"), py::arg("names"), py::arg("designs"));
+    }, py::arg("sweep"), py::arg("scene"), py::arg("names"), py::arg("designs"));
 
     // The row of a design that could not be evaluated where it ran (a worker lost):
     // verdict error with `reason`, so that no design is silently missing.
-    m.def("screen_error_row", [](const std::string& path, const py::object& names, const py::object& designs,
-                                 std::size_t index, std::size_t number, const std::string& reason) {
-        const Sweep s = sweep_with(path, names, designs, false);
+    m.def("screen_error_row", [](const std::string& path, const py::object& scene, const py::object& names,
+                                 const py::object& designs, std::size_t index, std::size_t number,
+                                 const std::string& reason) {
+        const Sweep s = sweep_with(path, scene, names, designs, false);
         DesignResult r;
         r.index = number;
         r.parameters = s.design(index);
@@ -651,8 +660,8 @@ PYBIND11_MODULE(_core, m) {
         r.verdict = Verdict::Error;
         r.reason = reason;
         return format_row(s, r).cells;
-    }, py::arg("sweep"), py::arg("names"), py::arg("designs"), py::arg("index"), py::arg("number"),
-          py::arg("reason"));
+    }, py::arg("sweep"), py::arg("scene"), py::arg("names"), py::arg("designs"), py::arg("index"),
+          py::arg("number"), py::arg("reason"));
 
     m.def("balancer", [](const std::string& path) {
         const BalancerScene sc = load_balancer_scene(path);

@@ -35,10 +35,12 @@
 #include <gyrokit/io/plot.hpp>
 #include <gyrokit/reports/reports.hpp>
 #include <gyrokit/io/scene.hpp>
+#include <gyrokit/io/scene_writer.hpp>
 #include <gyrokit/io/table.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/fluid_rotor.hpp>
 #include <gyrokit/models/gyrostat.hpp>
 #include <gyrokit/models/materials.hpp>
+#include <gyrokit/models/rotor_model.hpp>
 #include <gyrokit/screening/screening.hpp>
 #include <gyrokit/screening/sweep.hpp>

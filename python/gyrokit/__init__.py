@@ -13,13 +13,15 @@ import warnings as _warnings
 import numpy as _np
 
 from ._core import Error, InputError, Scene, SolverError, System, __version__
+from ._core import Bearing, Disk, Pedestal, Rotor, Section, Support, coupling
 from . import _core
 
 __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene", "eig", "campbell",
            "critical_speeds", "stability", "screen", "EigResult", "CampbellResult", "CriticalSpeeds",
            "StabilityChanges", "ScreenResult", "pervasive", "response", "PervasiveLosses", "Response", "gyrostat",
            "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "Sommerfeld",
-           "modes", "ModeShapes"]
+           "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
+           "rotor_scene"]
 
 
 def load_scene(path, overrides=None, motion=None) -> Scene:
@@ -307,9 +309,9 @@ class ScreenResult(_Result):
         return ax
 
 
-def _screen_one(sweep, names, values, index, number):
+def _screen_one(sweep, scene, names, values, index, number):
     """One design of a study (module level, so that process pools and Dask workers can run it)."""
-    return _core.screen_design(sweep, names, values, index, number)
+    return _core.screen_design(sweep, scene, names, values, index, number)
 
 
 def _one_design(values, i):
@@ -317,13 +319,13 @@ def _one_design(values, i):
     return ([values[i]], 0) if values is not None else (None, i)
 
 
-def _screen_on(executor, sweep, names, values, progress):
+def _screen_on(executor, sweep, scene, names, values, progress):
     """The designs of a study on a concurrent.futures.Executor (a process pool, Dask's client.get_executor()):
     the rows of the threaded run; a design whose task failed (a worker killed, a lost connection) is an error
     row with the failure, never missing."""
-    plan = _core.screen_plan(sweep, names, values)
+    plan = _core.screen_plan(sweep, scene, names, values)
     total = plan["designs"]
-    futures = [executor.submit(_screen_one, sweep, names, *_one_design(values, i), i) for i in range(total)]
+    futures = [executor.submit(_screen_one, sweep, scene, names, *_one_design(values, i), i) for i in range(total)]
     rows = []
     for i, f in enumerate(futures):
         try:
@@ -334,19 +336,24 @@ def _screen_on(executor, sweep, names, values, progress):
             raise
         except Exception as e:   # the task, not the design, failed: say so in the design's row
             reason = f"not evaluated: the executor's task failed ({type(e).__name__}: {e})".replace("\n", " ")
-            rows.append(list(_core.screen_error_row(sweep, names, *_one_design(values, i), i, reason)))
+            rows.append(list(_core.screen_error_row(sweep, scene, names, *_one_design(values, i), i, reason)))
         if progress is not None:
             progress(i + 1, total)
     return ScreenResult(dict(columns=plan["columns"], rows=rows, parameters=plan["parameters"],
                              quantities=plan["quantities"], unit=plan["unit"]))
 
 
-def screen(sweep, designs=None, *, jobs=0, progress=None, executor=None) -> ScreenResult:
+def screen(sweep, designs=None, *, scene=None, jobs=0, progress=None, executor=None) -> ScreenResult:
     """A design study: the criteria of the sweep file `sweep` on its own designs, or on `designs`, a list of
-    dicts {parameter: value} (e.g. {"model.c_G": 400.0}). Designs run on `jobs` threads (0 = all cores) with
-    the interpreter released, or, with `executor` (any concurrent.futures.Executor: a process pool, a Dask
-    cluster's client.get_executor()), one task per design there, with the same rows; a task that fails gives
-    its design an error row. `progress(done, total)` is called after each design."""
+    dicts {parameter: value} (e.g. {"model.c_G": 400.0}). `scene` (a Scene, e.g. from rotor_scene) is the
+    base scene in place of the sweep's `scene` key: its parameter paths address the scene it writes
+    (Scene.to_toml()). Designs run on `jobs` threads (0 = all cores) with the interpreter released, or,
+    with `executor` (any concurrent.futures.Executor: a process pool, a Dask cluster's
+    client.get_executor()), one task per design there, with the same rows; a task that fails gives its
+    design an error row. `progress(done, total)` is called after each design."""
+    if scene is not None and not isinstance(scene, Scene):
+        raise InputError(f"scene: expected a gyrokit.Scene, got {type(scene).__name__}")
+    base = None if scene is None else (scene.to_toml(), scene.path)
     names = values = None
     if designs is not None:
         designs = list(designs)
@@ -358,8 +365,8 @@ def screen(sweep, designs=None, *, jobs=0, progress=None, executor=None) -> Scre
                 raise InputError(f"designs[{i}]: parameters {sorted(d)} differ from those of designs[0] {sorted(names)}")
         values = [[float(d[n]) for n in names] for d in designs]
     if executor is not None:
-        return _screen_on(executor, str(sweep), names, values, progress)
-    return ScreenResult(_core.screen(str(sweep), names, values, int(jobs), progress))
+        return _screen_on(executor, str(sweep), base, names, values, progress)
+    return ScreenResult(_core.screen(str(sweep), base, names, values, int(jobs), progress))
 
 
 class PervasiveLosses(_Result):
@@ -490,6 +497,31 @@ def fe_rotor(*, speeds=None, analysis=None, directory=".", **keys) -> Scene:
     clearance, viscosity, load (N or "auto"), solution}], pedestal=[{z, mass, k, c}], support=[{z, type, axial,
     torsion}]; bearing tables are found relative to `directory`."""
     return _model_scene("fe_rotor", keys, speeds, analysis, directory)
+
+
+def rotor_scene(rotor, *, title="", speeds=None, analysis=None) -> Scene:
+    """A scene of an FE rotor built in Python (Rotor(sections=[Section(...)], disks=[Disk(...)], ...)), with
+    speeds {"from": .., "to": .., "count": ..} (rad/s) and analysis {"modes", "harmonics", "solver",
+    "target", "target_order"} as a scene's [speeds] and [analysis]. Scene.to_toml() and Scene.write(path)
+    give its scene file."""
+    speeds = dict(speeds or {})
+    analysis = dict(analysis or {})
+    for given, allowed, name in ((speeds, {"from", "to", "count"}, "speeds"),
+                                 (analysis, {"modes", "harmonics", "solver", "target", "target_order"}, "analysis")):
+        unknown = sorted(set(given) - allowed)
+        if unknown:
+            raise InputError(f"{name}: unknown key {unknown[0]!r}; allowed: {', '.join(sorted(allowed))}")
+    span = None
+    if speeds:
+        missing = [k for k in ("from", "to") if k not in speeds]
+        if missing:
+            raise InputError(f"speeds: {missing[0]!r} is missing; required: from, to (rad/s), count (default 201)")
+        span = (float(speeds["from"]), float(speeds["to"]), int(speeds.get("count", 201)))
+    harmonics = analysis.get("harmonics")
+    return _core.rotor_scene(rotor, str(title), span, analysis.get("modes"),
+                             None if harmonics is None else [int(h) for h in harmonics],
+                             str(analysis.get("solver", "auto")), analysis.get("target"),
+                             float(analysis.get("target_order", 0.0)))
 
 
 def fluid_rotor(*, speeds=None, analysis=None, **keys) -> Scene:

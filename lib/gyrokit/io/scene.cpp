@@ -331,7 +331,8 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
     return scene_from(parse_scene_file(path), path, fs::path(path).parent_path(), overrides, fe_motion);
 }
 
-Scene parse_scene(const std::string& text, const std::string& origin, const std::string& dir) {
+Scene parse_scene(const std::string& text, const std::string& origin, const std::string& dir,
+                  const std::map<std::string, double>& overrides) {
     toml::table root;
     check_toml_depth(text, origin);
     try {
@@ -340,7 +341,23 @@ Scene parse_scene(const std::string& text, const std::string& origin, const std:
         const auto& b = e.source().begin;
         throw InputError(fmt::format("{}: line {}, column {}: {}", origin, b.line, b.column, e.description()));
     }
-    return scene_from(std::move(root), origin, dir, {});
+    return scene_from(std::move(root), origin, dir, overrides);
+}
+
+void validate_settings(const Scene& sc) {
+    if (sc.speeds) sc.speeds->validate(sc.path + ": speeds");
+    if (sc.modes != kModesInRange && !(sc.modes >= 0 && sc.modes <= 100000))
+        throw InputError(fmt::format("{}: modes = {}; allowed: 0 (all) to 100000, or unset (those in range)", sc.path,
+                                     sc.modes));
+    if (sc.harmonics.empty()) throw InputError(sc.path + ": harmonics is empty; allowed: e.g. [1] or [1, 2]");
+    for (const int h : sc.harmonics)
+        if (h < 1 || h > 1000)
+            throw InputError(fmt::format("{}: harmonics entry {}; allowed: whole numbers in [1, 1000]", sc.path, h));
+    if (sc.target && !(std::isfinite(*sc.target) && *sc.target >= 0))
+        throw InputError(fmt::format("{}: target = {}; allowed: a finite number >= 0 (rad/s)", sc.path, *sc.target));
+    if (!(std::isfinite(sc.target_order) && sc.target_order >= 0))
+        throw InputError(fmt::format("{}: target_order = {}; allowed: a finite number >= 0 (multiple of the speed)",
+                                     sc.path, sc.target_order));
 }
 
 SolverOptions Scene::solver_options() const {

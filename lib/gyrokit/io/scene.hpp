@@ -47,6 +47,13 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
 
 // The same from the text of a scene: `origin` names it in messages, `dir`
 // resolves the files it refers to (Matrix Market, bearing tables).
-Scene parse_scene(const std::string& text, const std::string& origin, const std::string& dir = ".");
+// `overrides` as load_scene's.
+Scene parse_scene(const std::string& text, const std::string& origin, const std::string& dir = ".",
+                  const std::map<std::string, double>& overrides = {});
+
+// Checks the analysis settings of a scene assembled in code (speeds, modes, harmonics,
+// target, target_order) as the reader checks [speeds] and [analysis]: InputError
+// naming the field, the value and the allowed range.
+void validate_settings(const Scene& scene);
 
 }  // namespace gyrokit

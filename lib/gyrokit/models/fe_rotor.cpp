@@ -262,44 +262,44 @@ FeElementMatrices fe_shaft_element_matrices(const FeShaftElement& e, bool shear_
     return m;
 }
 
+void validate_element(const FeShaftElement& s, const std::string& w) {
+    require(std::isfinite(s.length) && s.length > 0, w, "length", s.length, "(0, inf) m");
+    if (const auto& c = s.coupling) {
+        const std::pair<const char*, double> values[] = {
+            {"k_lateral", c->k_lateral}, {"k_bending", c->k_bending}, {"k_axial", c->k_axial},
+            {"k_torsion", c->k_torsion}, {"c_lateral", c->c_lateral}, {"c_bending", c->c_bending},
+            {"c_axial", c->c_axial},     {"c_torsion", c->c_torsion}, {"mass", c->mass},
+            {"Id", c->diametral_inertia}, {"Ip", c->polar_inertia}};
+        for (const auto& [key, v] : values) require(std::isfinite(v) && v >= 0, w + " (coupling)", key, v, "[0, inf)");
+        return;
+    }
+    require(std::isfinite(s.outer_diameter) && s.outer_diameter > 0, w, "outer_diameter", s.outer_diameter,
+            "(0, inf) m");
+    require(std::isfinite(s.inner_diameter) && s.inner_diameter >= 0 && s.inner_diameter < s.outer_diameter, w,
+            "inner_diameter", s.inner_diameter, fmt::format("[0, outer_diameter = {}) m", s.outer_diameter));
+    if (s.outer_diameter_end || s.inner_diameter_end) {
+        const double o1 = s.outer_diameter_end.value_or(s.outer_diameter);
+        const double i1 = s.inner_diameter_end.value_or(s.inner_diameter);
+        require(std::isfinite(o1) && o1 > 0, w, "outer_diameter_end", o1, "(0, inf) m");
+        require(std::isfinite(i1) && i1 >= 0 && i1 < o1, w, "inner_diameter_end", i1,
+                fmt::format("[0, outer_diameter_end = {}) m", o1));
+    }
+    require(std::isfinite(s.youngs_modulus) && s.youngs_modulus > 0, w, "youngs_modulus", s.youngs_modulus,
+            "(0, inf) Pa");
+    require(std::isfinite(s.shear_modulus) && s.shear_modulus >= 0, w, "shear_modulus", s.shear_modulus,
+            "(0, inf) Pa, or 0 to derive it from youngs_modulus and poisson_ratio");
+    require(std::isfinite(s.poisson_ratio) && s.poisson_ratio > -1 && s.poisson_ratio <= 0.5, w,
+            "poisson_ratio", s.poisson_ratio, "(-1, 0.5]");
+    require(std::isfinite(s.density) && s.density > 0, w, "density", s.density, "(0, inf) kg/m^3");
+}
+
 void FeRotor::validate() const {
     if (elements.empty())
         throw InputError("fe rotor: elements: the shaft has no elements; allowed: at least one element");
     if (elements.size() > static_cast<std::size_t>(kMaxFeElements))
         throw InputError(fmt::format("fe rotor: elements: {} in all; allowed: at most {} (20,000,000 DOFs)",
                                      elements.size(), kMaxFeElements));
-    for (std::size_t e = 0; e < elements.size(); ++e) {
-        const FeShaftElement& s = elements[e];
-        const std::string w = where("element", e);
-        require(std::isfinite(s.length) && s.length > 0, w, "length", s.length, "(0, inf) m");
-        if (const auto& c = s.coupling) {
-            const std::pair<const char*, double> values[] = {
-                {"k_lateral", c->k_lateral}, {"k_bending", c->k_bending}, {"k_axial", c->k_axial},
-                {"k_torsion", c->k_torsion}, {"c_lateral", c->c_lateral}, {"c_bending", c->c_bending},
-                {"c_axial", c->c_axial},     {"c_torsion", c->c_torsion}, {"mass", c->mass},
-                {"Id", c->diametral_inertia}, {"Ip", c->polar_inertia}};
-            for (const auto& [key, v] : values) require(std::isfinite(v) && v >= 0, w + " (coupling)", key, v, "[0, inf)");
-            continue;
-        }
-        require(std::isfinite(s.outer_diameter) && s.outer_diameter > 0, w, "outer_diameter", s.outer_diameter,
-                "(0, inf) m");
-        require(std::isfinite(s.inner_diameter) && s.inner_diameter >= 0 && s.inner_diameter < s.outer_diameter, w,
-                "inner_diameter", s.inner_diameter, fmt::format("[0, outer_diameter = {}) m", s.outer_diameter));
-        if (s.outer_diameter_end || s.inner_diameter_end) {
-            const double o1 = s.outer_diameter_end.value_or(s.outer_diameter);
-            const double i1 = s.inner_diameter_end.value_or(s.inner_diameter);
-            require(std::isfinite(o1) && o1 > 0, w, "outer_diameter_end", o1, "(0, inf) m");
-            require(std::isfinite(i1) && i1 >= 0 && i1 < o1, w, "inner_diameter_end", i1,
-                    fmt::format("[0, outer_diameter_end = {}) m", o1));
-        }
-        require(std::isfinite(s.youngs_modulus) && s.youngs_modulus > 0, w, "youngs_modulus", s.youngs_modulus,
-                "(0, inf) Pa");
-        require(std::isfinite(s.shear_modulus) && s.shear_modulus >= 0, w, "shear_modulus", s.shear_modulus,
-                "(0, inf) Pa, or 0 to derive it from youngs_modulus and poisson_ratio");
-        require(std::isfinite(s.poisson_ratio) && s.poisson_ratio > -1 && s.poisson_ratio <= 0.5, w,
-                "poisson_ratio", s.poisson_ratio, "(-1, 0.5]");
-        require(std::isfinite(s.density) && s.density > 0, w, "density", s.density, "(0, inf) kg/m^3");
-    }
+    for (std::size_t e = 0; e < elements.size(); ++e) validate_element(elements[e], where("element", e));
     require(motion == FeMotion::lateral || motion == FeMotion::all || motion == FeMotion::axial ||
                 motion == FeMotion::torsional,
             "fe rotor", "motion", static_cast<int>(motion), "lateral, all, axial or torsional");

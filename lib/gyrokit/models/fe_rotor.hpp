@@ -185,6 +185,10 @@ public:
 // rotor gets its exact reactions. InputError if the rotor is not held in that plane.
 std::vector<double> fe_gravity_reactions(const FeRotor& r, const std::vector<int>& nodes, double g = 9.80665);
 
+// The checks validate() makes of one shaft element (or a section of equal ones),
+// naming it `where` in messages.
+void validate_element(const FeShaftElement& e, const std::string& where);
+
 // The rotor's GyroscopicSystem (validated, assembled): the verb every model shares.
 GyroscopicSystem make_system(const FeRotor& r);
 

@@ -49,6 +49,7 @@ void mesh_sections(const RotorModel& model, FeRotor& r, std::vector<double>& z) 
     std::size_t total = 0;
     for (std::size_t s = 0; s < model.sections.size(); ++s) {
         const RotorSection& sec = model.sections[s];
+        validate_element(sec.shape, origin_of(sec.origin, "section", s));
         const int count = sec.shape.coupling ? 1 : sec.elements;
         if (count < 1 || count > kMaxFeElements || total + static_cast<std::size_t>(count) > kMaxFeElements)
             throw InputError(fmt::format("{} elements = {} makes {} elements in all; allowed: 1 to {} in all",
@@ -146,6 +147,10 @@ BuiltRotor build(const RotorModel& model) {
         const int node = node_at(z, b.z, origin_of(b.origin, "bearing", i) + " z", unit);
         if (b.kind == RotorBearing::Kind::constant) {
             FeBearing c = b.constant;
+            for (const double v : {c.kxx, c.kxy, c.kyx, c.kyy, c.cxx, c.cxy, c.cyx, c.cyy, c.kzz, c.czz})
+                if (!std::isfinite(v))
+                    throw InputError(fmt::format("{}: a coefficient is {}; allowed: finite numbers (N/m, N s/m)",
+                                                 origin_of(b.origin, "bearing", i), v));
             c.node = node;
             r.bearings.push_back(c);
             continue;

@@ -159,15 +159,15 @@ std::uint64_t fnv1a_file(const std::string& path, std::uint64_t h) {
 // {the value as written, the resolved path}: the value, not the path, enters the
 // identity, so that a study run from another folder is the same study. A scene
 // that cannot be read names none: loading it reports that.
-std::vector<std::pair<std::string, std::string>> named_files(const std::string& scene) {
+std::vector<std::pair<std::string, std::string>> named_files(const Sweep& s) {
     std::vector<std::pair<std::string, std::string>> files;
     toml::table root;
     try {
-        root = toml::parse(read_toml_text(scene, "scene file"), scene);
+        root = toml::parse(s.scene_text.empty() ? read_toml_text(s.scene, "scene file") : s.scene_text, s.scene);
     } catch (const std::exception&) {
         return files;
     }
-    const fs::path dir = fs::path(scene).parent_path();
+    const fs::path dir = s.scene_text.empty() ? fs::path(s.scene).parent_path() : fs::path(".");
     const std::function<void(const toml::node&)> walk = [&](const toml::node& n) {
         if (const auto* t = n.as_table()) {
             for (const auto& [k, v] : *t) walk(v);
@@ -582,10 +582,10 @@ Figure safe_region_figure(const Sweep& s, const std::vector<ResultRow>& rows, co
 
 std::string study_identity_line(const Sweep& s) {
     std::uint64_t h = fnv1a(file_bytes(s.path));
-    h = fnv1a("\x1f" + file_bytes(s.scene), h);
+    h = fnv1a("\x1f" + (s.scene_text.empty() ? file_bytes(s.scene) : s.scene_text), h);
     // The files the scene names (bearing tables, Matrix Market matrices): a
     // bearing table edited between runs is another study too.
-    for (const auto& [written, path] : named_files(s.scene)) h = fnv1a_file(path, fnv1a("\x1f" + written + "\x1f", h));
+    for (const auto& [written, path] : named_files(s)) h = fnv1a_file(path, fnv1a("\x1f" + written + "\x1f", h));
     h = fnv1a("\x1f" GYROKIT_VERSION, h);
     return fmt::format("# study {:016x} (sweep, base scene and criteria; gyrokit {})", h, GYROKIT_VERSION);
 }

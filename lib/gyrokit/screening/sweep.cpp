@@ -326,7 +326,7 @@ void finalize_sweep(Sweep& s, bool check_parameters) {
         s.lhs = latin_hypercube(static_cast<std::size_t>(s.samples), s.parameters.size(), s.seed);
 }
 
-Sweep read_sweep(const std::string& path) {
+Sweep read_sweep(const std::string& path, const std::string& scene_text, const std::string& scene_name) {
     Sweep s;
     s.path = path;
     toml::table root;
@@ -341,8 +341,18 @@ Sweep read_sweep(const std::string& path) {
     top.only({"title", "scene", "units", "sampling", "parameter", "operating", "criteria", "plot"});
     s.title = top.choice("title", "", {});
     const std::string scene = top.choice("scene", "", {});
-    if (scene.empty()) throw InputError(top.where("scene") + " is missing; required: path of the base scene file");
-    s.scene = fs::path(scene).is_absolute() ? scene : (fs::path(path).parent_path() / scene).string();
+    if (!scene_text.empty()) {
+        // The base scene given in code: its text, parsed for each design with the design's overrides.
+        s.scene = scene_name.empty() ? std::string("scene") : scene_name;
+        s.scene_text = scene_text;
+        s.loader = [text = s.scene_text, name = s.scene](const std::map<std::string, double>& o) {
+            return parse_scene(text, name, ".", o);
+        };
+    } else if (scene.empty()) {
+        throw InputError(top.where("scene") + " is missing; required: path of the base scene file");
+    } else {
+        s.scene = fs::path(scene).is_absolute() ? scene : (fs::path(path).parent_path() / scene).string();
+    }
     s.unit = SpeedUnit::parse(top.choice("units", "rad/s", {"rad/s", "Hz", "rpm"}));
     const double f = s.unit.factor;
 

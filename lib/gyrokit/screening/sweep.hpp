@@ -76,7 +76,8 @@ using SceneLoader = std::function<Scene(const std::map<std::string, double>&)>;
 struct Sweep {
     std::string path;                 // the sweep file
     std::string title;
-    std::string scene;                // base scene path (resolved against the sweep's folder)
+    std::string scene;                // base scene path (resolved against the sweep's folder), or the name of scene_text
+    std::string scene_text;           // the base scene as TOML when given in code (empty: the file `scene`)
     std::vector<SweepParameter> parameters;
     Sampling sampling = Sampling::Grid;
     long long samples = 0;            // Latin hypercube
@@ -101,7 +102,9 @@ struct Sweep {
 // Reads and validates a sweep file. Every error is a one-line InputError naming
 // the file and the key: unknown parameters, empty ranges, criteria that the
 // scene cannot evaluate (no unbalance, no damping, no balancer model).
-Sweep read_sweep(const std::string& path);
+// `scene_text` (a scene written by scene_text(), named `scene_name` in messages), if
+// given, is the base scene in place of the file's `scene` key (which may then be left out).
+Sweep read_sweep(const std::string& path, const std::string& scene_text = "", const std::string& scene_name = "");
 
 // The scene overrides of one design: each parameter's value at each of its paths.
 std::map<std::string, double> design_overrides(const Sweep& s, const std::vector<double>& values);

@@ -1,0 +1,302 @@
+// FE rotors built in Python: the library's RotorModel and its items with keyword
+// constructors (SI units; angles in degrees, as in scene files), scenes made from
+// them, and scenes written back as TOML (to_toml, write, pickle).
+#include "models.hpp"
+
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/scene.hpp>
+#include <gyrokit/io/scene_writer.hpp>
+#include <gyrokit/models/rotor_model.hpp>
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <fmt/format.h>
+#include <optional>
+#include <string>
+
+namespace py = pybind11;
+using namespace gyrokit;
+
+namespace {
+
+using Opt = std::optional<double>;
+
+double radians(double deg) { return deg * std::acos(-1.0) / 180.0; }
+double degrees(double rad) { return rad * 180.0 / std::acos(-1.0); }
+
+// A keyword that takes one of `allowed`.
+void require_choice(const char* keyword, const std::string& value, std::initializer_list<const char*> allowed) {
+    std::string list;
+    for (const char* a : allowed) {
+        if (value == a) return;
+        list += (list.empty() ? "" : ", ") + std::string(a);
+    }
+    throw InputError(fmt::format("{} = '{}'; allowed: {}", keyword, value, list));
+}
+
+RotorSection section(double length, double outer_diameter, Opt E, Opt density, int elements, double inner_diameter,
+                     Opt outer_diameter_end, Opt inner_diameter_end, double poisson, double G) {
+    if (!E || !density) throw InputError(std::string(E ? "density" : "E") + " is missing; required: a number > 0");
+    RotorSection s;
+    s.shape.length = length;
+    s.shape.outer_diameter = outer_diameter;
+    s.shape.inner_diameter = inner_diameter;
+    s.shape.outer_diameter_end = outer_diameter_end;
+    s.shape.inner_diameter_end = inner_diameter_end;
+    s.shape.youngs_modulus = *E;
+    s.shape.density = *density;
+    s.shape.poisson_ratio = poisson;
+    s.shape.shear_modulus = G;
+    s.elements = elements;
+    return s;
+}
+
+RotorSection coupling(double length, double k_lateral, double k_bending, double k_axial, double k_torsion,
+                      double c_lateral, double c_bending, double c_axial, double c_torsion, double mass, double Id,
+                      double Ip) {
+    RotorSection s;
+    s.shape.length = length;
+    s.shape.coupling = FeCoupling{k_lateral, k_bending, k_axial, k_torsion, c_lateral, c_bending,
+                                  c_axial,   c_torsion, mass,     Id,        Ip};
+    return s;
+}
+
+RotorDisk disk(double z, Opt mass, double Id, double Ip, Opt outer_diameter, double inner_diameter, Opt width,
+               Opt density, double unbalance, double phase) {
+    RotorDisk d;
+    d.z = z;
+    if (outer_diameter) {
+        if (mass || Id != 0.0 || Ip != 0.0)
+            throw InputError("mass, Id, Ip are given together with outer_diameter; allowed: either mass, Id, Ip or "
+                             "the geometry outer_diameter, inner_diameter, width, density");
+        if (!width || !density)
+            throw InputError(std::string(width ? "density" : "width") + " is missing; required with outer_diameter");
+        d.geometry = DiskGeometry{*outer_diameter, inner_diameter, *width, *density};
+    } else {
+        if (!mass) throw InputError("mass is missing; required: mass (kg), or the geometry outer_diameter, width, density");
+        d.disk.mass = *mass;
+        d.disk.diametral_inertia = Id;
+        d.disk.polar_inertia = Ip;
+    }
+    d.disk.unbalance = unbalance;
+    d.disk.unbalance_phase = radians(phase);
+    return d;
+}
+
+RotorBearing bearing(double z, double k, double c, Opt kxx, Opt kxy, Opt kyx, Opt kyy, Opt cxx, Opt cxy, Opt cyx,
+                     Opt cyy, double kzz, double czz) {
+    RotorBearing b;
+    b.z = z;
+    b.constant = FeBearing{0,
+                           kxx.value_or(k),
+                           kxy.value_or(0.0),
+                           kyx.value_or(0.0),
+                           kyy.value_or(k),
+                           cxx.value_or(c),
+                           cxy.value_or(0.0),
+                           cyx.value_or(0.0),
+                           cyy.value_or(c),
+                           kzz,
+                           czz};
+    return b;
+}
+
+using Column = std::optional<std::vector<double>>;
+
+// Coefficient arrays of a table: `k`, `c` isotropic, kxx ... cyy each; missing ones 0.
+RotorBearing table(double z, const std::vector<double>& speeds, const Column& k, const Column& c, const Column& kxx,
+                   const Column& kxy, const Column& kyx, const Column& kyy, const Column& cxx, const Column& cxy,
+                   const Column& cyx, const Column& cyy) {
+    RotorBearing b;
+    b.z = z;
+    b.kind = RotorBearing::Kind::table;
+    b.table.speeds = speeds;
+    const std::size_t n = speeds.size();
+    const auto column = [&](const char* name, const Column& own, const Column& iso) {
+        const Column& v = own ? own : iso;
+        if (!v) return std::vector<double>(n, 0.0);
+        if (v->size() != n)
+            throw InputError(fmt::format("{}: {} entries; allowed: {}, one per speed", own ? name : (name[0] == 'k' ? "k" : "c"),
+                                         v->size(), n));
+        return *v;
+    };
+    const Column none;
+    const std::vector<double> Kxx = column("kxx", kxx, k), Kxy = column("kxy", kxy, none), Kyx = column("kyx", kyx, none),
+                              Kyy = column("kyy", kyy, k), Cxx = column("cxx", cxx, c), Cxy = column("cxy", cxy, none),
+                              Cyx = column("cyx", cyx, none), Cyy = column("cyy", cyy, c);
+    b.table.rows.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        b.table.rows[i].K << Kxx[i], Kxy[i], Kyx[i], Kyy[i];
+        b.table.rows[i].C << Cxx[i], Cxy[i], Cyx[i], Cyy[i];
+    }
+    return b;
+}
+
+RotorBearing fluid_film(double z, double diameter, double length, double clearance, double viscosity,
+                        const py::object& load, double load_angle, double max_eccentricity, const std::string& solution,
+                        int grid_circumferential, int grid_axial) {
+    RotorBearing b;
+    b.z = z;
+    b.kind = RotorBearing::Kind::fluid_film;
+    JournalBearing& j = b.film;
+    j.diameter = diameter;
+    j.length = length;
+    j.clearance = clearance;
+    j.viscosity = viscosity;
+    if (py::isinstance<py::str>(load)) {
+        require_choice("load", load.cast<std::string>(), {"auto"});
+        b.auto_load = true;
+        j.load = 1.0;
+    } else {
+        j.load = load.cast<double>();
+    }
+    j.load_angle = radians(load_angle);
+    j.max_eccentricity = max_eccentricity;
+    require_choice("solution", solution, {"short", "finite_difference"});
+    j.solution = solution == "short" ? FilmSolution::short_bearing : FilmSolution::finite_difference;
+    j.grid_circumferential = grid_circumferential;
+    j.grid_axial = grid_axial;
+    return b;
+}
+
+RotorSupport support(double z, const std::string& type, bool axial, bool torsion) {
+    require_choice("type", type, {"pinned", "clamped"});
+    RotorSupport s;
+    s.z = z;
+    s.hold.theta_x = s.hold.theta_y = type == "clamped";
+    s.hold.z = axial;
+    s.hold.theta_z = torsion;
+    return s;
+}
+
+RotorPedestal pedestal(double z, double mass, double k, double c, Opt kxx, Opt kyy, Opt cxx, Opt cyy) {
+    RotorPedestal p;
+    p.z = z;
+    p.pedestal = FePedestal{0, mass, kxx.value_or(k), kyy.value_or(k), cxx.value_or(c), cyy.value_or(c)};
+    return p;
+}
+
+FeMotion motion_of(const std::string& m) {
+    require_choice("motion", m, {"lateral", "all", "axial", "torsional"});
+    return m == "all" ? FeMotion::all : m == "axial" ? FeMotion::axial : m == "torsional" ? FeMotion::torsional
+                                                                                           : FeMotion::lateral;
+}
+
+// Items built in Python are named by their list and index in messages ("bearings[1] z = ...").
+template <class T>
+std::vector<T> named(std::vector<T> items, const char* list) {
+    for (std::size_t i = 0; i < items.size(); ++i)
+        if (items[i].origin.empty()) items[i].origin = fmt::format("{}[{}]", list, i);
+    return items;
+}
+
+Scene scene_of(const RotorModel& model, const std::string& title, const py::object& speeds, const py::object& modes,
+               const py::object& harmonics, const std::string& solver, const py::object& target,
+               double target_order) {
+    Scene sc = rotor_scene(model, title);
+    if (!speeds.is_none()) {
+        const auto t = speeds.cast<std::tuple<double, double, int>>();
+        sc.speeds = SpeedRange{std::get<0>(t), std::get<1>(t), std::get<2>(t)};
+    }
+    if (!modes.is_none()) sc.modes = modes.cast<int>();
+    if (!harmonics.is_none()) sc.harmonics = harmonics.cast<std::vector<int>>();
+    require_choice("solver", solver, {"auto", "dense", "sparse"});
+    sc.solver = parse_solver_kind(solver);
+    if (!target.is_none()) sc.target = target.cast<double>();
+    sc.target_order = target_order;
+    validate_settings(sc);
+    return sc;
+}
+
+}  // namespace
+
+void bind_models(py::module_& m, py::class_<Scene>& scene) {
+    py::class_<RotorSection>(m, "Section", "A shaft section of equal elements, or a flexible coupling (coupling())")
+        .def(py::init(&section), py::kw_only(), py::arg("length"), py::arg("outer_diameter"), py::arg("E") = py::none(),
+             py::arg("density") = py::none(), py::arg("elements") = 1, py::arg("inner_diameter") = 0.0,
+             py::arg("outer_diameter_end") = py::none(), py::arg("inner_diameter_end") = py::none(),
+             py::arg("poisson") = 0.3, py::arg("G") = 0.0)
+        .def_property_readonly("length", [](const RotorSection& s) { return s.shape.length; })
+        .def_property_readonly("elements", [](const RotorSection& s) { return s.elements; })
+        .def_property_readonly("outer_diameter", [](const RotorSection& s) { return s.shape.outer_diameter; })
+        .def_property_readonly("is_coupling", [](const RotorSection& s) { return s.shape.coupling.has_value(); });
+    m.def("coupling", &coupling, "A flexible coupling of `length` in the shaft chain", py::kw_only(), py::arg("length"),
+          py::arg("k_lateral") = 0.0, py::arg("k_bending") = 0.0, py::arg("k_axial") = 0.0, py::arg("k_torsion") = 0.0,
+          py::arg("c_lateral") = 0.0, py::arg("c_bending") = 0.0, py::arg("c_axial") = 0.0,
+          py::arg("c_torsion") = 0.0, py::arg("mass") = 0.0, py::arg("Id") = 0.0, py::arg("Ip") = 0.0);
+    py::class_<RotorDisk>(m, "Disk", "A rigid disk at z: mass, Id, Ip or its geometry; unbalance (kg m), phase (deg)")
+        .def(py::init(&disk), py::kw_only(), py::arg("z"), py::arg("mass") = py::none(), py::arg("Id") = 0.0,
+             py::arg("Ip") = 0.0, py::arg("outer_diameter") = py::none(), py::arg("inner_diameter") = 0.0,
+             py::arg("width") = py::none(), py::arg("density") = py::none(), py::arg("unbalance") = 0.0,
+             py::arg("phase") = 0.0)
+        .def_property_readonly("z", [](const RotorDisk& d) { return d.z; })
+        .def_property_readonly("unbalance", [](const RotorDisk& d) { return d.disk.unbalance; })
+        .def_property_readonly("phase", [](const RotorDisk& d) { return degrees(d.disk.unbalance_phase); });
+    py::class_<RotorBearing>(m, "Bearing", "A bearing at z: constant coefficients, a table or a fluid film")
+        .def(py::init(&bearing), py::kw_only(), py::arg("z"), py::arg("k") = 0.0, py::arg("c") = 0.0,
+             py::arg("kxx") = py::none(), py::arg("kxy") = py::none(), py::arg("kyx") = py::none(),
+             py::arg("kyy") = py::none(), py::arg("cxx") = py::none(), py::arg("cxy") = py::none(),
+             py::arg("cyx") = py::none(), py::arg("cyy") = py::none(), py::arg("kzz") = 0.0, py::arg("czz") = 0.0)
+        .def_static("table", &table, "Coefficients tabulated over speeds (rad/s)", py::kw_only(), py::arg("z"),
+                    py::arg("speeds"), py::arg("k") = py::none(), py::arg("c") = py::none(), py::arg("kxx") = py::none(),
+                    py::arg("kxy") = py::none(), py::arg("kyx") = py::none(), py::arg("kyy") = py::none(),
+                    py::arg("cxx") = py::none(), py::arg("cxy") = py::none(), py::arg("cyx") = py::none(),
+                    py::arg("cyy") = py::none())
+        .def_static("fluid_film", &fluid_film, "A plain journal bearing from its geometry; load in N or \"auto\"",
+                    py::kw_only(), py::arg("z"), py::arg("diameter"), py::arg("length"), py::arg("clearance"),
+                    py::arg("viscosity"), py::arg("load") = py::str("auto"), py::arg("load_angle") = -90.0,
+                    py::arg("max_eccentricity") = 0.95, py::arg("solution") = "short",
+                    py::arg("grid_circumferential") = 240, py::arg("grid_axial") = 32)
+        .def_property_readonly("z", [](const RotorBearing& b) { return b.z; })
+        .def_property_readonly("kind", [](const RotorBearing& b) {
+            return b.kind == RotorBearing::Kind::constant ? "constant"
+                   : b.kind == RotorBearing::Kind::table  ? "table"
+                                                          : "fluid_film";
+        });
+    py::class_<RotorSupport>(m, "Support", "A rigid support at z: pinned (x, y) or clamped (and the rotations)")
+        .def(py::init(&support), py::kw_only(), py::arg("z"), py::arg("type") = "pinned", py::arg("axial") = false,
+             py::arg("torsion") = false)
+        .def_property_readonly("z", [](const RotorSupport& s) { return s.z; });
+    py::class_<RotorPedestal>(m, "Pedestal", "A mass on springs and dampers under the bearings at z")
+        .def(py::init(&pedestal), py::kw_only(), py::arg("z"), py::arg("mass"), py::arg("k") = 0.0, py::arg("c") = 0.0,
+             py::arg("kxx") = py::none(), py::arg("kyy") = py::none(), py::arg("cxx") = py::none(),
+             py::arg("cyy") = py::none())
+        .def_property_readonly("z", [](const RotorPedestal& p) { return p.z; });
+    py::class_<RotorModel>(m, "Rotor", "An FE rotor: sections from z = 0, and disks, bearings, supports, pedestals at z")
+        .def(py::init([](std::vector<RotorSection> sections, std::vector<RotorDisk> disks,
+                         std::vector<RotorBearing> bearings, std::vector<RotorSupport> supports,
+                         std::vector<RotorPedestal> pedestals, const std::string& motion, bool shear_deformation,
+                         bool rotary_inertia) {
+                 RotorModel r;
+                 r.sections = named(std::move(sections), "sections");
+                 r.disks = named(std::move(disks), "disks");
+                 r.bearings = named(std::move(bearings), "bearings");
+                 r.supports = named(std::move(supports), "supports");
+                 r.pedestals = named(std::move(pedestals), "pedestals");
+                 r.motion = motion_of(motion);
+                 r.shear_deformation = shear_deformation;
+                 r.rotary_inertia = rotary_inertia;
+                 return r;
+             }),
+             py::kw_only(), py::arg("sections"), py::arg("disks") = std::vector<RotorDisk>{},
+             py::arg("bearings") = std::vector<RotorBearing>{}, py::arg("supports") = std::vector<RotorSupport>{},
+             py::arg("pedestals") = std::vector<RotorPedestal>{}, py::arg("motion") = "lateral",
+             py::arg("shear_deformation") = true, py::arg("rotary_inertia") = true)
+        .def_readonly("sections", &RotorModel::sections)
+        .def_readonly("disks", &RotorModel::disks)
+        .def_readonly("bearings", &RotorModel::bearings)
+        .def_readonly("supports", &RotorModel::supports)
+        .def_readonly("pedestals", &RotorModel::pedestals)
+        .def_property_readonly("motion", [](const RotorModel& r) { return to_string(r.motion); });
+
+    m.def("rotor_scene", &scene_of, py::arg("rotor"), py::arg("title"), py::arg("speeds"), py::arg("modes"),
+          py::arg("harmonics"), py::arg("solver"), py::arg("target"), py::arg("target_order"));
+    scene.def_property_readonly("rotor", [](const Scene& s) { return s.rotor_model; })
+        .def("to_toml", &scene_text, "The scene as TOML that load_scene reads back to the same model and settings")
+        .def("write", &write_scene, py::arg("path"), "Writes the scene to `path` (to_toml)")
+        .def(py::pickle([](const Scene& s) { return py::make_tuple(scene_text(s), s.path); },
+                        [](const py::tuple& t) {
+                            return parse_scene(t[0].cast<std::string>(), t[1].cast<std::string>(), ".");
+                        }));
+}
