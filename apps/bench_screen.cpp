@@ -92,7 +92,7 @@ Sweep centrifuge_study(long long samples) {
     s.sampling = Sampling::LatinHypercube;
     s.samples = samples;
     s.seed = 7;
-    SweepParameter cG{"model.c_G", 150.0, 600.0, 0, {}, false}, dG{"model.d_G", 0.5, 10.0, 0, {}, false};
+    SweepParameter cG{"model.c_G", 150.0, 600.0, 0, {}, false, {}}, dG{"model.d_G", 0.5, 10.0, 0, {}, false, {}};
     s.parameters = {cG, dG};
     s.op_from = 24.0;
     s.op_to = 50.0;
@@ -114,7 +114,7 @@ Sweep rotor_study(int disks, long long samples) {
     s.sampling = Sampling::LatinHypercube;
     s.samples = samples;
     s.seed = 7;
-    SweepParameter kb{"model.k_bearing", 1e7, 1e9, 0, {}, true}, cb{"model.c_bearing", 5e2, 5e3, 0, {}, true};
+    SweepParameter kb{"model.k_bearing", 1e7, 1e9, 0, {}, true, {}}, cb{"model.c_bearing", 5e2, 5e3, 0, {}, true, {}};
     s.parameters = {kb, cb};
     s.op_from = 150.0;
     s.op_to = 300.0;

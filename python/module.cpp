@@ -6,6 +6,7 @@
 #include <gyrokit/gyrokit.hpp>
 
 #include "models.hpp"
+#include "statics.hpp"
 
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
@@ -339,6 +340,7 @@ PYBIND11_MODULE(_core, m) {
             return py::array_t<double>(static_cast<py::ssize_t>(p.size()), p.data());
         });
     bind_models(m, scene);
+    bind_statics(m);
 
     m.def("load_scene", [](const std::string& path, const std::map<std::string, double>& overrides,
                            const std::string& motion) { return load_scene(path, overrides, motion); },

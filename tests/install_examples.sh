@@ -35,6 +35,11 @@ run "$dir/examples/own_matrices"
 run "$dir/examples/own_matrices_static"
 run "$dir/examples/critical_speeds" "$src/data/centrifuge.toml"
 grep -q "rad/s" "$dir/out" || fail "critical_speeds printed no critical speed"
+run "$dir/examples/rotor_in_code" "$src/data/three_disk_rotor.toml"
+grep -q "critical speed" "$dir/out" || fail "rotor_in_code printed no critical speed"
+# Its scene, written by the library, is the scene file's rotor for the CLI too.
+"$dir/examples/rotor_in_code" "$src/data/three_disk_rotor.toml" --write > "$dir/written.toml" || fail "rotor_in_code --write"
+run "$dir/examples/rotor_in_code" "$dir/written.toml"
 
 # pkg-config: the same example from the .pc file alone (--define-prefix: the prefix is where the .pc file was installed).
 export PKG_CONFIG_PATH="$libdir/pkgconfig"

@@ -309,8 +309,11 @@ TEST_CASE("fe rotor: sparse shift-invert agrees with dense QZ on a 300-DOF rotor
         // Through the system (cross-coupled damping included): the same pencil.
         const QuadraticSpectrum viasystem = solve_at_speed(model->to_system(), W);
         REQUIRE(viasystem.modes.size() == ref.modes.size());
+        // The same pencil assembled two ways, solved by the same QZ: equal within the two
+        // error bounds (the cross-coupled bearings' ill-conditioned pairs move with rounding).
         for (std::size_t i = 0; i < ref.modes.size(); ++i)
-            CHECK(std::abs(viasystem.modes[i].lambda - ref.modes[i].lambda) <= 1e-12 * std::abs(ref.modes[i].lambda));
+            CHECK(std::abs(viasystem.modes[i].lambda - ref.modes[i].lambda) <=
+                  viasystem.modes[i].error_bound + ref.modes[i].error_bound);
         SparseEigenOptions o;
         o.modes = 8;
         const SparseSpectrum s = solve_quadratic_sparse(p, o, model->whirl_pairs);

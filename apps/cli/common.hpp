@@ -112,6 +112,9 @@ std::vector<Command> add_fluid_commands(CLI::App& app);
 // The design study: screen (sweep file, --jobs, --shard, --resume, --merge).
 std::vector<Command> add_screen_commands(CLI::App& app);
 
+// FE rotors at standstill: static.
+std::vector<Command> add_static_commands(CLI::App& app);
+
 // The Sommerfeld effect: sommerfeld (stationary speed curves, limit speeds, folds; --runup).
 std::vector<Command> add_sommerfeld_commands(CLI::App& app);
 

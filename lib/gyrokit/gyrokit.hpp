@@ -13,6 +13,7 @@
 #include <gyrokit/analysis/workers.hpp>
 #include <gyrokit/core/diagnostics.hpp>
 #include <gyrokit/study/rotor_study.hpp>
+#include <gyrokit/study/static_study.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/balancing/autobalancer.hpp>
 #include <gyrokit/balancing/balancer_scene.hpp>
@@ -42,5 +43,6 @@
 #include <gyrokit/models/gyrostat.hpp>
 #include <gyrokit/models/materials.hpp>
 #include <gyrokit/models/rotor_model.hpp>
+#include <gyrokit/models/fe_statics.hpp>
 #include <gyrokit/screening/screening.hpp>
 #include <gyrokit/screening/sweep.hpp>

@@ -21,7 +21,7 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "StabilityChanges", "ScreenResult", "pervasive", "response", "PervasiveLosses", "Response", "gyrostat",
            "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "Sommerfeld",
            "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
-           "rotor_scene"]
+           "rotor_scene", "static", "StaticDeflection"]
 
 
 def load_scene(path, overrides=None, motion=None) -> Scene:
@@ -367,6 +367,67 @@ def screen(sweep, designs=None, *, scene=None, jobs=0, progress=None, executor=N
     if executor is not None:
         return _screen_on(executor, str(sweep), base, names, values, progress)
     return ScreenResult(_core.screen(str(sweep), base, names, values, int(jobs), progress))
+
+
+class StaticDeflection(_Result):
+    """An FE rotor at standstill (docs/static.md): `nodes` (node, z, x, y, slope_x, slope_y), `sections` (each
+    element's start and end: element, z, shear_x, moment_x, shear_y, moment_y; M = E I y'' vertical), `reactions`
+    (reaction, node, z, fx, fy, mx, my: on the rotor), `weight` (N), and the checks `backward_error`,
+    `balance_error`, `condition` and `error_bound` (of the deflections, relative). Lengths in m, forces in N, moments in N m."""
+
+    def __init__(self, d):
+        self.nodes = dict(d["nodes"])
+        self.sections = dict(d["sections"])
+        self.reactions = dict(d["reactions"])
+        self.weight = d["weight"]
+        self.backward_error = d["backward_error"]
+        self.balance_error = d["balance_error"]
+        self.condition = d["condition"]
+        self.error_bound = d["error_bound"]
+
+    def to_pandas(self, table="nodes"):
+        """One table: "nodes", "sections" or "reactions"."""
+        if table not in ("nodes", "sections", "reactions"):
+            raise InputError(f"table = {table!r}; allowed: nodes, sections, reactions")
+        return self._frame(getattr(self, table))
+
+    def plot(self, axes=None):
+        """Deflection (um) and bending moment (N m) along the shaft, reactions marked; two axes."""
+        plt = self._pyplot()
+        if axes is None:
+            axes = plt.subplots(2, 1, sharex=True)[1]
+        top, bottom = axes
+        n = self.nodes
+        top.plot(n["z"], n["x"] * 1e6, "o-", label="x")
+        top.plot(n["z"], n["y"] * 1e6, "o-", label="y")
+        top.plot(self.reactions["z"], _np.zeros(len(self.reactions["z"])), "k^", label="reactions")
+        top.set_ylabel("deflection [um]")
+        top.legend()
+        s = self.sections
+        bottom.plot(s["z"], s["moment_x"], label="horizontal (x)")
+        bottom.plot(s["z"], s["moment_y"], label="vertical (y)")
+        bottom.set_xlabel("z [m]")
+        bottom.set_ylabel("bending moment [N m]")
+        bottom.legend()
+        return axes
+
+
+def static(model, *, gravity=9.80665, loads=None) -> StaticDeflection:
+    """An FE rotor scene at standstill under gravity (m/s^2 along -y) and point loads, a list of dicts
+    {"node": n, "fx": .., "fy": .., "mx": .., "my": ..} (N, N m; missing ones 0). Speed-dependent bearings hold
+    their nodes rigidly; constant bearings act as springs (docs/static.md)."""
+    if not isinstance(model, Scene):
+        raise InputError(f"static: expected a gyrokit.Scene of an FE rotor, got {type(model).__name__}")
+    rows = []
+    for i, l in enumerate(loads or []):
+        unknown = sorted(set(l) - {"node", "fx", "fy", "mx", "my"})
+        if unknown or "node" not in l:
+            raise InputError(f"loads[{i}]: {unknown[0] if unknown else 'node'!r}: allowed keys node (required), fx, fy, "
+                             "mx, my")
+        if int(l["node"]) != l["node"]:
+            raise InputError(f"loads[{i}]: node = {l['node']!r}; allowed: a node number")
+        rows.append([float(l["node"])] + [float(l.get(k, 0.0)) for k in ("fx", "fy", "mx", "my")])
+    return StaticDeflection(_core.static(model, float(gravity), rows))
 
 
 class PervasiveLosses(_Result):

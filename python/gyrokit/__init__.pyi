@@ -49,6 +49,10 @@ class Scene:
     @property
     def solver(self) -> str: ...
     @property
+    def rotor(self) -> Optional[Rotor]: ...
+    def to_toml(self) -> str: ...
+    def write(self, path: str) -> None: ...
+    @property
     def speeds(self) -> Optional[npt.NDArray[np.float64]]: ...
 
 Model = Union[System, Scene]
@@ -154,7 +158,8 @@ class ScreenResult:
     def plot(self, x: Optional[str] = ..., y: Optional[str] = ..., ax: Any = ...) -> Any: ...
 
 def screen(sweep: Union[str, PathLike[str]], designs: Optional[Sequence[Mapping[str, float]]] = ..., *,
-           jobs: int = ..., progress: Optional[Any] = ..., executor: Optional[Any] = ...) -> ScreenResult: ...
+           scene: Optional[Scene] = ..., jobs: int = ..., progress: Optional[Any] = ...,
+           executor: Optional[Any] = ...) -> ScreenResult: ...
 
 class PervasiveLosses:
     checked: list[str]
@@ -188,6 +193,70 @@ def gyrostat(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[
              **keys: Any) -> Scene: ...
 def fe_rotor(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
              directory: str = ..., **keys: Any) -> Scene: ...
+class Section:
+    def __init__(self, *, length: float, outer_diameter: float, E: Optional[float] = ...,
+                 density: Optional[float] = ..., elements: int = ..., inner_diameter: float = ...,
+                 outer_diameter_end: Optional[float] = ..., inner_diameter_end: Optional[float] = ...,
+                 poisson: float = ..., G: float = ...) -> None: ...
+    length: float
+    elements: int
+    outer_diameter: float
+    is_coupling: bool
+
+def coupling(*, length: float, k_lateral: float = ..., k_bending: float = ..., k_axial: float = ...,
+             k_torsion: float = ..., c_lateral: float = ..., c_bending: float = ..., c_axial: float = ...,
+             c_torsion: float = ..., mass: float = ..., Id: float = ..., Ip: float = ...) -> Section: ...
+
+class Disk:
+    def __init__(self, *, z: float, mass: Optional[float] = ..., Id: float = ..., Ip: float = ...,
+                 outer_diameter: Optional[float] = ..., inner_diameter: float = ..., width: Optional[float] = ...,
+                 density: Optional[float] = ..., unbalance: float = ..., phase: float = ...) -> None: ...
+    z: float
+    unbalance: float
+    phase: float
+
+class Bearing:
+    def __init__(self, *, z: float, k: float = ..., c: float = ..., kxx: Optional[float] = ...,
+                 kxy: Optional[float] = ..., kyx: Optional[float] = ..., kyy: Optional[float] = ...,
+                 cxx: Optional[float] = ..., cxy: Optional[float] = ..., cyx: Optional[float] = ...,
+                 cyy: Optional[float] = ..., kzz: float = ..., czz: float = ...) -> None: ...
+    @staticmethod
+    def table(*, z: float, speeds: Sequence[float], k: Optional[Sequence[float]] = ...,
+              c: Optional[Sequence[float]] = ..., kxx: Optional[Sequence[float]] = ...,
+              kxy: Optional[Sequence[float]] = ..., kyx: Optional[Sequence[float]] = ...,
+              kyy: Optional[Sequence[float]] = ..., cxx: Optional[Sequence[float]] = ...,
+              cxy: Optional[Sequence[float]] = ..., cyx: Optional[Sequence[float]] = ...,
+              cyy: Optional[Sequence[float]] = ...) -> Bearing: ...
+    @staticmethod
+    def fluid_film(*, z: float, diameter: float, length: float, clearance: float, viscosity: float,
+                   load: Union[float, str] = ..., load_angle: float = ..., max_eccentricity: float = ...,
+                   solution: str = ..., grid_circumferential: int = ..., grid_axial: int = ...) -> Bearing: ...
+    z: float
+    kind: str
+
+class Support:
+    def __init__(self, *, z: float, type: str = ..., axial: bool = ..., torsion: bool = ...) -> None: ...
+    z: float
+
+class Pedestal:
+    def __init__(self, *, z: float, mass: float, k: float = ..., c: float = ..., kxx: Optional[float] = ...,
+                 kyy: Optional[float] = ..., cxx: Optional[float] = ..., cyy: Optional[float] = ...) -> None: ...
+    z: float
+
+class Rotor:
+    def __init__(self, *, sections: Sequence[Section], disks: Sequence[Disk] = ..., bearings: Sequence[Bearing] = ...,
+                 supports: Sequence[Support] = ..., pedestals: Sequence[Pedestal] = ..., motion: str = ...,
+                 shear_deformation: bool = ..., rotary_inertia: bool = ...) -> None: ...
+    sections: list[Section]
+    disks: list[Disk]
+    bearings: list[Bearing]
+    supports: list[Support]
+    pedestals: list[Pedestal]
+    motion: str
+
+def rotor_scene(rotor: Rotor, *, title: str = ..., speeds: Optional[Mapping[str, float]] = ...,
+                analysis: Optional[Mapping[str, Any]] = ...) -> Scene: ...
+
 def fluid_rotor(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
                 **keys: Any) -> Scene: ...
 def matrices_scene(directory: str, *, speeds: Optional[Mapping[str, float]] = ...,

@@ -532,69 +532,6 @@ GyroscopicSystem FeRotorMatrices::to_system() const {
     return s;
 }
 
-std::vector<double> fe_gravity_reactions(const FeRotor& r, const std::vector<int>& nodes, double g) {
-    FeRotor lateral = r;
-    lateral.motion = FeMotion::lateral;   // the weight moves no axial or torsional DOF
-    const FeRotorMatrices m = lateral.assemble();
-    const auto index_of = [&](const std::string& name) {
-        const auto it = std::find(m.dof_names.begin(), m.dof_names.end(), name);
-        return it == m.dof_names.end() ? -1 : static_cast<int>(it - m.dof_names.begin());
-    };
-    // The vertical plane's DOFs; the held ones (y at `nodes`) and the free ones.
-    std::vector<int> held, free, plane_of(m.size(), -1);
-    for (const int node : nodes) {
-        const int i = index_of("y" + std::to_string(node));
-        if (i < 0)
-            throw InputError(fmt::format("fe rotor: gravity reaction at node {}: its y is held by a support; allowed: "
-                                         "a node whose y is free",
-                                         node));
-        if (std::find(held.begin(), held.end(), i) == held.end()) held.push_back(i);
-    }
-    for (int i = 0; i < m.size(); ++i) {
-        const std::string& n = m.dof_names[i];
-        const bool vertical = n[0] == 'y' || n.rfind("tx", 0) == 0 || n.rfind("py", 0) == 0;
-        if (vertical && std::find(held.begin(), held.end(), i) == held.end()) free.push_back(i);
-    }
-    // Consistent weight: f = -g M r, r = 1 on every vertical translation (a rigid lift).
-    Eigen::VectorXd lift = Eigen::VectorXd::Zero(m.size());
-    for (int i = 0; i < m.size(); ++i)
-        if (m.dof_names[i][0] == 'y' || m.dof_names[i].rfind("py", 0) == 0) lift(i) = 1.0;
-    const Eigen::VectorXd weight = -g * (m.M * lift);
-    const auto block = [&](const std::vector<int>& rows, const std::vector<int>& cols) {
-        std::vector<int> row_of(m.size(), -1), col_of(m.size(), -1);
-        for (std::size_t k = 0; k < rows.size(); ++k) row_of[rows[k]] = static_cast<int>(k);
-        for (std::size_t k = 0; k < cols.size(); ++k) col_of[cols[k]] = static_cast<int>(k);
-        std::vector<Eigen::Triplet<double>> t;
-        for (int c = 0; c < m.K.outerSize(); ++c)
-            for (Eigen::SparseMatrix<double>::InnerIterator it(m.K, c); it; ++it)
-                if (row_of[it.row()] >= 0 && col_of[it.col()] >= 0)
-                    t.emplace_back(row_of[it.row()], col_of[it.col()], it.value());
-        Eigen::SparseMatrix<double> B(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
-        B.setFromTriplets(t.begin(), t.end());
-        return B;
-    };
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(free.size()));
-    if (!free.empty()) {
-        Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-        const Eigen::SparseMatrix<double> Kff = block(free, free);
-        lu.compute(Kff);
-        const Eigen::VectorXd f = weight(free);
-        if (lu.info() == Eigen::Success) u = lu.solve(f);
-        // A rotor free to fall or tip in the vertical plane has no static solution.
-        const double residual = lu.info() == Eigen::Success ? (Kff * u - f).norm() : INFINITY;
-        if (!(residual <= 1e-8 * std::max(f.norm(), 1e-300)) || !u.allFinite())
-            throw InputError("fe rotor: the static bearing loads need the rotor held in the vertical plane by its "
-                             "bearings and supports; it is free to fall or tip there; allowed: load = a number (N) "
-                             "for each fluid-film bearing, or more bearings or supports");
-    }
-    const Eigen::VectorXd R = block(held, free) * u - weight(held);
-    std::vector<double> out;
-    for (const int node : nodes) {
-        const auto at = std::find(held.begin(), held.end(), index_of("y" + std::to_string(node)));
-        out.push_back(R(at - held.begin()));
-    }
-    return out;
-}
 
 int dofs_per_node(FeMotion m) {
     switch (m) {

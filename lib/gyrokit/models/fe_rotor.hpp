@@ -177,13 +177,6 @@ public:
     FeRotorMatrices assemble() const;
 };
 
-// Static bearing loads from the rotor's weight: the vertical reactions (N, > 0 upwards)
-// at `nodes` when the rotor rests there on rigid supports (y held) besides its other
-// bearings and supports, under gravity g along -y. The vertical plane alone (y,
-// theta_x and the pedestals' py; constant bearings' kyy, no cross-coupling), with
-// consistent loads (the mass matrix times the rigid lift), so a statically determinate
-// rotor gets its exact reactions. InputError if the rotor is not held in that plane.
-std::vector<double> fe_gravity_reactions(const FeRotor& r, const std::vector<int>& nodes, double g = 9.80665);
 
 // The checks validate() makes of one shaft element (or a section of equal ones),
 // naming it `where` in messages.

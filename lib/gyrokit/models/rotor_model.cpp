@@ -1,6 +1,7 @@
 #include <gyrokit/models/rotor_model.hpp>
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/models/fe_statics.hpp>
 #include <gyrokit/models/materials.hpp>
 
 #include <algorithm>

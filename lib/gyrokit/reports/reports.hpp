@@ -11,3 +11,4 @@
 #include <gyrokit/reports/response_reports.hpp>
 #include <gyrokit/reports/sommerfeld_reports.hpp>
 #include <gyrokit/reports/spectrum_reports.hpp>
+#include <gyrokit/reports/static_reports.hpp>

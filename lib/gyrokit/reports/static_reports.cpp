@@ -1,0 +1,110 @@
+#include <gyrokit/reports/static_reports.hpp>
+
+#include <gyrokit/reports/detail/cells.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+namespace gyrokit {
+
+using detail::ll;
+
+namespace {
+
+// What the solve vouches for: a value within the error bound of the largest of its kind
+// is rounding (a slope at a symmetric rotor's middle), printed as 0.
+struct Vouched {
+    double scale = 0.0, bound = 0.0;
+    template <class T, class F>
+    Vouched(const std::vector<T>& rows, const F& value, const StaticResult& s)
+        : bound(10 * std::max({s.error_bound, s.balance_error, 1e-15})) {
+        for (const T& r : rows) scale = std::max(scale, std::abs(value(r)));
+    }
+    double operator()(double v) const { return std::abs(v) <= bound * scale ? 0.0 : v; }
+};
+
+}  // namespace
+
+Table static_node_table(const StaticResult& s) {
+    Table t({"node", "z_m", "x_m", "y_m", "slope_x_rad", "slope_y_rad"});
+    t.key = "deflection";
+    t.title = "deflection at the nodes (slope_x = dx/dz, slope_y = dy/dz)";
+    const Vouched d(s.nodes, [](const StaticNode& n) { return std::max(std::abs(n.x), std::abs(n.y)); }, s);
+    const Vouched a(s.nodes, [](const StaticNode& n) { return std::max(std::abs(n.slope_x), std::abs(n.slope_y)); }, s);
+    for (const StaticNode& n : s.nodes) t.add_row({ll(n.node), n.z, d(n.x), d(n.y), a(n.slope_x), a(n.slope_y)});
+    return t;
+}
+
+Table static_section_table(const StaticResult& s) {
+    Table t({"element", "z_m", "shear_x_n", "moment_x_n_m", "shear_y_n", "moment_y_n_m"});
+    t.key = "internal_forces";
+    t.title = "shear force and bending moment at each element's ends (M = E I y'' vertical, E I x'' horizontal)";
+    const Vouched v(s.sections, [](const StaticSection& c) { return std::max(std::abs(c.shear_x), std::abs(c.shear_y)); }, s);
+    const Vouched m(s.sections, [](const StaticSection& c) { return std::max(std::abs(c.moment_x), std::abs(c.moment_y)); },
+                    s);
+    for (const StaticSection& c : s.sections)
+        t.add_row({ll(c.element), c.z, v(c.shear_x), m(c.moment_x), v(c.shear_y), m(c.moment_y)});
+    return t;
+}
+
+Table static_reaction_table(const StaticResult& s) {
+    Table t({"reaction", "node", "z_m", "fx_n", "fy_n", "mx_n_m", "my_n_m"});
+    t.key = "reactions";
+    t.title = "reactions: forces and moments on the rotor";
+    const Vouched f(s.reactions, [](const StaticReaction& r) { return std::max(std::abs(r.fx), std::abs(r.fy)); }, s);
+    const Vouched m(s.reactions, [](const StaticReaction& r) { return std::max(std::abs(r.mx), std::abs(r.my)); }, s);
+    for (const StaticReaction& r : s.reactions) t.add_row({r.what, ll(r.node), r.z, f(r.fx), f(r.fy), m(r.mx), m(r.my)});
+    return t;
+}
+
+Table static_summary_table(const StaticResult& s) {
+    Table t({"quantity", "value", "unit", "at_z_m"});
+    t.key = "static";
+    t.title = "static analysis";
+    const StaticNode* far = nullptr;
+    for (const StaticNode& n : s.nodes)
+        if (!far || std::hypot(n.x, n.y) > std::hypot(far->x, far->y)) far = &n;
+    const StaticSection* bent = nullptr;
+    for (const StaticSection& c : s.sections)
+        if (!bent || std::hypot(c.moment_x, c.moment_y) > std::hypot(bent->moment_x, bent->moment_y)) bent = &c;
+    t.add_row({std::string("weight"), s.weight, std::string("N"), std::string("-")});
+    if (far) t.add_row({std::string("largest deflection"), std::hypot(far->x, far->y), std::string("m"), far->z});
+    if (bent)
+        t.add_row({std::string("largest bending moment"), std::hypot(bent->moment_x, bent->moment_y),
+                   std::string("N m"), bent->z});
+    // Bounds and estimates: two digits are all they hold.
+    const auto bound = [&](const char* what, double v) {
+        t.add_row({std::string(what), fmt::format("{:.2g}", v), std::string("1"), std::string("-")});
+    };
+    bound("backward error of the solve", s.backward_error);
+    bound("condition number", s.condition);
+    bound("deflection error bound", s.error_bound);
+    bound("force balance error", s.balance_error);
+    return t;
+}
+
+Figure static_figure(const StaticResult& s, const std::string& title) {
+    Figure f;
+    f.title = title.empty() ? "static deflection" : title;
+    Panel deflection{"z [m]", "deflection [um]", "deflection at the nodes", false, {}, {}, {}, {}, {}, false};
+    Series x{{}, {}, "x", "linespoints", "#1f77b4"}, y{{}, {}, "y", "linespoints", "#d62728"};
+    for (const StaticNode& n : s.nodes) {
+        x.x.push_back(n.z), x.y.push_back(n.x * 1e6);
+        y.x.push_back(n.z), y.y.push_back(n.y * 1e6);
+    }
+    Series held{{}, {}, "reactions", "points", "#000000"};
+    for (const StaticReaction& r : s.reactions) held.x.push_back(r.z), held.y.push_back(0.0);
+    deflection.series = {x, y, held};
+    Panel moment{"z [m]", "bending moment [N m]", "bending moment (E I x'', E I y'')", false, {}, {}, {}, {}, {}, false};
+    Series mx{{}, {}, "horizontal (x)", "lines", "#1f77b4"}, my{{}, {}, "vertical (y)", "lines", "#d62728"};
+    for (const StaticSection& c : s.sections) {
+        mx.x.push_back(c.z), mx.y.push_back(c.moment_x);
+        my.x.push_back(c.z), my.y.push_back(c.moment_y);
+    }
+    moment.series = {mx, my};
+    f.panels = {deflection, moment};
+    return f;
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,181 @@
+"""FE rotors built in Python: equal to their scene files, written back as TOML, pickled, screened."""
+import os
+import pickle
+
+import numpy as np
+import pytest
+
+import gyrokit as gk
+
+DATA = os.environ.get("GYROKIT_DATA", os.path.join(os.path.dirname(__file__), "..", "..", "data"))
+
+# Steel as the library's material table has it (Friswell et al.): E, G = 81.2 GPa, density.
+STEEL = dict(E=211e9, poisson=211e9 / (2 * 81.2e9) - 1, density=7810.0)
+
+
+def three_disk_rotor():
+    """data/three_disk_rotor.toml, built in Python."""
+    sections = [gk.Section(length=L, elements=n, outer_diameter=d, **STEEL)
+                for L, n, d in ((0.1, 2, 0.06), (0.25, 5, 0.09), (0.5, 10, 0.10), (0.25, 5, 0.09), (0.1, 2, 0.06))]
+    disks = [gk.Disk(z=0.35, outer_diameter=0.32, inner_diameter=0.10, width=0.05, density=7810.0),
+             gk.Disk(z=0.6, outer_diameter=0.40, inner_diameter=0.10, width=0.07, density=7810.0, unbalance=2e-4),
+             gk.Disk(z=0.85, outer_diameter=0.32, inner_diameter=0.10, width=0.05, density=7810.0)]
+    bearings = [gk.Bearing(z=z, kxx=2e7, kyy=1.5e7, cxx=3e4, cyy=3e4) for z in (0.05, 1.15)]
+    return gk.Rotor(sections=sections, disks=disks, bearings=bearings)
+
+
+def dense(A):
+    return A.toarray() if hasattr(A, "toarray") else np.asarray(A)
+
+
+def assert_same_model(a, b):
+    """Bit for bit: the same description gives the same matrices."""
+    for name in ("M", "K", "G"):
+        assert np.array_equal(dense(getattr(a.system, name)), dense(getattr(b.system, name))), name
+    assert np.array_equal(dense(a.system.damping_matrix(0.0)), dense(b.system.damping_matrix(0.0)))
+    assert np.array_equal(a.system.unbalance, b.system.unbalance)
+    assert a.system.dof_names == b.system.dof_names
+
+
+def test_a_rotor_built_in_python_equals_its_scene_file():
+    built = gk.rotor_scene(three_disk_rotor(), title="three disks")
+    assert_same_model(built, gk.load_scene(os.path.join(DATA, "three_disk_rotor.toml")))
+    assert built.model_type == "fe_rotor" and built.title == "three disks"
+    assert [b.kind for b in built.rotor.bearings] == ["constant", "constant"]
+
+
+def test_a_scene_round_trips_through_toml_pickle_and_a_file(tmp_path):
+    s = gk.load_scene(os.path.join(DATA, "three_disk_rotor_journal.toml"))
+    assert_same_model(s, gk._core.parse_scene(s.to_toml(), "written", "."))
+    p = pickle.loads(pickle.dumps(s))
+    assert_same_model(s, p)
+    assert list(p.speeds) == list(s.speeds) and p.harmonics == s.harmonics and p.modes == s.modes
+    s.write(str(tmp_path / "journal.toml"))
+    w = gk.load_scene(str(tmp_path / "journal.toml"))
+    assert_same_model(s, w)
+    # The fluid films' coefficients at speed: the same bearings, not only the same constant matrices.
+    for speed in (300.0, 1500.0):
+        assert np.array_equal(dense(s.system.damping_matrix(speed)), dense(w.system.damping_matrix(speed)))
+
+
+def test_rotor_scene_settings_and_bad_input_name_the_item():
+    s = gk.rotor_scene(three_disk_rotor(), speeds={"from": 0, "to": 1500, "count": 31},
+                       analysis={"modes": 8, "harmonics": [1, 2]})
+    assert s.modes == 8 and s.harmonics == [1, 2] and len(s.speeds) == 31
+    shaft = [gk.Section(length=1.0, elements=4, outer_diameter=0.05, **STEEL)]
+    with pytest.raises(gk.InputError, match=r"bearings\[1\] z = 0.3 m is not a node of the mesh.*nearest is 0.25"):
+        gk.rotor_scene(gk.Rotor(sections=shaft, bearings=[gk.Bearing(z=0, k=1e7), gk.Bearing(z=0.3, k=1e7)]))
+    with pytest.raises(gk.InputError, match=r"sections\[0\]: outer_diameter = -0.05 is out of range"):
+        gk.rotor_scene(gk.Rotor(sections=[gk.Section(length=1.0, outer_diameter=-0.05, **STEEL)]))
+    with pytest.raises(gk.InputError, match=r"type = 'fixed'; allowed: pinned, clamped"):
+        gk.Support(z=0, type="fixed")
+    with pytest.raises(gk.InputError, match=r"density is missing"):
+        gk.Section(length=1.0, outer_diameter=0.05, E=2e11)
+    with pytest.raises(gk.InputError, match=r"modes = -3"):
+        gk.rotor_scene(gk.Rotor(sections=shaft), analysis={"modes": -3})
+    with pytest.raises(gk.InputError, match=r"speeds: unknown key 'stop'"):
+        gk.rotor_scene(gk.Rotor(sections=shaft), speeds={"from": 0, "stop": 3})
+    with pytest.raises(gk.InputError, match=r"gyrostat cannot be written"):
+        gk.load_scene(os.path.join(DATA, "centrifuge.toml")).to_toml()
+
+
+def same_rows(a, b):
+    assert a.columns == b.columns and a.verdict == b.verdict and a.reason == b.reason
+    for name in a.quantities:
+        assert np.array_equal(a.quantities[name], b.quantities[name], equal_nan=True), name
+    for name in a.parameters:
+        assert np.array_equal(a.parameters[name], b.parameters[name]), name
+
+
+def test_a_model_built_in_python_screens_as_its_written_scene_file(tmp_path):
+    shaft = [gk.Section(length=0.6, elements=6, outer_diameter=0.05, **STEEL)]
+    rotor = gk.Rotor(sections=shaft, disks=[gk.Disk(z=0.3, mass=20.0, Id=0.1, Ip=0.2, unbalance=1e-4)],
+                     bearings=[gk.Bearing(z=0.0, k=1e7, c=2e3), gk.Bearing(z=0.6, k=1e7, c=2e3)])
+    scene = gk.rotor_scene(rotor, title="disk rotor", analysis={"modes": 8})
+    criteria = """
+[[parameter]]
+name = "k"
+paths = ["model.bearing[*].kxx", "model.bearing[*].kyy"]
+values = [5e6, 1e7, 4e7]
+
+[operating]
+from = 50
+to = 150
+count = 5
+
+[criteria.separation]
+margin_percent = 15
+
+[criteria.stability]
+up_to = 400
+"""
+    (tmp_path / "in_code.toml").write_text('title = "bearings"\n' + criteria)
+    scene.write(str(tmp_path / "rotor.toml"))
+    (tmp_path / "on_file.toml").write_text('title = "bearings"\nscene = "rotor.toml"\n' + criteria)
+    given = gk.screen(str(tmp_path / "in_code.toml"), scene=scene, jobs=2)
+    filed = gk.screen(str(tmp_path / "on_file.toml"), jobs=2)
+    same_rows(given, filed)
+    assert len(given.verdict) == 3 and set(given.verdict) <= {"pass", "fail"}
+    # Designs given in Python, on an executor: the same rows as threads.
+    from concurrent.futures import ThreadPoolExecutor
+    designs = [{"k": 1e7}, {"k": 4e7}]
+    with ThreadPoolExecutor(2) as pool:
+        on_pool = gk.screen(str(tmp_path / "in_code.toml"), designs, scene=scene, executor=pool)
+    same_rows(on_pool, gk.screen(str(tmp_path / "in_code.toml"), designs, scene=scene, jobs=1))
+    with pytest.raises(gk.InputError, match="scene is missing"):
+        gk.screen(str(tmp_path / "in_code.toml"))
+
+
+def test_the_rotor_example_in_docs_python_md_runs_and_its_scene_file_reads_back(tmp_path):
+    import re
+    import subprocess
+    text = open(os.path.join(os.path.dirname(os.path.abspath(DATA)), "docs", "python.md")).read()
+    part = text[text.index("FE rotors built in code"):]
+    block = re.findall(r"```python\n(.*?)```", part, re.S)[0]
+    cwd = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        namespace = {"gk": gk}
+        exec(compile(block, "docs/python.md", "exec"), namespace)
+    finally:
+        os.chdir(cwd)
+    written = gk.load_scene(str(tmp_path / "pump.toml"))
+    assert_same_model(namespace["scene"], written)
+    # The CLI reads it as the library wrote it.
+    out = subprocess.run([os.environ["GYROKIT_CLI"], "model", str(tmp_path / "pump.toml")], capture_output=True,
+                         text=True)
+    assert out.returncode == 0, out.stderr
+
+
+def test_static_matches_the_cli_and_the_docs_example_runs():
+    import csv
+    import io
+    import subprocess
+    scene = os.path.join(DATA, "three_disk_rotor_journal.toml")
+    s = gk.static(gk.load_scene(scene), loads=[{"node": 12, "fy": -500.0}])
+    out = subprocess.run([os.environ["GYROKIT_CLI"], "static", scene, "--load", "12:0:-500", "--format", "csv",
+                          "--table", "reactions"], capture_output=True, text=True, check=True).stdout
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert [r["reaction"] for r in rows] == list(s.reactions["reaction"]) == ["fluid_film_1", "fluid_film_23"]
+    for r, fy in zip(rows, s.reactions["fy"]):
+        assert float(r["fy_n"]) == pytest.approx(fy, rel=1e-11)   # CSV prints 12 digits
+    # The weight and the load, carried half and half by the symmetric rotor's films.
+    assert sum(s.reactions["fy"]) == pytest.approx(s.weight + 500.0, rel=1e-12)
+    assert s.error_bound < 1e-9 and s.balance_error < 1e-12
+    assert len(s.to_pandas("sections")) == 2 * 24
+    with pytest.raises(gk.InputError, match=r"loads\[0\]: 'fz'"):
+        gk.static(gk.load_scene(scene), loads=[{"node": 1, "fz": 1.0}])
+    with pytest.raises(gk.InputError, match="allowed: an fe_rotor model"):
+        gk.static(gk.load_scene(os.path.join(DATA, "centrifuge.toml")))
+    # The Python block of docs/static.md, run from the repository's root.
+    import re
+    root = os.path.dirname(os.path.abspath(DATA))
+    block = re.findall(r"```python\n(.*?)```", open(os.path.join(root, "docs", "static.md")).read(), re.S)[0]
+    import matplotlib
+    matplotlib.use("Agg")
+    cwd = os.getcwd()
+    os.chdir(root)
+    try:
+        exec(compile(block, "docs/static.md", "exec"), {"gk": gk})
+    finally:
+        os.chdir(cwd)

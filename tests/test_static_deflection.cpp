@@ -1,0 +1,129 @@
+// Static analysis of an FE rotor against closed forms: a simply supported uniform
+// shaft with a central disk under gravity (Euler-Bernoulli and Timoshenko), a
+// horizontal point load, reactions and internal forces, and a rotor not held.
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/models/fe_rotor.hpp>
+#include <gyrokit/models/fe_statics.hpp>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+using namespace gyrokit;
+
+namespace {
+
+const double pi = std::acos(-1.0);
+const double L = 1.2, D = 0.05, E = 2.1e11, nu = 0.3, rho = 7800, g = 9.80665, disk = 25.0;
+const int n = 12;   // elements; the disk at node n / 2
+
+FeRotor simply_supported(bool shear) {
+    FeRotor r = fe_uniform_shaft(L, n, D, 0.0, E, nu, rho);
+    r.shear_deformation = shear;
+    r.disks.push_back({n / 2, disk, 0.0, 0.0, 0.0, 0.0});
+    r.supports.push_back({0});        // pinned: x and y held
+    r.supports.push_back({n});
+    return r;
+}
+
+// The nodal values of cubic (Euler-Bernoulli) and interdependent (Timoshenko) elements are
+// exact for point loads and, with consistent loads, for a uniform load; what remains is the
+// rounding of a solve whose condition number grows as n^4 (about 1e5 here): 1e-9 relative.
+const double tol = 1e-9;
+
+}  // namespace
+
+TEST_CASE("static: a simply supported shaft with a central disk under gravity, against the beam formulas") {
+    const double A = pi * D * D / 4, I = pi * std::pow(D, 4) / 64, w = rho * A * g, P = disk * g;
+    for (const bool shear : {false, true}) {
+        INFO("shear deformation " << shear);
+        const StaticResult s = fe_static(simply_supported(shear), {});
+        const FeSection sec = fe_section(FeShaftElement{L / n, D, 0.0, {}, {}, {}, E, 0.0, nu, rho});
+        const double kGA = shear ? sec.shear_coefficient * sec.shear_modulus * A : INFINITY;
+        const double sag = P * L * L * L / (48 * E * I) + 5 * w * std::pow(L, 4) / (384 * E * I) + P * L / (4 * kGA) +
+                           w * L * L / (8 * kGA);
+        const StaticNode& mid = s.nodes[n / 2];
+        CHECK(mid.z == Approx(L / 2).epsilon(1e-15));
+        CHECK(mid.y == Approx(-sag).epsilon(tol));
+        CHECK(std::abs(mid.x) <= 1e-15 * sag);
+        CHECK(std::abs(mid.slope_y) <= tol * sag / L);
+        // End slope of the Euler-Bernoulli beam: P L^2 / (16 E I) + w L^3 / (24 E I), downwards from the left.
+        if (!shear)
+            CHECK(s.nodes[0].slope_y == Approx(-(P * L * L / (16 * E * I) + w * L * L * L / (24 * E * I))).epsilon(tol));
+        // Internal forces: M = P L / 4 + w L^2 / 8 at mid-span (sagging), V = (P + w L) / 2 at the supports.
+        const StaticSection& left_of_mid = s.sections[2 * (n / 2 - 1) + 1];
+        const StaticSection& right_of_mid = s.sections[2 * (n / 2)];
+        CHECK(left_of_mid.z == Approx(L / 2));
+        CHECK(left_of_mid.moment_y == Approx(P * L / 4 + w * L * L / 8).epsilon(tol));
+        CHECK(right_of_mid.moment_y == Approx(P * L / 4 + w * L * L / 8).epsilon(tol));
+        CHECK(left_of_mid.shear_y == Approx(P / 2).epsilon(tol));    // the disk's weight: a jump of P
+        CHECK(right_of_mid.shear_y == Approx(-P / 2).epsilon(tol));
+        CHECK(s.sections.front().shear_y == Approx((P + w * L) / 2).epsilon(tol));
+        CHECK(std::abs(s.sections.front().moment_y) <= tol * P * L);
+        CHECK(s.sections.back().shear_y == Approx(-(P + w * L) / 2).epsilon(tol));
+        // Reactions: half the weight at each support, upwards; the balance and the solve verified.
+        REQUIRE(s.reactions.size() == 2);
+        for (const StaticReaction& r : s.reactions) CHECK(r.fy == Approx((P + w * L) / 2).epsilon(tol));
+        CHECK(s.weight == Approx(P + w * L).epsilon(1e-13));
+        CHECK(s.balance_error <= 1e-12);
+        CHECK(s.backward_error <= 1e-14);
+    }
+}
+
+TEST_CASE("static: a horizontal point load bends the horizontal plane alone, M = -F L / 4 under the load") {
+    FeRotor r = simply_supported(false);
+    StaticOptions o;
+    o.gravity = 0.0;
+    const double F = 1000.0, I = pi * std::pow(D, 4) / 64;
+    o.loads.push_back({n / 2, F, 0.0, 0.0, 0.0});
+    const StaticResult s = fe_static(r, o);
+    CHECK(s.nodes[n / 2].x == Approx(F * L * L * L / (48 * E * I)).epsilon(tol));
+    CHECK(std::abs(s.nodes[n / 2].y) <= 1e-15);
+    CHECK(s.sections[2 * (n / 2 - 1) + 1].moment_x == Approx(-F * L / 4).epsilon(tol));
+    CHECK(s.sections.front().shear_x == Approx(-F / 2).epsilon(tol));
+    for (const StaticReaction& re : s.reactions) CHECK(re.fx == Approx(-F / 2).epsilon(tol));
+    CHECK(s.balance_error <= 1e-12);
+}
+
+TEST_CASE("static: bearings as springs and a cantilever, against closed forms") {
+    // A shaft on two equal springs k, weight only: each spring carries half, and sinks by it / k.
+    FeRotor r = fe_uniform_shaft(L, n, D, 0.0, E, nu, rho);
+    r.shear_deformation = false;
+    const double k = 1e7, W = rho * pi * D * D / 4 * L * g;
+    for (const int node : {0, n}) {
+        FeBearing b;
+        b.node = node;
+        b.kxx = b.kyy = k;
+        r.bearings.push_back(b);
+    }
+    const StaticResult s = fe_static(r, {});
+    REQUIRE(s.reactions.size() == 2);
+    for (const StaticReaction& re : s.reactions) CHECK(re.fy == Approx(W / 2).epsilon(tol));
+    CHECK(s.nodes[0].y == Approx(-W / (2 * k)).epsilon(tol));
+    // Clamped at z = 0, free at L: tip deflection w L^4 / (8 E I), root moment -w L^2 / 2 (hogging).
+    FeRotor c = fe_uniform_shaft(L, n, D, 0.0, E, nu, rho);
+    c.shear_deformation = false;
+    FeSupport clamp;
+    clamp.theta_x = clamp.theta_y = true;
+    c.supports.push_back(clamp);
+    const StaticResult t = fe_static(c, {});
+    const double I = pi * std::pow(D, 4) / 64, w = W / L;
+    CHECK(t.nodes[n].y == Approx(-w * std::pow(L, 4) / (8 * E * I)).epsilon(tol));
+    CHECK(t.sections.front().moment_y == Approx(-w * L * L / 2).epsilon(tol));
+    CHECK(t.reactions[0].fy == Approx(W).epsilon(tol));
+    CHECK(t.reactions[0].mx == Approx(-w * L * L / 2).epsilon(tol));   // about +x: holds the shaft up at its root
+}
+
+TEST_CASE("static: a rotor its supports leave free, and bad options, are refused with a reason") {
+    FeRotor r = fe_uniform_shaft(L, n, D, 0.0, E, nu, rho);
+    r.supports.push_back({0});   // one pinned end: it tips
+    CHECK_THROWS_WITH(fe_static(r, {}), Catch::Contains("the rotor is not held"));
+    r.supports.push_back({n});
+    StaticOptions o;
+    o.gravity = -1;
+    CHECK_THROWS_WITH(fe_static(r, o), Catch::Contains("gravity = -1"));
+    o.gravity = 9.81;
+    o.loads.push_back({n + 1, 1.0});
+    CHECK_THROWS_WITH(fe_static(r, o), Catch::Contains("load 0 at node 13; allowed: 0 to 12"));
+    r.motion = FeMotion::torsional;
+    CHECK_THROWS_WITH(fe_static(r, {}), Catch::Contains("motion is torsional"));
+}
