@@ -64,7 +64,9 @@ Figure two_panel_figure() {
     Figure fig;
     fig.title = "Gyrostat: \"it's\" a test";
     fig.panels.push_back({"Ω (rad/s)", "ω (rad/s)", "Campbell", false, {fw, bw, line, empty}, {}, {}, {}, {}});
-    fig.panels.push_back({"Ω (rad/s)", "damping ratio", "Stability", true, {decay, pts}, 1e-6, {}, {}, 400.0});
+    // Two quotes in a row (a second derivative) and a backslash: gnuplot misreads '' twice in a row.
+    fig.panels.push_back({"Ω (rad/s)", "damping ratio", "moment (E I x'', E I y'') back\\slash", true, {decay, pts},
+                          1e-6, {}, {}, 400.0});
     return fig;
 }
 
@@ -86,6 +88,7 @@ TEST_CASE("render_figure writes a two-panel SVG and PNG and cleans up") {
     const std::string s = slurp(svg);
     CHECK((s.rfind("<?xml", 0) == 0 || s.find("<svg") != std::string::npos));
     CHECK(s.find("</svg>") != std::string::npos);
+    CHECK(s.find("moment (E I x'', E I y'') back\\slash") != std::string::npos);
     CHECK(slurp(png).rfind("\x89PNG\r\n\x1a\n", 0) == 0);
     CHECK(fs::is_empty(tmp.path));   // temporary files removed
 }

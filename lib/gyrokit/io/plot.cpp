@@ -21,16 +21,22 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A gnuplot single-quoted string: only '' is special there. A line break would
-// end the command, so it becomes a space.
+// A gnuplot string literal. Single-quoted where the text has no quote (nothing is
+// special there); gnuplot 5.4 misreads two '' escapes in a row ("x''"), so text with
+// quotes goes double-quoted, where only backslash and double quote need escaping. A
+// line break would end the command, so it becomes a space.
 std::string gp_quote(const std::string& s) {
-    std::string q = "'";
+    const bool single = s.find('\'') == std::string::npos;
+    std::string q = single ? "'" : "\"";
     for (char ch : s) {
-        if (ch == '\'') q += "''";
-        else if (ch == '\n' || ch == '\r') q += ' ';
-        else q += ch;
+        if (ch == '\n' || ch == '\r')
+            q += ' ';
+        else if (!single && (ch == '\\' || ch == '"'))
+            q += std::string("\\") + ch;
+        else
+            q += ch;
     }
-    return q + "'";
+    return q + (single ? "'" : "\"");
 }
 
 // A POSIX shell single-quoted word: ' is closed, escaped and reopened.
