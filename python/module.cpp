@@ -5,6 +5,7 @@
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/gyrokit.hpp>
 
+#include "critical_map.hpp"
 #include "models.hpp"
 #include "statics.hpp"
 
@@ -341,6 +342,7 @@ PYBIND11_MODULE(_core, m) {
         });
     bind_models(m, scene);
     bind_statics(m);
+    bind_critical_map(m);
 
     m.def("load_scene", [](const std::string& path, const std::map<std::string, double>& overrides,
                            const std::string& motion) { return load_scene(path, overrides, motion); },

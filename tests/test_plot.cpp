@@ -122,7 +122,7 @@ TEST_CASE("render_figure rejects bad input") {
 
     const fs::path svg = out.path / "bad.svg";
     Figure styled = fig;
-    styled.panels[0].series[0].style = "dotted";
+    styled.panels[0].series[0].style = "dashdot";
     CHECK_THROWS_AS(render_figure(styled, svg.string()), InputError);
     Figure ragged = fig;
     ragged.panels[1].series[0].y.pop_back();

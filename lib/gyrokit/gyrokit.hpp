@@ -3,6 +3,7 @@
 
 #include <gyrokit/analysis/assignment.hpp>
 #include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/fluid_critical_speeds.hpp>
 #include <gyrokit/analysis/mode_shapes.hpp>

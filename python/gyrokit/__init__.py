@@ -21,7 +21,7 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "StabilityChanges", "ScreenResult", "pervasive", "response", "PervasiveLosses", "Response", "gyrostat",
            "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "Sommerfeld",
            "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
-           "rotor_scene", "static", "StaticDeflection"]
+           "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap"]
 
 
 def load_scene(path, overrides=None, motion=None) -> Scene:
@@ -31,6 +31,7 @@ def load_scene(path, overrides=None, motion=None) -> Scene:
     return _core.load_scene(str(path), dict(overrides or {}), motion or "")
 
 
+_UNITS = {"rad/s": 1.0, "Hz": 1.0 / (2 * _np.pi), "rpm": 30.0 / _np.pi}   # from rad/s
 _IN_RANGE = -1   # modes not given: those in the range the speeds and harmonics excite
 
 
@@ -410,6 +411,58 @@ class StaticDeflection(_Result):
         bottom.set_ylabel("bending moment [N m]")
         bottom.legend()
         return axes
+
+
+class CriticalSpeedMap(_Result):
+    """Undamped critical speeds of an FE rotor against bearing stiffness (docs/critical_map.md): `points` and
+    `rigid` (the rigid-support limit) as dicts of arrays (stiffness N/m, whirl, critical, speed, backward_error),
+    `bearings` (each a dict name, stiffness, speed: the bearings' own curves), `stiffness`, `max_backward_error`;
+    speeds in `unit`."""
+
+    def __init__(self, d, unit):
+        factor = _UNITS[unit]
+        self.unit = unit
+        self.stiffness = _np.asarray(d["stiffness"], dtype=float)
+        self.points, self.rigid = dict(d["points"]), dict(d["rigid"])
+        for t in (self.points, self.rigid):
+            t["speed"] = t["speed"] * factor
+        self.bearings = [dict(c, speed=_np.asarray(c["speed"]) * factor) for c in d["bearings"]]
+        self.max_backward_error = d["max_backward_error"]
+
+    def to_pandas(self):
+        rows = {k: list(self.points[k]) + list(self.rigid[k]) for k in self.points}
+        return self._frame(rows)
+
+    def plot(self, ax=None):
+        """The map, log-log: forward solid, backward dashed, rigid supports dotted, bearings in black."""
+        plt = self._pyplot()
+        ax = ax or plt.subplots()[1]
+        p = self.points
+        for whirl, style in (("forward", "-"), ("backward", "--")):
+            for n in sorted(set(p["critical"])):
+                sel = [i for i in range(len(p["speed"])) if p["whirl"][i] == whirl and p["critical"][i] == n]
+                if sel:
+                    ax.loglog(p["stiffness"][sel], p["speed"][sel], style, color=f"C{n - 1}", label=f"{whirl} {n}")
+        for i, w in enumerate(self.rigid["speed"]):
+            if self.rigid["whirl"][i] == "forward":
+                ax.axhline(w, color="0.5", linestyle=":")
+        for c in self.bearings:
+            ax.loglog(c["stiffness"], c["speed"], "k-", linewidth=1)
+        ax.set_xlabel("bearing stiffness [N/m]")
+        ax.set_ylabel(f"critical speed [{self.unit}]")
+        ax.legend()
+        return ax
+
+
+def critical_speed_map(model, *, stiffness=None, modes=3, unit="rad/s") -> CriticalSpeedMap:
+    """The undamped critical speed map of an FE rotor scene: the lowest `modes` critical speeds of each whirl at
+    each bearing stiffness (N/m, increasing; default: 1e-2 to 1e3 times the shaft's 48 E I / L^3, 31 values),
+    with the rigid-support limit and the bearings' own curves; speeds in `unit` (rad/s, Hz, rpm)."""
+    if not isinstance(model, Scene):
+        raise InputError(f"critical_speed_map: expected a gyrokit.Scene of an FE rotor, got {type(model).__name__}")
+    if unit not in _UNITS:
+        raise InputError(f"unit = {unit!r}; allowed: rad/s, Hz, rpm")
+    return CriticalSpeedMap(_core.critical_speed_map(model, [float(k) for k in (stiffness or [])], int(modes)), unit)
 
 
 def static(model, *, gravity=9.80665, loads=None) -> StaticDeflection:

@@ -179,3 +179,24 @@ def test_static_matches_the_cli_and_the_docs_example_runs():
         exec(compile(block, "docs/static.md", "exec"), {"gk": gk})
     finally:
         os.chdir(cwd)
+
+
+def test_critical_speed_map_matches_the_cli():
+    import csv
+    import io
+    import subprocess
+    scene = os.path.join(DATA, "three_disk_rotor.toml")
+    m = gk.critical_speed_map(gk.load_scene(scene), stiffness=[1e7, 1e8, 1e9], modes=2, unit="rpm")
+    out = subprocess.run([os.environ["GYROKIT_CLI"], "critical-map", scene, "--stiffness", "1e7:1e9:3", "--modes", "2",
+                          "--units", "rpm", "--format", "csv"], capture_output=True, text=True, check=True).stdout
+    rows = list(csv.DictReader(io.StringIO(out)))
+    frame = m.to_pandas()
+    assert len(rows) == len(frame) == 3 * 4 + 4
+    for r, (_, p) in zip(rows, frame.iterrows()):
+        assert r["whirl"] == p["whirl"] and int(r["critical"]) == p["critical"]
+        assert float(r["speed_rpm"]) == pytest.approx(p["speed"], rel=1e-11)
+    assert np.all(np.isinf(m.rigid["stiffness"])) and m.max_backward_error < 1e-12
+    with pytest.raises(gk.InputError, match="unit = 'rps'"):
+        gk.critical_speed_map(gk.load_scene(scene), unit="rps")
+    with pytest.raises(gk.InputError, match="allowed: an fe_rotor model"):
+        gk.critical_speed_map(gk.load_scene(os.path.join(DATA, "centrifuge.toml")))

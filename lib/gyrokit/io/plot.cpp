@@ -68,11 +68,12 @@ std::string with_clause(const Series& s) {
     std::string w;
     if (s.style == "lines") w = "lines lw 1.5";
     else if (s.style == "dashed") w = "lines dt 2 lw 1.5";
+    else if (s.style == "dotted") w = "lines dt 3 lw 1.5";
     else if (s.style == "points") w = "points pt 7 ps 0.6";
     else if (s.style == "linespoints") w = "linespoints pt 7 ps 0.6 lw 1.5";
     else
         throw InputError(fmt::format("unknown plot style '{}' for series '{}'; allowed: lines, dashed, "
-                                     "points, linespoints", s.style, s.label));
+                                     "dotted, points, linespoints", s.style, s.label));
     if (!s.color.empty()) w += " lc rgb " + gp_quote(s.color);
     return w + (s.label.empty() ? " notitle" : " title " + gp_quote(s.label));
 }
@@ -80,12 +81,12 @@ std::string with_clause(const Series& s) {
 // Appends the series as an inline data block. Points gnuplot cannot draw are
 // dropped, and a blank line (a break in the line) marks the gap. Returns the
 // number of points kept.
-std::size_t append_block(std::string& script, const std::string& name, const Series& s, bool logy) {
+std::size_t append_block(std::string& script, const std::string& name, const Series& s, bool logx, bool logy) {
     std::string data;
     std::size_t kept = 0;
     bool gap = false;
     for (std::size_t i = 0; i < s.x.size(); ++i) {
-        if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || (logy && s.y[i] <= 0)) {
+        if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) || (logy && s.y[i] <= 0) || (logx && s.x[i] <= 0)) {
             gap = kept > 0;
             continue;
         }
@@ -115,7 +116,7 @@ void check_panel(const Panel& p, std::size_t k) {
     for (auto [name, v] : {std::pair{"xmin", p.xmin}, {"xmax", p.xmax}, {"ymin", p.ymin}, {"ymax", p.ymax}}) {
         if (v && !std::isfinite(*v))
             throw InputError(fmt::format("panel {}: {} must be finite, got {}", k + 1, name, *v));
-        if (v && p.logy && name[0] == 'y' && *v <= 0)
+        if (v && ((p.logy && name[0] == 'y') || (p.logx && name[0] == 'x')) && *v <= 0)
             throw InputError(fmt::format("panel {}: {} = {} on a log axis; it must be > 0", k + 1, name, *v));
     }
     for (const Series& s : p.series)
@@ -137,7 +138,7 @@ std::string make_script(const Figure& fig, const std::string& terminal, const fs
         for (std::size_t i = 0; i < p.series.size(); ++i) {
             const std::string clause = with_clause(p.series[i]);   // validates the style even if skipped
             const std::string name = fmt::format("$d{}_{}", k, i);
-            if (append_block(script, name, p.series[i], p.logy))
+            if (append_block(script, name, p.series[i], p.logx, p.logy))
                 plots[k].push_back(name + " using 1:2 with " + clause);
         }
     }
@@ -148,13 +149,14 @@ std::string make_script(const Figure& fig, const std::string& terminal, const fs
     script += "set grid\nset format y '%g'\nset key outside top center horizontal\nset lmargin 12\n";
     for (std::size_t k = 0; k < fig.panels.size(); ++k) {
         const Panel& p = fig.panels[k];
-        script += "unset logscale\nset autoscale\nset size noratio\n";   // settings carry over between panels
+        script += "unset logscale\nset autoscale\nset size noratio\nset format x '% h'\n";   // settings carry over between panels
         script += "set xlabel " + gp_quote(p.xlabel) + "\nset ylabel " + gp_quote(p.ylabel) + "\n";
         script += "set title " + gp_quote(p.title) + "\n";
         if (p.logy) script += "set logscale y\n";
+        if (p.logx) script += "set logscale x\nset format x '%g'\n";
         if (p.equal_axes) script += "set size ratio -1\n";
         if (plots[k].empty()) {
-            script += "set xrange " + empty_range(p.xmin, p.xmax, false) + "\n";
+            script += "set xrange " + empty_range(p.xmin, p.xmax, p.logx) + "\n";
             script += "set yrange " + empty_range(p.ymin, p.ymax, p.logy) + "\nplot NaN notitle\n";
             continue;
         }

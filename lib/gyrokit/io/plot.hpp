@@ -11,7 +11,7 @@ namespace gyrokit {
 struct Series {
     std::vector<double> x, y;
     std::string label;           // legend entry ("" = no legend entry)
-    std::string style = "lines"; // "lines", "dashed", "points", "linespoints"
+    std::string style = "lines"; // "lines", "dashed", "dotted", "points", "linespoints"
     std::string color;           // e.g. "#d62728"; "" = gnuplot default
 };
 
@@ -21,6 +21,7 @@ struct Panel {
     std::vector<Series> series;
     std::optional<double> ymin, ymax, xmin, xmax;   // unset = autoscale
     bool equal_axes = false;     // one unit is as long on x as on y (orbits are drawn true to shape)
+    bool logx = false;           // a log x axis (x <= 0 dropped, as y <= 0 on a log y axis)
 };
 
 struct Figure {

@@ -4,6 +4,7 @@
 
 #include <gyrokit/reports/balancer_reports.hpp>
 #include <gyrokit/reports/campbell_reports.hpp>
+#include <gyrokit/reports/critical_map_reports.hpp>
 #include <gyrokit/reports/critical_reports.hpp>
 #include <gyrokit/reports/fluid_reports.hpp>
 #include <gyrokit/reports/mode_shape_reports.hpp>

@@ -1,0 +1,70 @@
+// critical-map: undamped critical speeds of an FE rotor against bearing stiffness.
+#include "cli/common.hpp"
+#include <gyrokit/analysis/critical_speed_map.hpp>
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/reports/critical_map_reports.hpp>
+
+#include <cmath>
+#include <fmt/format.h>
+#include <memory>
+
+namespace gyrokit::cli {
+
+namespace {
+
+struct Options {
+    Common common;
+    std::string stiffness, table;
+    int modes = 3;
+};
+
+// --stiffness FROM:TO:N, N values log spaced from FROM to TO (N/m).
+std::vector<double> parse_stiffness(const std::string& text) {
+    const std::string allowed = "allowed: FROM:TO:N with 0 < FROM < TO (N/m), N in [2, 10000] (log spaced)";
+    double a = 0, b = 0;
+    int n = 0;
+    char tail = 0;
+    if (std::sscanf(text.c_str(), "%lf:%lf:%d%c", &a, &b, &n, &tail) != 3 || !(a > 0 && b > a && std::isfinite(b)) ||
+        n < 2 || n > 10000)
+        throw InputError(fmt::format("--stiffness '{}': {}", text, allowed));
+    std::vector<double> k;
+    for (int i = 0; i < n; ++i) k.push_back(a * std::pow(b / a, static_cast<double>(i) / (n - 1)));
+    k.back() = b;
+    return k;
+}
+
+}  // namespace
+
+std::vector<Command> add_critical_map_commands(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    auto* cmd = app.add_subcommand("critical-map", "FE rotors: undamped critical speeds against bearing stiffness "
+                                                   "(forward, backward, rigid-support limit, the bearings' curves)");
+    cmd->add_option("scene", o->common.scene, "scene file (TOML)")->required();
+    cmd->add_option("--format", o->common.format, "output format: table, csv or json")->capture_default_str();
+    cmd->add_option("--units", o->common.units, "unit of the critical speeds: rad/s, Hz or rpm")->capture_default_str();
+    cmd->add_option("--stiffness", o->stiffness, "bearing stiffness FROM:TO:N, log spaced (N/m); default: 1e-2 to 1e3 "
+                                                 "times the shaft's 48 E I / L^3, 31 values");
+    cmd->add_option("--modes", o->modes, "critical speeds of each whirl per stiffness (the lowest)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
+    cmd->add_option("--table", o->table, "one table: critical_map or bearing_curves");
+    cmd->add_option("--plot", o->common.plot, "draw the map into FILE.svg|.png");
+    return {{cmd, [o](std::ostream& out) {
+                 const TableFormat format = parse_format(o->common);
+                 const SpeedUnit unit = SpeedUnit::parse(o->common.units);
+                 check_plot_path(o->common.plot);
+                 CriticalSpeedMapOptions opt;
+                 if (!o->stiffness.empty()) opt.stiffness = parse_stiffness(o->stiffness);
+                 opt.modes = o->modes;
+                 const Scene sc = load_scene(o->common.scene);
+                 if (!sc.rotor_model)
+                     throw InputError(fmt::format("{}: a critical speed map of a [model] of type {}; allowed: an "
+                                                  "fe_rotor model",
+                                                  sc.path, sc.model_type));
+                 const CriticalSpeedMap map = critical_speed_map(*sc.rotor_model, opt);
+                 write_result(out, {critical_map_table(map, unit), bearing_curve_table(map, unit)}, format, o->table);
+                 plot_if(o->common.plot, critical_map_figure(map, unit, sc.title));
+             }}};
+}
+
+}  // namespace gyrokit::cli

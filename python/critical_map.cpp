@@ -1,0 +1,59 @@
+// The undamped critical speed map of an FE rotor scene (critical_speed_map) as NumPy arrays.
+#include "critical_map.hpp"
+
+#include <gyrokit/analysis/critical_speed_map.hpp>
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/io/scene.hpp>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+using namespace gyrokit;
+
+void bind_critical_map(py::module_& m) {
+    m.def("critical_speed_map", [](const Scene& scene, const std::vector<double>& stiffness, int modes) {
+        if (!scene.rotor_model)
+            throw InputError(scene.path + ": a critical speed map of a [model] of type " + scene.model_type +
+                             "; allowed: an fe_rotor model");
+        CriticalSpeedMapOptions o;
+        o.stiffness = stiffness;
+        o.modes = modes;
+        CriticalSpeedMap map;
+        {
+            py::gil_scoped_release free;
+            map = critical_speed_map(*scene.rotor_model, o);
+        }
+        const auto rows = [](const std::vector<MapPoint>& ps) {
+            py::dict d;
+            std::vector<double> k, w, be;
+            std::vector<int> number;
+            std::vector<std::string> whirl;
+            for (const MapPoint& p : ps) {
+                k.push_back(p.stiffness), w.push_back(p.speed), be.push_back(p.backward_error);
+                number.push_back(p.number), whirl.push_back(p.whirl);
+            }
+            d["stiffness"] = py::array_t<double>(static_cast<py::ssize_t>(k.size()), k.data());
+            d["whirl"] = whirl;
+            d["critical"] = py::array_t<int>(static_cast<py::ssize_t>(number.size()), number.data());
+            d["speed"] = py::array_t<double>(static_cast<py::ssize_t>(w.size()), w.data());
+            d["backward_error"] = py::array_t<double>(static_cast<py::ssize_t>(be.size()), be.data());
+            return d;
+        };
+        py::dict d;
+        d["stiffness"] = map.stiffness;
+        d["points"] = rows(map.points);
+        d["rigid"] = rows(map.rigid);
+        py::list curves;
+        for (const BearingCurve& c : map.bearings) {
+            py::dict cd;
+            cd["name"] = c.name;
+            cd["stiffness"] = c.stiffness;
+            cd["speed"] = c.speed;
+            curves.append(cd);
+        }
+        d["bearings"] = curves;
+        d["max_backward_error"] = map.max_backward_error;
+        return d;
+    }, py::arg("scene"), py::arg("stiffness"), py::arg("modes"));
+}

@@ -1,0 +1,121 @@
+// The undamped critical speed map against closed forms: a uniform Rayleigh shaft
+// (rotary inertia and gyroscopic moments, no shear) whose rigid-support limit is the
+// pinned-pinned spinning beam, forward and backward, and whose soft-bearing end is the
+// rigid rotor on springs (cylindrical and conical modes).
+#include <gyrokit/analysis/critical_speed_map.hpp>
+#include <gyrokit/core/error.hpp>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+using namespace gyrokit;
+
+namespace {
+
+const double pi = std::acos(-1.0);
+const double L = 1.0, D = 0.04, E = 2.1e11, rho = 7800;
+const int n = 40;
+
+RotorModel shaft_on_end_bearings() {
+    RotorModel m;
+    RotorSection s;
+    s.shape.length = L;
+    s.shape.outer_diameter = D;
+    s.shape.youngs_modulus = E;
+    s.shape.density = rho;
+    s.elements = n;
+    m.sections = {s};
+    m.shear_deformation = false;   // a Rayleigh beam: rotary inertia and gyroscopic moments
+    for (double z : {0.0, L}) {
+        RotorBearing b;
+        b.z = z;
+        b.constant.kxx = b.constant.kyy = 1e7;
+        b.constant.cxx = b.constant.cyy = 1e3;   // removed by the map
+        m.bearings.push_back(b);
+    }
+    return m;
+}
+
+const MapPoint* find(const std::vector<MapPoint>& ps, double k, const char* whirl, int number) {
+    for (const MapPoint& p : ps)
+        if (p.stiffness == k && p.whirl == whirl && p.number == number) return &p;
+    return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("critical speed map: the rigid-support limit is the spinning pinned-pinned Rayleigh shaft") {
+    const double A = pi * D * D / 4, I = pi * std::pow(D, 4) / 64;
+    CriticalSpeedMapOptions o;
+    o.stiffness = {1e6, 1e9};
+    o.modes = 3;
+    const CriticalSpeedMap map = critical_speed_map(shaft_on_end_bearings(), o);
+    for (int j = 1; j <= 3; ++j) {
+        INFO("mode " << j);
+        // sin(j pi z / L): E I k^4 = w^2 (rho A -+ rho I k^2), the polar inertia 2 rho I
+        // turning the rotary inertia's rho I k^2 into -rho I k^2 (forward) or +3 rho I k^2
+        // (backward) at synchronous whirl.
+        const double k = j * pi / L;
+        const double forward = k * k * std::sqrt(E * I / (rho * A - rho * I * k * k));
+        const double backward = k * k * std::sqrt(E * I / (rho * A + 3 * rho * I * k * k));
+        const MapPoint* f = find(map.rigid, map.rigid.front().stiffness, "forward", j);
+        const MapPoint* b = find(map.rigid, map.rigid.front().stiffness, "backward", j);
+        REQUIRE(f);
+        REQUIRE(b);
+        // Cubic elements: the frequency error is about (k h)^4 / 1440, below 2e-6 for the
+        // third mode with 40 elements; 1e-5 leaves room for the constant.
+        CHECK(f->speed == Approx(forward).epsilon(1e-5));
+        CHECK(b->speed == Approx(backward).epsilon(1e-5));
+        CHECK(f->backward_error <= 1e-12);
+    }
+    CHECK(std::isinf(map.rigid.front().stiffness));
+    // Stiffer bearings raise every critical speed towards the rigid limit.
+    for (int j = 1; j <= 3; ++j) {
+        const MapPoint *soft = find(map.points, 1e6, "forward", j), *stiff = find(map.points, 1e9, "forward", j);
+        REQUIRE(soft);
+        REQUIRE(stiff);
+        CHECK(soft->speed < stiff->speed);
+        CHECK(stiff->speed < find(map.rigid, map.rigid.front().stiffness, "forward", j)->speed);
+    }
+    CHECK(map.max_backward_error <= 1e-12);
+    REQUIRE(map.bearings.size() == 2);   // the constant bearings' kxx, drawn at 1e7 N/m
+    CHECK(map.bearings[0].stiffness.front() == 1e7);
+}
+
+TEST_CASE("critical speed map: on soft bearings the shaft is a rigid rotor on springs") {
+    const double A = pi * D * D / 4, m = rho * A * L, r = D / 2;
+    const double Id = m * (L * L / 12 + r * r / 4), Ip = m * r * r / 2;   // a solid cylinder about its centre
+    const double k = 1.0;   // N/m: 1e-6 of the shaft's own stiffness, its bending does not count
+    CriticalSpeedMapOptions o;
+    o.stiffness = {k};
+    o.modes = 2;
+    const CriticalSpeedMap map = critical_speed_map(shaft_on_end_bearings(), o);
+    // Cylindrical: w^2 = 2 k / m in both whirls; conical with the bearings at +-L/2:
+    // w^2 = 2 k (L/2)^2 / (Id -+ Ip) forward / backward. The shaft's flexibility shifts
+    // them by about k / k_shaft = 1e-6.
+    const double cylindrical = std::sqrt(2 * k / m);
+    const double conical_f = std::sqrt(2 * k * L * L / 4 / (Id - Ip)), conical_b = std::sqrt(2 * k * L * L / 4 / (Id + Ip));
+    CHECK(find(map.points, k, "forward", 1)->speed == Approx(cylindrical).epsilon(1e-5));
+    CHECK(find(map.points, k, "backward", 1)->speed == Approx(cylindrical).epsilon(1e-5));
+    CHECK(find(map.points, k, "forward", 2)->speed == Approx(conical_f).epsilon(1e-5));
+    CHECK(find(map.points, k, "backward", 2)->speed == Approx(conical_b).epsilon(1e-5));
+}
+
+TEST_CASE("critical speed map: bad options and a model without bearings are refused") {
+    CriticalSpeedMapOptions o;
+    o.stiffness = {1e7, 1e6};
+    CHECK_THROWS_WITH(critical_speed_map(shaft_on_end_bearings(), o), Catch::Contains("entry 1 = 1000000") &&
+                                                                          Catch::Contains("increasing"));
+    o.stiffness = {};
+    o.modes = 0;
+    CHECK_THROWS_WITH(critical_speed_map(shaft_on_end_bearings(), o), Catch::Contains("modes = 0"));
+    RotorModel free = shaft_on_end_bearings();
+    free.bearings.clear();
+    CHECK_THROWS_WITH(critical_speed_map(free, {}), Catch::Contains("has no bearings"));
+    // The default: 31 stiffnesses over five decades around the shaft's own stiffness.
+    const std::vector<double> k = default_map_stiffness(shaft_on_end_bearings());
+    const double k_shaft = 48 * E * pi * std::pow(D, 4) / 64 / (L * L * L);
+    REQUIRE(k.size() == 31);
+    CHECK(k.front() == Approx(1e-2 * k_shaft).epsilon(1e-12));
+    CHECK(k.back() == Approx(1e3 * k_shaft).epsilon(1e-12));
+}
