@@ -1,9 +1,13 @@
 // Displacement probes: readings against their definition (exact at multiples of
 // 90 degrees, the same at every angle on a circular orbit), the probe at a node.
+// The stability margin (min_log_dec): log decrements of Jeffcott rotors against
+// the roots of their characteristic equation, within the eigenvalue error bounds.
 #include <gyrokit/analysis/probe.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/screening/screening.hpp>
+#include <gyrokit/study/rotor_study.hpp>
 
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
@@ -39,6 +43,56 @@ Scene jeffcott(double kx, double ky, double ce, double ci) {
     g.dof_units = {"m", "m"};
     g.whirl_pairs = {{0, 1}};
     return sc;
+}
+
+// A sweep of the Jeffcott rotor over one of its values (model.kx, model.ky, model.c_e,
+// model.c_i; model.k sets both supports).
+Sweep jeffcott_sweep(const std::string& varied, const std::vector<double>& values, double ce = 4.0, double ci = 0.0) {
+    Sweep s;
+    s.path = "jeffcott sweep";
+    s.loader = [=](const std::map<std::string, double>& o) {
+        const auto get = [&](const std::string& k, double d) {
+            const auto it = o.find(k);
+            return it == o.end() ? d : it->second;
+        };
+        const double k = get("model.k", 5e3);
+        return jeffcott(get("model.kx", k), get("model.ky", k), get("model.c_e", ce), get("model.c_i", ci));
+    };
+    SweepParameter p;
+    p.name = varied;
+    p.values = values;
+    s.parameters = {p};
+    return s;
+}
+
+// The roots of m l^2 + c l + kc = 0 (kc complex), without cancellation: q = -(c + sqrt(d))/2
+// with Re sqrt(d) >= 0, l1 = q/m, l2 = kc/q.
+std::array<cd, 2> roots(double m, double c, cd kc) {
+    const cd q = -0.5 * (c + std::sqrt(c * c - 4.0 * m * kc));
+    return {q / m, kc / q};
+}
+
+double log_dec(cd l) { return -2.0 * M_PI * l.real() / std::abs(l.imag()); }
+
+// What the eigenvalue's error bound e allows for -2 pi Re l / |Im l|, to first order:
+// 2 pi e (1/|Im l| + |Re l|/Im l^2); the closed form's own rounding (a few eps |l|) added to e.
+double log_dec_bound(cd l, double e) {
+    const double im = std::abs(l.imag());
+    return 2.0 * M_PI * (e + 8.0 * eps * std::abs(l)) * (1.0 / im + std::abs(l.real()) / (im * im));
+}
+
+// The largest bound over the oscillating modes the criterion reads: its own study
+// (every mode, 0..up_to) on the design's scene.
+double largest_log_dec_bound(const Scene& sc, double up_to, int count) {
+    StudyOptions so = study_options(sc);
+    so.solver.modes = 0;
+    so.speeds = SpeedRange{0.0, up_to, count}.points();
+    double b = 0.0;
+    for (const Branch& br : stability_study(sc.system, so).tracked.diagram.branches)
+        for (const BranchPoint& p : br.points)
+            if (p.mode.lambda.imag() > 0.0) b = std::max(b, log_dec_bound(p.mode.lambda, p.mode.error_bound));
+    REQUIRE(std::isfinite(b));
+    return b;
 }
 
 }  // namespace
@@ -101,4 +155,79 @@ TEST_CASE("probe at a node: the node's x and y, errors naming the node and the a
         CHECK(std::string(e.what()).find("node 0 has no free x and y") != std::string::npos);
     }
     CHECK_THROWS_AS(probe_at_node(jeffcott(5e3, 5e3, 4.0, 0.0).system, "none", 0, 0.0), InputError);
+}
+
+TEST_CASE("log decrement margin: Jeffcott rotor, delta = 2 pi zeta / sqrt(1 - zeta^2) at every speed",
+          "[screening][stability]") {
+    // k = 5e3, m = 2: zeta = c_e / (2 sqrt(k m)) = c_e / 200; delta = 0.0314, 0.0628, 0.126, 0.315.
+    const double up_to = 100.0, limit = 0.1;
+    const int count = 41;
+    Sweep s = jeffcott_sweep("model.c_e", {1.0, 2.0, 4.0, 10.0});
+    s.criteria.stability = StabilityCriterion{up_to, count, limit};
+    finalize_sweep(s);
+    const std::vector<std::string> q = quantity_columns(s);
+    REQUIRE(q == std::vector<std::string>{"instability_onset_rad_s", "min_log_dec", "min_log_dec_speed_rad_s"});
+    for (std::size_t i = 0; i < s.design_count(); ++i) {
+        const DesignResult r = evaluate_design(s, i);   // the numbers unrounded (a row has 12 digits)
+        const double ce = r.parameters[0], zeta = ce / 200.0;
+        const double expected = 2.0 * M_PI * zeta / std::sqrt(1.0 - zeta * zeta);
+        const double tol = largest_log_dec_bound(s.loader({{"model.c_e", ce}}), up_to, count);
+        INFO("c_e = " << ce << ", delta = " << expected << " +- " << tol << ": " << r.reason);
+        REQUIRE(r.quantities[1]);
+        CHECK(std::abs(*r.quantities[1] - expected) <= tol);
+        CHECK(*r.quantities[2] >= 0.0);
+        CHECK(*r.quantities[2] <= up_to);
+        CHECK_FALSE(r.quantities[0]);   // stable
+        const bool fails = expected < limit;
+        CHECK(r.verdict == (fails ? Verdict::Fail : Verdict::Pass));
+        if (fails) {
+            CHECK(r.failed == std::vector<std::string>{"stability"});
+            CHECK(r.reason.find("stability: log decrement") != std::string::npos);
+            CHECK(r.reason.find("required 0.1, short by") != std::string::npos);
+        }
+    }
+    // The run writes them as columns after the onset.
+    const RunResult run = run_screening(s, RunOptions{});
+    CHECK(result_columns(s)[3] == "min_log_dec");
+    for (const auto& row : run.rows) CHECK(std::abs(std::stod(row.cells[3]) - *evaluate_design(s, row.index).quantities[1]) <=
+                                           1e-11 * std::stod(row.cells[3]));   // 12 digits
+}
+
+TEST_CASE("log decrement margin: internal damping, the forward mode is least damped at the top speed",
+          "[screening][stability]") {
+    // m r'' + (c_e + c_i) r' + (k - i c_i w) r = 0: the forward root loses damping with speed and
+    // turns unstable at w_n (1 + c_e/c_i) = 250, 150, 75 rad/s for c_i = 1, 2, 8.
+    const double k = 5e3, ce = 4.0, up_to = 100.0, limit = 0.1;
+    const int count = 41;
+    Sweep s = jeffcott_sweep("model.c_i", {1.0, 2.0, 8.0}, ce);
+    s.criteria.stability = StabilityCriterion{up_to, count, limit};
+    finalize_sweep(s);
+    for (std::size_t i = 0; i < s.design_count(); ++i) {
+        const DesignResult r = evaluate_design(s, i);
+        const double ci = r.parameters[0];
+        const auto least = [&](double w) {
+            const auto l = roots(jm, ce + ci, cd(k, -ci * w));
+            return std::min(log_dec(l[0]), log_dec(l[1]));
+        };
+        // The least decrement falls with speed: the minimum is the top speed's.
+        for (int i = 1; i <= 1000; ++i) REQUIRE(least(up_to * i / 1000.0) < least(up_to * (i - 1) / 1000.0));
+        const auto l = roots(jm, ce + ci, cd(k, -ci * up_to));
+        const cd weakest = log_dec(l[0]) < log_dec(l[1]) ? l[0] : l[1];
+        const double expected = log_dec(weakest);
+        const double tol = largest_log_dec_bound(s.loader({{"model.c_i", ci}}), up_to, count);
+        INFO("c_i = " << ci << ", delta = " << expected << " +- " << tol << ": " << r.reason);
+        REQUIRE(r.quantities[1]);
+        CHECK(std::abs(*r.quantities[1] - expected) <= tol);
+        CHECK(*r.quantities[2] == up_to);
+        const double threshold = std::sqrt(k / jm) * (1.0 + ce / ci);
+        REQUIRE(std::abs(expected - limit) > tol);
+        CHECK(r.verdict == (expected < limit || threshold < up_to ? Verdict::Fail : Verdict::Pass));
+        CHECK(bool(r.quantities[0]) == (threshold < up_to));
+        if (threshold < up_to) {   // unstable: the onset's reason, and the least decrement with it
+            CHECK(expected < 0.0);
+            CHECK(r.reason.find("is unstable from") != std::string::npos);
+            CHECK(r.reason.find(", least log decrement -") != std::string::npos);
+            CHECK(r.failed == std::vector<std::string>{"stability"});
+        }
+    }
 }

@@ -71,6 +71,49 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
     q += c.api684 ? 4 : 2;
 }
 
+// The least damped oscillating mode in range of a diagram: the smallest logarithmic
+// decrement -2 pi Re(lambda)/Im(lambda) over its branches and speeds (0 for a neutral
+// mode, negative for an unstable one) where the frequency lies within `band` (the
+// excitation band of the scan). Real eigenvalues (overdamped, divergent) have no
+// decrement and rigid-body eigenvalues are no branches. None: no such mode.
+struct LeastDamped {
+    const Branch* branch = nullptr;
+    double log_dec = inf, speed = 0;
+};
+
+LeastDamped least_damped(const CampbellDiagram& cd, double band) {
+    LeastDamped out;
+    for (const Branch& b : cd.branches)
+        for (const BranchPoint& p : b.points) {
+            if (p.mode.whirl == Whirl::Real || !(p.mode.lambda.imag() > 0.0) || p.mode.lambda.imag() > band) continue;
+            const double d = p.mode.log_decrement();
+            if (d < out.log_dec) out.log_dec = d, out.speed = p.speed, out.branch = &b;
+        }
+    return out;
+}
+
+// min_log_dec: the least log decrement and its speed into the columns after the
+// onset; below the limit, stability fails (an unstable mode's reason gains it).
+void check_log_dec(const Sweep& s, const CampbellDiagram& cd, const StudyOptions& so, const StabilityCriterion& c,
+                   bool unstable, std::size_t q, DesignResult& r) {
+    // The modes in range: what the speeds and harmonics can excite (a mesh's highest
+    // modes, barely damped by the bearings, are no stability margin to keep).
+    const LeastDamped ld = least_damped(cd, excitation_band(so.speeds, so.harmonics));
+    if (!ld.branch) return;   // no oscillating mode in range: nothing rings
+    r.quantities[q] = ld.log_dec;
+    r.quantities[q + 1] = ld.speed * s.unit.factor;
+    if (!(ld.log_dec < *c.min_log_dec)) return;
+    const std::string what = fmt::format("log decrement {:.4g} (mode {} at {:.6g} {}), required {:.4g}", ld.log_dec,
+                                         ld.branch->id, ld.speed * s.unit.factor, s.unit.name, *c.min_log_dec);
+    if (unstable) {
+        r.reason += ", least " + what;
+        return;
+    }
+    r.failed.push_back("stability");
+    r.reason += fmt::format("{}stability: {}, short by {:.3g} (checked up to {:.6g} {})", r.reason.empty() ? "" : "; ",
+                            what, *c.min_log_dec - ld.log_dec, c.up_to * s.unit.factor, s.unit.name);
+}
+
 void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& c, std::size_t& q,
                      DesignResult& r) {
     // The stability study of the CLI and Python, but over every mode unless the scene
@@ -103,7 +146,8 @@ void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& 
                                 r.reason.empty() ? "" : "; ", which->id, onset * s.unit.factor, s.unit.name,
                                 c.up_to * s.unit.factor, s.unit.name);
     }
-    q += 1;
+    if (c.min_log_dec) check_log_dec(s, cd, so, c, which != nullptr, q + 1, r);
+    q += c.min_log_dec ? 3 : 1;
 }
 
 void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& c, std::size_t& q,
@@ -214,6 +258,8 @@ std::vector<std::string> quantity_columns(const Sweep& s) {
     if (s.criteria.separation && s.criteria.separation->api684)
         c.insert(c.end(), {"required_separation_percent", "amplification_factor"});
     if (s.criteria.stability) c.push_back(s.unit.column("instability_onset"));
+    if (s.criteria.stability && s.criteria.stability->min_log_dec)
+        c.insert(c.end(), {"min_log_dec", s.unit.column("min_log_dec_speed")});
     if (s.criteria.pervasive) c.push_back(s.unit.column("pervasive_loss"));
     if (s.criteria.response) c.insert(c.end(), {"max_amplitude", s.unit.column("max_amplitude_speed")});
     return c;

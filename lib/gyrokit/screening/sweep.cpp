@@ -281,6 +281,10 @@ void finalize_sweep(Sweep& s, bool check_parameters) {
     if (!c.separation && !c.stability && !c.pervasive && !c.response)
         throw InputError(s.path + ": no criteria; required: at least one of [criteria.separation], "
                                   "[criteria.stability], [criteria.pervasive], [criteria.response]");
+    const std::optional<double> min_log_dec = c.stability ? c.stability->min_log_dec : std::nullopt;
+    if (min_log_dec && !(*min_log_dec > 0 && std::isfinite(*min_log_dec)))   // a sweep assembled in code
+        throw InputError(fmt::format("{}: [criteria.stability] min_log_dec = {}: out of range; allowed: > 0", s.path,
+                                     *min_log_dec));
     if (c.separation && !(s.op_from > 0))
         throw InputError(s.path + ": [criteria.separation] needs [operating] from > 0 (the margin is relative to it)");
 
@@ -411,8 +415,10 @@ Sweep read_sweep(const std::string& path) {
         }
         if (ct.contains("stability")) {
             TomlKeys c(path, "criteria.stability", sub_table(ct, path + ": criteria", "stability"));
-            c.only({"up_to", "count"});
+            c.only({"up_to", "count", "min_log_dec"});
             StabilityCriterion sc;
+            if (c.has("min_log_dec"))
+                sc.min_log_dec = c.number("min_log_dec", std::nullopt, 0, true, "dimensionless; API 684 Level I: 0.1");
             sc.up_to = c.number("up_to", s.op_to * f, 0, true, s.unit.name.c_str()) / f;
             if (!(sc.up_to > 0.0))   // the default, [operating] to, may be 0
                 throw InputError(fmt::format("{}: [criteria.stability] up_to is missing and [operating] to = {} gives "

@@ -43,10 +43,13 @@ struct SeparationCriterion {
     bool api684 = false;
 };
 
-// No mode with Re(lambda) > 0 from speed 0 up to `up_to`.
+// No mode with Re(lambda) > 0 from speed 0 up to `up_to`; with `min_log_dec`, also
+// no oscillating mode whose logarithmic decrement -2 pi Re(lambda)/Im(lambda) lies
+// below it (API 684 stability margin) at the speeds scanned.
 struct StabilityCriterion {
     double up_to = 0;                // rad/s
     int count = 121;
+    std::optional<double> min_log_dec;   // > 0; unset: only instability fails
 };
 
 // The named damping sets pervade at every operating speed.
