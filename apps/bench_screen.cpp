@@ -100,7 +100,7 @@ Sweep centrifuge_study(long long samples) {
     s.criteria.separation = SeparationCriterion{15.0, true, {}, 121};
     s.criteria.stability = StabilityCriterion{80.0, 121, std::nullopt};
     s.criteria.pervasive = PervasiveCriterion{};
-    s.criteria.response = ResponseCriterion{2.6e-3, {"x", "y"}};
+    s.criteria.response = ResponseCriterion{2.6e-3, {"x", "y"}, {}};
     finalize_sweep(s);
     return s;
 }
@@ -123,7 +123,8 @@ Sweep rotor_study(int disks, long long samples) {
     s.criteria.stability = StabilityCriterion{400.0, 61, std::nullopt};
     s.criteria.pervasive = PervasiveCriterion{};
     // Translation of the middle disk, where the unbalance sits.
-    s.criteria.response = ResponseCriterion{1e-4, {fmt::format("x{}", disks / 2 + 1), fmt::format("y{}", disks / 2 + 1)}};
+    s.criteria.response =
+        ResponseCriterion{1e-4, {fmt::format("x{}", disks / 2 + 1), fmt::format("y{}", disks / 2 + 1)}, {}};
     finalize_sweep(s);
     return s;
 }

@@ -1,7 +1,7 @@
-// Displacement probes: readings against their definition (exact at multiples of
-// 90 degrees, the same at every angle on a circular orbit), the probe at a node.
-// The stability margin (min_log_dec): log decrements of Jeffcott rotors against
-// the roots of their characteristic equation, within the eigenvalue error bounds.
+// The stability margin (min_log_dec) and the response probes of design screening:
+// log decrements of Jeffcott rotors against the roots of their characteristic
+// equation, probe readings against their definition, probe verdicts against the
+// closed-form response, one-line errors for bad entries, and the study identity.
 #include <gyrokit/analysis/probe.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/screening/screening.hpp>
@@ -11,17 +11,41 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
 
 using namespace gyrokit;
+namespace fs = std::filesystem;
 using cd = std::complex<double>;
 
 namespace {
 
 constexpr double eps = std::numeric_limits<double>::epsilon();
 const Eigen::Matrix2d J = (Eigen::Matrix2d() << 0, 1, -1, 0).finished();
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        path = fs::temp_directory_path() / ("gyrokit_criteria_" + std::to_string(reinterpret_cast<std::uintptr_t>(this)) +
+                                            "_" + std::to_string(std::rand()));
+        fs::create_directories(path);
+    }
+    ~TempDir() { fs::remove_all(path); }
+    std::string file(const std::string& name, const std::string& text) const {
+        const fs::path p = path / name;
+        std::ofstream(p) << text;
+        return p.string();
+    }
+};
+
+std::size_t column(const Sweep& s, const std::string& name) {
+    const auto c = result_columns(s);
+    const auto it = std::find(c.begin(), c.end(), name);
+    REQUIRE(it != c.end());
+    return static_cast<std::size_t>(it - c.begin());
+}
 
 // Jeffcott rotor, mass m on supports kx, ky with external damping c_e and internal
 // damping c_i: m x'' + (c_e + c_i) x' + kx x + c_i w y = m eps w^2 cos(wt), and y alike
@@ -228,6 +252,163 @@ TEST_CASE("log decrement margin: internal damping, the forward mode is least dam
             CHECK(r.reason.find("is unstable from") != std::string::npos);
             CHECK(r.reason.find(", least log decrement -") != std::string::npos);
             CHECK(r.failed == std::vector<std::string>{"stability"});
+        }
+    }
+}
+
+TEST_CASE("response probes: the probe reading the largest amplitude, verdicts from the closed form",
+          "[screening][response]") {
+    // Supports kx = 5e3 (w_n,x = 50 rad/s) and ky varied: |Z_x| = m eps w^2 / |kx - m w^2 + i c w|,
+    // |Z_y| the same with ky. Probe X at 0 degrees reads |Z_x|, probe Y at 90 degrees |Z_y|.
+    const double kx = 5e3, c = 4.0, from = 30.0, to = 80.0, limit = 3e-3;
+    Sweep s = jeffcott_sweep("model.ky", {2e3, 8e3, 2e4}, c);
+    s.op_from = from;
+    s.op_to = to;
+    s.op_count = 26;
+    s.criteria.response = ResponseCriterion{limit, {}, {{"X", "x", "y", -1, 0.0}, {"Y", "x", "y", -1, 90.0}}};
+    finalize_sweep(s);
+    const RunResult run = run_screening(s, RunOptions{});
+    REQUIRE(run.rows.size() == 3);
+    const std::size_t cv = column(s, "verdict"), ca = column(s, "max_amplitude"), cp = column(s, "max_amplitude_probe");
+    CHECK(cp == ca + 2);   // after max_amplitude and its speed
+    for (const auto& row : run.rows) {
+        const DesignResult r = evaluate_design(s, row.index);   // the amplitude unrounded (a row has 12 digits)
+        const double ky = r.parameters[0];
+        // Largest |Z| over [from, to] of a support k: a range end, or the peak at
+        // w_n / sqrt(1 - 2 zeta^2) inside. Brent stops within 4 sqrt(eps) w of the
+        // peak, where the amplitude is short of it by (r/g)^2/2 (g = zeta w_n, the
+        // half width); the LU solve of the dynamic stiffness adds about eps/zeta.
+        const auto largest = [&](double k, double& tol) {
+            const auto amp = [&](double w) { return jm * jeps * w * w / std::hypot(k - jm * w * w, c * w); };
+            const double zeta = c / (2 * std::sqrt(k * jm)), wn = std::sqrt(k / jm), wp = wn / std::sqrt(1 - 2 * zeta * zeta);
+            tol = 64.0 * eps / zeta;
+            double a = std::max(amp(from), amp(to));
+            if (wp > from && wp < to && amp(wp) > a) {
+                a = amp(wp);
+                tol += 2.0 * std::pow(4.0 * std::sqrt(eps) * wp / (zeta * wn), 2);
+            }
+            return a;
+        };
+        double tx = 0, ty = 0;
+        const double ax = largest(kx, tx), ay = largest(ky, ty);
+        const bool y_wins = ay > ax;
+        const double expected = std::max(ax, ay), tol = y_wins ? ty : tx;
+        INFO("ky = " << ky << ": X " << ax << ", Y " << ay << ", relative tolerance " << tol << ": " << row.cells.back());
+        REQUIRE(std::abs(ax - ay) > 2 * tol * expected);
+        CHECK(std::abs(*r.quantities[0] - expected) <= tol * expected);
+        CHECK(r.labels == std::vector<std::string>{row.cells[cp]});
+        CHECK(row.cells[cp] == (y_wins ? "Y" : "X"));
+        REQUIRE(std::abs(expected - limit) > tol * expected);
+        const bool fails = expected > limit;
+        CHECK(row.cells[cv] == (fails ? "fail" : "pass"));
+        if (fails) CHECK(row.cells.back().find("response: probe " + row.cells[cp] + " = ") != std::string::npos);
+    }
+    // ky = 8e3: Y resonates at 63 rad/s, above the limit; the others pass.
+    CHECK(run.rows[1].cells[cv] == "fail");
+    CHECK(run.rows[0].cells[cv] == "pass");
+}
+
+TEST_CASE("bad probes and log decrement limits: one-line errors naming key, value and what is allowed",
+          "[screening][input]") {
+    TempDir d;
+    const std::string gyrostat = std::string(GYROKIT_DATA_DIR) + "/centrifuge.toml";
+    const std::string fe = std::string(GYROKIT_DATA_DIR) + "/three_disk_rotor.toml";
+    const auto sweep = [&](const std::string& scene, const std::string& criteria) {
+        return "scene = \"" + scene + "\"\n[operating]\nfrom = 25.0\nto = 35.0\n" + criteria;
+    };
+    const auto probes = [&](const std::string& list, const std::string& scene = "") {
+        return sweep(scene.empty() ? gyrostat : scene, "[criteria.response]\nmax_amplitude = 1e-3\nprobes = " + list + "\n");
+    };
+    const auto expect_error = [&](const std::string& text, const std::string& needle) {
+        const std::string p = d.file("bad.toml", text);
+        try {
+            read_sweep(p);
+            FAIL("no error for: " << needle);
+        } catch (const InputError& e) {
+            const std::string m = e.what();
+            INFO(m);
+            CHECK(m.find(needle) != std::string::npos);
+            CHECK(m.find(p) == 0);   // the sweep file first
+            CHECK(m.find('\n') == std::string::npos);
+        }
+    };
+    const std::string xy = "dof_x = \"x\", dof_y = \"y\"";
+    expect_error(probes("\"x\""), "[criteria.response] probes must be an array of tables such as");
+    expect_error(probes("[]"), "probes is empty; allowed: one or more probes");
+    expect_error(probes("[1]"), "probes[0] is not a table; allowed: { name = ");
+    expect_error(probes("[{ name = \"A\", " + xy + ", angle = 0, phase = 1 }]"),
+                 "[criteria.response.probes[0]] unknown key 'phase'; allowed: angle, dof_x, dof_y, name, node");
+    expect_error(probes("[{ " + xy + ", angle = 0 }]"), "[criteria.response.probes[0]] name is missing");
+    expect_error(probes("[{ name = \"A\", " + xy + ", angle = 0 }, { name = \"A\", " + xy + ", angle = 90 }]"),
+                 "[criteria.response.probes[1]] name = 'A': probes[0] has that name already");
+    expect_error(probes("[{ name = \"A\", dof_x = \"x\", angle = 0 }]"), "probes[0]] dof_y is missing; required:");
+    expect_error(probes("[{ name = \"A\", dof_x = \"x\", dof_y = \"x\", angle = 0 }]"),
+                 "dof_x = 'x' and dof_y = 'x': allowed: two different DOFs");
+    expect_error(probes("[{ name = \"A\", " + xy + " }]"), "probes[0]] angle is missing; required:");
+    expect_error(probes("[{ name = \"A\", " + xy + ", angle = 400.0 }]"),
+                 "probes[0]] angle = 400: out of range; allowed: -360 to 360");
+    expect_error(probes("[{ name = \"A\", " + xy + ", angle = \"up\" }]"), "probes[0]] angle must be a finite number");
+    expect_error(probes("[{ name = \"A\", dof_x = \"x\", dof_y = \"q\", angle = 0 }]"),
+                 "probes[0]] dof_y = 'q': not a DOF of the model; allowed: alpha, beta, x, y, psi, theta");
+    expect_error(probes("[{ name = \"A\", dof_x = \"x\", dof_y = \"beta\", angle = 0 }]"),
+                 "dof_x = 'x' (m) and dof_y = 'beta' (rad): allowed: two DOFs of one unit");
+    expect_error(probes("[{ name = \"A\", node = 2, angle = 0 }]"),
+                 "probes[0]] node = 2: the model has no nodes on an axis (only an fe_rotor scene has); allowed: dof_x");
+    expect_error(probes("[{ name = \"A\", node = 2, dof_x = \"x2\", angle = 0 }]", fe),
+                 "probes[0]] dof_x: given with node; allowed: either node or dof_x and dof_y");
+    expect_error(probes("[{ name = \"A\", node = -1, angle = 0 }]", fe), "probes[0]] node = -1: out of range; allowed: [0,");
+    expect_error(probes("[{ name = \"A\", node = 25, angle = 0 }]", fe),
+                 "probes[0]] node = 25: node 25 does not exist; allowed: 0 to 24 (probe 'A', scene");
+    expect_error(probes("[{ name = \"A\", dof_x = \"x3\", dof_y = \"ty3\", angle = 0 }]", fe),
+                 "dof_x = 'x3' (m) and dof_y = 'ty3' (rad): allowed: two DOFs of one unit");
+    expect_error(sweep(gyrostat, "[criteria.response]\nmax_amplitude = 1e-3\ndofs = [\"x\"]\nprobes = [{ name = \"A\", " +
+                                     xy + ", angle = 0 }]\n"),
+                 "[criteria.response] probes: given with dofs; allowed: either dofs or probes");
+    expect_error(sweep(gyrostat, "[criteria.stability]\nmin_log_dec = 0.0\n"),
+                 "[criteria.stability] min_log_dec = 0: out of range; allowed: > 0");
+    expect_error(sweep(gyrostat, "[criteria.stability]\nmin_log_dec = \"0.1\"\n"),
+                 "[criteria.stability] min_log_dec is not a number");
+    // Good entries: by DOF names and by node.
+    const Sweep ok = read_sweep(d.file("ok.toml", probes("[{ name = \"NDE\", node = 23, angle = 45.0 }, { name = \"DE\", "
+                                                         "dof_x = \"x1\", dof_y = \"y1\", angle = -45.0 }]",
+                                                         fe)));
+    REQUIRE(ok.criteria.response->probes.size() == 2);
+    CHECK(ok.criteria.response->probes[0].node == 23);
+    CHECK(ok.criteria.response->probes[1].dof_y == "y1");
+    CHECK(label_columns(ok) == std::vector<std::string>{"max_amplitude_probe"});
+}
+
+TEST_CASE("the study identity covers min_log_dec and the probes: a changed criterion is another study",
+          "[screening][resume]") {
+    TempDir d;
+    const std::string scene = std::string(GYROKIT_DATA_DIR) + "/centrifuge.toml";
+    const auto text = [&](double min_log_dec, double angle) {
+        return "scene = \"" + scene + "\"\n[operating]\nfrom = 25.0\nto = 35.0\ncount = 3\n[criteria.stability]\n" +
+               "up_to = 35.0\ncount = 11\nmin_log_dec = " + std::to_string(min_log_dec) +
+               "\n[criteria.response]\nmax_amplitude = 1e-2\nprobes = [{ name = \"P\", dof_x = \"x\", dof_y = \"y\", " +
+               "angle = " + std::to_string(angle) + " }]\n";
+    };
+    const std::string path = d.file("study.toml", text(0.1, 45.0));
+    const Sweep s = read_sweep(path);
+    RunOptions ro;
+    ro.out = (d.path / "rows.csv").string();
+    const RunResult first = run_screening(s, ro);
+    REQUIRE(first.rows.size() == 1);
+    ro.resume = true;
+    CHECK(run_screening(s, ro).computed == 0);   // its own file: nothing left to do
+    for (const auto& [limit, angle] : std::vector<std::pair<double, double>>{{0.2, 45.0}, {0.1, 30.0}}) {
+        CAPTURE(limit, angle);
+        d.file("study.toml", text(limit, angle));   // the same file, one criterion edited
+        const Sweep changed = read_sweep(path);
+        std::ifstream rows(ro.out);
+        std::string written;
+        std::getline(rows, written);   // the identity the first run wrote
+        CHECK(study_identity_line(changed) != written);
+        try {
+            run_screening(changed, ro);
+            FAIL("a result file of another study resumed");
+        } catch (const InputError& e) {
+            CHECK(std::string(e.what()).find("written by another study") != std::string::npos);
         }
     }
 }

@@ -3,10 +3,12 @@
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
+#include <gyrokit/analysis/probe.hpp>
 #include <gyrokit/analysis/scalar_search.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>
+#include <gyrokit/screening/detail/probes.hpp>
 #include <gyrokit/screening/screening.hpp>
 #include <gyrokit/study/rotor_study.hpp>
 
@@ -205,32 +207,70 @@ void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& 
     q += 1;
 }
 
+// The outputs the response criterion reads: the chosen DOFs (dofs: their indices),
+// or the probes, each a column of its own (probes: resolved in this design's model).
+struct ResponseOutputs {
+    std::vector<int> dofs;
+    std::vector<Probe> probes;
+    std::string name(const GyroscopicSystem& sys, int k) const {
+        return probes.empty() ? "|" + sys.dof_names.at(static_cast<std::size_t>(k)) + "|"
+                              : "probe " + probes.at(static_cast<std::size_t>(k)).name;
+    }
+};
+
+ResponseOutputs response_outputs(const GyroscopicSystem& sys, const ResponseCriterion& c) {
+    ResponseOutputs o;
+    for (const ResponseProbe& p : c.probes) {
+        try {
+            o.probes.push_back(resolve_probe(p, sys));
+        } catch (const InputError& e) {
+            throw InputError(fmt::format("[criteria.response] probe '{}' in this design: {}", p.name, e.what()));
+        }
+    }
+    if (!o.probes.empty()) return o;
+    for (int k = 0; k < sys.size(); ++k)
+        if (c.dofs.empty() || std::find(c.dofs.begin(), c.dofs.end(), sys.dof_names.at(k)) != c.dofs.end())
+            o.dofs.push_back(k);
+    if (o.dofs.empty()) throw InputError("[criteria.response] dofs: none of them is a DOF of this design");
+    return o;
+}
+
 void check_response(const Sweep& s, const Scene& sc, const ResponseCriterion& c, std::size_t& q,
                     DesignResult& r) {
     const GyroscopicSystem& sys = sc.system;
-    std::vector<int> dofs;
-    for (int k = 0; k < sys.size(); ++k)
-        if (c.dofs.empty() || std::find(c.dofs.begin(), c.dofs.end(), sys.dof_names.at(k)) != c.dofs.end())
-            dofs.push_back(k);
-    if (dofs.empty()) throw InputError("[criteria.response] dofs: none of them is a DOF of this design");
-    // The largest amplitude of the chosen DOFs, peaks refined between grid speeds
-    // (as `gyrokit response`); an undamped resonance is unbounded (+inf) and fails.
-    const ResponseSolver solve = [&](double w) { return unbalance_response(sys, w); };
-    const ResponseCurve rc = unbalance_response(solve, sys.size(), s.operating_speeds(), dofs);
+    const ResponseOutputs out = response_outputs(sys, c);
+    // The largest amplitude of the chosen DOFs or probes, peaks refined between grid
+    // speeds (as `gyrokit response`); an undamped resonance is unbounded (+inf) and fails.
+    // A probe's reading is one more output: its peak is refined on its own amplitude.
+    const ResponseSolver solve = [&](double w) -> Eigen::VectorXcd {
+        const Eigen::VectorXcd Z = unbalance_response(sys, w);
+        if (out.probes.empty()) return Z;
+        Eigen::VectorXcd reading(static_cast<Eigen::Index>(out.probes.size()));
+        for (std::size_t k = 0; k < out.probes.size(); ++k)
+            reading(static_cast<Eigen::Index>(k)) = probe_response(out.probes[k], Z);
+        return reading;
+    };
+    const int size = out.probes.empty() ? sys.size() : static_cast<int>(out.probes.size());
+    const ResponseCurve rc = unbalance_response(solve, size, s.operating_speeds(), out.dofs);
     double amax = -1, wmax = 0;
-    int dmax = 0;
+    int kmax = 0;
     for (const auto& m : response_maxima(rc, response_extrema(solve, rc, true)))
-        if (m.amplitude > amax) amax = m.amplitude, wmax = m.speed, dmax = m.dof;
+        if (m.amplitude > amax) amax = m.amplitude, wmax = m.speed, kmax = m.dof;
     r.quantities[q] = amax;
     r.quantities[q + 1] = wmax * s.unit.factor;
+    if (!out.probes.empty()) {
+        const std::vector<std::string> lc = label_columns(s);
+        const auto l = std::find(lc.begin(), lc.end(), "max_amplitude_probe") - lc.begin();
+        r.labels.at(static_cast<std::size_t>(l)) = out.probes.at(static_cast<std::size_t>(kmax)).name;
+    }
     if (amax > c.max_amplitude) {
         r.failed.push_back("response");
         r.reason += std::isinf(amax)
-                        ? fmt::format("{}response: |{}| is unbounded at {:.6g} {} (an undamped resonance)",
-                                      r.reason.empty() ? "" : "; ", sys.dof_names.at(dmax), wmax * s.unit.factor,
+                        ? fmt::format("{}response: {} is unbounded at {:.6g} {} (an undamped resonance)",
+                                      r.reason.empty() ? "" : "; ", out.name(sys, kmax), wmax * s.unit.factor,
                                       s.unit.name)
-                        : fmt::format("{}response: |{}| = {:.4g} at {:.6g} {} exceeds {:.4g}", r.reason.empty() ? "" : "; ",
-                                      sys.dof_names.at(dmax), amax, wmax * s.unit.factor, s.unit.name, c.max_amplitude);
+                        : fmt::format("{}response: {} = {:.4g} at {:.6g} {} exceeds {:.4g}", r.reason.empty() ? "" : "; ",
+                                      out.name(sys, kmax), amax, wmax * s.unit.factor, s.unit.name, c.max_amplitude);
     }
     q += 2;
 }
@@ -265,10 +305,16 @@ std::vector<std::string> quantity_columns(const Sweep& s) {
     return c;
 }
 
+std::vector<std::string> label_columns(const Sweep& s) {
+    if (s.criteria.response && !s.criteria.response->probes.empty()) return {"max_amplitude_probe"};
+    return {};
+}
+
 std::vector<std::string> result_columns(const Sweep& s) {
     std::vector<std::string> c{"design"};
     for (const auto& p : s.parameters) c.push_back(p.name);
     for (const auto& q : quantity_columns(s)) c.push_back(q);
+    for (const auto& l : label_columns(s)) c.push_back(l);
     c.insert(c.end(), {"verdict", "failed", "reason"});
     return c;
 }
@@ -279,6 +325,7 @@ DesignResult evaluate_design(const Sweep& s, std::size_t i) {
     r.parameters = s.design(i);
     const std::vector<std::string> qc = quantity_columns(s);
     r.quantities.assign(qc.size(), std::nullopt);
+    r.labels.assign(label_columns(s).size(), std::string());
     Scene sc;
     try {
         sc = s.loader(design_overrides(s, r.parameters));
@@ -308,6 +355,7 @@ DesignResult evaluate_design(const Sweep& s, std::size_t i) {
         r.verdict = Verdict::Error;
         r.failed.clear();
         r.quantities.assign(qc.size(), std::nullopt);
+        r.labels.assign(r.labels.size(), std::string());
         r.reason = one_line(std::string("analysis failed: ") + e.what());
         return r;
     }

@@ -278,6 +278,11 @@ bool is_number_column(const Sweep& s, std::size_t c) {
     return c >= 1 && c < 1 + s.parameters.size() + quantity_columns(s).size();
 }
 
+bool is_label_column(const Sweep& s, std::size_t c) {
+    const std::size_t first = 1 + s.parameters.size() + quantity_columns(s).size();
+    return c >= first && c < first + label_columns(s).size();
+}
+
 }  // namespace
 
 std::string csv_line(const std::vector<std::string>& cells) {
@@ -328,12 +333,12 @@ ResultRow format_row(const Sweep& s, const DesignResult& r) {
     // Shortest round-trip form: the row names the exact design.
     for (double x : r.parameters) row.cells.push_back(fmt::format("{}", x));
     for (const auto& q : r.quantities) row.cells.push_back(q ? fmt::format("{:.12g}", *q) : std::string());
+    for (std::size_t k = 0; k < label_columns(s).size(); ++k) row.cells.push_back(k < r.labels.size() ? r.labels[k] : "");
     row.cells.push_back(to_string(r.verdict));
     std::string failed;
     for (const auto& f : r.failed) failed += (failed.empty() ? "" : ";") + f;
     row.cells.push_back(failed);
     row.cells.push_back(r.reason);
-    (void)s;
     return row;
 }
 
@@ -489,6 +494,7 @@ void write_results(std::ostream& os, const Sweep& s, const std::vector<ResultRow
                 if (c == 0) o[cols[c]] = r.index;
                 else if (is_number_column(s, c) && !v.empty() && std::isfinite(std::stod(v))) o[cols[c]] = std::stod(v);
                 else if (is_number_column(s, c)) o[cols[c]] = v.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(v);   // "inf": JSON has no infinity
+                else if (is_label_column(s, c) && v.empty()) o[cols[c]] = nullptr;
                 else o[cols[c]] = v;
             }
             a.push_back(std::move(o));

@@ -1,5 +1,7 @@
 #include <gyrokit/screening/sweep.hpp>
 
+#include <gyrokit/screening/detail/probes.hpp>
+
 #include <gyrokit/core/error.hpp>
 #include "gyrokit/io/detail/toml_keys.hpp"
 #include <gyrokit/core/input_file.hpp>
@@ -299,6 +301,9 @@ void finalize_sweep(Sweep& s, bool check_parameters) {
             if (std::find(s.dof_names.begin(), s.dof_names.end(), d) == s.dof_names.end())
                 throw InputError(fmt::format("{}: [criteria.response] dofs: '{}' is not a DOF of scene {}", s.path, d,
                                              s.scene));
+        if (!c.response->dofs.empty() && !c.response->probes.empty())
+            throw InputError(s.path + ": [criteria.response] probes: given with dofs; allowed: either dofs or probes");
+        check_probes(s.path, s.scene, c.response->probes, base.system);
     }
     if (c.pervasive) {
         if (base.system.damping_names().empty() && s.parameters.empty())
@@ -439,13 +444,16 @@ Sweep read_sweep(const std::string& path) {
         }
         if (ct.contains("response")) {
             TomlKeys c(path, "criteria.response", sub_table(ct, path + ": criteria", "response"));
-            c.only({"max_amplitude", "dofs"});
+            c.only({"max_amplitude", "dofs", "probes"});
             ResponseCriterion rc;
             rc.max_amplitude = c.number("max_amplitude", std::nullopt, 0, true, "DOF units");
+            if (c.has("dofs") && c.has("probes"))
+                throw InputError(c.where("probes") + ": given with dofs; allowed: either dofs or probes");
             if (c.has("dofs")) {
                 rc.dofs = strings_of(c, "dofs");
                 if (rc.dofs.empty()) throw InputError(c.where("dofs") + " is empty; allowed: DOF names, or omit it");
             }
+            if (c.has("probes")) rc.probes = read_probes(c);
             s.criteria.response = rc;
         }
     }

@@ -58,10 +58,22 @@ struct PervasiveCriterion {
     double tolerance = 1e-8;
 };
 
-// Largest unbalance response amplitude over the operating range.
+// A named probe of the response criterion: the displacement along `angle_degrees`
+// (from +x towards +y) of two DOFs named in the scene, or of a node's x and y
+// (probe_at_node), found in each design's model.
+struct ResponseProbe {
+    std::string name;
+    std::string dof_x, dof_y;        // DOF names; empty with `node`
+    int node = -1;                   // a node of a model with nodes (fe_rotor); -1: by DOF names
+    double angle_degrees = 0;
+};
+
+// Largest unbalance response amplitude over the operating range: of the DOFs, or
+// read by the probes (either, not both).
 struct ResponseCriterion {
     double max_amplitude = 0;        // in the units of the DOFs (m or rad)
-    std::vector<std::string> dofs;   // empty: all DOFs
+    std::vector<std::string> dofs;   // empty: all DOFs (without probes)
+    std::vector<ResponseProbe> probes;
 };
 
 struct Criteria {
