@@ -98,9 +98,9 @@ Sweep centrifuge_study(long long samples) {
     s.op_to = 50.0;
     s.op_count = 27;
     s.criteria.separation = SeparationCriterion{15.0, true, {}, 121};
-    s.criteria.stability = StabilityCriterion{80.0, 121};
+    s.criteria.stability = StabilityCriterion{80.0, 121, std::nullopt};
     s.criteria.pervasive = PervasiveCriterion{};
-    s.criteria.response = ResponseCriterion{2.6e-3, {"x", "y"}};
+    s.criteria.response = ResponseCriterion{2.6e-3, {"x", "y"}, {}};
     finalize_sweep(s);
     return s;
 }
@@ -120,10 +120,11 @@ Sweep rotor_study(int disks, long long samples) {
     s.op_to = 300.0;
     s.op_count = 31;
     s.criteria.separation = SeparationCriterion{15.0, true, {1}, 61};
-    s.criteria.stability = StabilityCriterion{400.0, 61};
+    s.criteria.stability = StabilityCriterion{400.0, 61, std::nullopt};
     s.criteria.pervasive = PervasiveCriterion{};
     // Translation of the middle disk, where the unbalance sits.
-    s.criteria.response = ResponseCriterion{1e-4, {fmt::format("x{}", disks / 2 + 1), fmt::format("y{}", disks / 2 + 1)}};
+    s.criteria.response =
+        ResponseCriterion{1e-4, {fmt::format("x{}", disks / 2 + 1), fmt::format("y{}", disks / 2 + 1)}, {}};
     finalize_sweep(s);
     return s;
 }

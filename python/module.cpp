@@ -613,6 +613,7 @@ PYBIND11_MODULE(_core, m) {
             return p;
         }();
         d["quantities"] = quantity_columns(s);
+        d["labels"] = label_columns(s);
         d["unit"] = s.unit.name;
         return d;
     }, py::arg("sweep"), py::arg("scene"), py::arg("names"), py::arg("designs"), py::arg("jobs"), py::arg("progress"));
@@ -646,6 +647,7 @@ PYBIND11_MODULE(_core, m) {
         for (const auto& x : s.parameters) p.push_back(x.name);
         d["parameters"] = p;
         d["quantities"] = quantity_columns(s);
+        d["labels"] = label_columns(s);
         d["unit"] = s.unit.name;
         d["designs"] = s.design_count();
         return d;
@@ -661,6 +663,7 @@ PYBIND11_MODULE(_core, m) {
         r.index = number;
         r.parameters = s.design(index);
         r.quantities.assign(quantity_columns(s).size(), std::nullopt);
+        r.labels.assign(label_columns(s).size(), std::string());
         r.verdict = Verdict::Error;
         r.reason = reason;
         return format_row(s, r).cells;

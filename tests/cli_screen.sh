@@ -56,6 +56,14 @@ samples = 10
 [[parameter]]
 name = "model.c_R"
 values = [1.0]'
+sweep probeunits "$good" '[criteria.response]
+max_amplitude = 1e-3
+probes = [{ name = "P", dof_x = "x", dof_y = "psi", angle = 45.0 }]'
+sweep probenode "$good" '[criteria.response]
+max_amplitude = 1e-3
+probes = [{ name = "P", node = 1, angle = 45.0 }]'
+sweep logdec "$good" '[criteria.stability]
+min_log_dec = -0.1'
 printf 'scene = "%s/centrifuge.toml"\n[operating]\nfrom = 1.0\nto = 2.0\n' "$data" > "$dir/nocrit.toml"
 sed 's/eps = 1.0e-3/eps = 0.0/' "$data/centrifuge.toml" > "$dir/nounbalance_scene.toml"
 printf 'scene = "nounbalance_scene.toml"\n[operating]\nfrom = 1.0\nto = 2.0\n[criteria.response]\nmax_amplitude = 1.0\n' > "$dir/nounbalance.toml"
@@ -75,6 +83,10 @@ done
 expect "no balancer model in scene" screen "$dir/balancer.toml"
 expect "'z' is not a DOF" screen "$dir/dofs.toml"
 expect "needs from and to" screen "$dir/lhsvalues.toml"
+expect "[criteria.response.probes[0]] dof_x = 'x' (m) and dof_y = 'psi' (rad): allowed: two DOFs of one unit" \
+    screen "$dir/probeunits.toml"
+expect "[criteria.response.probes[0]] node = 1: the model has no nodes on an axis" screen "$dir/probenode.toml"
+expect "[criteria.stability] min_log_dec = -0.1: out of range; allowed: > 0" screen "$dir/logdec.toml"
 expect "no criteria" screen "$dir/nocrit.toml"
 expect "needs an unbalance" screen "$dir/nounbalance.toml"
 expect "sweep file not found" screen "$dir/missing.toml"
@@ -160,6 +172,10 @@ cp "$data/centrifuge.toml" "$dir/study_scene.toml"
 "$cli" screen "$dir/study.toml" --jobs 2 --resume "$dir/study.csv" 2> /dev/null || { echo "FAIL: the study resumed on its own scene"; fail=1; }
 printf '[criteria.stability]\nup_to = 30.0\n' >> "$dir/study.toml"
 expect "written by another study" screen "$dir/study.toml" --resume "$dir/study.csv"
+# A stability margin set since is another study too.
+"$cli" screen "$dir/study.toml" --jobs 2 --limit 2 --resume "$dir/margin.csv" 2> /dev/null || { echo "FAIL: margin study run"; fail=1; }
+printf 'min_log_dec = 0.1\n' >> "$dir/study.toml"
+expect "written by another study" screen "$dir/study.toml" --resume "$dir/margin.csv"
 
 # A file the base scene names (a bearing table) is part of the study: edited, the old rows are refused.
 mkdir -p "$dir/tabled/bearings"
@@ -190,5 +206,15 @@ expect "written by another study" screen "$dir/tabled/sweep.toml" --resume "$dir
 "$cli" screen "$dir/ok.toml" --format json > "$dir/out.json" 2> /dev/null || { echo "FAIL: json run"; fail=1; }
 if grep -qi 'nan' "$dir/out.json"; then echo "FAIL: NaN in JSON"; fail=1; fi
 [ "$(grep -c '"design"' "$dir/out.json")" -eq 20 ] || { echo "FAIL: JSON rows"; fail=1; }
+
+# Probes: the probe column is text, null in JSON where a design has none (an error row).
+sweep probejson '[[parameter]]
+name = "model.c_R"
+values = [-5.0, 74.1333]' '[criteria.response]
+max_amplitude = 1e-2
+probes = [{ name = "rotor NE", dof_x = "x", dof_y = "y", angle = 45.0 }]'
+"$cli" screen "$dir/probejson.toml" --format json > "$dir/probes.json" 2> /dev/null || { echo "FAIL: probes json run"; fail=1; }
+grep -q '"max_amplitude_probe": null' "$dir/probes.json" || { echo "FAIL: no null probe in the error row"; fail=1; }
+grep -q '"max_amplitude_probe": "rotor NE"' "$dir/probes.json" || { echo "FAIL: the probe is not named"; fail=1; }
 
 exit $fail

@@ -8,6 +8,7 @@
 #include <gyrokit/analysis/fluid_critical_speeds.hpp>
 #include <gyrokit/analysis/mode_shapes.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
+#include <gyrokit/analysis/probe.hpp>
 #include <gyrokit/analysis/scalar_search.hpp>
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/spectrum_solver.hpp>

@@ -279,6 +279,8 @@ class ScreenResult(_Result):
         self.design = _np.array([int(c) for c in col["design"]], dtype=int)
         self.parameters = {p: number(col[p]) for p in d["parameters"]}
         self.quantities = {q: number(col[q]) for q in d["quantities"]}
+        # Text columns (max_amplitude_probe); None where undefined.
+        self.labels = {q: [c if c != "" else None for c in col[q]] for q in d.get("labels", [])}
         self.verdict = col["verdict"]
         self.failed = [c.split(";") if c else [] for c in col["failed"]]
         self.reason = col["reason"]
@@ -289,7 +291,7 @@ class ScreenResult(_Result):
         return _np.array([v == "pass" for v in self.verdict])
 
     def to_pandas(self):
-        columns = {"design": self.design, **self.parameters, **self.quantities, "verdict": self.verdict,
+        columns = {"design": self.design, **self.parameters, **self.quantities, **self.labels, "verdict": self.verdict,
                    "failed": [";".join(f) for f in self.failed], "reason": self.reason}
         return self._frame(columns)
 
@@ -341,7 +343,7 @@ def _screen_on(executor, sweep, scene, names, values, progress):
         if progress is not None:
             progress(i + 1, total)
     return ScreenResult(dict(columns=plan["columns"], rows=rows, parameters=plan["parameters"],
-                             quantities=plan["quantities"], unit=plan["unit"]))
+                             quantities=plan["quantities"], labels=plan["labels"], unit=plan["unit"]))
 
 
 def screen(sweep, designs=None, *, scene=None, jobs=0, progress=None, executor=None) -> ScreenResult:

@@ -148,6 +148,7 @@ class ScreenResult:
     design: npt.NDArray[np.int_]
     parameters: dict[str, npt.NDArray[np.float64]]
     quantities: dict[str, npt.NDArray[np.float64]]
+    labels: dict[str, list[Optional[str]]]
     verdict: list[str]
     failed: list[list[str]]
     reason: list[str]

@@ -207,6 +207,47 @@ def test_screen_varies_elements_by_path_in_the_cli_and_python_alike():
     assert len(set(r.quantities["critical_speed_rpm"])) == 9
 
 
+def test_screen_log_decrement_and_probes_as_in_the_cli(tmp_path):
+    # The stability margin and named probes: numbers, the probe column (text) and verdicts as the CLI writes them,
+    # from the threaded run and from an executor.
+    sweep = tmp_path / "probes.toml"
+    sweep.write_text(f"""scene = "{os.path.abspath(scene('centrifuge.toml'))}"
+[[parameter]]
+name = "model.d_G"
+values = [0.0, 4.0, 10.0]
+[operating]
+from = 24.0
+to = 50.0
+count = 14
+[criteria.stability]
+up_to = 60.0
+count = 31
+min_log_dec = 0.01
+[criteria.response]
+max_amplitude = 2.58e-3
+probes = [{{ name = "NE", dof_x = "x", dof_y = "y", angle = 45.0 }}, {{ name = "NW", dof_x = "x", dof_y = "y", angle = 135.0 }}]
+""")
+    r = gk.screen(str(sweep), jobs=2)
+    rows = cli("screen", str(sweep))
+    assert list(r.quantities) == ["instability_onset_rad_s", "min_log_dec", "min_log_dec_speed_rad_s", "max_amplitude",
+                                  "max_amplitude_speed_rad_s"]
+    assert list(r.labels) == ["max_amplitude_probe"]
+    assert len(rows) == len(r.verdict) == 3
+    for k, row in enumerate(rows):
+        assert r.verdict[k] == row["verdict"] and r.reason[k] == row["reason"]
+        assert r.labels["max_amplitude_probe"][k] == row["max_amplitude_probe"]
+        for q, values in r.quantities.items():
+            assert (np.isnan(values[k]) and row[q] == "") or values[k] == float(row[q])
+    # The undamped cage (d_G = 0) misses both: the least log decrement and the response limit.
+    assert r.verdict == ["fail", "pass", "pass"] and r.failed[0] == ["stability", "response"]
+    if _has("pandas"):
+        assert list(r.to_pandas()["max_amplitude_probe"]) == r.labels["max_amplitude_probe"]
+    from concurrent.futures import ThreadPoolExecutor
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        pooled = gk.screen(str(sweep), executor=pool)
+    assert pooled.labels == r.labels and pooled.verdict == r.verdict
+
+
 def test_screen_refuses_bad_designs():
     sweep = scene("screen_centrifuge.toml")
     with pytest.raises(gk.InputError, match="differ"):

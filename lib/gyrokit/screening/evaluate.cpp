@@ -3,10 +3,12 @@
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
+#include <gyrokit/analysis/probe.hpp>
 #include <gyrokit/analysis/scalar_search.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>
+#include <gyrokit/screening/detail/probes.hpp>
 #include <gyrokit/screening/screening.hpp>
 #include <gyrokit/study/rotor_study.hpp>
 
@@ -71,6 +73,49 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
     q += c.api684 ? 4 : 2;
 }
 
+// The least damped oscillating mode in range of a diagram: the smallest logarithmic
+// decrement -2 pi Re(lambda)/Im(lambda) over its branches and speeds (0 for a neutral
+// mode, negative for an unstable one) where the frequency lies within `band` (the
+// excitation band of the scan). Real eigenvalues (overdamped, divergent) have no
+// decrement and rigid-body eigenvalues are no branches. None: no such mode.
+struct LeastDamped {
+    const Branch* branch = nullptr;
+    double log_dec = inf, speed = 0;
+};
+
+LeastDamped least_damped(const CampbellDiagram& cd, double band) {
+    LeastDamped out;
+    for (const Branch& b : cd.branches)
+        for (const BranchPoint& p : b.points) {
+            if (p.mode.whirl == Whirl::Real || !(p.mode.lambda.imag() > 0.0) || p.mode.lambda.imag() > band) continue;
+            const double d = p.mode.log_decrement();
+            if (d < out.log_dec) out.log_dec = d, out.speed = p.speed, out.branch = &b;
+        }
+    return out;
+}
+
+// min_log_dec: the least log decrement and its speed into the columns after the
+// onset; below the limit, stability fails (an unstable mode's reason gains it).
+void check_log_dec(const Sweep& s, const CampbellDiagram& cd, const StudyOptions& so, const StabilityCriterion& c,
+                   bool unstable, std::size_t q, DesignResult& r) {
+    // The modes in range: what the speeds and harmonics can excite (a mesh's highest
+    // modes, barely damped by the bearings, are no stability margin to keep).
+    const LeastDamped ld = least_damped(cd, excitation_band(so.speeds, so.harmonics));
+    if (!ld.branch) return;   // no oscillating mode in range: nothing rings
+    r.quantities[q] = ld.log_dec;
+    r.quantities[q + 1] = ld.speed * s.unit.factor;
+    if (!(ld.log_dec < *c.min_log_dec)) return;
+    const std::string what = fmt::format("log decrement {:.4g} (mode {} at {:.6g} {}), required {:.4g}", ld.log_dec,
+                                         ld.branch->id, ld.speed * s.unit.factor, s.unit.name, *c.min_log_dec);
+    if (unstable) {
+        r.reason += ", least " + what;
+        return;
+    }
+    r.failed.push_back("stability");
+    r.reason += fmt::format("{}stability: {}, short by {:.3g} (checked up to {:.6g} {})", r.reason.empty() ? "" : "; ",
+                            what, *c.min_log_dec - ld.log_dec, c.up_to * s.unit.factor, s.unit.name);
+}
+
 void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& c, std::size_t& q,
                      DesignResult& r) {
     // The stability study of the CLI and Python, but over every mode unless the scene
@@ -103,7 +148,8 @@ void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& 
                                 r.reason.empty() ? "" : "; ", which->id, onset * s.unit.factor, s.unit.name,
                                 c.up_to * s.unit.factor, s.unit.name);
     }
-    q += 1;
+    if (c.min_log_dec) check_log_dec(s, cd, so, c, which != nullptr, q + 1, r);
+    q += c.min_log_dec ? 3 : 1;
 }
 
 void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& c, std::size_t& q,
@@ -161,32 +207,70 @@ void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& 
     q += 1;
 }
 
+// The outputs the response criterion reads: the chosen DOFs (dofs: their indices),
+// or the probes, each a column of its own (probes: resolved in this design's model).
+struct ResponseOutputs {
+    std::vector<int> dofs;
+    std::vector<Probe> probes;
+    std::string name(const GyroscopicSystem& sys, int k) const {
+        return probes.empty() ? "|" + sys.dof_names.at(static_cast<std::size_t>(k)) + "|"
+                              : "probe " + probes.at(static_cast<std::size_t>(k)).name;
+    }
+};
+
+ResponseOutputs response_outputs(const GyroscopicSystem& sys, const ResponseCriterion& c) {
+    ResponseOutputs o;
+    for (const ResponseProbe& p : c.probes) {
+        try {
+            o.probes.push_back(resolve_probe(p, sys));
+        } catch (const InputError& e) {
+            throw InputError(fmt::format("[criteria.response] probe '{}' in this design: {}", p.name, e.what()));
+        }
+    }
+    if (!o.probes.empty()) return o;
+    for (int k = 0; k < sys.size(); ++k)
+        if (c.dofs.empty() || std::find(c.dofs.begin(), c.dofs.end(), sys.dof_names.at(k)) != c.dofs.end())
+            o.dofs.push_back(k);
+    if (o.dofs.empty()) throw InputError("[criteria.response] dofs: none of them is a DOF of this design");
+    return o;
+}
+
 void check_response(const Sweep& s, const Scene& sc, const ResponseCriterion& c, std::size_t& q,
                     DesignResult& r) {
     const GyroscopicSystem& sys = sc.system;
-    std::vector<int> dofs;
-    for (int k = 0; k < sys.size(); ++k)
-        if (c.dofs.empty() || std::find(c.dofs.begin(), c.dofs.end(), sys.dof_names.at(k)) != c.dofs.end())
-            dofs.push_back(k);
-    if (dofs.empty()) throw InputError("[criteria.response] dofs: none of them is a DOF of this design");
-    // The largest amplitude of the chosen DOFs, peaks refined between grid speeds
-    // (as `gyrokit response`); an undamped resonance is unbounded (+inf) and fails.
-    const ResponseSolver solve = [&](double w) { return unbalance_response(sys, w); };
-    const ResponseCurve rc = unbalance_response(solve, sys.size(), s.operating_speeds(), dofs);
+    const ResponseOutputs out = response_outputs(sys, c);
+    // The largest amplitude of the chosen DOFs or probes, peaks refined between grid
+    // speeds (as `gyrokit response`); an undamped resonance is unbounded (+inf) and fails.
+    // A probe's reading is one more output: its peak is refined on its own amplitude.
+    const ResponseSolver solve = [&](double w) -> Eigen::VectorXcd {
+        const Eigen::VectorXcd Z = unbalance_response(sys, w);
+        if (out.probes.empty()) return Z;
+        Eigen::VectorXcd reading(static_cast<Eigen::Index>(out.probes.size()));
+        for (std::size_t k = 0; k < out.probes.size(); ++k)
+            reading(static_cast<Eigen::Index>(k)) = probe_response(out.probes[k], Z);
+        return reading;
+    };
+    const int size = out.probes.empty() ? sys.size() : static_cast<int>(out.probes.size());
+    const ResponseCurve rc = unbalance_response(solve, size, s.operating_speeds(), out.dofs);
     double amax = -1, wmax = 0;
-    int dmax = 0;
+    int kmax = 0;
     for (const auto& m : response_maxima(rc, response_extrema(solve, rc, true)))
-        if (m.amplitude > amax) amax = m.amplitude, wmax = m.speed, dmax = m.dof;
+        if (m.amplitude > amax) amax = m.amplitude, wmax = m.speed, kmax = m.dof;
     r.quantities[q] = amax;
     r.quantities[q + 1] = wmax * s.unit.factor;
+    if (!out.probes.empty()) {
+        const std::vector<std::string> lc = label_columns(s);
+        const auto l = std::find(lc.begin(), lc.end(), "max_amplitude_probe") - lc.begin();
+        r.labels.at(static_cast<std::size_t>(l)) = out.probes.at(static_cast<std::size_t>(kmax)).name;
+    }
     if (amax > c.max_amplitude) {
         r.failed.push_back("response");
         r.reason += std::isinf(amax)
-                        ? fmt::format("{}response: |{}| is unbounded at {:.6g} {} (an undamped resonance)",
-                                      r.reason.empty() ? "" : "; ", sys.dof_names.at(dmax), wmax * s.unit.factor,
+                        ? fmt::format("{}response: {} is unbounded at {:.6g} {} (an undamped resonance)",
+                                      r.reason.empty() ? "" : "; ", out.name(sys, kmax), wmax * s.unit.factor,
                                       s.unit.name)
-                        : fmt::format("{}response: |{}| = {:.4g} at {:.6g} {} exceeds {:.4g}", r.reason.empty() ? "" : "; ",
-                                      sys.dof_names.at(dmax), amax, wmax * s.unit.factor, s.unit.name, c.max_amplitude);
+                        : fmt::format("{}response: {} = {:.4g} at {:.6g} {} exceeds {:.4g}", r.reason.empty() ? "" : "; ",
+                                      out.name(sys, kmax), amax, wmax * s.unit.factor, s.unit.name, c.max_amplitude);
     }
     q += 2;
 }
@@ -214,15 +298,23 @@ std::vector<std::string> quantity_columns(const Sweep& s) {
     if (s.criteria.separation && s.criteria.separation->api684)
         c.insert(c.end(), {"required_separation_percent", "amplification_factor"});
     if (s.criteria.stability) c.push_back(s.unit.column("instability_onset"));
+    if (s.criteria.stability && s.criteria.stability->min_log_dec)
+        c.insert(c.end(), {"min_log_dec", s.unit.column("min_log_dec_speed")});
     if (s.criteria.pervasive) c.push_back(s.unit.column("pervasive_loss"));
     if (s.criteria.response) c.insert(c.end(), {"max_amplitude", s.unit.column("max_amplitude_speed")});
     return c;
+}
+
+std::vector<std::string> label_columns(const Sweep& s) {
+    if (s.criteria.response && !s.criteria.response->probes.empty()) return {"max_amplitude_probe"};
+    return {};
 }
 
 std::vector<std::string> result_columns(const Sweep& s) {
     std::vector<std::string> c{"design"};
     for (const auto& p : s.parameters) c.push_back(p.name);
     for (const auto& q : quantity_columns(s)) c.push_back(q);
+    for (const auto& l : label_columns(s)) c.push_back(l);
     c.insert(c.end(), {"verdict", "failed", "reason"});
     return c;
 }
@@ -233,6 +325,7 @@ DesignResult evaluate_design(const Sweep& s, std::size_t i) {
     r.parameters = s.design(i);
     const std::vector<std::string> qc = quantity_columns(s);
     r.quantities.assign(qc.size(), std::nullopt);
+    r.labels.assign(label_columns(s).size(), std::string());
     Scene sc;
     try {
         sc = s.loader(design_overrides(s, r.parameters));
@@ -262,6 +355,7 @@ DesignResult evaluate_design(const Sweep& s, std::size_t i) {
         r.verdict = Verdict::Error;
         r.failed.clear();
         r.quantities.assign(qc.size(), std::nullopt);
+        r.labels.assign(r.labels.size(), std::string());
         r.reason = one_line(std::string("analysis failed: ") + e.what());
         return r;
     }

@@ -25,6 +25,7 @@ struct DesignResult {
     std::size_t index = 0;
     std::vector<double> parameters;
     std::vector<std::optional<double>> quantities;
+    std::vector<std::string> labels;   // follow label_columns(); "" = not defined
     Verdict verdict = Verdict::Pass;
     std::vector<std::string> failed;   // names of the criteria not met
     std::string reason;
@@ -32,7 +33,10 @@ struct DesignResult {
 
 // The computed columns of the sweep's criteria, e.g. critical_speed, separation_percent.
 std::vector<std::string> quantity_columns(const Sweep& s);
-// design, parameters, quantities, verdict, failed, reason.
+// The text columns of the sweep's criteria, after the quantities: max_amplitude_probe
+// (the probe that read the largest amplitude) with response probes.
+std::vector<std::string> label_columns(const Sweep& s);
+// design, parameters, quantities, labels, verdict, failed, reason.
 std::vector<std::string> result_columns(const Sweep& s);
 
 // Evaluates design i. Never throws for a failing design: an invalid parameter

@@ -1,5 +1,7 @@
 #include <gyrokit/screening/sweep.hpp>
 
+#include <gyrokit/screening/detail/probes.hpp>
+
 #include <gyrokit/core/error.hpp>
 #include "gyrokit/io/detail/toml_keys.hpp"
 #include <gyrokit/core/input_file.hpp>
@@ -281,6 +283,10 @@ void finalize_sweep(Sweep& s, bool check_parameters) {
     if (!c.separation && !c.stability && !c.pervasive && !c.response)
         throw InputError(s.path + ": no criteria; required: at least one of [criteria.separation], "
                                   "[criteria.stability], [criteria.pervasive], [criteria.response]");
+    const std::optional<double> min_log_dec = c.stability ? c.stability->min_log_dec : std::nullopt;
+    if (min_log_dec && !(*min_log_dec > 0 && std::isfinite(*min_log_dec)))   // a sweep assembled in code
+        throw InputError(fmt::format("{}: [criteria.stability] min_log_dec = {}: out of range; allowed: > 0", s.path,
+                                     *min_log_dec));
     if (c.separation && !(s.op_from > 0))
         throw InputError(s.path + ": [criteria.separation] needs [operating] from > 0 (the margin is relative to it)");
 
@@ -295,6 +301,9 @@ void finalize_sweep(Sweep& s, bool check_parameters) {
             if (std::find(s.dof_names.begin(), s.dof_names.end(), d) == s.dof_names.end())
                 throw InputError(fmt::format("{}: [criteria.response] dofs: '{}' is not a DOF of scene {}", s.path, d,
                                              s.scene));
+        if (!c.response->dofs.empty() && !c.response->probes.empty())
+            throw InputError(s.path + ": [criteria.response] probes: given with dofs; allowed: either dofs or probes");
+        check_probes(s.path, s.scene, c.response->probes, base.system);
     }
     if (c.pervasive) {
         if (base.system.damping_names().empty() && s.parameters.empty())
@@ -421,8 +430,10 @@ Sweep read_sweep(const std::string& path, const std::string& scene_text, const s
         }
         if (ct.contains("stability")) {
             TomlKeys c(path, "criteria.stability", sub_table(ct, path + ": criteria", "stability"));
-            c.only({"up_to", "count"});
+            c.only({"up_to", "count", "min_log_dec"});
             StabilityCriterion sc;
+            if (c.has("min_log_dec"))
+                sc.min_log_dec = c.number("min_log_dec", std::nullopt, 0, true, "dimensionless; API 684 Level I: 0.1");
             sc.up_to = c.number("up_to", s.op_to * f, 0, true, s.unit.name.c_str()) / f;
             if (!(sc.up_to > 0.0))   // the default, [operating] to, may be 0
                 throw InputError(fmt::format("{}: [criteria.stability] up_to is missing and [operating] to = {} gives "
@@ -443,13 +454,16 @@ Sweep read_sweep(const std::string& path, const std::string& scene_text, const s
         }
         if (ct.contains("response")) {
             TomlKeys c(path, "criteria.response", sub_table(ct, path + ": criteria", "response"));
-            c.only({"max_amplitude", "dofs"});
+            c.only({"max_amplitude", "dofs", "probes"});
             ResponseCriterion rc;
             rc.max_amplitude = c.number("max_amplitude", std::nullopt, 0, true, "DOF units");
+            if (c.has("dofs") && c.has("probes"))
+                throw InputError(c.where("probes") + ": given with dofs; allowed: either dofs or probes");
             if (c.has("dofs")) {
                 rc.dofs = strings_of(c, "dofs");
                 if (rc.dofs.empty()) throw InputError(c.where("dofs") + " is empty; allowed: DOF names, or omit it");
             }
+            if (c.has("probes")) rc.probes = read_probes(c);
             s.criteria.response = rc;
         }
     }

@@ -43,10 +43,13 @@ struct SeparationCriterion {
     bool api684 = false;
 };
 
-// No mode with Re(lambda) > 0 from speed 0 up to `up_to`.
+// No mode with Re(lambda) > 0 from speed 0 up to `up_to`; with `min_log_dec`, also
+// no oscillating mode whose logarithmic decrement -2 pi Re(lambda)/Im(lambda) lies
+// below it (API 684 stability margin) at the speeds scanned.
 struct StabilityCriterion {
     double up_to = 0;                // rad/s
     int count = 121;
+    std::optional<double> min_log_dec;   // > 0; unset: only instability fails
 };
 
 // The named damping sets pervade at every operating speed.
@@ -55,10 +58,22 @@ struct PervasiveCriterion {
     double tolerance = 1e-8;
 };
 
-// Largest unbalance response amplitude over the operating range.
+// A named probe of the response criterion: the displacement along `angle_degrees`
+// (from +x towards +y) of two DOFs named in the scene, or of a node's x and y
+// (probe_at_node), found in each design's model.
+struct ResponseProbe {
+    std::string name;
+    std::string dof_x, dof_y;        // DOF names; empty with `node`
+    int node = -1;                   // a node of a model with nodes (fe_rotor); -1: by DOF names
+    double angle_degrees = 0;
+};
+
+// Largest unbalance response amplitude over the operating range: of the DOFs, or
+// read by the probes (either, not both).
 struct ResponseCriterion {
     double max_amplitude = 0;        // in the units of the DOFs (m or rad)
-    std::vector<std::string> dofs;   // empty: all DOFs
+    std::vector<std::string> dofs;   // empty: all DOFs (without probes)
+    std::vector<ResponseProbe> probes;
 };
 
 struct Criteria {
