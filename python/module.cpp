@@ -6,6 +6,7 @@
 #include <gyrokit/gyrokit.hpp>
 
 #include "critical_map.hpp"
+#include "frf.hpp"
 #include "models.hpp"
 #include "statics.hpp"
 
@@ -343,6 +344,7 @@ PYBIND11_MODULE(_core, m) {
     bind_models(m, scene);
     bind_statics(m);
     bind_critical_map(m);
+    bind_frf(m);
 
     m.def("load_scene", [](const std::string& path, const std::map<std::string, double>& overrides,
                            const std::string& motion) { return load_scene(path, overrides, motion); },

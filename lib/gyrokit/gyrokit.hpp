@@ -6,6 +6,7 @@
 #include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/fluid_critical_speeds.hpp>
+#include <gyrokit/analysis/frequency_response.hpp>
 #include <gyrokit/analysis/mode_shapes.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
 #include <gyrokit/analysis/probe.hpp>

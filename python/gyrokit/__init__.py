@@ -21,7 +21,8 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "StabilityChanges", "ScreenResult", "pervasive", "response", "PervasiveLosses", "Response", "gyrostat",
            "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "Sommerfeld",
            "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
-           "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap"]
+           "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap", "frf",
+           "FrequencyResponse"]
 
 
 def load_scene(path, overrides=None, motion=None) -> Scene:
@@ -370,6 +371,74 @@ def screen(sweep, designs=None, *, scene=None, jobs=0, progress=None, executor=N
     if executor is not None:
         return _screen_on(executor, str(sweep), base, names, values, progress)
     return ScreenResult(_core.screen(str(sweep), base, names, values, int(jobs), progress))
+
+
+class FrequencyResponse(_Result):
+    """Steady response to a unit harmonic force (or moment) at DOF `input`, the rotor spinning at `speed`:
+    H[i, k] of DOF dofs[k] at frequencies[i] (complex, the output's unit per N or N m); amplitude, phase (deg).
+    Speeds and frequencies in `unit`."""
+
+    def __init__(self, speed, frequencies, input, dofs, H, unit):
+        self.speed, self.unit, self.input = speed, unit, input
+        self.frequencies = _np.asarray(frequencies, dtype=float)
+        self.dofs = list(dofs)
+        self.H = H
+        self.amplitude = _np.abs(H)
+        self.phase = _np.degrees(_np.angle(H))
+
+    def to_pandas(self):
+        return self._frame({"frequency": _np.repeat(self.frequencies, len(self.dofs)),
+                            "dof": self.dofs * len(self.frequencies), "re": self.H.real.ravel(),
+                            "im": self.H.imag.ravel(), "amplitude": self.amplitude.ravel(),
+                            "phase": self.phase.ravel()})
+
+    def plot(self, axes=None):
+        """Bode plot: amplitude (log) and phase over frequency, one line per DOF; two axes."""
+        plt = self._pyplot()
+        if axes is None:
+            axes = plt.subplots(2, 1, sharex=True)[1]
+        for k, name in enumerate(self.dofs):
+            axes[0].semilogy(self.frequencies, self.amplitude[:, k], label=name)
+            axes[1].plot(self.frequencies, self.phase[:, k], label=name)
+        axes[0].set_ylabel("|H|")
+        axes[0].legend()
+        axes[1].set_ylabel("phase [deg]")
+        axes[1].set_xlabel(f"frequency [{self.unit}]")
+        return axes
+
+    def plot_polar(self, ax=None):
+        """Im H against Re H over the frequencies, one line per DOF, equal axes."""
+        plt = self._pyplot()
+        ax = ax or plt.subplots()[1]
+        for k, name in enumerate(self.dofs):
+            ax.plot(self.H[:, k].real, self.H[:, k].imag, label=name)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel("Re H")
+        ax.set_ylabel("Im H")
+        ax.legend()
+        return ax
+
+
+def frf(model, speed, input, frequencies, *, dofs=None, unit="rad/s", solver=None) -> FrequencyResponse:
+    """Frequency response functions of `model` (a System or Scene) spinning at `speed`: the response of `dofs`
+    (names; default: the input itself, the driving point) to a unit harmonic force at DOF `input` (a name: "y12";
+    a moment: "tx12"), at `frequencies`; `speed` and `frequencies` in `unit` (rad/s, Hz, rpm). Dense or sparse LU
+    by `solver` (auto: sparse above 200 DOFs). See docs/frf.md."""
+    if unit not in _UNITS:
+        raise InputError(f"unit = {unit!r}; allowed: rad/s, Hz, rpm")
+    system = model.system if isinstance(model, Scene) else model
+    if not isinstance(system, System):
+        raise InputError(f"expected a gyrokit.System or gyrokit.Scene, got {type(model).__name__}")
+    names = system.dof_names
+    dofs = [input] if dofs is None else list(dofs)
+    for key, d in [("input", input)] + [("dofs", d) for d in dofs]:
+        if d not in names:
+            raise InputError(f"{key}: {d!r} is not a DOF of the model; allowed: names such as {names[0]!r}")
+    factor = _UNITS[unit]
+    w = _np.asarray(frequencies, dtype=float) / factor
+    H = _core.frf(system, float(speed) / factor, list(w), names.index(input), [names.index(d) for d in dofs],
+                  solver or (model.solver if isinstance(model, Scene) else "auto"))
+    return FrequencyResponse(float(speed), _np.asarray(frequencies, dtype=float), input, dofs, H, unit)
 
 
 class StaticDeflection(_Result):

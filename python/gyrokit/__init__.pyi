@@ -247,7 +247,8 @@ class Pedestal:
 class Rotor:
     def __init__(self, *, sections: Sequence[Section], disks: Sequence[Disk] = ..., bearings: Sequence[Bearing] = ...,
                  supports: Sequence[Support] = ..., pedestals: Sequence[Pedestal] = ..., motion: str = ...,
-                 shear_deformation: bool = ..., rotary_inertia: bool = ...) -> None: ...
+                 shear_deformation: bool = ..., rotary_inertia: bool = ..., damping_alpha: float = ...,
+                 damping_beta: float = ...) -> None: ...
     sections: list[Section]
     disks: list[Disk]
     bearings: list[Bearing]

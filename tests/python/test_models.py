@@ -200,3 +200,37 @@ def test_critical_speed_map_matches_the_cli():
         gk.critical_speed_map(gk.load_scene(scene), unit="rps")
     with pytest.raises(gk.InputError, match="allowed: an fe_rotor model"):
         gk.critical_speed_map(gk.load_scene(os.path.join(DATA, "centrifuge.toml")))
+
+
+def test_frf_matches_the_cli_and_the_docs_example_runs():
+    import csv
+    import io
+    import re
+    import subprocess
+    scene = os.path.join(DATA, "three_disk_rotor.toml")
+    r = gk.frf(gk.load_scene(scene), 600.0, "y12", [0.0, 400.0, 800.0, 1200.0], dofs=["y12", "x12"])
+    out = subprocess.run([os.environ["GYROKIT_CLI"], "frf", scene, "--input", "y12", "--dofs", "y12,x12", "--speed",
+                          "600", "--frequencies", "0:1200:4", "--format", "csv"], capture_output=True, text=True,
+                         check=True).stdout
+    rows = list(csv.DictReader(io.StringIO(out)))
+    frame = r.to_pandas()
+    assert len(rows) == len(frame) == 8
+    for row, (_, p) in zip(rows, frame.iterrows()):
+        assert row["dof"] == p["dof"] and row["unit"] == "m/N"
+        assert complex(float(row["re"]), float(row["im"])) == pytest.approx(complex(p["re"], p["im"]),
+                                                                           rel=1e-11, abs=1e-11 * r.amplitude.max())
+    # In rpm: the same response at the same speeds.
+    rpm = gk.frf(gk.load_scene(scene), 600.0 * 30 / np.pi, "y12", np.array([400.0]) * 30 / np.pi, unit="rpm")
+    assert rpm.H[0, 0] == pytest.approx(r.H[1, 0], rel=1e-12)
+    with pytest.raises(gk.InputError, match="input: 'y99'"):
+        gk.frf(gk.load_scene(scene), 600.0, "y99", [100.0])
+    root = os.path.dirname(os.path.abspath(DATA))
+    block = re.findall(r"```python\n(.*?)```", open(os.path.join(root, "docs", "frf.md")).read(), re.S)[0]
+    import matplotlib
+    matplotlib.use("Agg")
+    cwd = os.getcwd()
+    os.chdir(root)
+    try:
+        exec(compile(block, "docs/frf.md", "exec"), {"gk": gk, "np": np})
+    finally:
+        os.chdir(cwd)

@@ -20,47 +20,42 @@ namespace {
 void check_solution(double norm_S, double residual, const Eigen::VectorXcd& Z, const Eigen::VectorXcd& f, double w) {
     if (!Z.allFinite() || residual > 1e-8 * (norm_S * Z.norm() + f.norm()))
         throw SolverError(fmt::format("the dynamic stiffness is singular at {} rad/s (an undamped resonance): "
-                                      "the response is unbounded; add damping or move the speed grid",
+                                      "the response is unbounded; add damping or move the grid",
                                       w));
 }
 
 }  // namespace
 
-namespace {
-
-Eigen::VectorXcd dense_response(const GyroscopicSystem& sys, double w) {
-    const Eigen::VectorXcd f = sys.unbalance_force(w);
-    const QuadraticPencil p = sys.at_speed(w);
-    const std::complex<double> l(0.0, w);
-    const Eigen::MatrixXcd S = p.evaluate(l);
-    Eigen::PartialPivLU<Eigen::MatrixXcd> lu(S);
-    Eigen::VectorXcd Z = lu.solve(f);
-    check_solution(S.norm(), (S * Z - f).norm(), Z, f, w);
-    return Z;
-}
-
-Eigen::VectorXcd sparse_response(const GyroscopicSystem& sys, double w) {
-    const Eigen::VectorXcd f = sys.unbalance_force(w);
-    const SparsePencil p = sys.sparse_at_speed(w);
+Eigen::VectorXcd dynamic_response(const GyroscopicSystem& sys, double spin, double w, const Eigen::VectorXcd& f,
+                                  SolverKind kind) {
     using cd = std::complex<double>;
     const cd l(0.0, w);
-    const Eigen::SparseMatrix<cd> S = (l * l) * p.M.cast<cd>() + l * p.C.cast<cd>() + p.K.cast<cd>();
-    Eigen::SparseLU<Eigen::SparseMatrix<cd>, Eigen::COLAMDOrdering<int>> lu;
-    lu.compute(S);
-    Eigen::VectorXcd Z = lu.info() == Eigen::Success ? Eigen::VectorXcd(lu.solve(f))
-                                                     : Eigen::VectorXcd::Constant(sys.size(), cd(NAN, NAN));
-    check_solution(S.norm(), (S * Z - f).norm(), Z, f, w);
+    Eigen::VectorXcd Z;
+    double norm_S = 0.0, residual = 0.0;
+    if (resolve_solver_kind(sys.size(), kind) == SolverKind::Dense) {
+        const Eigen::MatrixXcd S = sys.at_speed(spin).evaluate(l);
+        Z = Eigen::PartialPivLU<Eigen::MatrixXcd>(S).solve(f);
+        norm_S = S.norm();
+        residual = (S * Z - f).norm();
+    } else {
+        const SparsePencil p = sys.sparse_at_speed(spin);
+        const Eigen::SparseMatrix<cd> S = (l * l) * p.M.cast<cd>() + l * p.C.cast<cd>() + p.K.cast<cd>();
+        Eigen::SparseLU<Eigen::SparseMatrix<cd>, Eigen::COLAMDOrdering<int>> lu;
+        lu.compute(S);
+        Z = lu.info() == Eigen::Success ? Eigen::VectorXcd(lu.solve(f))
+                                        : Eigen::VectorXcd::Constant(sys.size(), cd(NAN, NAN));
+        norm_S = S.norm();
+        residual = (S * Z - f).norm();
+    }
+    check_solution(norm_S, residual, Z, f, w);
     return Z;
 }
-
-}  // namespace
 
 Eigen::VectorXcd unbalance_response(const GyroscopicSystem& sys, double w, SolverKind kind) {
     if (sys.unbalance.size() == 0)
         throw InputError("the model defines no unbalance load; the response is zero");
     if (w == 0.0) return Eigen::VectorXcd::Zero(sys.size());   // no force at standstill
-    return resolve_solver_kind(sys.size(), kind) == SolverKind::Dense ? dense_response(sys, w)
-                                                                       : sparse_response(sys, w);
+    return dynamic_response(sys, w, w, sys.unbalance_force(w), kind);
 }
 
 ResponseCurve unbalance_response(const ResponseSolver& solve, int size, const std::vector<double>& speeds,

@@ -17,6 +17,13 @@ namespace gyrokit {
 // dynamic stiffness. Throws SolverError where it is singular (an undamped resonance).
 Eigen::VectorXcd unbalance_response(const GyroscopicSystem& sys, double w, SolverKind kind = SolverKind::Auto);
 
+// The steady response Z e^{i w t} to a force f e^{i w t} with the rotor spinning at
+// `spin`: [K(spin) + spin N - w^2 M + i w (D(spin) + spin G)] Z = f, by the dense or
+// sparse LU as above (the unbalance response is spin = w, f = w^2 u). SolverError
+// where the dynamic stiffness is singular.
+Eigen::VectorXcd dynamic_response(const GyroscopicSystem& sys, double spin, double w, const Eigen::VectorXcd& f,
+                                  SolverKind kind = SolverKind::Auto);
+
 // Amplitudes of every DOF at a speed (one of the functions above, bound to a model).
 using ResponseSolver = std::function<Eigen::VectorXcd(double w)>;
 

@@ -427,7 +427,8 @@ RotorPedestal read_pedestal(const TomlKeys& e, const ModelContext& c) {
 
 RotorModel rotor_model_from(const TomlKeys& k, const std::string& dir) {
     k.only({"type", "shaft", "disk", "bearing", "support", "E", "poisson", "density", "material", "materials",
-            "shear_deformation", "rotary_inertia", "dofs_per_node", "motion", "length_unit", "pedestal"});
+            "shear_deformation", "rotary_inertia", "dofs_per_node", "motion", "length_unit", "pedestal",
+            "damping_alpha", "damping_beta"});
     RotorModel model;
     ModelContext c;
     c.motion = model.motion = motion_of(k);
@@ -444,6 +445,9 @@ RotorModel rotor_model_from(const TomlKeys& k, const std::string& dir) {
     };
     model.shear_deformation = flag("shear_deformation");
     model.rotary_inertia = flag("rotary_inertia");
+    // Proportional damping of the shaft: D = alpha M_shaft + beta K_shaft.
+    model.shaft_damping.alpha = k.number("damping_alpha", 0.0, 0, false, "1/s");
+    model.shaft_damping.beta = k.number("damping_beta", 0.0, 0, false, "s");
     read_materials(k, c);
     std::size_t elements = 0;
     for_each_entry(k, "shaft", true, [&](const TomlKeys& e) {

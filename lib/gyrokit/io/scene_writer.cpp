@@ -240,6 +240,8 @@ std::string scene_text(const Scene& sc) {
     w.key("length_unit", "m");
     w.key("shear_deformation", m.shear_deformation);
     w.key("rotary_inertia", m.rotary_inertia);
+    if (m.shaft_damping.alpha != 0.0) w.key("damping_alpha", m.shaft_damping.alpha);
+    if (m.shaft_damping.beta != 0.0) w.key("damping_beta", m.shaft_damping.beta);
     for (const RotorSection& s : m.sections) write_section(w, s);
     for (const RotorDisk& d : m.disks) write_disk(w, d);
     for (const RotorBearing& b : m.bearings) write_bearing(w, b);

@@ -12,6 +12,8 @@ namespace gyrokit {
 
 namespace {
 
+using SpMatrix = Eigen::SparseMatrix<double>;
+
 // An item's name in messages: its origin, or "<kind> <index>" for a model built in code.
 std::string origin_of(const std::string& origin, const char* kind, std::size_t i) {
     return origin.empty() ? fmt::format("{} {}", kind, i) : origin;
@@ -106,6 +108,26 @@ void set_auto_loads(const FeRotor& r, const std::vector<const RotorBearing*>& sp
     }
 }
 
+// alpha M + beta K of the beam elements alone: the rotor without disks, bearings and
+// pedestals, couplings without springs or mass, the same supports, so its DOFs are the
+// node DOFs of the whole rotor in the same order (the pedestals' come after them).
+SpMatrix shaft_damping_matrix(const FeRotor& r, const ShaftDamping& d, int size) {
+    FeRotor shaft = r;
+    shaft.disks.clear();
+    shaft.bearings.clear();
+    shaft.pedestals.clear();
+    for (FeShaftElement& e : shaft.elements)
+        if (e.coupling) e.coupling = FeCoupling{};
+    const FeRotorMatrices m = shaft.assemble();
+    SpMatrix D(size, size);
+    std::vector<Eigen::Triplet<double>> t;
+    const SpMatrix Ds = d.alpha * m.M + d.beta * m.K;
+    for (int c = 0; c < Ds.outerSize(); ++c)
+        for (SpMatrix::InnerIterator it(Ds, c); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+    D.setFromTriplets(t.begin(), t.end());
+    return D;
+}
+
 }  // namespace
 
 BuiltRotor build(const RotorModel& model) {
@@ -192,6 +214,11 @@ BuiltRotor build(const RotorModel& model) {
     const FeRotorMatrices m = r.assemble();
     out.system = m.to_system();
     GyroscopicSystem& sys = out.system;
+    const ShaftDamping& sd = model.shaft_damping;
+    if (!(std::isfinite(sd.alpha) && sd.alpha >= 0 && std::isfinite(sd.beta) && sd.beta >= 0))
+        throw InputError(fmt::format("shaft damping alpha = {}, beta = {}; allowed: finite numbers >= 0 (1/s, s)",
+                                     sd.alpha, sd.beta));
+    if (sd.alpha > 0 || sd.beta > 0) sys.damping.push_back({"shaft", shaft_damping_matrix(r, sd, m.size())});
     // Speed-dependent bearings act on x and y alone: an axial or torsional model has no use for them.
     if (!r.has_lateral()) return out;
     set_auto_loads(r, speed_dependent, sd_nodes, films, unit);

@@ -71,6 +71,14 @@ struct RotorPedestal {
     std::string origin;
 };
 
+// Proportional damping of the shaft's beam elements, D_shaft = alpha M_shaft + beta K_shaft
+// (the damping component "shaft"), in fixed axes: it does not turn with the shaft (no
+// circulatory term). A mode of the shaft alone then has zeta = alpha / (2 w) + beta w / 2.
+struct ShaftDamping {
+    double alpha = 0.0;   // 1/s, >= 0
+    double beta = 0.0;    // s, >= 0
+};
+
 struct RotorModel {
     std::vector<RotorSection> sections;    // from z = 0 along +z, one chain
     std::vector<RotorDisk> disks;
@@ -80,6 +88,7 @@ struct RotorModel {
     bool shear_deformation = true;
     bool rotary_inertia = true;
     FeMotion motion = FeMotion::lateral;
+    ShaftDamping shaft_damping;
     std::string length_unit = "m";         // "m" or "mm": how messages print lengths
 };
 

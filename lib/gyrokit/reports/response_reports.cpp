@@ -120,15 +120,16 @@ std::string amplitude_label(const std::string& unit, const char* what) {
 
 Figure response_figure(const std::vector<std::string>& names, const std::vector<std::string>& units,
                        const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
-                       const std::vector<int>& shown) {
+                       const std::vector<int>& shown, const std::string& axis) {
     Figure f;
     f.title = title.empty() ? "Unbalance response" : title;
     const std::vector<size_t> cols = columns_shown(c, shown);
     std::vector<int> dofs;
     for (const size_t k : cols) dofs.push_back(c.dofs[k]);
-    Panel ph{speed_label(u), "phase [deg]", "", false, {}, -180.0, 180.0, {}, {}};
+    const std::string xlabel = axis + " [" + u.name + "]";
+    Panel ph{xlabel, "phase [deg]", "", false, {}, -180.0, 180.0, {}, {}};
     for (const std::string& unit : units_in(units, dofs)) {
-        Panel amp{speed_label(u), amplitude_label(unit, "amplitude |Z|"), "", true, {}, {}, {}, {}, {}};
+        Panel amp{xlabel, amplitude_label(unit, "amplitude |Z|"), "", true, {}, {}, {}, {}, {}};
         for (const size_t k : cols) {
             if (unit_of(units, c.dofs[k]) != unit) continue;
             Series a, p;
@@ -151,11 +152,11 @@ Figure response_figure(const std::vector<std::string>& names, const std::vector<
 
 Figure response_polar_figure(const std::vector<std::string>& names, const std::vector<std::string>& units,
                              const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
-                             const std::vector<int>& shown) {
+                             const std::vector<int>& shown, const std::string& axis) {
     Figure f;
     f.title = (title.empty() ? std::string("Unbalance response") : title) +
-              fmt::format(" (polar, {:.6g} to {:.6g} {})", u.factor * c.speeds.front(), u.factor * c.speeds.back(),
-                          u.name);
+              fmt::format(" (polar, {} {:.6g} to {:.6g} {})", axis, u.factor * c.speeds.front(),
+                          u.factor * c.speeds.back(), u.name);
     const std::vector<size_t> cols = columns_shown(c, shown);
     std::vector<int> dofs;
     for (const size_t k : cols) dofs.push_back(c.dofs[k]);

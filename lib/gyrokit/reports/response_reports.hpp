@@ -30,12 +30,13 @@ Table extrema_table(const std::vector<std::string>& dof_names, const std::vector
 
 // Bode plot of the DOFs `shown` (empty: every DOF of the curve): amplitude (log)
 // against speed, one panel per physical unit, then the phase in degrees.
+// `axis` names the curve's abscissa ("speed"; a frequency response: "frequency").
 Figure response_figure(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
                        const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
-                       const std::vector<int>& shown = {});
+                       const std::vector<int>& shown = {}, const std::string& axis = "speed");
 // Polar plot: Im Z against Re Z over the speed range, one panel per unit, true to shape.
 Figure response_polar_figure(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
                              const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
-                             const std::vector<int>& shown = {});
+                             const std::vector<int>& shown = {}, const std::string& axis = "speed");
 
 }  // namespace gyrokit

@@ -1,0 +1,80 @@
+// frf: frequency response functions at a fixed spin speed (a unit harmonic force or moment at one DOF).
+#include "cli/common.hpp"
+#include <gyrokit/analysis/frequency_response.hpp>
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/reports/frf_reports.hpp>
+#include <gyrokit/reports/response_reports.hpp>
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <memory>
+
+namespace gyrokit::cli {
+
+namespace {
+
+struct Options {
+    Common common;
+    std::string speed = "0", input, dofs, frequencies;
+    bool polar = false;
+};
+
+int dof_index(const std::vector<std::string>& names, const std::string& name, const char* option) {
+    const auto it = std::find(names.begin(), names.end(), name);
+    if (it == names.end())
+        throw InputError(fmt::format("{} '{}': not a DOF of the model; allowed: names such as {}", option, name,
+                                     names.empty() ? std::string("-") : names.front()));
+    return static_cast<int>(it - names.begin());
+}
+
+}  // namespace
+
+std::vector<Command> add_frf_commands(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    auto* cmd = app.add_subcommand("frf", "frequency response to a unit harmonic force (or moment) at one DOF, at a "
+                                          "fixed spin speed: amplitude, phase, Bode and polar plots");
+    add_common(cmd, o->common, false);
+    add_motion_option(cmd, o->common);
+    cmd->add_option("--speed", o->speed, "spin speed (in --units), default 0")->capture_default_str();
+    cmd->add_option("--input", o->input, "the DOF the force acts on, by name, e.g. y12 (a moment: tx12)")->required();
+    cmd->add_option("--dofs", o->dofs, "output DOFs by name, e.g. x12,y12 (default: the input DOF: the driving point)");
+    cmd->add_option("--frequencies", o->frequencies, "excitation frequencies FROM:TO:N (in --units); default: the "
+                                                     "scene's [speeds] range");
+    cmd->add_option("--plot", o->common.plot, "Bode plot (amplitude and phase) into FILE.svg|.png");
+    cmd->add_flag("--polar", o->polar, "with --plot: a polar plot (Im H against Re H)");
+    return {{cmd, [o](std::ostream& out) {
+                 if (o->polar && o->common.plot.empty()) throw InputError("--polar: only together with --plot FILE");
+                 const Context c = open_scene(o->common, false);
+                 const GyroscopicSystem& sys = c.scene.system;
+                 std::vector<double> frequencies = c.speeds;   // the scene's [speeds] range
+                 if (!o->frequencies.empty())
+                     frequencies = SpeedRange::parse(o->frequencies, "--frequencies", c.unit.factor).points();
+                 else if (frequencies.empty())
+                     throw InputError(o->common.scene + ": no frequencies; give --frequencies FROM:TO:N or a [speeds] "
+                                                        "table in the scene");
+                 const double spin = parse_speed(o->speed, "--speed", c.unit);
+                 const int input = dof_index(sys.dof_names, o->input, "--input");
+                 std::vector<int> outputs;
+                 std::size_t start = 0;
+                 while (!o->dofs.empty() && start <= o->dofs.size()) {
+                     const std::size_t end = std::min(o->dofs.find(',', start), o->dofs.size());
+                     outputs.push_back(dof_index(sys.dof_names, o->dofs.substr(start, end - start), "--dofs"));
+                     start = end + 1;
+                 }
+                 if (outputs.empty()) outputs.push_back(input);
+                 note_extrapolation(c, spin);
+                 const FrequencyResponse r = frequency_response(sys, spin, frequencies, input, outputs,
+                                                                use_sparse(c) ? SolverKind::Sparse : SolverKind::Dense);
+                 write_table(out, frf_table(sys.dof_names, sys.dof_units, r, c.unit), c.format);
+                 if (o->common.plot.empty()) return;
+                 const std::vector<std::string> units = frf_units(sys.dof_units, input);
+                 const std::string title = fmt::format("FRF, force at {}, spin {:.6g} {}", sys.dof_names[input],
+                                                       c.unit.factor * spin, c.unit.name);
+                 plot_if(o->common.plot, o->polar ? response_polar_figure(sys.dof_names, units, frf_curve(r), c.unit,
+                                                                          title, {}, "frequency")
+                                                  : response_figure(sys.dof_names, units, frf_curve(r), c.unit, title,
+                                                                    {}, "frequency"));
+             }}};
+}
+
+}  // namespace gyrokit::cli
