@@ -21,12 +21,8 @@ struct Options {
     bool rigid_body = false;
 };
 
-}  // namespace
-
-std::vector<Command> add_spectrum_commands(CLI::App& app) {
-    auto o = std::make_shared<Options>();
-    std::vector<Command> cmds;
-
+// eig: every eigenvalue at one speed.
+Command eig_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     auto* eig = app.add_subcommand("eig", "all eigenvalues at one speed");
     add_common(eig, o->common, false);
     add_motion_option(eig, o->common);
@@ -34,7 +30,7 @@ std::vector<Command> add_spectrum_commands(CLI::App& app) {
     eig->add_option("--speed", o->speed, "spin speed (in --units)")->required();
     eig->add_option("--modes", o->modes, "sparse solver: number of modes near --target (default: the scene's, else 6)");
     eig->add_flag("--rigid-body", o->rigid_body, "list the rigid-body eigenvalues (lambda = 0) after the modes");
-    cmds.push_back({eig, [o](std::ostream& out) {
+    return {eig, [o](std::ostream& out) {
         const Context c = open_scene(o->common, false);
         const double w = parse_speed(o->speed, "--speed", c.unit);
         note_extrapolation(c, w);
@@ -44,15 +40,18 @@ std::vector<Command> add_spectrum_commands(CLI::App& app) {
         if (!o->rigid_body && !s.rigid_body.empty())
             std::cerr << "note: " << rigid_body_note(s.rigid_body, c.scene.dof_names()) << " (--rigid-body lists them)\n";
         write_table(out, eig_table(s, w, c.unit, o->rigid_body), c.format);
-    }});
+    }};
+}
 
+// model: what the scene's model is, and an FE rotor drawn.
+Command model_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     auto* model = app.add_subcommand("model", "what the scene's model is: DOFs, mass, nodes, damping, bearings; "
                                               "--plot draws an FE rotor");
     model->add_option("scene", o->common.scene, "scene file (TOML)")->required();
     model->add_option("--format", o->common.format, "output format: table, csv or json")->capture_default_str();
     model->add_option("--plot", o->common.plot, "FE rotors: draw the shaft, disks and bearings into FILE.svg|.png");
     add_motion_option(model, o->common);
-    cmds.push_back({model, [o](std::ostream& out) {
+    return {model, [o](std::ostream& out) {
         const TableFormat format = parse_format(o->common);
         check_plot_path(o->common.plot);
         const Scene sc = load_motion_scene(o->common);
@@ -60,8 +59,11 @@ std::vector<Command> add_spectrum_commands(CLI::App& app) {
             throw InputError("--plot: draws finite-element rotors; this model is " + sc.model_type);
         write_table(out, model_summary(sc), format);
         if (sc.fe_rotor) plot_if(o->common.plot, fe_rotor_figure(*sc.fe_rotor, sc.system, sc.title));
-    }});
+    }};
+}
 
+// modes: mode shapes at one speed, as orbits per node or entries per DOF.
+Command modes_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     auto* modes = app.add_subcommand("modes", "mode shapes at one speed: orbits per node (or entries per DOF)");
     add_common(modes, o->common, false);
     add_motion_option(modes, o->common);
@@ -74,7 +76,7 @@ std::vector<Command> add_spectrum_commands(CLI::App& app) {
     modes->add_option("--per", o->per, "node: one row per whirl pair (orbit); dof: one row per DOF")
         ->capture_default_str();
     modes->add_option("--plot", o->common.plot, "draw the shapes along the axis (or the orbits) into FILE.svg|.png");
-    cmds.push_back({modes, [o](std::ostream& out) {
+    return {modes, [o](std::ostream& out) {
         const Context c = open_scene(o->common, false);
         if (o->per != "node" && o->per != "dof")
             throw InputError("--per '" + o->per + "': allowed: node, dof");
@@ -106,14 +108,17 @@ std::vector<Command> add_spectrum_commands(CLI::App& app) {
         else
             write_table(out, detail, c.format);
         plot_if(o->common.plot, mode_shape_figure(shapes, w, c.unit, c.scene.title));
-    }});
+    }};
+}
 
+// export: the matrices at one speed as Matrix Market files.
+Command export_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     auto* exp = app.add_subcommand("export", "M, D, G, K, N and the state matrices as Matrix Market");
     add_common(exp, o->common, false);
     add_motion_option(exp, o->common);
     exp->add_option("--speed", o->speed, "spin speed for the assembled matrices (in --units)")->required();
     exp->add_option("--dir", o->dir, "output directory (created if missing)")->required();
-    cmds.push_back({exp, [o](std::ostream&) {
+    return {exp, [o](std::ostream&) {
         const Context c = open_scene(o->common, false);
         const double w = parse_speed(o->speed, "--speed", c.unit);
         note_extrapolation(c, w);
@@ -121,8 +126,14 @@ std::vector<Command> add_spectrum_commands(CLI::App& app) {
         for (const auto& n : r.notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
         std::cerr << "wrote the matrices at " << c.unit.factor * w << " " << c.unit.name << " into " << o->dir
                   << "\n";
-    }});
-    return cmds;
+    }};
+}
+
+}  // namespace
+
+std::vector<Command> add_spectrum_commands(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    return {eig_command(app, o), model_command(app, o), modes_command(app, o), export_command(app, o)};
 }
 
 }  // namespace gyrokit::cli

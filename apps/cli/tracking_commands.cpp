@@ -21,12 +21,8 @@ struct Options {
     bool rows = false;
 };
 
-}  // namespace
-
-std::vector<Command> add_tracking_commands(CLI::App& app) {
-    auto o = std::make_shared<Options>();
-    std::vector<Command> cmds;
-
+// campbell: the tracked diagram; on the first screen a summary with the critical speeds.
+Command campbell_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     auto* camp = app.add_subcommand("campbell", "modes tracked over speed (Campbell diagram)");
     add_common(camp, o->common, true);
     add_motion_option(camp, o->common);
@@ -37,7 +33,7 @@ std::vector<Command> add_tracking_commands(CLI::App& app) {
     camp->add_option("--plot", o->common.plot, "draw the diagram into FILE.svg or FILE.png");
     camp->add_option("--harmonics", o->harmonics, "harmonic lines drawn, e.g. 1,2 (default: the scene's, else 1)");
     camp->add_flag("--rows", o->rows, "table format: every row of the diagram instead of the summary");
-    cmds.push_back({camp, [o](std::ostream& out) {
+    return {camp, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
         const auto h = parse_harmonics(o->harmonics, c.scene.harmonics);
         const StudyOptions so = study_of(c, wanted_modes(c, o->modes), h);
@@ -62,8 +58,11 @@ std::vector<Command> add_tracking_commands(CLI::App& app) {
             print_diagnostics(st.diagnostics, {Diagnostic::Topic::OutOfRange});
         else
             print_diagnostics(st.diagnostics);
-    }});
+    }};
+}
 
+// critical: crossings with the k x speed lines, on tracked branches or by the direct method.
+Command critical_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     auto* crit = app.add_subcommand("critical", "critical speeds: crossings with the k x speed lines");
     add_common(crit, o->common, true);
     add_motion_option(crit, o->common);
@@ -73,7 +72,7 @@ std::vector<Command> add_tracking_commands(CLI::App& app) {
     crit->add_option("--critical-method", o->critical_method,
                      "branches (root finding on tracked modes) or direct (linear eigenproblem; undamped only)")
         ->capture_default_str();
-    cmds.push_back({crit, [o](std::ostream& out) {
+    return {crit, [o](std::ostream& out) {
         if (o->critical_method != "branches" && o->critical_method != "direct")
             throw InputError("--critical-method '" + o->critical_method + "': allowed: branches, direct");
         const Context c = open_scene(o->common, true);
@@ -97,22 +96,28 @@ std::vector<Command> add_tracking_commands(CLI::App& app) {
             write_tables(out, critical_tables(cs, c.unit), c.format);
         else
             write_table(out, critical_table(cs, c.unit), c.format);
-    }});
+    }};
+}
 
+// stability: the speeds where a mode becomes unstable or stable again.
+Command stability_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     auto* stab = app.add_subcommand("stability", "speeds where a mode becomes unstable or stable again");
     add_common(stab, o->common, true);
     add_motion_option(stab, o->common);
     add_solver_options(stab, o->common);
     stab->add_option("--modes", o->modes, "number of modes considered (0 = all; sparse: default 6); default: the scene's, else the "
                                           "modes in range");
-    cmds.push_back({stab, [o](std::ostream& out) {
+    return {stab, [o](std::ostream& out) {
         const Context c = open_scene(o->common, true);
         const StabilityStudy st =
             stability_study(c.scene.system, study_of(c, wanted_modes(c, o->modes), c.scene.harmonics));
         write_table(out, stability_table(st.changes, c.unit), c.format);
         print_diagnostics(st.tracked.diagnostics);
-    }});
+    }};
+}
 
+// pervasive: the Hautus check for each damping component.
+Command pervasive_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     auto* perv = app.add_subcommand("pervasive", "Hautus pervasive-damping check for each damping component");
     add_common(perv, o->common, true);
     add_motion_option(perv, o->common);
@@ -123,7 +128,7 @@ std::vector<Command> add_tracking_commands(CLI::App& app) {
     perv->add_option("--modes", o->modes, "number of modes checked: the K lowest (0 = all); default: the scene's, else the "
                                                   "modes in range")
         ->check(CLI::Range(0, 100000000));
-    cmds.push_back({perv, [o](std::ostream& out) {
+    return {perv, [o](std::ostream& out) {
         if (!(o->tolerance > 0.0 && o->tolerance < 1.0))
             throw InputError(fmt::format("--tolerance {}: allowed: 0 < tolerance < 1", o->tolerance));
         const Context c = open_scene(o->common, true);
@@ -136,9 +141,14 @@ std::vector<Command> add_tracking_commands(CLI::App& app) {
             std::cerr << "note: the sparse solver checks the " << kDefaultSparseModes
                       << " modes nearest the target; set --modes K for another number\n";
         write_table(out, pervasive_table(pervasive_damping(c.scene.system, c.speeds, po), c.unit), c.format);
-    }});
+    }};
+}
 
-    return cmds;
+}  // namespace
+
+std::vector<Command> add_tracking_commands(CLI::App& app) {
+    auto o = std::make_shared<Options>();
+    return {campbell_command(app, o), critical_command(app, o), stability_command(app, o), pervasive_command(app, o)};
 }
 
 }  // namespace gyrokit::cli

@@ -142,6 +142,106 @@ QuadraticSpectrum get_spectrum(std::FILE* f) {
     return s;
 }
 
+// The worker process k: solves its block of tasks and writes them (or its error) to f,
+// then exits; it never returns into the parent's code.
+[[noreturn]] void run_worker(const SolverFactory& make, size_t n, size_t workers, size_t k, const WorkerTask& task,
+                             const std::function<void(size_t, size_t)>& progress, std::FILE* f,
+                             std::atomic<size_t>* done, std::atomic<long long>* current, pid_t parent) {
+    // A worker dies with its parent (a service manager's SIGTERM, the OOM killer's
+    // SIGKILL): never an orphan that holds the parent's pipes open and keeps computing.
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(1);   // the parent died before the line above
+    int status = 0;
+    try {
+        SpectrumSolver solve = make();
+        std::vector<QuadraticSpectrum> part;
+        for (size_t i = k * n / workers; i < (k + 1) * n / workers; ++i) {
+            throw_if_interrupted();
+            current[k] = static_cast<long long>(i);
+            part.push_back(task(solve, i));
+            const size_t d = ++*done;
+            if (progress) progress(d, n);
+        }
+        put<char>(f, 1);
+        for (const auto& s : part) put_spectrum(f, s);
+    } catch (const std::exception& e) {
+        const int kind = dynamic_cast<const InputError*>(&e)    ? 1
+                         : dynamic_cast<const SolverError*>(&e) ? 2
+                         : dynamic_cast<const Interrupted*>(&e) ? 4
+                                                                : 3;
+        // The marked text, so that the parent's error names option fields as its own would.
+        const auto* ge = dynamic_cast<const Error*>(&e);
+        const std::string what = ge ? ge->marked_text() : std::string(e.what());
+        try {
+            put<char>(f, 0);
+            put(f, kind);
+            put_string(f, what);
+        } catch (...) {   // the parent then reports the file as ended early
+        }
+        status = 1;
+    }
+    if (std::fflush(f) != 0) status = 2;
+    _exit(status);
+}
+
+// Every worker is reaped; one killed by a signal is reported with its task (the first
+// such failure is returned). Polled, so that an interrupt requested in the parent alone
+// (request_interrupt from another thread, a handler that does not reach the workers)
+// stops them at once: `stopped` is then set.
+std::exception_ptr reap_workers(const std::vector<pid_t>& pids, const std::atomic<long long>* current,
+                                bool& stopped) {
+    const size_t workers = pids.size();
+    std::exception_ptr crash;
+    for (size_t k = 0; k < workers; ++k) {
+        int status = 0;
+        while (true) {
+            const pid_t r = waitpid(pids[k], &status, WNOHANG);
+            if (r == pids[k] || (r < 0 && errno != EINTR)) break;
+            if (!stopped && interrupt_requested()) {
+                stopped = true;
+                for (size_t j = k; j < workers; ++j) kill(pids[j], SIGKILL);   // the ones not yet reaped
+            }
+            struct timespec pause {0, 10'000'000};
+            nanosleep(&pause, nullptr);
+        }
+        if (stopped) continue;
+        if (!crash && WIFSIGNALED(status))
+            crash = std::make_exception_ptr(WorkerDied(static_cast<long long>(current[k]), WTERMSIG(status)));
+        else if (!crash && WIFEXITED(status) && WEXITSTATUS(status) == 2)
+            crash = std::make_exception_ptr(Error("a worker process could not write its results (disk full?)"));
+    }
+    return crash;
+}
+
+// The workers' files read back in task order; the first worker's error is rethrown.
+// Closes the files.
+std::vector<QuadraticSpectrum> read_worker_results(const std::vector<std::FILE*>& files, size_t n) {
+    const size_t workers = files.size();
+    std::vector<QuadraticSpectrum> out(n);
+    std::exception_ptr failure;
+    for (size_t k = 0; k < workers; ++k) {
+        std::FILE* f = files[k];
+        try {
+            std::rewind(f);
+            if (get<char>(f) == 1) {
+                for (size_t i = k * n / workers; i < (k + 1) * n / workers; ++i) out[i] = get_spectrum(f);
+            } else {
+                const int kind = get<int>(f);
+                const std::string what = get_string(f);
+                if (kind == 1) throw InputError(what);
+                if (kind == 2) throw SolverError(what);
+                if (kind == 4) throw Interrupted();
+                throw Error(what);
+            }
+        } catch (...) {
+            if (!failure) failure = std::current_exception();
+        }
+        std::fclose(f);
+    }
+    if (failure) std::rethrow_exception(failure);
+    return out;
+}
+
 // Blocks of tasks in forked workers. A worker writes 1 + its spectra, or 0 +
 // the error kind (1 input, 2 solver, 3 other, 4 interrupted) + message, to its file.
 std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_t n, size_t workers,
@@ -182,69 +282,13 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
             std::fclose(f);
             abandon(fmt::format("cannot start worker process {} of {} (fork failed); use fewer jobs", k + 1, workers));
         }
-        if (pid == 0) {
-            // A worker dies with its parent (a service manager's SIGTERM, the OOM killer's
-            // SIGKILL): never an orphan that holds the parent's pipes open and keeps computing.
-            prctl(PR_SET_PDEATHSIG, SIGKILL);
-            if (getppid() != parent) _exit(1);   // the parent died before the line above
-            int status = 0;
-            try {
-                SpectrumSolver solve = make();
-                std::vector<QuadraticSpectrum> part;
-                for (size_t i = k * n / workers; i < (k + 1) * n / workers; ++i) {
-                    throw_if_interrupted();
-                    current[k] = static_cast<long long>(i);
-                    part.push_back(task(solve, i));
-                    const size_t d = ++*done;
-                    if (progress) progress(d, n);
-                }
-                put<char>(f, 1);
-                for (const auto& s : part) put_spectrum(f, s);
-            } catch (const std::exception& e) {
-                const int kind = dynamic_cast<const InputError*>(&e)    ? 1
-                                 : dynamic_cast<const SolverError*>(&e) ? 2
-                                 : dynamic_cast<const Interrupted*>(&e) ? 4
-                                                                        : 3;
-                // The marked text, so that the parent's error names option fields as its own would.
-                const auto* ge = dynamic_cast<const Error*>(&e);
-                const std::string what = ge ? ge->marked_text() : std::string(e.what());
-                try {
-                    put<char>(f, 0);
-                    put(f, kind);
-                    put_string(f, what);
-                } catch (...) {   // the parent then reports the file as ended early
-                }
-                status = 1;
-            }
-            if (std::fflush(f) != 0) status = 2;
-            _exit(status);
-        }
+        if (pid == 0) run_worker(make, n, workers, k, task, progress, f, done, current, parent);
         files.push_back(f);
         pids.push_back(pid);
     }
     // Every worker is reaped; one killed by a signal is reported with its task.
-    // Polled, so that an interrupt requested in the parent alone (request_interrupt
-    // from another thread, a handler that does not reach the workers) stops them at once.
-    std::exception_ptr crash;
     bool stopped = false;
-    for (size_t k = 0; k < workers; ++k) {
-        int status = 0;
-        while (true) {
-            const pid_t r = waitpid(pids[k], &status, WNOHANG);
-            if (r == pids[k] || (r < 0 && errno != EINTR)) break;
-            if (!stopped && interrupt_requested()) {
-                stopped = true;
-                for (size_t j = k; j < workers; ++j) kill(pids[j], SIGKILL);   // the ones not yet reaped
-            }
-            struct timespec pause {0, 10'000'000};
-            nanosleep(&pause, nullptr);
-        }
-        if (stopped) continue;
-        if (!crash && WIFSIGNALED(status))
-            crash = std::make_exception_ptr(WorkerDied(static_cast<long long>(current[k]), WTERMSIG(status)));
-        else if (!crash && WIFEXITED(status) && WEXITSTATUS(status) == 2)
-            crash = std::make_exception_ptr(Error("a worker process could not write its results (disk full?)"));
-    }
+    const std::exception_ptr crash = reap_workers(pids, current, stopped);
     munmap(current_map, workers * sizeof(std::atomic<long long>));
     if (stopped) {
         munmap(shared, sizeof(std::atomic<size_t>));
@@ -257,29 +301,7 @@ std::vector<QuadraticSpectrum> run_in_processes(const SolverFactory& make, size_
         std::rethrow_exception(crash);
     }
     munmap(shared, sizeof(std::atomic<size_t>));
-    std::vector<QuadraticSpectrum> out(n);
-    std::exception_ptr failure;
-    for (size_t k = 0; k < workers; ++k) {
-        std::FILE* f = files[k];
-        try {
-            std::rewind(f);
-            if (get<char>(f) == 1) {
-                for (size_t i = k * n / workers; i < (k + 1) * n / workers; ++i) out[i] = get_spectrum(f);
-            } else {
-                const int kind = get<int>(f);
-                const std::string what = get_string(f);
-                if (kind == 1) throw InputError(what);
-                if (kind == 2) throw SolverError(what);
-                if (kind == 4) throw Interrupted();
-                throw Error(what);
-            }
-        } catch (...) {
-            if (!failure) failure = std::current_exception();
-        }
-        std::fclose(f);
-    }
-    if (failure) std::rethrow_exception(failure);
-    return out;
+    return read_worker_results(files, n);
 }
 
 }  // namespace

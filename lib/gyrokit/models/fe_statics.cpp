@@ -118,6 +118,51 @@ void add_sections(const FeRotor& r, const FreeBody& b, const Eigen::VectorXd& u,
     }
 }
 
+// The displacements: K u = f on the DOFs the holds leave free (held ones stay 0), with
+// the solve's backward error, condition estimate and error bound in out; InputError for
+// a rotor free to move.
+Eigen::VectorXd solve_displacements(const FreeBody& b, const Holds& h, const Eigen::VectorXd& f, StaticResult& out) {
+    std::vector<int> free;
+    for (int i = 0, k = 0; i < b.m.size(); ++i) {
+        if (k < static_cast<int>(h.dofs.size()) && h.dofs[k] == i)
+            ++k;
+        else
+            free.push_back(i);
+    }
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(b.m.size());
+    if (!free.empty()) {
+        const SpMat Kff = block(b.m.K, free, free);
+        const Eigen::VectorXd ff = f(free);
+        Eigen::SparseLU<SpMat> lu;
+        lu.compute(Kff);
+        Eigen::VectorXd uf = lu.info() == Eigen::Success ? Eigen::VectorXd(lu.solve(ff)) : Eigen::VectorXd();
+        const double denom = Kff.norm() * (uf.size() ? uf.norm() : 0.0) + ff.norm();
+        out.backward_error = uf.size() && uf.allFinite() ? (Kff * uf - ff).norm() / std::max(denom, 1e-300) : INFINITY;
+        // ||Kff^-1|| from a few steps of inverse iteration (a lower bound that a free rigid
+        // motion, a pivot at rounding level, drives to 1 / eps): the condition number bounds
+        // the relative error of u by cond * backward error.
+        double inverse = 0.0;
+        if (lu.info() == Eigen::Success) {
+            Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(Kff.rows(), 1.0, 2.0);
+            v /= v.norm();
+            for (int k = 0; k < 8 && std::isfinite(inverse); ++k) {
+                v = lu.solve(v);
+                inverse = v.norm();
+                v /= inverse;
+            }
+        }
+        out.condition = Kff.norm() * inverse;
+        out.error_bound = out.condition * out.backward_error;
+        // A rotor free to fall, tip or slide sideways has no static solution.
+        if (!(out.backward_error <= 1e-10) || !(out.error_bound <= 1e-4))
+            throw InputError("static analysis: the rotor is not held: its bearings and supports leave it free to "
+                             "move in the horizontal or vertical plane; allowed: bearings or supports that hold it in "
+                             "both planes (at least two positions, or one clamped)");
+        u(free) = uf;
+    }
+    return u;
+}
+
 }  // namespace
 
 std::vector<double> fe_gravity_reactions(const FeRotor& r, const std::vector<int>& nodes, double g) {
@@ -188,44 +233,7 @@ StaticResult fe_static(const FeRotor& rotor, const StaticOptions& o) {
     StaticResult out;
     const Eigen::VectorXd f = loads_of(rotor, o, b, out.weight);
 
-    std::vector<int> free;
-    for (int i = 0, k = 0; i < b.m.size(); ++i) {
-        if (k < static_cast<int>(h.dofs.size()) && h.dofs[k] == i)
-            ++k;
-        else
-            free.push_back(i);
-    }
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(b.m.size());
-    if (!free.empty()) {
-        const SpMat Kff = block(b.m.K, free, free);
-        const Eigen::VectorXd ff = f(free);
-        Eigen::SparseLU<SpMat> lu;
-        lu.compute(Kff);
-        Eigen::VectorXd uf = lu.info() == Eigen::Success ? Eigen::VectorXd(lu.solve(ff)) : Eigen::VectorXd();
-        const double denom = Kff.norm() * (uf.size() ? uf.norm() : 0.0) + ff.norm();
-        out.backward_error = uf.size() && uf.allFinite() ? (Kff * uf - ff).norm() / std::max(denom, 1e-300) : INFINITY;
-        // ||Kff^-1|| from a few steps of inverse iteration (a lower bound that a free rigid
-        // motion, a pivot at rounding level, drives to 1 / eps): the condition number bounds
-        // the relative error of u by cond * backward error.
-        double inverse = 0.0;
-        if (lu.info() == Eigen::Success) {
-            Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(Kff.rows(), 1.0, 2.0);
-            v /= v.norm();
-            for (int k = 0; k < 8 && std::isfinite(inverse); ++k) {
-                v = lu.solve(v);
-                inverse = v.norm();
-                v /= inverse;
-            }
-        }
-        out.condition = Kff.norm() * inverse;
-        out.error_bound = out.condition * out.backward_error;
-        // A rotor free to fall, tip or slide sideways has no static solution.
-        if (!(out.backward_error <= 1e-10) || !(out.error_bound <= 1e-4))
-            throw InputError("static analysis: the rotor is not held: its bearings and supports leave it free to "
-                             "move in the horizontal or vertical plane; allowed: bearings or supports that hold it in "
-                             "both planes (at least two positions, or one clamped)");
-        u(free) = uf;
-    }
+    const Eigen::VectorXd u = solve_displacements(b, h, f, out);
 
     // Reactions: of the held DOFs, K u - f; of each constant bearing, its spring force.
     const Eigen::VectorXd Ku = b.m.K * u;

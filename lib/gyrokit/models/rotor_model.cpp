@@ -12,8 +12,6 @@ namespace gyrokit {
 
 namespace {
 
-using SpMatrix = Eigen::SparseMatrix<double>;
-
 // An item's name in messages: its origin, or "<kind> <index>" for a model built in code.
 std::string origin_of(const std::string& origin, const char* kind, std::size_t i) {
     return origin.empty() ? fmt::format("{} {}", kind, i) : origin;
@@ -108,39 +106,8 @@ void set_auto_loads(const FeRotor& r, const std::vector<const RotorBearing*>& sp
     }
 }
 
-// alpha M + beta K of the beam elements alone: the rotor without disks, bearings and
-// pedestals, couplings without springs or mass, the same supports, so its DOFs are the
-// node DOFs of the whole rotor in the same order (the pedestals' come after them).
-SpMatrix shaft_damping_matrix(const FeRotor& r, const ShaftDamping& d, int size) {
-    FeRotor shaft = r;
-    shaft.disks.clear();
-    shaft.bearings.clear();
-    shaft.pedestals.clear();
-    for (FeShaftElement& e : shaft.elements)
-        if (e.coupling) e.coupling = FeCoupling{};
-    const FeRotorMatrices m = shaft.assemble();
-    SpMatrix D(size, size);
-    std::vector<Eigen::Triplet<double>> t;
-    const SpMatrix Ds = d.alpha * m.M + d.beta * m.K;
-    for (int c = 0; c < Ds.outerSize(); ++c)
-        for (SpMatrix::InnerIterator it(Ds, c); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
-    D.setFromTriplets(t.begin(), t.end());
-    return D;
-}
-
-}  // namespace
-
-BuiltRotor build(const RotorModel& model) {
-    const Unit unit = unit_of(model);
-    BuiltRotor out;
-    FeRotor& r = out.rotor;
-    r.shear_deformation = model.shear_deformation;
-    r.rotary_inertia = model.rotary_inertia;
-    r.motion = model.motion;
-    if (model.sections.empty()) throw InputError("sections: none; required: one or more shaft sections");
-    mesh_sections(model, r, out.node_z);
-    const std::vector<double>& z = out.node_z;
-
+// Disks at their nodes, with mass and inertias from the geometry where it is given.
+void place_disks(const RotorModel& model, const std::vector<double>& z, const Unit& unit, FeRotor& r) {
     for (std::size_t i = 0; i < model.disks.size(); ++i) {
         const RotorDisk& d = model.disks[i];
         const std::string origin = origin_of(d.origin, "disk", i);
@@ -160,11 +127,20 @@ BuiltRotor build(const RotorModel& model) {
         }
         r.disks.push_back(disk);
     }
+}
 
-    // Speed-dependent bearings, attached once the constrained DOFs are known.
-    std::vector<const RotorBearing*> speed_dependent;
-    std::vector<int> sd_nodes;
+// The speed-dependent bearings (fluid films, tables) with their nodes and films: they are
+// attached to the system once the constrained DOFs are known.
+struct SpeedDependentBearings {
+    std::vector<const RotorBearing*> bearings;
+    std::vector<int> nodes;
     std::vector<JournalBearing> films;
+};
+
+// Constant bearings go into the FE rotor; the speed-dependent ones are returned.
+SpeedDependentBearings place_bearings(const RotorModel& model, const std::vector<double>& z, const Unit& unit,
+                                      FeRotor& r) {
+    SpeedDependentBearings sd;
     for (std::size_t i = 0; i < model.bearings.size(); ++i) {
         const RotorBearing& b = model.bearings[i];
         const int node = node_at(z, b.z, origin_of(b.origin, "bearing", i) + " z", unit);
@@ -180,18 +156,25 @@ BuiltRotor build(const RotorModel& model) {
         }
         if (b.kind == RotorBearing::Kind::fluid_film && !b.auto_load)
             b.film.validate(origin_of(b.origin, "bearing", i), unit.scale, unit.name);
-        speed_dependent.push_back(&b);
-        sd_nodes.push_back(node);
-        films.push_back(b.film);
+        sd.bearings.push_back(&b);
+        sd.nodes.push_back(node);
+        sd.films.push_back(b.film);
     }
+    return sd;
+}
 
+void place_supports(const RotorModel& model, const std::vector<double>& z, const Unit& unit, FeRotor& r) {
     for (std::size_t i = 0; i < model.supports.size(); ++i) {
         FeSupport s = model.supports[i].hold;
         s.node = node_at(z, model.supports[i].z, origin_of(model.supports[i].origin, "support", i) + " z", unit);
         r.supports.push_back(s);
     }
+}
 
-    // Pedestals: a mass on springs to the ground under the bearings of its node.
+// Pedestals: a mass on springs to the ground under the bearings of its node (constant
+// ones in r, speed-dependent ones at sd_nodes), one per node.
+void place_pedestals(const RotorModel& model, const std::vector<double>& z, const Unit& unit,
+                     const std::vector<int>& sd_nodes, FeRotor& r) {
     for (std::size_t i = 0; i < model.pedestals.size(); ++i) {
         const std::string where = origin_of(model.pedestals[i].origin, "pedestal", i) + " z";
         FePedestal p = model.pedestals[i].pedestal;
@@ -210,22 +193,15 @@ BuiltRotor build(const RotorModel& model) {
                                              where, p.node));
         r.pedestals.push_back(p);
     }
+}
 
-    const FeRotorMatrices m = r.assemble();
-    out.system = m.to_system();
-    GyroscopicSystem& sys = out.system;
-    const ShaftDamping& sd = model.shaft_damping;
-    if (!(std::isfinite(sd.alpha) && sd.alpha >= 0 && std::isfinite(sd.beta) && sd.beta >= 0))
-        throw InputError(fmt::format("shaft damping alpha = {}, beta = {}; allowed: finite numbers >= 0 (1/s, s)",
-                                     sd.alpha, sd.beta));
-    if (sd.alpha > 0 || sd.beta > 0) sys.damping.push_back({"shaft", shaft_damping_matrix(r, sd, m.size())});
-    // Speed-dependent bearings act on x and y alone: an axial or torsional model has no use for them.
-    if (!r.has_lateral()) return out;
-    set_auto_loads(r, speed_dependent, sd_nodes, films, unit);
-
-    for (std::size_t i = 0; i < speed_dependent.size(); ++i) {
-        const RotorBearing& t = *speed_dependent[i];
-        const int node = sd_nodes[i];
+// The speed-dependent bearings as the system's bearing tables, on the DOFs the assembly
+// numbered (m.dof_names), between shaft and pedestal where one stands.
+void attach_speed_dependent(const FeRotor& r, const FeRotorMatrices& m, const SpeedDependentBearings& sd,
+                            GyroscopicSystem& sys) {
+    for (std::size_t i = 0; i < sd.bearings.size(); ++i) {
+        const RotorBearing& t = *sd.bearings[i];
+        const int node = sd.nodes[i];
         const std::string origin = t.origin.empty() ? fmt::format("bearing at node {}", node) : t.origin;
         const bool on_pedestal =
             std::any_of(r.pedestals.begin(), r.pedestals.end(), [&](const FePedestal& p) { return p.node == node; });
@@ -258,7 +234,7 @@ BuiltRotor build(const RotorModel& model) {
         if (t.kind == RotorBearing::Kind::fluid_film) {
             const std::string name = unique_name("fluid_film");
             const int dx = dof("x"), dy = dof("y");
-            sys.bearings.push_back(journal_bearing_table(films[i], name, dx, dy));
+            sys.bearings.push_back(journal_bearing_table(sd.films[i], name, dx, dy));
         } else {
             BearingTable b = t.table;
             b.dof_x = dof("x");
@@ -275,6 +251,60 @@ BuiltRotor build(const RotorModel& model) {
             sys.bearings.back().pedestal_y = dof("py");
         }
     }
+}
+
+// alpha M + beta K of the beam elements alone: the rotor without disks, bearings and
+// pedestals, couplings without springs or mass, the same supports, so its DOFs are the
+// node DOFs of the whole rotor in the same order (the pedestals' come after them).
+Eigen::SparseMatrix<double> shaft_damping_matrix(const FeRotor& r, const ShaftDamping& d, int size) {
+    using SpMatrix = Eigen::SparseMatrix<double>;
+    FeRotor shaft = r;
+    shaft.disks.clear();
+    shaft.bearings.clear();
+    shaft.pedestals.clear();
+    for (FeShaftElement& e : shaft.elements)
+        if (e.coupling) e.coupling = FeCoupling{};
+    const FeRotorMatrices m = shaft.assemble();
+    SpMatrix D(size, size);
+    std::vector<Eigen::Triplet<double>> t;
+    const SpMatrix Ds = d.alpha * m.M + d.beta * m.K;
+    for (int c = 0; c < Ds.outerSize(); ++c)
+        for (SpMatrix::InnerIterator it(Ds, c); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+    D.setFromTriplets(t.begin(), t.end());
+    return D;
+}
+
+}  // namespace
+
+BuiltRotor build(const RotorModel& model) {
+    const Unit unit = unit_of(model);
+    BuiltRotor out;
+    FeRotor& r = out.rotor;
+    r.shear_deformation = model.shear_deformation;
+    r.rotary_inertia = model.rotary_inertia;
+    r.motion = model.motion;
+    if (model.sections.empty()) throw InputError("sections: none; required: one or more shaft sections");
+    mesh_sections(model, r, out.node_z);
+    const std::vector<double>& z = out.node_z;
+
+    place_disks(model, z, unit, r);
+    // Speed-dependent bearings, attached once the constrained DOFs are known.
+    SpeedDependentBearings sd = place_bearings(model, z, unit, r);
+    place_supports(model, z, unit, r);
+    place_pedestals(model, z, unit, sd.nodes, r);
+
+    const FeRotorMatrices m = r.assemble();
+    out.system = m.to_system();
+    const ShaftDamping& damping = model.shaft_damping;
+    if (!(std::isfinite(damping.alpha) && damping.alpha >= 0 && std::isfinite(damping.beta) && damping.beta >= 0))
+        throw InputError(fmt::format("shaft damping alpha = {}, beta = {}; allowed: finite numbers >= 0 (1/s, s)",
+                                     damping.alpha, damping.beta));
+    if (damping.alpha > 0 || damping.beta > 0)
+        out.system.damping.push_back({"shaft", shaft_damping_matrix(r, damping, m.size())});
+    // Speed-dependent bearings act on x and y alone: an axial or torsional model has no use for them.
+    if (!r.has_lateral()) return out;
+    set_auto_loads(r, sd.bearings, sd.nodes, sd.films, unit);
+    attach_speed_dependent(r, m, sd, out.system);
     return out;
 }
 

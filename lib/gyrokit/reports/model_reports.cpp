@@ -39,6 +39,79 @@ int bearing_node(const GyroscopicSystem& s, const BearingTable& b) {
     return node;
 }
 
+// Circulatory forces: a speed-proportional N, or a skew part of the stiffness (cross-coupled
+// bearings, constant or speed-dependent: the usual cause of oil whip).
+std::string circulatory(const GyroscopicSystem& s) {
+    const bool skew_K = SparseMatrix(s.K - SparseMatrix(s.K.transpose())).norm() > 0.0;
+    const bool skew_tables = std::any_of(s.bearings.begin(), s.bearings.end(), [](const BearingTable& b) {
+        return std::any_of(b.speeds.begin(), b.speeds.end(), [&](double w) {
+            const Eigen::Matrix2d k = b.at(w).K;
+            return k(0, 1) != k(1, 0);
+        });
+    });
+    std::vector<std::string> why;
+    if (s.has_circulatory()) why.push_back("N per unit speed");
+    if (skew_K || skew_tables) why.push_back("cross-coupled stiffness");
+    return why.empty() ? std::string("no") : fmt::format("yes ({})", fmt::join(why, ", "));
+}
+
+// The rows only an FE rotor has: elements, masses, diameters, and where its disks,
+// bearings, supports and pedestals stand.
+void add_fe_rotor_rows(Table& t, const FeRotor& r, const GyroscopicSystem& s) {
+    const auto add = [&](const std::string& q, const Cell& v, const std::string& unit = "") {
+        t.add_row({q, v, unit});
+    };
+    add("elements", ll(static_cast<int>(r.elements.size())));
+    add("motion", std::string(to_string(r.motion)));
+    add("dofs_per_node", ll(dofs_per_node(r.motion)));
+    add("couplings", ll(static_cast<int>(std::count_if(r.elements.begin(), r.elements.end(),
+                                                        [](const FeShaftElement& e) { return e.coupling.has_value(); }))));
+    double shaft = 0.0, dmin = 1e300, dmax = 0.0;
+    for (const auto& e : r.elements) {
+        shaft += fe_element_mass(e);   // couplings: their mass
+        if (e.coupling) continue;
+        for (const double d : {e.outer_diameter, e.outer_diameter_end.value_or(e.outer_diameter)}) {
+            dmin = std::min(dmin, d);
+            dmax = std::max(dmax, d);
+        }
+    }
+    add("shaft_mass", shaft, "kg");
+    double disks = 0.0;
+    for (const auto& d : r.disks) disks += d.mass;
+    add("total_mass", shaft + disks, "kg");
+    add("shaft_outer_diameter_min", dmin, "m");
+    add("shaft_outer_diameter_max", dmax, "m");
+    add("shear_deformation", std::string(r.shear_deformation ? "yes" : "no"));
+    add("rotary_inertia", std::string(r.rotary_inertia ? "yes" : "no"));
+    int k = 0;
+    for (const auto& d : r.disks) {
+        const std::string p = fmt::format("disk{}_", ++k);
+        add(p + "z", s.node_z[static_cast<size_t>(d.node)], "m");
+        add(p + "mass", d.mass, "kg");
+        add(p + "Id", d.diametral_inertia, "kg m^2");
+        add(p + "Ip", d.polar_inertia, "kg m^2");
+    }
+    k = 0;
+    for (const auto& b : r.bearings)
+        add(fmt::format("bearing{}_z", ++k), s.node_z[static_cast<size_t>(b.node)], "m");
+    for (const auto& b : s.bearings)
+        if (const int node = bearing_node(s, b); node >= 0)
+            add(fmt::format("bearing{}_z", ++k), s.node_z[static_cast<size_t>(node)], "m");
+    k = 0;
+    for (const auto& sp : r.supports)
+        add(fmt::format("support{}_z", ++k), s.node_z[static_cast<size_t>(sp.node)], "m");
+    k = 0;
+    for (const auto& p : r.pedestals) {
+        const std::string key = fmt::format("pedestal{}_", ++k);
+        add(key + "z", s.node_z[static_cast<size_t>(p.node)], "m");
+        add(key + "mass", p.mass, "kg");
+        add(key + "kxx", p.kxx, "N/m");
+        add(key + "kyy", p.kyy, "N/m");
+        add(key + "cxx", p.cxx, "N s/m");
+        add(key + "cyy", p.cyy, "N s/m");
+    }
+}
+
 }  // namespace
 
 Table model_summary(const Scene& sc) {
@@ -74,21 +147,7 @@ Table model_summary(const Scene& sc) {
     }
     add("nonzeros_M_K", ll(static_cast<int>(s.M.nonZeros() + s.K.nonZeros())));
     add("gyroscopic", std::string(s.G.nonZeros() > 0 && s.G.norm() > 0 ? "yes" : "no"));
-    // Circulatory forces: a speed-proportional N, or a skew part of the stiffness (cross-coupled
-    // bearings, constant or speed-dependent: the usual cause of oil whip).
-    {
-        const bool skew_K = SparseMatrix(s.K - SparseMatrix(s.K.transpose())).norm() > 0.0;
-        const bool skew_tables = std::any_of(s.bearings.begin(), s.bearings.end(), [](const BearingTable& b) {
-            return std::any_of(b.speeds.begin(), b.speeds.end(), [&](double w) {
-                const Eigen::Matrix2d k = b.at(w).K;
-                return k(0, 1) != k(1, 0);
-            });
-        });
-        std::vector<std::string> why;
-        if (s.has_circulatory()) why.push_back("N per unit speed");
-        if (skew_K || skew_tables) why.push_back("cross-coupled stiffness");
-        add("circulatory", why.empty() ? std::string("no") : fmt::format("yes ({})", fmt::join(why, ", ")));
-    }
+    add("circulatory", circulatory(s));
     add("speed_squared_stiffness", std::string(s.has_speed_squared_stiffness() ? "yes" : "no"));
     std::string damping;
     for (const auto& n : s.damping_names()) damping += (damping.empty() ? "" : ", ") + n;
@@ -102,58 +161,7 @@ Table model_summary(const Scene& sc) {
     } else {
         add("rigid_body_eigenvalues_at_rest", std::string("not computed (sparse model)"));
     }
-    if (sc.fe_rotor) {
-        const FeRotor& r = *sc.fe_rotor;
-        add("elements", ll(static_cast<int>(r.elements.size())));
-        add("motion", std::string(to_string(r.motion)));
-        add("dofs_per_node", ll(dofs_per_node(r.motion)));
-        add("couplings", ll(static_cast<int>(std::count_if(r.elements.begin(), r.elements.end(),
-                                                            [](const FeShaftElement& e) { return e.coupling.has_value(); }))));
-        double shaft = 0.0, dmin = 1e300, dmax = 0.0;
-        for (const auto& e : r.elements) {
-            shaft += fe_element_mass(e);   // couplings: their mass
-            if (e.coupling) continue;
-            for (const double d : {e.outer_diameter, e.outer_diameter_end.value_or(e.outer_diameter)}) {
-                dmin = std::min(dmin, d);
-                dmax = std::max(dmax, d);
-            }
-        }
-        add("shaft_mass", shaft, "kg");
-        double disks = 0.0;
-        for (const auto& d : r.disks) disks += d.mass;
-        add("total_mass", shaft + disks, "kg");
-        add("shaft_outer_diameter_min", dmin, "m");
-        add("shaft_outer_diameter_max", dmax, "m");
-        add("shear_deformation", std::string(r.shear_deformation ? "yes" : "no"));
-        add("rotary_inertia", std::string(r.rotary_inertia ? "yes" : "no"));
-        int k = 0;
-        for (const auto& d : r.disks) {
-            const std::string p = fmt::format("disk{}_", ++k);
-            add(p + "z", s.node_z[static_cast<size_t>(d.node)], "m");
-            add(p + "mass", d.mass, "kg");
-            add(p + "Id", d.diametral_inertia, "kg m^2");
-            add(p + "Ip", d.polar_inertia, "kg m^2");
-        }
-        k = 0;
-        for (const auto& b : r.bearings)
-            add(fmt::format("bearing{}_z", ++k), s.node_z[static_cast<size_t>(b.node)], "m");
-        for (const auto& b : s.bearings)
-            if (const int node = bearing_node(s, b); node >= 0)
-                add(fmt::format("bearing{}_z", ++k), s.node_z[static_cast<size_t>(node)], "m");
-        k = 0;
-        for (const auto& sp : r.supports)
-            add(fmt::format("support{}_z", ++k), s.node_z[static_cast<size_t>(sp.node)], "m");
-        k = 0;
-        for (const auto& p : r.pedestals) {
-            const std::string key = fmt::format("pedestal{}_", ++k);
-            add(key + "z", s.node_z[static_cast<size_t>(p.node)], "m");
-            add(key + "mass", p.mass, "kg");
-            add(key + "kxx", p.kxx, "N/m");
-            add(key + "kyy", p.kyy, "N/m");
-            add(key + "cxx", p.cxx, "N s/m");
-            add(key + "cyy", p.cyy, "N s/m");
-        }
-    }
+    if (sc.fe_rotor) add_fe_rotor_rows(t, *sc.fe_rotor, s);
     return t;
 }
 

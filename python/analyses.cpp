@@ -1,0 +1,401 @@
+// The rotor analyses of a System (eig, mode_shapes, campbell, critical_speeds, stability,
+// pervasive, response), one named function per binding: NumPy arrays and dicts out,
+// the GIL released while the library solves.
+#include "analyses.hpp"
+
+#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/gyrokit.hpp>
+
+#include "common.hpp"
+
+#include <pybind11/complex.h>
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+using namespace gyrokit;
+using namespace gyrokit_python;
+
+namespace {
+
+// Notes with their option fields in Python's keywords.
+std::vector<std::string> spelled(const std::vector<std::string>& notes) {
+    std::vector<std::string> out;
+    for (const auto& n : notes) out.push_back(spell_fields(n, keyword_words));
+    return out;
+}
+
+SolverOptions solver_options(const std::string& solver, int modes, const py::object& target, double target_order,
+                             const std::string& method, int lanczos) {
+    SolverOptions o;
+    o.kind = parse_solver_kind(solver);
+    o.modes = modes;
+    if (!target.is_none()) o.target = target.cast<double>();
+    o.target_order = target_order;
+    o.eig.method = parse_eigen_method(method);
+    o.lanczos_vectors = lanczos;
+    return o;
+}
+
+std::vector<double> checked_speeds(const std::vector<double>& speeds) {
+    if (speeds.empty()) throw InputError("speeds: empty; allowed: one or more speeds >= 0 (rad/s)");
+    return speeds;
+}
+
+// One eigenvalue per conjugate pair (Im >= 0), as the CLI prints.
+py::dict spectrum_dict(const QuadraticSpectrum& s) {
+    const auto n = static_cast<py::ssize_t>(s.modes.size());
+    py::array_t<std::complex<double>> lambda(n);
+    py::array_t<double> eta(n), bound(n);
+    py::list whirl, stability;
+    Eigen::MatrixXcd X(s.modes.empty() ? 0 : s.modes.front().right.size(), n);
+    for (py::ssize_t k = 0; k < n; ++k) {
+        const Mode& m = s.modes[static_cast<size_t>(k)];
+        lambda.mutable_at(k) = m.lambda;
+        eta.mutable_at(k) = m.backward_error;
+        bound.mutable_at(k) = m.error_bound;
+        whirl.append(to_string(m.whirl));
+        stability.append(to_string(m.stability()));
+        X.col(k) = m.right;
+    }
+    py::array_t<std::complex<double>> rigid(static_cast<py::ssize_t>(s.rigid_body.size()));
+    for (size_t k = 0; k < s.rigid_body.size(); ++k) rigid.mutable_at(static_cast<py::ssize_t>(k)) = s.rigid_body[k].lambda;
+    py::dict d;
+    d["eigenvalues"] = lambda;
+    d["backward_errors"] = eta;
+    d["error_bounds"] = bound;
+    d["whirl"] = whirl;
+    d["stability"] = stability;
+    d["vectors"] = X;
+    d["rigid_body"] = rigid;
+    d["method"] = s.method;
+    d["notes"] = spelled(s.notes);
+    d["partial"] = s.partial;
+    return d;
+}
+
+py::dict campbell_dict(const CampbellDiagram& cd) {
+    const auto ns = static_cast<py::ssize_t>(cd.speeds.size()), nb = static_cast<py::ssize_t>(cd.branches.size());
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    py::array_t<std::complex<double>> lambda({ns, nb});
+    py::array_t<double> eta({ns, nb});
+    py::list whirl;
+    std::map<double, py::ssize_t> row;
+    for (py::ssize_t i = 0; i < ns; ++i) row[cd.speeds[static_cast<size_t>(i)]] = i;
+    std::vector<std::vector<std::string>> w(static_cast<size_t>(ns), std::vector<std::string>(static_cast<size_t>(nb)));
+    for (py::ssize_t i = 0; i < ns; ++i)
+        for (py::ssize_t b = 0; b < nb; ++b) lambda.mutable_at(i, b) = {nan, nan}, eta.mutable_at(i, b) = nan;
+    py::array_t<int> ids(nb);
+    for (py::ssize_t b = 0; b < nb; ++b) {
+        const Branch& br = cd.branches[static_cast<size_t>(b)];
+        ids.mutable_at(b) = br.id;
+        for (const BranchPoint& p : br.points) {
+            const py::ssize_t i = row.at(p.speed);
+            lambda.mutable_at(i, b) = p.mode.lambda;
+            eta.mutable_at(i, b) = p.mode.backward_error;
+            w[static_cast<size_t>(i)][static_cast<size_t>(b)] = to_string(p.mode.whirl);
+        }
+    }
+    py::dict d;
+    d["speeds"] = py::array_t<double>(static_cast<py::ssize_t>(cd.speeds.size()), cd.speeds.data());
+    d["eigenvalues"] = lambda;
+    d["backward_errors"] = eta;
+    d["whirl"] = w;
+    d["branches"] = ids;
+    d["inserted_speeds"] = cd.inserted_speeds;
+    d["ambiguous_steps"] = cd.ambiguous_steps;
+    d["max_backward_error"] = cd.max_backward_error;
+    d["rigid_body"] = cd.rigid_body;
+    d["notes"] = cd.notes;
+    return d;
+}
+
+// The study every front end runs, from the call's arguments.
+StudyOptions study(const SolverOptions& o, const std::vector<double>& w, const std::vector<int>& harmonics,
+                   Workers workers) {
+    StudyOptions so;
+    so.solver = o;
+    so.speeds = w;
+    so.harmonics = harmonics;
+    so.workers = workers;
+    return so;
+}
+
+// A study's notes and warnings as the result's lists, option fields as keywords.
+void put_diagnostics(py::dict& d, const Diagnostics& diagnostics) {
+    py::list notes, warnings;
+    for (const Diagnostic& x : diagnostics)
+        (x.level == Diagnostic::Level::Warning ? warnings : notes).append(spell_fields(x.text, keyword_words));
+    d["notes"] = notes;
+    d["warnings"] = warnings;
+}
+
+// gk.eig: every eigenvalue at one speed (one per conjugate pair).
+py::dict py_eig(const GyroscopicSystem& s, double speed, const std::string& solver, int modes,
+                const py::object& target, double target_order, const std::string& method, int lanczos) {
+    if (!(std::isfinite(speed) && speed >= 0))
+        throw InputError("speed = " + std::to_string(speed) + ": allowed: a finite number >= 0 (rad/s)");
+    const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
+    QuadraticSpectrum sp;
+    {
+        Released free;
+        sp = choose_solver(s, o).make()(speed);
+    }
+    return spectrum_dict(sp);
+}
+
+// gk.mode_shapes: the shapes as columns, and their orbits per whirl pair (the CLI's --per node table).
+py::dict py_mode_shapes(const GyroscopicSystem& s, double speed, const std::string& solver, int modes,
+                        const py::object& target, double target_order, const std::string& method, int lanczos) {
+    if (!(std::isfinite(speed) && speed >= 0))
+        throw InputError("speed = " + std::to_string(speed) + ": allowed: a finite number >= 0 (rad/s)");
+    const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
+    std::vector<ModeShape> shapes;
+    std::vector<std::string> notes;
+    {
+        Released free;
+        shapes = mode_shapes(s, speed, o, &notes);
+    }
+    const auto k = static_cast<Eigen::Index>(shapes.size());
+    Eigen::VectorXcd lambda(k);
+    Eigen::MatrixXcd vectors(s.size(), k);
+    std::vector<int> number, reference;
+    std::vector<std::string> whirl;
+    // Orbits: one row per mode and whirl pair, as the CLI's --per node table.
+    std::vector<int> orbit_mode, orbit_node;
+    std::vector<std::string> orbit_pair, orbit_unit, orbit_whirl;
+    std::vector<double> orbit_z, major, minor, angle, phase;
+    for (Eigen::Index j = 0; j < k; ++j) {
+        const ModeShape& m = shapes[static_cast<size_t>(j)];
+        lambda(j) = m.mode.lambda;
+        vectors.col(j) = m.shape;
+        number.push_back(m.number);
+        reference.push_back(m.reference);
+        whirl.push_back(to_string(m.mode.whirl));
+        for (const PairOrbit& p : m.orbits) {
+            orbit_mode.push_back(m.number);
+            orbit_pair.push_back(p.name);
+            orbit_unit.push_back(p.unit);
+            orbit_node.push_back(p.node);
+            orbit_z.push_back(p.z);
+            major.push_back(p.orbit.major);
+            minor.push_back(p.orbit.minor);
+            angle.push_back(p.orbit.angle);
+            phase.push_back(p.orbit.phase);
+            orbit_whirl.push_back(to_string(p.orbit.whirl));
+        }
+    }
+    py::dict d;
+    d["eigenvalues"] = lambda;
+    d["shapes"] = vectors;
+    d["numbers"] = number;
+    d["reference"] = reference;
+    d["whirl"] = whirl;
+    d["notes"] = spelled(notes);
+    py::dict orbits;
+    orbits["mode"] = orbit_mode;
+    orbits["pair"] = orbit_pair;
+    orbits["unit"] = orbit_unit;
+    orbits["node"] = orbit_node;
+    orbits["z"] = orbit_z;
+    orbits["major"] = major;
+    orbits["minor"] = minor;
+    orbits["angle"] = angle;
+    orbits["phase"] = phase;
+    orbits["whirl"] = orbit_whirl;
+    d["orbits"] = orbits;
+    return d;
+}
+
+// gk.campbell: the Campbell study, its speeds solved on threads.
+py::dict py_campbell(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
+                     const std::string& solver, int modes, const py::object& target, double target_order,
+                     const std::string& method, int lanczos, int jobs) {
+    const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
+    const std::vector<double> w = checked_speeds(speeds);
+    const Workers workers = threads(jobs);
+    CampbellStudy st;
+    {
+        Released free;
+        st = campbell_study(s, study(o, w, harmonics, workers));
+    }
+    py::dict d = campbell_dict(st.diagram);
+    put_diagnostics(d, st.diagnostics);
+    return d;
+}
+
+// gk.critical_speeds: the critical speeds with their API 684 amplification factors, as columns.
+py::dict py_critical_speeds(const GyroscopicSystem& s, const std::vector<double>& speeds,
+                            const std::vector<int>& harmonics, const std::string& solver, int modes,
+                            const py::object& target, double target_order, const std::string& method, int lanczos,
+                            int jobs) {
+    const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
+    const std::vector<double> w = checked_speeds(speeds);
+    const Workers workers = threads(jobs);
+    for (int h : harmonics)
+        if (h < 1) throw InputError("harmonics: " + std::to_string(h) + " is not allowed; allowed: whole numbers >= 1");
+    CriticalSpeedStudy st;
+    {
+        Released free;
+        st = critical_speed_study(s, study(o, w, harmonics, workers));
+    }
+    const std::vector<CriticalSpeed>& cs = st.critical;
+    const auto n = static_cast<py::ssize_t>(cs.size());
+    py::array_t<double> speed(n), damping(n), amplification(n);
+    py::array_t<int> harmonic(n), branch(n);
+    py::array_t<bool> critical(n);
+    py::list whirl, af_method;
+    for (py::ssize_t k = 0; k < n; ++k) {
+        const CriticalSpeed& c = cs[static_cast<size_t>(k)];
+        speed.mutable_at(k) = c.speed;
+        damping.mutable_at(k) = c.mode.damping_ratio();
+        harmonic.mutable_at(k) = c.harmonic;
+        branch.mutable_at(k) = c.branch;
+        whirl.append(to_string(c.mode.whirl));
+        amplification.mutable_at(k) = c.amplification;
+        af_method.append(to_string(c.amplification_method));
+        critical.mutable_at(k) = c.api684_critical();
+    }
+    py::dict d;
+    d["speeds"] = speed;
+    d["harmonic"] = harmonic;
+    d["branch"] = branch;
+    d["whirl"] = whirl;
+    d["damping_ratio"] = damping;
+    d["amplification"] = amplification;
+    d["af_method"] = af_method;
+    d["api684_critical"] = critical;
+    put_diagnostics(d, st.tracked.diagnostics);
+    return d;
+}
+
+// gk.stability: the speeds where a mode becomes unstable or stable again.
+py::dict py_stability(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
+                      const std::string& solver, int modes, const py::object& target, double target_order,
+                      const std::string& method, int lanczos, int jobs) {
+    const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
+    const std::vector<double> w = checked_speeds(speeds);
+    const Workers workers = threads(jobs);
+    StabilityStudy st;
+    {
+        Released free;
+        st = stability_study(s, study(o, w, harmonics, workers));
+    }
+    const std::vector<StabilityChange>& ch = st.changes;
+    const auto n = static_cast<py::ssize_t>(ch.size());
+    py::array_t<double> speed(n), bound(n);
+    py::array_t<int> branch(n);
+    py::array_t<bool> unstable(n);
+    for (py::ssize_t k = 0; k < n; ++k) {
+        speed.mutable_at(k) = ch[static_cast<size_t>(k)].speed;
+        bound.mutable_at(k) = ch[static_cast<size_t>(k)].bound;
+        branch.mutable_at(k) = ch[static_cast<size_t>(k)].branch;
+        unstable.mutable_at(k) = ch[static_cast<size_t>(k)].becomes_unstable;
+    }
+    py::dict d;
+    d["speeds"] = speed;
+    d["bounds"] = bound;
+    d["branch"] = branch;
+    d["becomes_unstable"] = unstable;
+    put_diagnostics(d, st.tracked.diagnostics);
+    return d;
+}
+
+// gk.pervasive: the Hautus check, one row per mode a damping component does not reach.
+py::dict py_pervasive(const GyroscopicSystem& s, const std::vector<double>& speeds, double tolerance,
+                      const std::string& solver, int modes, const py::object& target, double target_order,
+                      const std::string& method, int lanczos, int jobs) {
+    if (!(tolerance > 0.0 && tolerance < 1.0))
+        throw InputError("tolerance = " + std::to_string(tolerance) + ": allowed: 0 < tolerance < 1");
+    PervasiveOptions po;
+    po.tolerance = tolerance;
+    po.modes = modes;
+    po.solver = solver_options(solver, modes, target, target_order, method, lanczos);
+    po.threads = threads(jobs);
+    const std::vector<double> w = checked_speeds(speeds);
+    PervasiveReport rep;
+    {
+        Released free;
+        rep = pervasive_damping(s, w, po);
+    }
+    py::list damping, whirl;
+    std::vector<double> speed, frequency, residual;
+    std::vector<int> mode;
+    for (const auto& l : rep.losses) {
+        damping.append(l.damping);
+        whirl.append(to_string(l.lost.whirl));
+        speed.push_back(l.speed);
+        frequency.push_back(l.lost.frequency());
+        residual.push_back(l.residual);
+        mode.push_back(l.mode);
+    }
+    py::dict d;
+    d["checked"] = rep.checked;
+    d["damping"] = damping;
+    d["speeds"] = py::array_t<double>(static_cast<py::ssize_t>(speed.size()), speed.data());
+    d["mode"] = py::array_t<int>(static_cast<py::ssize_t>(mode.size()), mode.data());
+    d["frequency"] = py::array_t<double>(static_cast<py::ssize_t>(frequency.size()), frequency.data());
+    d["whirl"] = whirl;
+    d["residual"] = py::array_t<double>(static_cast<py::ssize_t>(residual.size()), residual.data());
+    return d;
+}
+
+// gk.response: the unbalance response per speed and DOF, with the CLI's stability warnings.
+py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
+                     const std::string& solver, int modes, const py::object& target, double target_order) {
+    const std::vector<double> w = checked_speeds(speeds);
+    const SolverOptions o = solver_options(solver, modes, target, target_order, "qz", 0);
+    const SolverKind kind = resolve_solver_kind(s.size(), o.kind);
+    Eigen::MatrixXcd Z(static_cast<Eigen::Index>(w.size()), s.size());
+    Diagnostics warnings;
+    {
+        Released free;
+        s.validate("response: the system");
+        for (std::size_t i = 0; i < w.size(); ++i) {
+            throw_if_interrupted();
+            Z.row(static_cast<Eigen::Index>(i)) = unbalance_response(s, w[i], kind).transpose();
+        }
+        // The CLI's check: where a mode is unstable, the response is no steady state.
+        warnings = response_stability_warnings(s, study(o, w, harmonics, Workers{1, WorkerKind::Threads}));
+    }
+    py::dict d;
+    d["Z"] = Z;
+    put_diagnostics(d, warnings);
+    return d;
+}
+
+}  // namespace
+
+void bind_analyses(py::module_& m) {
+    m.def("eig", &py_eig, py::arg("system"), py::arg("speed"), py::arg("solver"), py::arg("modes"), py::arg("target"),
+          py::arg("target_order"), py::arg("method"), py::arg("lanczos"));
+
+    m.def("mode_shapes", &py_mode_shapes, py::arg("system"), py::arg("speed"), py::arg("solver"), py::arg("modes"),
+          py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"));
+
+    m.def("campbell", &py_campbell, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
+          py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),
+          py::arg("jobs"));
+
+    m.def("critical_speeds", &py_critical_speeds, py::arg("system"), py::arg("speeds"), py::arg("harmonics"),
+          py::arg("solver"), py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"),
+          py::arg("lanczos"), py::arg("jobs"));
+
+    m.def("stability", &py_stability, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
+          py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),
+          py::arg("jobs"));
+
+    m.def("pervasive", &py_pervasive, py::arg("system"), py::arg("speeds"), py::arg("tolerance"), py::arg("solver"),
+          py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),
+          py::arg("jobs"));
+
+    m.def("response", &py_response, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
+          py::arg("modes"), py::arg("target"), py::arg("target_order"));
+}
