@@ -2,6 +2,7 @@
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/energy_bound.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
 #include <gyrokit/analysis/probe.hpp>
 #include <gyrokit/analysis/scalar_search.hpp>
@@ -118,11 +119,16 @@ void check_log_dec(const Sweep& s, const CampbellDiagram& cd, const StudyOptions
 
 void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& c, std::size_t& q,
                      DesignResult& r) {
-    // The stability study of the CLI and Python, but over every mode unless the scene
-    // names a number: a design is judged on all of them (a sparse model: its window).
+    // The stability study of the CLI and Python, but a design is judged on every mode
+    // unless the scene names a number: the modes in range are tracked, and those above
+    // the band are covered by the energy bound where it shows that none of them can grow
+    // (symmetric stiffness, damping that dissipates); else every mode is solved at every
+    // speed (a sparse model: its window).
     StudyOptions so = study_options(sc);
-    if (so.solver.modes == kModesInRange) so.solver.modes = 0;
     so.speeds = SpeedRange{0.0, c.up_to, c.count}.points();
+    if (so.solver.modes == kModesInRange &&
+        !modes_above_band_decay(sc.system, so.speeds, excitation_band(so.speeds, so.harmonics)))
+        so.solver.modes = 0;
     const StabilityStudy st = stability_study(sc.system, so);
     const CampbellDiagram& cd = st.tracked.diagram;
     const std::vector<StabilityChange>& changes = st.changes;

@@ -1,5 +1,6 @@
 #include <gyrokit/study/rotor_study.hpp>
 
+#include <gyrokit/analysis/energy_bound.hpp>
 #include <gyrokit/core/bearing_table.hpp>
 #include <gyrokit/reports/campbell_reports.hpp>
 
@@ -91,6 +92,16 @@ StabilityStudy stability_study(const GyroscopicSystem& sys, const StudyOptions& 
                  (unstable_ranges(s.tracked.diagram).empty()
                       ? "none is unstable (neutral modes: Re lambda within its error bound)"
                       : "some are unstable throughout")});
+    // The modes above the band are not tracked; where the energy bound shows that none
+    // of them grows, the verdict covers them too.
+    if (std::isfinite(s.tracked.diagram.band))
+        if (const auto b = modes_above_band_decay(sys, opt.speeds, s.tracked.diagram.band))
+            d.push_back({Level::Note, Topic::Verdict,
+                         fmt::format("the modes above {:.6g} {}, not tracked, grow nowhere: the energy bound (symmetric "
+                                     "stiffness, damping that dissipates) gives Re lambda <= {:.2g} 1/s for every "
+                                     "mode at every speed, a log decrement of at least {:.2g} up there",
+                                     opt.unit.factor * s.tracked.diagram.band, opt.unit.name, b->rate,
+                                     -2.0 * M_PI * b->rate / s.tracked.diagram.band)});
     return s;
 }
 
