@@ -8,6 +8,7 @@
 #include <gyrokit/analysis/continuation.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/io/scene.hpp>
+#include <gyrokit/study/rotor_study.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -202,4 +203,27 @@ TEST_CASE("amplification factor: half-power on the Jeffcott rotor's unbalance re
     set_amplification_factors(cs, bare);
     CHECK(cs[0].amplification_method == AmplificationMethod::DampingRatio);
     CHECK(cs[0].amplification == Approx(5.0).epsilon(1e-9));
+}
+
+TEST_CASE("a Campbell study gives the same bits on one worker, on two processes, on two threads and again",
+          "[continuation][reproducible]") {
+    // LAPACK 3.11's dggev3 read workspace before writing it: the last digits followed whatever
+    // the memory held, so a second call or another worker printed other 12th digits.
+    const Scene sc = load_scene(std::string(GYROKIT_DATA_DIR) + "/three_disk_rotor.toml");
+    StudyOptions so = study_options(sc);
+    const auto diagram = [&](Workers w) {
+        so.workers = w;
+        return campbell_study(sc.system, so).diagram;
+    };
+    const CampbellDiagram one = diagram(Workers{1});
+    for (const Workers& w : {Workers{2, WorkerKind::Processes}, Workers{2, WorkerKind::Threads}, Workers{1}}) {
+        const CampbellDiagram other = diagram(w);
+        REQUIRE(other.speeds == one.speeds);
+        REQUIRE(other.branches.size() == one.branches.size());
+        for (std::size_t b = 0; b < one.branches.size(); ++b) {
+            REQUIRE(other.branches[b].points.size() == one.branches[b].points.size());
+            for (std::size_t k = 0; k < one.branches[b].points.size(); ++k)
+                CHECK(other.branches[b].points[k].mode.lambda == one.branches[b].points[k].mode.lambda);
+        }
+    }
 }

@@ -2,7 +2,9 @@
 
 #include <gyrokit/core/error.hpp>
 
+#include <algorithm>
 #include <complex>
+#include <vector>
 #define lapack_complex_float std::complex<float>
 #define lapack_complex_double std::complex<double>
 #include <lapacke.h>
@@ -11,17 +13,35 @@
 
 namespace gyrokit {
 
+// dggev3 through its _work form with zero-filled buffers: LAPACK 3.11's multishift
+// QZ (dlaqz0, dlaqz4) reads entries of its workspace and of alphar/alphai/beta before
+// writing them (valgrind: "depends on uninitialised value"), which made the result
+// differ in its last digits with whatever the memory held: from call to call in one
+// process and from worker to worker. Zeroed, the same pencil gives the same bits.
+lapack_int dggev3_zeroed(char jobvl, lapack_int n, Eigen::MatrixXd& A, Eigen::MatrixXd& B, Eigen::VectorXd& ar,
+                         Eigen::VectorXd& ai, Eigen::VectorXd& be, Eigen::MatrixXd& vl, lapack_int ldvl,
+                         Eigen::MatrixXd& vr) {
+    double query = 0.0;
+    lapack_int info = LAPACKE_dggev3_work(LAPACK_COL_MAJOR, jobvl, 'V', n, A.data(), n, B.data(), n, ar.data(),
+                                          ai.data(), be.data(), vl.data(), ldvl, vr.data(), n, &query, -1);
+    if (info != 0) return info;
+    std::vector<double> work(static_cast<std::size_t>(std::max(1.0, query)), 0.0);
+    return LAPACKE_dggev3_work(LAPACK_COL_MAJOR, jobvl, 'V', n, A.data(), n, B.data(), n, ar.data(), ai.data(),
+                               be.data(), vl.data(), ldvl, vr.data(), n, work.data(),
+                               static_cast<lapack_int>(work.size()));
+}
+
 GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_left, bool classic) {
     const lapack_int n = static_cast<lapack_int>(A.rows());
-    Eigen::VectorXd ar(n), ai(n), be(n);
-    Eigen::MatrixXd vl(want_left ? n : 1, want_left ? n : 1), vr(n, n);
+    Eigen::VectorXd ar = Eigen::VectorXd::Zero(n), ai = Eigen::VectorXd::Zero(n), be = Eigen::VectorXd::Zero(n);
+    Eigen::MatrixXd vl = Eigen::MatrixXd::Zero(want_left ? n : 1, want_left ? n : 1);
+    Eigen::MatrixXd vr = Eigen::MatrixXd::Zero(n, n);
     const char jobvl = want_left ? 'V' : 'N';
     const lapack_int ldvl = want_left ? n : 1;
     const lapack_int info =
         classic ? LAPACKE_dggev(LAPACK_COL_MAJOR, jobvl, 'V', n, A.data(), n, B.data(), n, ar.data(), ai.data(),
                                 be.data(), vl.data(), ldvl, vr.data(), n)
-                : LAPACKE_dggev3(LAPACK_COL_MAJOR, jobvl, 'V', n, A.data(), n, B.data(), n, ar.data(), ai.data(),
-                                 be.data(), vl.data(), ldvl, vr.data(), n);
+                : dggev3_zeroed(jobvl, n, A, B, ar, ai, be, vl, ldvl, vr);
     if (info != 0)
         throw SolverError(fmt::format("LAPACK {} (QZ) failed with info = {}; the pencil may contain "
                                       "NaN or be too badly scaled",
