@@ -2,6 +2,7 @@
 // Exit status: 0 success, 2 bad input, 3 solver failure, 1 anything else.
 #include "cli/common.hpp"
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/io/table.hpp>
 
 #include <algorithm>
 #include <cstring>
@@ -64,6 +65,7 @@ int main(int argc, char** argv) {
     CLI::App app{"gyrokit: Campbell diagrams, critical speeds, pervasive damping and unbalance response "
                  "of gyroscopic systems"};
     app.require_subcommand(1);
+    set_field_spelling(cli::flag_words);   // tables name the options as flags
     std::vector<cli::Command> commands = cli::add_spectrum_commands(app);
     for (auto& c : cli::add_tracking_commands(app)) commands.push_back(std::move(c));
     for (auto& c : cli::add_response_commands(app)) commands.push_back(std::move(c));

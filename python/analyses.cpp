@@ -7,6 +7,9 @@
 #include <gyrokit/gyrokit.hpp>
 
 #include "common.hpp"
+#include "reports.hpp"
+
+#include <gyrokit/reports/reports.hpp>
 
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
@@ -15,7 +18,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -119,8 +124,9 @@ py::dict campbell_dict(const CampbellDiagram& cd) {
 
 // The study every front end runs, from the call's arguments.
 StudyOptions study(const SolverOptions& o, const std::vector<double>& w, const std::vector<int>& harmonics,
-                   Workers workers) {
+                   Workers workers, const SpeedUnit& unit = {}) {
     StudyOptions so;
+    so.unit = unit;
     so.solver = o;
     so.speeds = w;
     so.harmonics = harmonics;
@@ -137,9 +143,17 @@ void put_diagnostics(py::dict& d, const Diagnostics& diagnostics) {
     d["warnings"] = warnings;
 }
 
+// What the CLI prints and draws of the result, in the call's unit.
+void put_reports(py::dict& d, const std::vector<Table>& tables, const std::optional<Figure>& figure = std::nullopt) {
+    d["tables"] = tables_list(tables);
+    d["figure"] = figure ? py::object(figure_dict(*figure)) : py::object(py::none());
+}
+
 // gk.eig: every eigenvalue at one speed (one per conjugate pair).
 py::dict py_eig(const GyroscopicSystem& s, double speed, const std::string& solver, int modes,
-                const py::object& target, double target_order, const std::string& method, int lanczos) {
+                const py::object& target, double target_order, const std::string& method, int lanczos,
+                const std::string& unit) {
+    const SpeedUnit u = SpeedUnit::parse(unit);
     if (!(std::isfinite(speed) && speed >= 0))
         throw InputError("speed = " + std::to_string(speed) + ": allowed: a finite number >= 0 (rad/s)");
     const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
@@ -148,12 +162,16 @@ py::dict py_eig(const GyroscopicSystem& s, double speed, const std::string& solv
         Released free;
         sp = choose_solver(s, o).make()(speed);
     }
-    return spectrum_dict(sp);
+    py::dict d = spectrum_dict(sp);
+    put_reports(d, {eig_table(sp, speed, u)});
+    return d;
 }
 
 // gk.mode_shapes: the shapes as columns, and their orbits per whirl pair (the CLI's --per node table).
 py::dict py_mode_shapes(const GyroscopicSystem& s, double speed, const std::string& solver, int modes,
-                        const py::object& target, double target_order, const std::string& method, int lanczos) {
+                        const py::object& target, double target_order, const std::string& method, int lanczos,
+                        const std::string& unit, const std::string& title) {
+    const SpeedUnit u = SpeedUnit::parse(unit);
     if (!(std::isfinite(speed) && speed >= 0))
         throw InputError("speed = " + std::to_string(speed) + ": allowed: a finite number >= 0 (rad/s)");
     const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
@@ -211,23 +229,36 @@ py::dict py_mode_shapes(const GyroscopicSystem& s, double speed, const std::stri
     orbits["phase"] = phase;
     orbits["whirl"] = orbit_whirl;
     d["orbits"] = orbits;
+    put_reports(d,
+                {mode_list_table(shapes, s.dof_names, speed, u), mode_orbit_table(shapes, speed, u),
+                 mode_dof_table(shapes, s.dof_names, s.dof_units, speed, u)},
+                mode_shape_figure(shapes, speed, u, title));
     return d;
 }
 
 // gk.campbell: the Campbell study, its speeds solved on threads.
 py::dict py_campbell(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
                      const std::string& solver, int modes, const py::object& target, double target_order,
-                     const std::string& method, int lanczos, int jobs) {
+                     const std::string& method, int lanczos, int jobs, const std::string& unit,
+                     const std::string& title) {
     const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
     const std::vector<double> w = checked_speeds(speeds);
     const Workers workers = threads(jobs);
+    const SpeedUnit u = SpeedUnit::parse(unit);
     CampbellStudy st;
+    std::vector<CriticalSpeed> cs;
     {
         Released free;
-        st = campbell_study(s, study(o, w, harmonics, workers));
+        StudyOptions so = study(o, w, harmonics, workers, u);
+        st = campbell_study(s, so);
+        cs = critical_speeds_of(s, st, so);   // the summary's and the figure's
     }
     py::dict d = campbell_dict(st.diagram);
     put_diagnostics(d, st.diagnostics);
+    std::vector<Table> tables{campbell_summary(st.diagram, cs, u, "", st.plan.kind == SolverKind::Sparse),
+                              campbell_table(st.diagram, u)};
+    for (Table& t : critical_tables(cs, u)) tables.push_back(std::move(t));
+    put_reports(d, tables, campbell_figure(st.diagram, cs, harmonics, u, title));
     return d;
 }
 
@@ -235,7 +266,8 @@ py::dict py_campbell(const GyroscopicSystem& s, const std::vector<double>& speed
 py::dict py_critical_speeds(const GyroscopicSystem& s, const std::vector<double>& speeds,
                             const std::vector<int>& harmonics, const std::string& solver, int modes,
                             const py::object& target, double target_order, const std::string& method, int lanczos,
-                            int jobs) {
+                            int jobs, const std::string& unit) {
+    const SpeedUnit u = SpeedUnit::parse(unit);
     const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
     const std::vector<double> w = checked_speeds(speeds);
     const Workers workers = threads(jobs);
@@ -244,7 +276,7 @@ py::dict py_critical_speeds(const GyroscopicSystem& s, const std::vector<double>
     CriticalSpeedStudy st;
     {
         Released free;
-        st = critical_speed_study(s, study(o, w, harmonics, workers));
+        st = critical_speed_study(s, study(o, w, harmonics, workers, u));
     }
     const std::vector<CriticalSpeed>& cs = st.critical;
     const auto n = static_cast<py::ssize_t>(cs.size());
@@ -273,20 +305,22 @@ py::dict py_critical_speeds(const GyroscopicSystem& s, const std::vector<double>
     d["af_method"] = af_method;
     d["api684_critical"] = critical;
     put_diagnostics(d, st.tracked.diagnostics);
+    put_reports(d, critical_tables(cs, u));
     return d;
 }
 
 // gk.stability: the speeds where a mode becomes unstable or stable again.
 py::dict py_stability(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
                       const std::string& solver, int modes, const py::object& target, double target_order,
-                      const std::string& method, int lanczos, int jobs) {
+                      const std::string& method, int lanczos, int jobs, const std::string& unit) {
+    const SpeedUnit u = SpeedUnit::parse(unit);
     const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
     const std::vector<double> w = checked_speeds(speeds);
     const Workers workers = threads(jobs);
     StabilityStudy st;
     {
         Released free;
-        st = stability_study(s, study(o, w, harmonics, workers));
+        st = stability_study(s, study(o, w, harmonics, workers, u));
     }
     const std::vector<StabilityChange>& ch = st.changes;
     const auto n = static_cast<py::ssize_t>(ch.size());
@@ -305,13 +339,15 @@ py::dict py_stability(const GyroscopicSystem& s, const std::vector<double>& spee
     d["branch"] = branch;
     d["becomes_unstable"] = unstable;
     put_diagnostics(d, st.tracked.diagnostics);
+    put_reports(d, {stability_table(ch, u)});
     return d;
 }
 
 // gk.pervasive: the Hautus check, one row per mode a damping component does not reach.
 py::dict py_pervasive(const GyroscopicSystem& s, const std::vector<double>& speeds, double tolerance,
                       const std::string& solver, int modes, const py::object& target, double target_order,
-                      const std::string& method, int lanczos, int jobs) {
+                      const std::string& method, int lanczos, int jobs, const std::string& unit) {
+    const SpeedUnit u = SpeedUnit::parse(unit);
     if (!(tolerance > 0.0 && tolerance < 1.0))
         throw InputError("tolerance = " + std::to_string(tolerance) + ": allowed: 0 < tolerance < 1");
     PervasiveOptions po;
@@ -344,12 +380,15 @@ py::dict py_pervasive(const GyroscopicSystem& s, const std::vector<double>& spee
     d["frequency"] = py::array_t<double>(static_cast<py::ssize_t>(frequency.size()), frequency.data());
     d["whirl"] = whirl;
     d["residual"] = py::array_t<double>(static_cast<py::ssize_t>(residual.size()), residual.data());
+    put_reports(d, {pervasive_table(rep, u)});
     return d;
 }
 
 // gk.response: the unbalance response per speed and DOF, with the CLI's stability warnings.
 py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
-                     const std::string& solver, int modes, const py::object& target, double target_order) {
+                     const std::string& solver, int modes, const py::object& target, double target_order,
+                     const std::vector<int>& outputs, const std::string& unit, const std::string& title) {
+    const SpeedUnit u = SpeedUnit::parse(unit);
     const std::vector<double> w = checked_speeds(speeds);
     const SolverOptions o = solver_options(solver, modes, target, target_order, "qz", 0);
     const SolverKind kind = resolve_solver_kind(s.size(), o.kind);
@@ -363,11 +402,24 @@ py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speed
             Z.row(static_cast<Eigen::Index>(i)) = unbalance_response(s, w[i], kind).transpose();
         }
         // The CLI's check: where a mode is unstable, the response is no steady state.
-        warnings = response_stability_warnings(s, study(o, w, harmonics, Workers{1, WorkerKind::Threads}));
+        warnings = response_stability_warnings(s, study(o, w, harmonics, Workers{1, WorkerKind::Threads}, u));
     }
     py::dict d;
     d["Z"] = Z;
     put_diagnostics(d, warnings);
+    // The curve of the DOFs asked for (all: every DOF), as the CLI's table and Bode and polar plots; of
+    // many DOFs the plots show the six largest of each unit (by their grid maxima).
+    ResponseCurve rc;
+    rc.speeds = w;
+    for (int k = 0; k < s.size(); ++k)
+        if (outputs.empty() || std::find(outputs.begin(), outputs.end(), k) != outputs.end()) rc.dofs.push_back(k);
+    rc.Z.resize(Z.rows(), static_cast<Eigen::Index>(rc.dofs.size()));
+    for (std::size_t j = 0; j < rc.dofs.size(); ++j) rc.Z.col(static_cast<Eigen::Index>(j)) = Z.col(rc.dofs[j]);
+    const std::vector<int> shown = rc.dofs.size() <= 6 ? std::vector<int>{}
+                                                       : largest_responses(s.dof_units, response_maxima(rc, {}), 6);
+    put_reports(d, {response_table(s.dof_names, s.dof_units, rc, u)},
+                response_figure(s.dof_names, s.dof_units, rc, u, title, shown));
+    d["polar_figure"] = figure_dict(response_polar_figure(s.dof_names, s.dof_units, rc, u, title, shown));
     return d;
 }
 
@@ -375,27 +427,29 @@ py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speed
 
 void bind_analyses(py::module_& m) {
     m.def("eig", &py_eig, py::arg("system"), py::arg("speed"), py::arg("solver"), py::arg("modes"), py::arg("target"),
-          py::arg("target_order"), py::arg("method"), py::arg("lanczos"));
+          py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("unit") = "rad/s");
 
     m.def("mode_shapes", &py_mode_shapes, py::arg("system"), py::arg("speed"), py::arg("solver"), py::arg("modes"),
-          py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"));
+          py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("unit") = "rad/s",
+          py::arg("title") = "");
 
     m.def("campbell", &py_campbell, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
           py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),
-          py::arg("jobs"));
+          py::arg("jobs"), py::arg("unit") = "rad/s", py::arg("title") = "");
 
     m.def("critical_speeds", &py_critical_speeds, py::arg("system"), py::arg("speeds"), py::arg("harmonics"),
           py::arg("solver"), py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"),
-          py::arg("lanczos"), py::arg("jobs"));
+          py::arg("lanczos"), py::arg("jobs"), py::arg("unit") = "rad/s");
 
     m.def("stability", &py_stability, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
           py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),
-          py::arg("jobs"));
+          py::arg("jobs"), py::arg("unit") = "rad/s");
 
     m.def("pervasive", &py_pervasive, py::arg("system"), py::arg("speeds"), py::arg("tolerance"), py::arg("solver"),
           py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),
-          py::arg("jobs"));
+          py::arg("jobs"), py::arg("unit") = "rad/s");
 
     m.def("response", &py_response, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
-          py::arg("modes"), py::arg("target"), py::arg("target_order"));
+          py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("outputs") = std::vector<int>{},
+          py::arg("unit") = "rad/s", py::arg("title") = "");
 }

@@ -267,7 +267,8 @@ void bind_models(py::module_& m, py::class_<Scene>& scene) {
         .def(py::init([](std::vector<RotorSection> sections, std::vector<RotorDisk> disks,
                          std::vector<RotorBearing> bearings, std::vector<RotorSupport> supports,
                          std::vector<RotorPedestal> pedestals, const std::string& motion, bool shear_deformation,
-                         bool rotary_inertia, double damping_alpha, double damping_beta) {
+                         bool rotary_inertia, double damping_alpha, double damping_beta,
+                         const py::object& damping_zeta) {
                  RotorModel r;
                  r.sections = named(std::move(sections), "sections");
                  r.disks = named(std::move(disks), "disks");
@@ -277,14 +278,19 @@ void bind_models(py::module_& m, py::class_<Scene>& scene) {
                  r.motion = motion_of(motion);
                  r.shear_deformation = shear_deformation;
                  r.rotary_inertia = rotary_inertia;
-                 r.shaft_damping = {damping_alpha, damping_beta};
+                 r.shaft_damping = {damping_alpha, damping_beta, {}};
+                 // One ratio for every mode, or the ratios of the lowest modes (the last for those above).
+                 if (!damping_zeta.is_none())
+                     r.shaft_damping.modal = py::isinstance<py::sequence>(damping_zeta)
+                                                 ? damping_zeta.cast<std::vector<double>>()
+                                                 : std::vector<double>{damping_zeta.cast<double>()};
                  return r;
              }),
              py::kw_only(), py::arg("sections"), py::arg("disks") = std::vector<RotorDisk>{},
              py::arg("bearings") = std::vector<RotorBearing>{}, py::arg("supports") = std::vector<RotorSupport>{},
              py::arg("pedestals") = std::vector<RotorPedestal>{}, py::arg("motion") = "lateral",
              py::arg("shear_deformation") = true, py::arg("rotary_inertia") = true, py::arg("damping_alpha") = 0.0,
-             py::arg("damping_beta") = 0.0)
+             py::arg("damping_beta") = 0.0, py::arg("damping_zeta") = py::none())
         .def_readonly("sections", &RotorModel::sections)
         .def_readonly("disks", &RotorModel::disks)
         .def_readonly("bearings", &RotorModel::bearings)

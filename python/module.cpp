@@ -11,6 +11,7 @@
 #include "critical_map.hpp"
 #include "frf.hpp"
 #include "models.hpp"
+#include "reports.hpp"
 #include "screening.hpp"
 #include "statics.hpp"
 #include "system.hpp"
@@ -28,7 +29,11 @@ namespace gyrokit_python {
 // Python's keyword arguments for the library's option fields (as the CLI's flag_words).
 std::string keyword_words(const std::string& field) {
     if (field == "lanczos_vectors") return "lanczos =";
-    return "";   // the others are named as in the library
+    if (field == "speeds") return "speeds";
+    if (field == "units") return "unit =";
+    if (field == "rows") return "result.table('campbell')";
+    if (field == "plot") return "result.plot(FILE.svg)";
+    return "";   // the others are named as in the library: "modes =
 }
 
 // The library's parallelism rule; its note (jobs capped to the cores) as a Python warning.
@@ -71,6 +76,7 @@ PYBIND11_MODULE(_core, m) {
     bind_statics(m);
     bind_critical_map(m);
     bind_frf(m);
+    bind_reports(m);
     bind_analyses(m);
     bind_screening(m);
     bind_balancing(m);

@@ -89,7 +89,7 @@ std::string flag_words(const std::string& field) {
         {"directory", "--dir"},       {"jobs", "--jobs"},     {"lanczos_vectors", "--lanczos"},
         {"method", "--method"},       {"modes", "--modes"},   {"motion", "--motion"},
         {"solver", "--solver"},       {"speeds", "--speeds"}, {"target", "--target"},
-        {"target_order", "--target-order"}};
+        {"target_order", "--target-order"}, {"units", "--units"}, {"rows", "--rows, or --format csv|json"}, {"plot", "--plot FILE.svg"}};
     for (const auto& [name, flag] : flags)
         if (field == name) return flag;
     return "";

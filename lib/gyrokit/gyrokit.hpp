@@ -5,6 +5,7 @@
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/energy_bound.hpp>
 #include <gyrokit/analysis/fluid_critical_speeds.hpp>
 #include <gyrokit/analysis/frequency_response.hpp>
 #include <gyrokit/analysis/mode_shapes.hpp>
@@ -36,6 +37,7 @@
 #include <gyrokit/io/bearing_csv.hpp>
 #include <gyrokit/io/export.hpp>
 #include <gyrokit/io/matrix_market.hpp>
+#include <gyrokit/io/output_file.hpp>
 #include <gyrokit/io/plot.hpp>
 #include <gyrokit/reports/reports.hpp>
 #include <gyrokit/io/scene.hpp>

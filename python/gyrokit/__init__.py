@@ -15,6 +15,8 @@ import numpy as _np
 from ._core import Error, InputError, Scene, SolverError, System, __version__
 from ._core import Bearing, Disk, Pedestal, Rotor, Section, Support, coupling
 from . import _core
+from ._results import Result as _Result, Table, draw, load_tables
+from ._results import UNITS as _UNITS, factor as _factor
 
 __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene", "eig", "campbell",
            "critical_speeds", "stability", "screen", "EigResult", "CampbellResult", "CriticalSpeeds",
@@ -22,7 +24,7 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "Sommerfeld",
            "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
            "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap", "frf",
-           "FrequencyResponse"]
+           "FrequencyResponse", "Table", "load_tables", "draw"]
 
 
 def load_scene(path, overrides=None, motion=None) -> Scene:
@@ -32,7 +34,6 @@ def load_scene(path, overrides=None, motion=None) -> Scene:
     return _core.load_scene(str(path), dict(overrides or {}), motion or "")
 
 
-_UNITS = {"rad/s": 1.0, "Hz": 1.0 / (2 * _np.pi), "rpm": 30.0 / _np.pi}   # from rad/s
 _IN_RANGE = -1   # modes not given: those in the range the speeds and harmonics excite
 
 
@@ -61,47 +62,48 @@ def _options(model, solver, modes, target, target_order):
                         target_order=float(target_order or 0.0))
 
 
-def _speeds(model, speeds):
+def _speeds(model, speeds, unit="rad/s"):
+    """Speeds in rad/s: the given ones (in `unit`) or the scene's [speeds] (rad/s)."""
     if speeds is None:
         speeds = model.speeds if isinstance(model, Scene) else None
         if speeds is None:
             raise InputError("speeds: none given and the scene has no [speeds]; give speeds=np.linspace(...)")
+    else:
+        speeds = _np.asarray(speeds, dtype=float) / _factor(unit)
     w = _np.asarray(speeds, dtype=float).ravel()
     if w.size == 0 or not _np.all(_np.isfinite(w)) or _np.any(w < 0):
-        raise InputError("speeds: allowed: one or more finite speeds >= 0 (rad/s)")
+        raise InputError(f"speeds: allowed: one or more finite speeds >= 0 ({unit})")
     return w.tolist()
 
 
-class _Result:
-    def _frame(self, columns):
-        try:
-            import pandas as pd
-        except ImportError as e:  # pragma: no cover - depends on the machine
-            raise ImportError("to_pandas() needs pandas (Debian: python3-pandas)") from e
-        return pd.DataFrame(columns)
+def _title(model):
+    return model.title if isinstance(model, Scene) else ""
 
-    @staticmethod
-    def _pyplot():
-        try:
-            import matplotlib.pyplot as plt
-        except ImportError as e:  # pragma: no cover - depends on the machine
-            raise ImportError("plot() needs matplotlib (Debian: python3-matplotlib)") from e
-        return plt
 
-    def __repr__(self):
-        fields = ", ".join(f"{k}" for k in self.__dict__ if not k.startswith("_"))
-        return f"<gyrokit.{type(self).__name__}: {fields}>"
+def _log_dec(lam):
+    """-2 pi Re / Im of each eigenvalue (NaN where it does not oscillate), as the CLI's log_dec."""
+    lam = _np.asarray(lam)
+    with _np.errstate(divide="ignore", invalid="ignore"):
+        return _np.where(lam.imag > 0, -2 * _np.pi * lam.real / _np.where(lam.imag > 0, lam.imag, 1.0), _np.nan)
+
+
+def _zeta(lam):
+    lam = _np.asarray(lam)
+    return _np.where(_np.abs(lam) > 0, -lam.real / _np.maximum(_np.abs(lam), 1e-300), 0.0)
 
 
 class EigResult(_Result):
-    """Eigenvalues at one speed, one per conjugate pair (Im >= 0) as the CLI prints, by frequency."""
+    """Eigenvalues at one speed, one per conjugate pair (Im >= 0) as the CLI prints, by frequency. `speed` and
+    `frequencies` in `unit`; eigenvalues (and their real parts) in 1/s, as the CLI's re_1_s, im_rad_s."""
 
-    def __init__(self, d, speed):
-        self.speed = speed
+    def __init__(self, d, speed, unit="rad/s"):
+        f = _factor(unit)
+        self.unit = unit
+        self.speed = speed * f
         self.eigenvalues = d["eigenvalues"]
-        self.frequencies = self.eigenvalues.imag
-        self.damping_ratios = _np.where(_np.abs(self.eigenvalues) > 0,
-                                        -self.eigenvalues.real / _np.maximum(_np.abs(self.eigenvalues), 1e-300), 0.0)
+        self.frequencies = self.eigenvalues.imag * f
+        self.damping_ratios = _zeta(self.eigenvalues)
+        self.log_decrements = _log_dec(self.eigenvalues)
         self.backward_errors = d["backward_errors"]
         self.error_bounds = d["error_bounds"]
         self.whirl = list(d["whirl"])
@@ -110,20 +112,27 @@ class EigResult(_Result):
         self.rigid_body = d["rigid_body"]
         self.method = d["method"]
         self.notes = list(d["notes"])
+        self._take_reports(d)
 
     def to_pandas(self):
         return self._frame({"real": self.eigenvalues.real, "frequency": self.frequencies,
-                            "damping_ratio": self.damping_ratios, "whirl": self.whirl, "stability": self.stability,
+                            "damping_ratio": self.damping_ratios, "log_dec": self.log_decrements,
+                            "whirl": self.whirl, "stability": self.stability,
                             "backward_error": self.backward_errors, "error_bound": self.error_bounds})
 
 
 class CampbellResult(_Result):
-    """Tracked modes over speed: eigenvalues[i, b] of branch b at speeds[i] (NaN where b has no point)."""
+    """Tracked modes over speed: eigenvalues[i, b] of branch b at speeds[i] (NaN where b has no point).
+    `speeds` and `frequencies` in `unit`; eigenvalues in 1/s; damping_ratios and log_decrements alike."""
 
-    def __init__(self, d):
-        self.speeds = d["speeds"]
+    def __init__(self, d, unit="rad/s"):
+        f = _factor(unit)
+        self.unit = unit
+        self.speeds = d["speeds"] * f
         self.eigenvalues = d["eigenvalues"]
-        self.frequencies = self.eigenvalues.imag
+        self.frequencies = self.eigenvalues.imag * f
+        self.damping_ratios = _np.where(_np.isnan(self.eigenvalues.real), _np.nan, _zeta(self.eigenvalues))
+        self.log_decrements = _log_dec(self.eigenvalues)
         self.backward_errors = d["backward_errors"]
         self.whirl = d["whirl"]
         self.branches = d["branches"]
@@ -133,10 +142,12 @@ class CampbellResult(_Result):
         self.rigid_body = d["rigid_body"]
         self.notes = list(d["notes"])
         self.warnings = list(d["warnings"])
+        self._take_reports(d)
 
     def to_pandas(self):
         """One row per speed and branch: the CLI's campbell table."""
-        rows = {"speed": [], "branch": [], "frequency": [], "real": [], "whirl": [], "backward_error": []}
+        rows = {"speed": [], "branch": [], "frequency": [], "real": [], "whirl": [], "damping_ratio": [],
+                "log_dec": [], "backward_error": []}
         for i, w in enumerate(self.speeds):
             for b, branch in enumerate(self.branches):
                 lam = self.eigenvalues[i, b]
@@ -144,61 +155,58 @@ class CampbellResult(_Result):
                     continue
                 rows["speed"].append(w)
                 rows["branch"].append(int(branch))
-                rows["frequency"].append(lam.imag)
+                rows["frequency"].append(self.frequencies[i, b])
                 rows["real"].append(lam.real)
                 rows["whirl"].append(self.whirl[i][b])
+                rows["damping_ratio"].append(self.damping_ratios[i, b])
+                rows["log_dec"].append(self.log_decrements[i, b])
                 rows["backward_error"].append(self.backward_errors[i, b])
         return self._frame(rows)
-
-    def plot(self, ax=None, harmonics=(1,)):
-        """Frequency of every branch over speed, with the lines k * speed."""
-        plt = self._pyplot()
-        ax = ax or plt.subplots()[1]
-        for b, branch in enumerate(self.branches):
-            ax.plot(self.speeds, self.frequencies[:, b], label=f"mode {branch}")
-        for k in harmonics:
-            ax.plot(self.speeds, k * self.speeds, "k--", linewidth=0.8, label=f"{k}x")
-        ax.set_xlabel("speed (rad/s)")
-        ax.set_ylabel("frequency (rad/s)")
-        ax.legend(fontsize="small")
-        return ax
 
 
 class CriticalSpeeds(_Result):
     """Crossings of tracked branches with the lines k * speed, refined by root finding, each with its
     API 684 amplification factor (half-power on the unbalance response, else 1/(2 zeta)); api684_critical
-    is False for a heavily damped crossing (amplification factor < 2.5)."""
+    is False for a heavily damped crossing (amplification factor < 2.5). Speeds in `unit`."""
 
-    def __init__(self, d):
-        self.speeds = d["speeds"]
+    def __init__(self, d, unit="rad/s"):
+        self.unit = unit
+        self.speeds = d["speeds"] * _factor(unit)
         self.harmonic = d["harmonic"]
         self.branch = d["branch"]
         self.whirl = list(d["whirl"])
         self.damping_ratio = d["damping_ratio"]
+        z = _np.asarray(self.damping_ratio, dtype=float)
+        with _np.errstate(invalid="ignore", divide="ignore"):
+            self.log_dec = _np.where(z < 1, 2 * _np.pi * z / _np.sqrt(_np.maximum(1 - z * z, 0.0)), _np.nan)
         self.amplification = d["amplification"]
         self.af_method = list(d["af_method"])
         self.notes = list(d["notes"])
         self.warnings = list(d["warnings"])
         self.api684_critical = d["api684_critical"]
+        self._take_reports(d)
 
     def to_pandas(self):
         return self._frame({"speed": self.speeds, "branch": self.branch, "whirl": self.whirl,
-                            "harmonic": self.harmonic, "damping_ratio": self.damping_ratio,
+                            "harmonic": self.harmonic, "damping_ratio": self.damping_ratio, "log_dec": self.log_dec,
                             "amplification": self.amplification, "af_method": self.af_method,
                             "api684_critical": self.api684_critical})
 
 
 class StabilityChanges(_Result):
     """Speeds where a branch becomes unstable (or stable again), refined by root finding;
-    bounds: |speed - exact threshold| <= bound (rad/s)."""
+    bounds: |speed - exact threshold| <= bound. Both in `unit`."""
 
-    def __init__(self, d):
-        self.speeds = d["speeds"]
-        self.bounds = d["bounds"]
+    def __init__(self, d, unit="rad/s"):
+        f = _factor(unit)
+        self.unit = unit
+        self.speeds = d["speeds"] * f
+        self.bounds = d["bounds"] * f
         self.branch = d["branch"]
         self.becomes_unstable = d["becomes_unstable"]
         self.notes = list(d["notes"])
         self.warnings = list(d["warnings"])
+        self._take_reports(d)
 
     def to_pandas(self):
         return self._frame({"speed": self.speeds, "bound": self.bounds, "branch": self.branch,
@@ -206,21 +214,27 @@ class StabilityChanges(_Result):
 
 
 def eig(model, speed, *, solver=None, modes=None, target=None, target_order=None, method="qz",
-        lanczos=0) -> EigResult:
-    """Eigenvalues at one speed (rad/s). solver: "auto" | "dense" | "sparse"; modes: 0 = all (dense)."""
+        lanczos=0, unit="rad/s") -> EigResult:
+    """Eigenvalues at one speed (in `unit`: rad/s, Hz, rpm). solver: "auto" | "dense" | "sparse"; modes: 0 = all."""
     system, o = _options(model, solver, modes, target, target_order)
-    return EigResult(_core.eig(system, float(speed), method=method, lanczos=int(lanczos), **o), float(speed))
+    w = float(speed) / _factor(unit)
+    return EigResult(_core.eig(system, w, method=method, lanczos=int(lanczos), unit=unit, **o), w, unit)
 
 
 class ModeShapes(_Result):
     """Mode shapes at one speed: shapes[:, j] is mode numbers[j]'s eigenvector scaled to 1 at its
     reference entry (the largest in metres); orbits: one entry per mode and whirl pair (semi-axes
-    major/minor in the pair's unit, angle and phase in rad, whirl), as `gyrokit modes` prints."""
+    major/minor in the pair's unit, angle and phase in rad, whirl), as `gyrokit modes` prints.
+    `speed` and `frequencies` in `unit`."""
 
-    def __init__(self, d, speed, dof_names):
-        self.speed = speed
+    def __init__(self, d, speed, dof_names, unit="rad/s"):
+        f = _factor(unit)
+        self.unit = unit
+        self.speed = speed * f
         self.eigenvalues = d["eigenvalues"]
-        self.frequencies = self.eigenvalues.imag
+        self.frequencies = self.eigenvalues.imag * f
+        self.damping_ratios = _zeta(self.eigenvalues)
+        self.log_decrements = _log_dec(self.eigenvalues)
         self.shapes = d["shapes"]
         self.numbers = list(d["numbers"])
         self.reference = [dof_names[i] for i in d["reference"]]
@@ -229,44 +243,78 @@ class ModeShapes(_Result):
         self.orbits = {k: (list(v) if k in ("pair", "unit", "whirl") else _np.asarray(v))
                        for k, v in d["orbits"].items()}
         self.notes = list(d["notes"])
+        self._take_reports(d)
 
     def to_pandas(self):
         """One row per mode and whirl pair: the orbit table."""
         return self._frame(self.orbits)
 
+    def plot_orbits(self, mode=None, ax=None):
+        """The orbits of one mode (a number of `numbers`; default the first) in 3D: each whirl pair's ellipse
+        in metres at its axial position z, the shaft's axis drawn through them (matplotlib)."""
+        plt = self._pyplot()
+        number = self.numbers[0] if mode is None else mode
+        if number not in self.numbers:
+            raise InputError(f"mode = {number!r}; allowed: {', '.join(map(str, self.numbers))}")
+        o = self.orbits
+        rows = [i for i in range(len(o["mode"])) if o["mode"][i] == number and o["unit"][i] == "m"]
+        if ax is None:
+            ax = plt.figure().add_subplot(projection="3d")
+        t = _np.linspace(0.0, 2 * _np.pi, 73)
+        zs = []
+        for i in rows:
+            a, b, th, ph = o["major"][i], o["minor"][i], o["angle"][i], o["phase"][i]
+            u, v = a * _np.cos(t + ph), b * _np.sin(t + ph)
+            ax.plot(_np.full_like(t, o["z"][i]), u * _np.cos(th) - v * _np.sin(th), u * _np.sin(th) + v * _np.cos(th),
+                    color="C0" if o["whirl"][i] == "forward" else "C3", linewidth=0.8)
+            zs.append(o["z"][i])
+        if zs:
+            ax.plot([min(zs), max(zs)], [0, 0], [0, 0], "k-.", linewidth=0.6)
+        j = self.numbers.index(number)
+        ax.set_title(f"mode {number}: {self.frequencies[j]:.6g} {self.unit} ({self.whirl[j]})")
+        ax.set_xlabel("z [m]")
+        ax.set_ylabel("x")
+        ax.set_zlabel("y")
+        return ax
+
 
 def modes(model, speed, *, solver=None, modes=None, target=None, target_order=None, method="qz",
-          lanczos=0) -> ModeShapes:
-    """Mode shapes at one speed (rad/s): the `modes` lowest (None: the scene's, 0: all)."""
+          lanczos=0, unit="rad/s") -> ModeShapes:
+    """Mode shapes at one speed (in `unit`): the `modes` lowest (None: the scene's, 0: all)."""
     system, o = _options(model, solver, modes, target, target_order)
-    return ModeShapes(_core.mode_shapes(system, float(speed), method=method, lanczos=int(lanczos), **o),
-                      float(speed), system.dof_names)
+    w = float(speed) / _factor(unit)
+    return ModeShapes(_core.mode_shapes(system, w, method=method, lanczos=int(lanczos), unit=unit,
+                                        title=_title(model), **o), w, system.dof_names, unit)
 
 
 def campbell(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
-             method="qz", lanczos=0, jobs=1) -> CampbellResult:
-    """Campbell diagram over `speeds` (rad/s; default: the scene's [speeds]); jobs threads (0 = all cores).
+             method="qz", lanczos=0, jobs=1, unit="rad/s") -> CampbellResult:
+    """Campbell diagram over `speeds` (in `unit`; default: the scene's [speeds]); jobs threads (0 = all cores).
     modes None (and no scene value): the modes in the band the speeds and harmonics excite."""
     system, o = _options(model, solver, modes, target, target_order)
-    return CampbellResult(_core.campbell(system, _speeds(model, speeds), _harmonics(model, harmonics),
-                                         method=method, lanczos=int(lanczos), jobs=int(jobs), **o))
+    return CampbellResult(_core.campbell(system, _speeds(model, speeds, unit), _harmonics(model, harmonics),
+                                         method=method, lanczos=int(lanczos), jobs=int(jobs), unit=unit,
+                                         title=_title(model), **o), unit)
 
 
 def critical_speeds(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
-                    method="qz", lanczos=0, jobs=1) -> CriticalSpeeds:
-    """Critical speeds (rad/s) where tracked branches cross k * speed, k in `harmonics` (default: the scene's, or 1)."""
+                    method="qz", lanczos=0, jobs=1, unit="rad/s") -> CriticalSpeeds:
+    """Critical speeds (in `unit`) where tracked branches cross k * speed, k in `harmonics` (default: the scene's,
+    or 1); `speeds` in `unit` too."""
     system, o = _options(model, solver, modes, target, target_order)
-    return CriticalSpeeds(_core.critical_speeds(system, _speeds(model, speeds), _harmonics(model, harmonics),
-                                                method=method, lanczos=int(lanczos), jobs=int(jobs), **o))
+    return CriticalSpeeds(_core.critical_speeds(system, _speeds(model, speeds, unit), _harmonics(model, harmonics),
+                                                method=method, lanczos=int(lanczos), jobs=int(jobs), unit=unit, **o),
+                          unit)
 
 
 def stability(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
-               method="qz", lanczos=0, jobs=1) -> StabilityChanges:
+               method="qz", lanczos=0, jobs=1, unit="rad/s") -> StabilityChanges:
     """Speeds where a mode becomes unstable or stable again (Re lambda beyond its error bound), over the
-    modes in range (modes None) or the K lowest (modes = K; 0: every mode)."""
+    modes in range (modes None) or the K lowest (modes = K; 0: every mode); speeds in `unit`."""
     system, o = _options(model, solver, modes, target, target_order)
-    return StabilityChanges(_core.stability(system, _speeds(model, speeds), _harmonics(model, harmonics),
-                                            method=method, lanczos=int(lanczos), jobs=int(jobs), **o))
+    return StabilityChanges(_core.stability(system, _speeds(model, speeds, unit), _harmonics(model, harmonics),
+                                            method=method, lanczos=int(lanczos), jobs=int(jobs), unit=unit, **o),
+                            unit)
 
 
 class ScreenResult(_Result):
@@ -424,8 +472,7 @@ def frf(model, speed, input, frequencies, *, dofs=None, unit="rad/s", solver=Non
     (names; default: the input itself, the driving point) to a unit harmonic force at DOF `input` (a name: "y12";
     a moment: "tx12"), at `frequencies`; `speed` and `frequencies` in `unit` (rad/s, Hz, rpm). Dense or sparse LU
     by `solver` (auto: sparse above 200 DOFs). See docs/frf.md."""
-    if unit not in _UNITS:
-        raise InputError(f"unit = {unit!r}; allowed: rad/s, Hz, rpm")
+    _factor(unit)
     system = model.system if isinstance(model, Scene) else model
     if not isinstance(system, System):
         raise InputError(f"expected a gyrokit.System or gyrokit.Scene, got {type(model).__name__}")
@@ -531,8 +578,7 @@ def critical_speed_map(model, *, stiffness=None, modes=3, unit="rad/s") -> Criti
     with the rigid-support limit and the bearings' own curves; speeds in `unit` (rad/s, Hz, rpm)."""
     if not isinstance(model, Scene):
         raise InputError(f"critical_speed_map: expected a gyrokit.Scene of an FE rotor, got {type(model).__name__}")
-    if unit not in _UNITS:
-        raise InputError(f"unit = {unit!r}; allowed: rad/s, Hz, rpm")
+    _factor(unit)
     return CriticalSpeedMap(_core.critical_speed_map(model, [float(k) for k in (stiffness or [])], int(modes)), unit)
 
 
@@ -555,16 +601,20 @@ def static(model, *, gravity=9.80665, loads=None) -> StaticDeflection:
 
 
 class PervasiveLosses(_Result):
-    """Speeds where a damping set (a component alone, or "total") does not reach a mode (Hautus test)."""
+    """Speeds where a damping set (a component alone, or "total") does not reach a mode (Hautus test);
+    speeds and frequencies in `unit`."""
 
-    def __init__(self, d):
+    def __init__(self, d, unit="rad/s"):
+        f = _factor(unit)
+        self.unit = unit
         self.checked = list(d["checked"])
         self.damping = list(d["damping"])
-        self.speeds = d["speeds"]
+        self.speeds = d["speeds"] * f
         self.mode = d["mode"]
-        self.frequency = d["frequency"]
+        self.frequency = d["frequency"] * f
         self.whirl = list(d["whirl"])
         self.residual = d["residual"]
+        self._take_reports(d)
 
     def to_pandas(self):
         return self._frame({"damping": self.damping, "speed": self.speeds, "mode": self.mode,
@@ -572,44 +622,42 @@ class PervasiveLosses(_Result):
 
 
 class Response(_Result):
-    """Steady unbalance response: complex amplitudes Z[i, k] of DOF dofs[k] at speeds[i]; amplitude, phase (deg)."""
+    """Steady unbalance response: complex amplitudes Z[i, k] of DOF dofs[k] at speeds[i] (in `unit`); amplitude,
+    phase (deg). plot(): the CLI's Bode plot (amplitude per unit, phase); plot_polar(): its polar plot."""
 
-    def __init__(self, speeds, dofs, Z, d=None):
+    def __init__(self, speeds, dofs, Z, d=None, unit="rad/s"):
+        self.unit = unit
         self.notes = list(d["notes"]) if d else []
         self.warnings = list(d["warnings"]) if d else []
-        self.speeds = _np.asarray(speeds, dtype=float)
+        self.speeds = _np.asarray(speeds, dtype=float) * _factor(unit)
         self.dofs = list(dofs)
         self.amplitudes = Z
         self.amplitude = _np.abs(Z)
         self.phase = _np.degrees(_np.angle(Z))   # degrees, as the CLI prints
+        if d:
+            self._take_reports(d)
+            self._polar = d.get("polar_figure")
 
     def to_pandas(self):
         rows = {"speed": _np.repeat(self.speeds, len(self.dofs)), "dof": self.dofs * len(self.speeds),
                 "amplitude": self.amplitude.ravel(), "phase": self.phase.ravel()}
         return self._frame(rows)
 
-    def plot(self, ax=None):
-        """Amplitude over speed, one line per DOF."""
-        plt = self._pyplot()
-        ax = ax or plt.subplots()[1]
-        for k, name in enumerate(self.dofs):
-            ax.semilogy(self.speeds, self.amplitude[:, k], label=name)
-        ax.set_xlabel("speed (rad/s)")
-        ax.set_ylabel("amplitude")
-        ax.legend(fontsize="small")
-        return ax
+    def plot_polar(self, path=None, axes=None):
+        """The CLI's polar plot (--plot --polar): Im Z against Re Z, one panel per unit, true to shape."""
+        return self._draw_figure(getattr(self, "_polar", None), path, axes)
 
 
 def pervasive(model, speeds=None, *, tolerance=1e-8, solver=None, modes=None, target=None, target_order=None,
-              method="qz", lanczos=0, jobs=1) -> PervasiveLosses:
-    """Hautus pervasive-damping check of each damping component alone and of the total damping."""
+              method="qz", lanczos=0, jobs=1, unit="rad/s") -> PervasiveLosses:
+    """Hautus pervasive-damping check of each damping component alone and of the total damping; speeds in `unit`."""
     system, o = _options(model, solver, modes, target, target_order)
-    return PervasiveLosses(_core.pervasive(system, _speeds(model, speeds), float(tolerance), method=method,
-                                           lanczos=int(lanczos), jobs=int(jobs), **o))
+    return PervasiveLosses(_core.pervasive(system, _speeds(model, speeds, unit), float(tolerance), method=method,
+                                           lanczos=int(lanczos), jobs=int(jobs), unit=unit, **o), unit)
 
 
-def response(model, speeds=None, *, dofs=None, solver=None, harmonics=None, modes=None) -> Response:
-    """Unbalance response at `speeds` of the named DOFs (default: all), by a dense or (solver "sparse";
+def response(model, speeds=None, *, dofs=None, solver=None, harmonics=None, modes=None, unit="rad/s") -> Response:
+    """Unbalance response at `speeds` (in `unit`) of the named DOFs (default: all), by a dense or (solver "sparse";
     "auto" above 200 DOFs) sparse LU of the dynamic stiffness. As the CLI, the modes (`modes`, default
     those in range) are tracked over the range: each unstable range is a RuntimeWarning and in `warnings`
     (the response there is not a steady state)."""
@@ -618,13 +666,14 @@ def response(model, speeds=None, *, dofs=None, solver=None, harmonics=None, mode
     missing = [d for d in (dofs or []) if d not in names]
     if missing:
         raise InputError(f"dofs: {missing[0]!r} is not a DOF of the model; allowed: names such as {names[0]!r}")
-    d = _core.response(system, _speeds(model, speeds), _harmonics(model, harmonics), **o)
-    for w in d["warnings"]:
-        _warnings.warn(w, RuntimeWarning, stacklevel=2)
+    w = _speeds(model, speeds, unit)
+    cols = [] if dofs is None else [names.index(x) for x in dofs]
+    d = _core.response(system, w, _harmonics(model, harmonics), outputs=cols, unit=unit, title=_title(model), **o)
+    for msg in d["warnings"]:
+        _warnings.warn(msg, RuntimeWarning, stacklevel=2)
     if dofs is None:
-        return Response(_speeds(model, speeds), names, d["Z"], d)
-    cols = [names.index(x) for x in dofs]
-    return Response(_speeds(model, speeds), list(dofs), d["Z"][:, cols], d)
+        return Response(w, names, d["Z"], d, unit)
+    return Response(w, list(dofs), d["Z"][:, cols], d, unit)
 
 
 # Models from keyword parameters, with the key names, checks and messages of scene files

@@ -56,8 +56,28 @@ class Scene:
     def speeds(self) -> Optional[npt.NDArray[np.float64]]: ...
 
 Model = Union[System, Scene]
+Path = Union[str, PathLike[str]]
 
-class ModeShapes:
+class Table:
+    key: str
+    title: str
+    columns: list[str]
+    rows: list[list[Any]]
+    def __init__(self, key: str, title: str, columns: Sequence[str], rows: Sequence[Sequence[Any]]) -> None: ...
+    def column(self, name: str) -> list[Any]: ...
+    def to_pandas(self) -> Any: ...
+
+def load_tables(path: Path) -> list[Table]: ...
+def draw(figure: Mapping[str, Any], axes: Any = ...) -> Any: ...
+
+class _Result:
+    tables: list[Table]
+    def table(self, key: str) -> Table: ...
+    def save(self, path: Path, table: Optional[str] = ...) -> Path: ...
+    def plot(self, path: Optional[Path] = ..., axes: Any = ...) -> Any: ...
+
+class ModeShapes(_Result):
+    unit: str
     speed: float
     eigenvalues: npt.NDArray[np.complex128]
     frequencies: npt.NDArray[np.float64]
@@ -67,14 +87,19 @@ class ModeShapes:
     whirl: list[str]
     dof_names: list[str]
     orbits: dict[str, Any]
+    damping_ratios: npt.NDArray[np.float64]
+    log_decrements: npt.NDArray[np.float64]
     notes: list[str]
     def to_pandas(self) -> Any: ...
+    def plot_orbits(self, mode: Optional[int] = ..., ax: Any = ...) -> Any: ...
 
-class EigResult:
+class EigResult(_Result):
+    unit: str
     speed: float
     eigenvalues: npt.NDArray[np.complex128]
     frequencies: npt.NDArray[np.float64]
     damping_ratios: npt.NDArray[np.float64]
+    log_decrements: npt.NDArray[np.float64]
     backward_errors: npt.NDArray[np.float64]
     error_bounds: npt.NDArray[np.float64]
     whirl: list[str]
@@ -85,10 +110,13 @@ class EigResult:
     notes: list[str]
     def to_pandas(self) -> Any: ...
 
-class CampbellResult:
+class CampbellResult(_Result):
+    unit: str
     speeds: npt.NDArray[np.float64]
     eigenvalues: npt.NDArray[np.complex128]
     frequencies: npt.NDArray[np.float64]
+    damping_ratios: npt.NDArray[np.float64]
+    log_decrements: npt.NDArray[np.float64]
     backward_errors: npt.NDArray[np.float64]
     whirl: list[list[str]]
     branches: npt.NDArray[np.int32]
@@ -99,14 +127,15 @@ class CampbellResult:
     notes: list[str]
     warnings: list[str]
     def to_pandas(self) -> Any: ...
-    def plot(self, ax: Any = ..., harmonics: Sequence[int] = ...) -> Any: ...
 
-class CriticalSpeeds:
+class CriticalSpeeds(_Result):
+    unit: str
     speeds: npt.NDArray[np.float64]
     harmonic: npt.NDArray[np.int32]
     branch: npt.NDArray[np.int32]
     whirl: list[str]
     damping_ratio: npt.NDArray[np.float64]
+    log_dec: npt.NDArray[np.float64]
     amplification: npt.NDArray[np.float64]
     af_method: list[str]
     api684_critical: npt.NDArray[np.bool_]
@@ -114,7 +143,8 @@ class CriticalSpeeds:
     warnings: list[str]
     def to_pandas(self) -> Any: ...
 
-class StabilityChanges:
+class StabilityChanges(_Result):
+    unit: str
     speeds: npt.NDArray[np.float64]
     bounds: npt.NDArray[np.float64]
     branch: npt.NDArray[np.int32]
@@ -126,22 +156,22 @@ class StabilityChanges:
 def load_scene(path: Union[str, PathLike[str]], overrides: Optional[Mapping[str, float]] = ...) -> Scene: ...
 def modes(model: Model, speed: float, *, solver: Optional[str] = ..., modes: Optional[int] = ...,
           target: Optional[float] = ..., target_order: Optional[float] = ..., method: str = ...,
-          lanczos: int = ...) -> ModeShapes: ...
+          lanczos: int = ..., unit: str = ...) -> ModeShapes: ...
 def eig(model: Model, speed: float, *, solver: Optional[str] = ..., modes: Optional[int] = ...,
         target: Optional[float] = ..., target_order: Optional[float] = ..., method: str = ...,
-        lanczos: int = ...) -> EigResult: ...
+        lanczos: int = ..., unit: str = ...) -> EigResult: ...
 def campbell(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, harmonics: Optional[Sequence[int]] = ...,
              solver: Optional[str] = ...,
              modes: Optional[int] = ..., target: Optional[float] = ..., target_order: Optional[float] = ...,
-             method: str = ..., lanczos: int = ..., jobs: int = ...) -> CampbellResult: ...
+             method: str = ..., lanczos: int = ..., jobs: int = ..., unit: str = ...) -> CampbellResult: ...
 def critical_speeds(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, harmonics: Optional[Sequence[int]] = ...,
                     solver: Optional[str] = ..., modes: Optional[int] = ..., target: Optional[float] = ...,
                     target_order: Optional[float] = ..., method: str = ..., lanczos: int = ...,
-                    jobs: int = ...) -> CriticalSpeeds: ...
+                    jobs: int = ..., unit: str = ...) -> CriticalSpeeds: ...
 def stability(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, harmonics: Optional[Sequence[int]] = ...,
               solver: Optional[str] = ...,
               modes: Optional[int] = ..., target: Optional[float] = ..., target_order: Optional[float] = ...,
-              method: str = ..., lanczos: int = ..., jobs: int = ...) -> StabilityChanges: ...
+              method: str = ..., lanczos: int = ..., jobs: int = ..., unit: str = ...) -> StabilityChanges: ...
 
 class ScreenResult:
     columns: list[str]
@@ -162,7 +192,8 @@ def screen(sweep: Union[str, PathLike[str]], designs: Optional[Sequence[Mapping[
            scene: Optional[Scene] = ..., jobs: int = ..., progress: Optional[Any] = ...,
            executor: Optional[Any] = ...) -> ScreenResult: ...
 
-class PervasiveLosses:
+class PervasiveLosses(_Result):
+    unit: str
     checked: list[str]
     damping: list[str]
     speeds: npt.NDArray[np.float64]
@@ -172,7 +203,8 @@ class PervasiveLosses:
     residual: npt.NDArray[np.float64]
     def to_pandas(self) -> Any: ...
 
-class Response:
+class Response(_Result):
+    unit: str
     speeds: npt.NDArray[np.float64]
     dofs: list[str]
     amplitudes: npt.NDArray[np.complex128]
@@ -181,15 +213,15 @@ class Response:
     notes: list[str]
     warnings: list[str]
     def to_pandas(self) -> Any: ...
-    def plot(self, ax: Any = ...) -> Any: ...
+    def plot_polar(self, path: Optional[Path] = ..., axes: Any = ...) -> Any: ...
 
 def pervasive(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, tolerance: float = ...,
               solver: Optional[str] = ..., modes: Optional[int] = ..., target: Optional[float] = ...,
               target_order: Optional[float] = ..., method: str = ..., lanczos: int = ...,
-              jobs: int = ...) -> PervasiveLosses: ...
+              jobs: int = ..., unit: str = ...) -> PervasiveLosses: ...
 def response(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, dofs: Optional[Sequence[str]] = ...,
              solver: Optional[str] = ..., harmonics: Optional[Sequence[int]] = ...,
-             modes: Optional[int] = ...) -> Response: ...
+             modes: Optional[int] = ..., unit: str = ...) -> Response: ...
 def gyrostat(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
              **keys: Any) -> Scene: ...
 def fe_rotor(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
@@ -248,7 +280,7 @@ class Rotor:
     def __init__(self, *, sections: Sequence[Section], disks: Sequence[Disk] = ..., bearings: Sequence[Bearing] = ...,
                  supports: Sequence[Support] = ..., pedestals: Sequence[Pedestal] = ..., motion: str = ...,
                  shear_deformation: bool = ..., rotary_inertia: bool = ..., damping_alpha: float = ...,
-                 damping_beta: float = ...) -> None: ...
+                 damping_beta: float = ..., damping_zeta: Union[float, Sequence[float], None] = ...) -> None: ...
     sections: list[Section]
     disks: list[Disk]
     bearings: list[Bearing]

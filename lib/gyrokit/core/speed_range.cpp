@@ -68,7 +68,7 @@ SpeedUnit SpeedUnit::parse(const std::string& name) {
     if (lower == "rad/s") return {"rad/s", 1.0};
     if (lower == "hz") return {"Hz", 1.0 / (2.0 * M_PI)};
     if (lower == "rpm") return {"rpm", 60.0 / (2.0 * M_PI)};
-    throw InputError(fmt::format("--units '{}' is unknown; allowed: rad/s, Hz, rpm", name));
+    throw InputError(fmt::format("{} '{}' is unknown; allowed: rad/s, Hz, rpm", option_field("units"), name));
 }
 
 std::string SpeedUnit::column(const std::string& base) const {

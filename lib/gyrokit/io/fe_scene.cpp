@@ -70,6 +70,30 @@ std::vector<double> numbers(const TomlKeys& e, const char* key, std::size_t coun
     return v;
 }
 
+// Modal damping of the shaft: damping_zeta = 0.005 (every mode) or [0.005, 0.01, ...]
+// (the lowest modes in order, the last for every mode above); each 0 <= zeta < 1.
+std::vector<double> modal_zeta(const TomlKeys& k) {
+    const toml::node* n = k.table().get("damping_zeta");
+    if (!n) return {};
+    const std::string allowed = "a damping ratio 0 <= zeta < 1, or an array of them for the shaft's lowest modes";
+    std::vector<double> out;
+    const auto take = [&](const toml::node& x, const std::string& where) {
+        const std::optional<double> d = x.value<double>();
+        if (!d || !(x.is_floating_point() || x.is_integer()))
+            throw InputError(fmt::format("{} is not a number; allowed: {}", where, allowed));
+        if (!(*d >= 0.0 && *d < 1.0))
+            throw InputError(fmt::format("{} = {}: out of range; allowed: {}", where, *d, allowed));
+        out.push_back(*d);
+    };
+    if (const toml::array* a = n->as_array()) {
+        if (a->empty()) throw InputError(k.where("damping_zeta") + " is empty; allowed: " + allowed);
+        for (std::size_t i = 0; i < a->size(); ++i) take(*a->get(i), fmt::format("{}[{}]", k.where("damping_zeta"), i));
+    } else {
+        take(*n, k.where("damping_zeta"));
+    }
+    return out;
+}
+
 // A bearing table written in the scene: `speeds` (in `speed_unit`, default rad/s) and
 // the coefficient arrays (`k`, `c` isotropic, or kxx ... cyy; missing ones are 0).
 BearingTable inline_bearing_table(const TomlKeys& e) {
@@ -428,7 +452,7 @@ RotorPedestal read_pedestal(const TomlKeys& e, const ModelContext& c) {
 RotorModel rotor_model_from(const TomlKeys& k, const std::string& dir) {
     k.only({"type", "shaft", "disk", "bearing", "support", "E", "poisson", "density", "material", "materials",
             "shear_deformation", "rotary_inertia", "dofs_per_node", "motion", "length_unit", "pedestal",
-            "damping_alpha", "damping_beta"});
+            "damping_alpha", "damping_beta", "damping_zeta"});
     RotorModel model;
     ModelContext c;
     c.motion = model.motion = motion_of(k);
@@ -448,6 +472,7 @@ RotorModel rotor_model_from(const TomlKeys& k, const std::string& dir) {
     // Proportional damping of the shaft: D = alpha M_shaft + beta K_shaft.
     model.shaft_damping.alpha = k.number("damping_alpha", 0.0, 0, false, "1/s");
     model.shaft_damping.beta = k.number("damping_beta", 0.0, 0, false, "s");
+    model.shaft_damping.modal = modal_zeta(k);
     read_materials(k, c);
     std::size_t elements = 0;
     for_each_entry(k, "shaft", true, [&](const TomlKeys& e) {

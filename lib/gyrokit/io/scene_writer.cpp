@@ -1,14 +1,12 @@
 #include <gyrokit/io/scene_writer.hpp>
 
+#include <gyrokit/io/output_file.hpp>
+
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/core/error.hpp>
 
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <fmt/format.h>
 
 namespace gyrokit {
@@ -242,6 +240,8 @@ std::string scene_text(const Scene& sc) {
     w.key("rotary_inertia", m.rotary_inertia);
     if (m.shaft_damping.alpha != 0.0) w.key("damping_alpha", m.shaft_damping.alpha);
     if (m.shaft_damping.beta != 0.0) w.key("damping_beta", m.shaft_damping.beta);
+    const std::vector<double>& zeta = m.shaft_damping.modal;
+    if (!zeta.empty()) w.array("damping_zeta", zeta.size(), [&](std::size_t i) { return zeta[i]; });
     for (const RotorSection& s : m.sections) write_section(w, s);
     for (const RotorDisk& d : m.disks) write_disk(w, d);
     for (const RotorBearing& b : m.bearings) write_bearing(w, b);
@@ -252,25 +252,6 @@ std::string scene_text(const Scene& sc) {
     return text.front() == '\n' ? text.substr(1) : text;
 }
 
-void write_scene(const Scene& scene, const std::string& path) {
-    const std::string text = scene_text(scene);
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out.write(text.data(), static_cast<std::streamsize>(text.size()));
-        out.close();
-        if (!out) {
-            const std::string why = std::strerror(errno);
-            std::remove(tmp.c_str());
-            throw InputError(fmt::format("{}: cannot write the scene ({})", path, why));
-        }
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        std::remove(tmp.c_str());
-        throw InputError(fmt::format("{}: cannot write the scene ({})", path, ec.message()));
-    }
-}
+void write_scene(const Scene& scene, const std::string& path) { replace_file(path, scene_text(scene), "scene"); }
 
 }  // namespace gyrokit

@@ -15,6 +15,14 @@ namespace {
 
 using Json = nlohmann::ordered_json;   // ordered: keys stay in column order
 
+FieldSpelling& field_spelling() {
+    static FieldSpelling spell;
+    return spell;
+}
+
+// A title or text cell with its option fields in the front end's words.
+std::string spelled(const std::string& s) { return spell_fields(s, field_spelling()); }
+
 bool is_number(const Cell& c) {
     return std::holds_alternative<double>(c) || std::holds_alternative<long long>(c);
 }
@@ -38,7 +46,7 @@ std::string format_cell(const Cell& c, int digits) {
     }
     if (auto i = std::get_if<long long>(&c)) return std::to_string(*i);
     if (auto b = std::get_if<bool>(&c)) return *b ? "true" : "false";
-    return std::get<std::string>(c);
+    return spelled(std::get<std::string>(c));
 }
 
 // Width in UTF-8 code points, so labels such as "ω (rad/s)" line up.
@@ -72,7 +80,7 @@ std::string render_text(const Table& t) {
         for (std::size_t j = 0; j < n; ++j) s += (j ? "  " : "") + field(j);
         return s + '\n';
     };
-    std::string out = t.title.empty() ? "" : t.title + '\n';
+    std::string out = t.title.empty() ? "" : spelled(t.title) + '\n';
     out += line([&](std::size_t j) { return pad(cols[j], width[j], numeric[j]); });
     out += line([&](std::size_t j) { return std::string(width[j], '-'); });
     for (std::size_t i = 0; i < t.rows(); ++i)
@@ -110,7 +118,7 @@ Json cell_json(const Cell& c) {
     }
     if (auto i = std::get_if<long long>(&c)) return *i;
     if (auto b = std::get_if<bool>(&c)) return *b;
-    return std::get<std::string>(c);
+    return spelled(std::get<std::string>(c));
 }
 
 Json table_json(const Table& t) {
@@ -164,6 +172,8 @@ void Table::add_row(std::vector<Cell> row) {
                                 columns_.size(), title.empty() ? "" : " (table '" + title + "')"));
     rows_.push_back(std::move(row));
 }
+
+void set_field_spelling(FieldSpelling spell) { field_spelling() = std::move(spell); }
 
 void write_table(std::ostream& os, const Table& t, TableFormat f) { put(os, render(t, f)); }
 

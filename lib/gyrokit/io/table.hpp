@@ -2,6 +2,8 @@
 // for people, CSV for spreadsheets, or JSON for scripts, from one Table.
 #pragma once
 
+#include <gyrokit/core/error.hpp>
+
 #include <cstddef>
 #include <ostream>
 #include <string>
@@ -38,6 +40,11 @@ private:
     std::vector<std::string> columns_;
     std::vector<std::vector<Cell>> rows_;
 };
+
+// The front end's words for the option fields that titles and text cells name
+// (option_field marks, e.g. "modes" -> "--modes" in the CLI, "modes =" in Python):
+// set once at startup, before any table is written. Unset: "modes =".
+void set_field_spelling(FieldSpelling spell);
 
 // Writes the table.
 //  Text: optional title line, header, rule, aligned rows (all padded to one

@@ -4,9 +4,11 @@
 #include <gyrokit/models/fe_statics.hpp>
 #include <gyrokit/models/materials.hpp>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 
 namespace gyrokit {
 
@@ -253,6 +255,34 @@ void attach_speed_dependent(const FeRotor& r, const FeRotorMatrices& m, const Sp
     }
 }
 
+// M Phi diag(2 zeta_i w_i) Phi^T M over the modes of (K, M), Phi^T M Phi = I. Eigenvalues
+// w^2 within the rounding of the reduction, tau = n eps (||K|| + w^2 ||M||) / mu_min(M)
+// (Golub & Van Loan 8.7), are one mode: the two planes of an axisymmetric shaft take one
+// ratio, so D does not depend on the basis LAPACK picks in them. A mode with w^2 within tau
+// of 0 is a rigid-body motion of the shaft and gets no damping.
+Eigen::MatrixXd modal_damping(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, const std::vector<double>& zeta) {
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M);
+    if (es.info() != Eigen::Success)
+        throw InputError("modal shaft damping: the shaft's mass matrix is not positive definite");
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> me(M, Eigen::EigenvaluesOnly);
+    const double n = static_cast<double>(M.rows()), mu = me.eigenvalues().minCoeff();
+    const auto tau = [&](double w2) {
+        return n * std::numeric_limits<double>::epsilon() * (K.norm() + std::abs(w2) * M.norm()) / mu;
+    };
+    const Eigen::VectorXd& w2 = es.eigenvalues();   // ascending
+    Eigen::VectorXd c = Eigen::VectorXd::Zero(w2.size());
+    std::size_t mode = 0;   // flexible modes counted once per frequency
+    for (Eigen::Index i = 0; i < w2.size(); ++i) {
+        if (!(w2(i) > tau(0.0))) continue;
+        const bool same = i > 0 && w2(i - 1) > tau(0.0) && w2(i) - w2(i - 1) <= tau(w2(i - 1)) + tau(w2(i));
+        if (!same && i > 0 && w2(i - 1) > tau(0.0)) ++mode;
+        c(i) = 2.0 * zeta[std::min(mode, zeta.size() - 1)] * std::sqrt(w2(i));
+    }
+    const Eigen::MatrixXd MPhi = M * es.eigenvectors();
+    Eigen::MatrixXd D = MPhi * c.asDiagonal() * MPhi.transpose();
+    return 0.5 * (D + D.transpose());   // symmetric to the last bit
+}
+
 // alpha M + beta K of the beam elements alone: the rotor without disks, bearings and
 // pedestals, couplings without springs or mass, the same supports, so its DOFs are the
 // node DOFs of the whole rotor in the same order (the pedestals' come after them).
@@ -267,7 +297,8 @@ Eigen::SparseMatrix<double> shaft_damping_matrix(const FeRotor& r, const ShaftDa
     const FeRotorMatrices m = shaft.assemble();
     SpMatrix D(size, size);
     std::vector<Eigen::Triplet<double>> t;
-    const SpMatrix Ds = d.alpha * m.M + d.beta * m.K;
+    SpMatrix Ds = d.alpha * m.M + d.beta * m.K;
+    if (!d.modal.empty()) Ds += to_sparse(modal_damping(Eigen::MatrixXd(m.M), Eigen::MatrixXd(m.K), d.modal));
     for (int c = 0; c < Ds.outerSize(); ++c)
         for (SpMatrix::InnerIterator it(Ds, c); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
     D.setFromTriplets(t.begin(), t.end());
@@ -299,7 +330,17 @@ BuiltRotor build(const RotorModel& model) {
     if (!(std::isfinite(damping.alpha) && damping.alpha >= 0 && std::isfinite(damping.beta) && damping.beta >= 0))
         throw InputError(fmt::format("shaft damping alpha = {}, beta = {}; allowed: finite numbers >= 0 (1/s, s)",
                                      damping.alpha, damping.beta));
-    if (damping.alpha > 0 || damping.beta > 0)
+    for (std::size_t i = 0; i < damping.modal.size(); ++i)
+        if (!(damping.modal[i] >= 0.0 && damping.modal[i] < 1.0))
+            throw InputError(fmt::format("shaft damping zeta[{}] = {}: out of range; allowed: 0 <= zeta < 1 (a "
+                                         "damping ratio; steel shafts: 0.001 to 0.01)",
+                                         i, damping.modal[i]));
+    if (!damping.modal.empty() && m.size() > kModalDampingMaxDofs)
+        throw InputError(fmt::format("shaft damping zeta: modal damping is formed dense, up to {} DOFs; this rotor has "
+                                     "{} (allowed here: damping_alpha and damping_beta)",
+                                     kModalDampingMaxDofs, m.size()));
+    const bool modal = std::any_of(damping.modal.begin(), damping.modal.end(), [](double z) { return z > 0; });
+    if (damping.alpha > 0 || damping.beta > 0 || modal)
         out.system.damping.push_back({"shaft", shaft_damping_matrix(r, damping, m.size())});
     // Speed-dependent bearings act on x and y alone: an axial or torsional model has no use for them.
     if (!r.has_lateral()) return out;

@@ -71,13 +71,21 @@ struct RotorPedestal {
     std::string origin;
 };
 
-// Proportional damping of the shaft's beam elements, D_shaft = alpha M_shaft + beta K_shaft
-// (the damping component "shaft"), in fixed axes: it does not turn with the shaft (no
-// circulatory term). A mode of the shaft alone then has zeta = alpha / (2 w) + beta w / 2.
+// Damping of the shaft's beam elements (the damping component "shaft"), in fixed axes: it
+// does not turn with the shaft (no circulatory term). Proportional, alpha M_shaft +
+// beta K_shaft: a mode of the shaft alone has zeta = alpha / (2 w) + beta w / 2. Modal:
+// the shaft's own modes (on its supports, without disks and bearings; K_s phi = w^2 M_s phi,
+// Phi^T M_s Phi = I) each with its ratio, M_s Phi diag(2 zeta_i w_i) Phi^T M_s: a mode of
+// the shaft alone has exactly zeta_i (the ratios of the lowest modes in order, the last
+// one for every mode above; rigid-body modes, w = 0, none). Both may be given: they add.
 struct ShaftDamping {
-    double alpha = 0.0;   // 1/s, >= 0
-    double beta = 0.0;    // s, >= 0
+    double alpha = 0.0;          // 1/s, >= 0
+    double beta = 0.0;           // s, >= 0
+    std::vector<double> modal;   // zeta_1, zeta_2, ..., each in [0, 1); empty: none
 };
+
+// Modal damping is formed dense: up to this many DOFs.
+constexpr int kModalDampingMaxDofs = 3000;
 
 struct RotorModel {
     std::vector<RotorSection> sections;    // from z = 0 along +z, one chain

@@ -30,14 +30,15 @@ std::string out_of_range_note(const CampbellDiagram& cd, const SpeedUnit& u) {
     if (!std::isfinite(cd.band)) return "";
     if (cd.out_of_range.empty())   // a solver of the band alone (continuation, a sparse window) has not computed them
         return fmt::format("modes above {:.6g} {} ({} times the highest excitation) are out of range, not judged; "
-                           "--modes 0 judges every mode",
-                           u.factor * cd.band, u.name, kBandMargin);
+                           "{} 0 judges every mode",
+                           u.factor * cd.band, u.name, kBandMargin, option_field("modes"));
     double lowest = std::numeric_limits<double>::infinity();
     for (const Branch& b : cd.out_of_range)
         for (const auto& p : b.points) lowest = std::min(lowest, p.mode.frequency());
     return fmt::format("{} modes stay above {:.6g} {} over the range ({} times the highest excitation; the lowest at "
-                       "{:.6g} {}): out of range, not judged; --modes 0 judges every mode",
-                       cd.out_of_range.size(), u.factor * cd.band, u.name, kBandMargin, u.factor * lowest, u.name);
+                       "{:.6g} {}): out of range, not judged; {} 0 judges every mode",
+                       cd.out_of_range.size(), u.factor * cd.band, u.name, kBandMargin, u.factor * lowest, u.name,
+                       option_field("modes"));
 }
 
 Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u) {
@@ -63,7 +64,7 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
                        const std::string& plot_file, bool window) {
     Table t({"quantity", "value"});
     t.key = "summary";
-    t.title = "Campbell diagram: summary (all rows: --rows, or --format csv|json)";
+    t.title = "Campbell diagram: summary (all rows: " + option_field("rows") + ")";
     const auto speed = [&](double w) { return fmt::format("{:.6g} {}", u.factor * w, u.name); };
     t.add_row({std::string("modes tracked"), std::to_string(cd.branches.size())});
     if (!cd.speeds.empty())
@@ -111,7 +112,7 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
     for (const auto& r : unstable)
         verdict += fmt::format("{}mode {} unstable from {} to {}{}", verdict.empty() ? "" : "; ", r.branch,
                                speed(r.from), speed(r.to),
-                               r.branch > static_cast<int>(cd.branches.size()) ? " (not tracked: --modes 0 tracks it)"
+                               r.branch > static_cast<int>(cd.branches.size()) ? " (not tracked: " + option_field("modes") + " 0 tracks it)"
                                                                                 : "");
     if (!unstable.empty() && window)
         verdict += fmt::format("; modes beyond the {} tracked are not checked", cd.branches.size());
@@ -121,8 +122,8 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
         t.add_row({std::string("rigid-body eigenvalues"), fmt::format("{} (not modes, not tracked)", cd.rigid_body)});
     t.add_row({std::string("largest backward error"), fmt::format("{:.2g}", cd.max_backward_error)});
     if (cd.ambiguous_steps > 0)
-        t.add_row({std::string("ambiguous steps"), fmt::format("{} (use a finer --speeds grid)", cd.ambiguous_steps)});
-    t.add_row({std::string("plot"), plot_file.empty() ? std::string("none (--plot FILE.svg draws one)") : plot_file});
+        t.add_row({std::string("ambiguous steps"), fmt::format("{} (use a finer {} grid)", cd.ambiguous_steps, option_field("speeds"))});
+    t.add_row({std::string("plot"), plot_file.empty() ? "none (" + option_field("plot") + " draws one)" : plot_file});
     return t;
 }
 

@@ -1,0 +1,23 @@
+// The library's tables and figures of a result, as Python sees them: the tables a
+// command prints (dicts of key, title, columns and rows) and the figure it draws
+// (panels of series), so that a result is saved in the CLI's formats and plotted
+// with the CLI's picture.
+#pragma once
+
+#include <gyrokit/io/plot.hpp>
+#include <gyrokit/io/table.hpp>
+
+#include <pybind11/pybind11.h>
+
+#include <vector>
+
+namespace gyrokit_python {
+
+pybind11::list tables_list(const std::vector<gyrokit::Table>& tables);
+pybind11::dict figure_dict(const gyrokit::Figure& figure);
+
+}  // namespace gyrokit_python
+
+// _core.write_tables(tables, path, format), _core.format_tables(tables, format),
+// _core.render_figure(figure, path).
+void bind_reports(pybind11::module_& m);

@@ -1,0 +1,130 @@
+"""Results carry what the CLI shows: its tables (the same bytes as the CLI's CSV), its units, its figures
+(matplotlib or gnuplot), log decrements against the library's, option names in Python's words, and files
+written and read back."""
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import gyrokit as gk
+
+DATA = os.environ.get("GYROKIT_DATA", os.path.join(os.path.dirname(__file__), "..", "..", "data"))
+CLI = os.environ.get("GYROKIT_CLI")
+SCENE = os.path.join(DATA, "three_disk_rotor.toml")
+EPS = np.finfo(float).eps
+
+
+def cli(*args):
+    if not CLI:
+        pytest.skip("GYROKIT_CLI not set")
+    return subprocess.run([CLI, *args], check=True, capture_output=True, text=True).stdout
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return gk.load_scene(SCENE)
+
+
+@pytest.fixture(scope="module")
+def diagram(scene):
+    return gk.campbell(scene, unit="rpm")
+
+
+def test_the_campbell_table_is_the_clis_csv_byte_for_byte(tmp_path, diagram):
+    path = diagram.save(tmp_path / "campbell.csv", table="campbell")
+    assert open(path).read() == cli("campbell", SCENE, "--units", "rpm", "--format", "csv")
+    assert [t.key for t in diagram.tables] == ["summary", "campbell", "critical_speeds", "heavily_damped_crossings"]
+
+
+def test_units_per_call_scale_speeds_and_frequencies_only(scene, diagram):
+    rad = gk.campbell(scene)
+    f = 30.0 / np.pi
+    np.testing.assert_allclose(diagram.speeds, rad.speeds * f, rtol=2 * EPS, atol=0)
+    np.testing.assert_allclose(diagram.frequencies, rad.frequencies * f, rtol=2 * EPS, atol=0)
+    np.testing.assert_array_equal(diagram.eigenvalues, rad.eigenvalues)   # 1/s in every unit, as the CLI
+    hz = gk.critical_speeds(scene, unit="Hz")
+    assert hz.tables[0].columns[0] == "speed_hz"
+    np.testing.assert_allclose(hz.speeds, gk.critical_speeds(scene).speeds / (2 * np.pi), rtol=2 * EPS, atol=0)
+    # Speeds given in the call's unit: 3000 rpm is 100 pi rad/s.
+    e = gk.eig(scene, 3000.0, unit="rpm")
+    assert e.speed == pytest.approx(3000.0, rel=4 * EPS)
+    ref = gk.eig(scene, 100 * np.pi)
+    # The speeds differ by the rounding of rpm -> rad/s (an ulp): within the two error bounds.
+    assert np.all(np.abs(e.eigenvalues - ref.eigenvalues) <= e.error_bounds + ref.error_bounds)
+    with pytest.raises(gk.InputError, match="unit = 'rps' is unknown; allowed: rad/s, Hz, rpm"):
+        gk.campbell(scene, unit="rps")
+
+
+def test_log_decrements_and_damping_ratios_equal_the_librarys(diagram):
+    t = diagram.table("campbell")
+    rows = {(r[t.columns.index("speed_rpm")], r[t.columns.index("mode")]): r for r in t.rows}
+    checked = 0
+    for i, w in enumerate(diagram.speeds):
+        for b, branch in enumerate(diagram.branches):
+            r = rows.get((w, int(branch)))
+            if r is None or np.isnan(diagram.log_decrements[i, b]):
+                continue
+            # numpy's -2 pi Re/Im against Mode::log_decrement: a few roundings apart.
+            assert diagram.log_decrements[i, b] == pytest.approx(r[t.columns.index("log_dec")], rel=8 * EPS, abs=0)
+            assert diagram.damping_ratios[i, b] == pytest.approx(r[t.columns.index("damping_ratio")], rel=8 * EPS)
+            checked += 1
+    assert checked > 100
+
+
+def test_notes_and_tables_name_options_in_pythons_words(diagram):
+    summary = str(diagram.tables[0])
+    assert "modes = 0 judges every mode" in summary and "--modes" not in summary and "--rows" not in summary
+    assert "all rows: result.table('campbell')" in summary
+    assert any("modes = 0" in n for n in diagram.notes)
+    assert "rpm" in diagram.notes[-1]   # the diagnostics speak the call's unit
+    text = cli("campbell", SCENE)
+    assert "--modes 0 judges every mode" in text and "(all rows: --rows, or --format csv|json)" in text
+
+
+def test_tables_saved_and_loaded_json_exact_csv_to_its_digits(tmp_path, diagram):
+    diagram.save(tmp_path / "all.json")
+    loaded = gk.load_tables(tmp_path / "all.json")
+    assert [t.key for t in loaded] == [t.key for t in diagram.tables]
+    for a, b in zip(loaded, diagram.tables):
+        assert a.columns == b.columns and a.rows == b.rows   # JSON keeps every bit
+    diagram.save(tmp_path / "critical.csv", table="critical_speeds")
+    (c,) = gk.load_tables(tmp_path / "critical.csv")
+    ref = diagram.table("critical_speeds")
+    assert c.columns == ref.columns
+    for x, y in zip(sum(c.rows, []), sum(ref.rows, [])):
+        if isinstance(y, float):
+            assert x == pytest.approx(y, rel=1e-11)   # %.12g
+        else:
+            assert x == y
+    diagram.save(tmp_path / "summary.txt", table="summary")
+    assert open(tmp_path / "summary.txt").read() == str(diagram.tables[0])
+    with pytest.raises(gk.InputError, match="allowed: .json, .csv, .txt"):
+        diagram.save(tmp_path / "x.xlsx")
+    with pytest.raises(gk.InputError, match="table 'nope'; allowed: summary, campbell"):
+        diagram.save(tmp_path / "x.csv", table="nope")
+
+
+def test_figures_are_the_clis_drawn_by_matplotlib_or_gnuplot(tmp_path, scene, diagram):
+    pytest.importorskip("matplotlib")
+    import matplotlib
+    matplotlib.use("Agg")
+    fig = diagram.plot()
+    assert len(fig.axes) == 2   # frequencies with the 1x line, damping ratio below
+    assert fig.axes[0].get_ylabel() == "frequency [rpm]"
+    diagram.plot(tmp_path / "campbell.png")   # gnuplot, as --plot
+    cli("campbell", SCENE, "--units", "rpm", "--plot", str(tmp_path / "cli.png"))
+    assert os.path.getsize(tmp_path / "campbell.png") > 1000 and os.path.getsize(tmp_path / "cli.png") > 1000
+    shapes = gk.modes(scene, 600.0, modes=3)
+    assert len(shapes.plot().axes) >= 1
+    ax = shapes.plot_orbits(2)
+    pairs = sum(1 for k in range(len(shapes.orbits["mode"]))
+                if shapes.orbits["mode"][k] == 2 and shapes.orbits["unit"][k] == "m")
+    assert len(ax.lines) == pairs + 1   # an ellipse per node, the axis
+    r = gk.response(scene, np.linspace(0.0, 1500.0, 16), dofs=["x12", "y12"])
+    assert r.table("response").columns[:2] == ["speed_rad_s", "dof"]
+    r.plot_polar(tmp_path / "polar.svg")
+    assert "<svg" in open(tmp_path / "polar.svg").read()
+    with pytest.raises(gk.InputError, match="axes: 1 given; allowed: one per panel"):
+        diagram.plot(axes=[fig.axes[0]])
