@@ -5,8 +5,8 @@ data/three_disk_rotor.toml (100 DOFs), API 684 separation and stability.
 Rows: `gyrokit screen` on 1 and 2 jobs; gyrokit.screen with threads; on a process pool; on a Dask
 LocalCluster of two worker processes (if python3-distributed is installed). Columns: wall time,
 time per design, ratio to the CLI on 2 jobs, and whether every row (verdict, reason, quantities)
-equals the CLI's (the CLI on 1 job: the same bytes; Python, another build of the library: verdicts and
-reasons equal, numbers to 1e-9 relative). It exits 1 if one does not.
+equals the CLI's to the last printed digit (every run, the Python module included: the same numbers).
+It exits 1 if one does not.
 
     PYTHONPATH=build/python /usr/bin/python3 apps/bench_screen_family.py --cli build/apps/gyrokit [--quick]
 """
@@ -48,10 +48,7 @@ def as_cli(rows, n_params, quantities):
 
 
 def same(a, b, rel=0.0):
-    """Verdicts and reasons equal; numbers equal (rel = 0: the CLI against itself, the same bytes) or within
-    `rel` relative: the Python module is another build of the library than the CLI, and two builds of the same
-    source may round the last of the 12 printed digits differently (measured: one unit in the 12th digit of one
-    separation_percent), so the digits below 1e-9 are not compared across them."""
+    """Verdicts and reasons equal; numbers equal (rel = 0) or within `rel` relative."""
     def close(u, v):
         return (u == v) or (u != u and v != v) or abs(u - v) <= rel * max(abs(u), abs(v))
     return len(a) == len(b) and all(x[0] == y[0] and x[1] == y[1] and all(close(u, v) for u, v in zip(x[2], y[2]))
@@ -75,17 +72,17 @@ def main():
         t, rows = timed(lambda: cli_rows(a.cli, sweep, 1))
         runs.append(("`gyrokit screen` (CLI)", 1, t, same(as_cli(rows, n_params, n_q), reference)))
     t, r = timed(lambda: gk.screen(sweep, jobs=2))
-    runs.append(("`gk.screen`, threads", 2, t, same(py_rows(r), reference, 1e-9)))
+    runs.append(("`gk.screen`, threads", 2, t, same(py_rows(r), reference)))
     if not a.quick:
         with ProcessPoolExecutor(max_workers=2) as pool:
             t, r = timed(lambda: gk.screen(sweep, executor=pool))
-        runs.append(("`gk.screen`, process pool", 2, t, same(py_rows(r), reference, 1e-9)))
+        runs.append(("`gk.screen`, process pool", 2, t, same(py_rows(r), reference)))
         try:
             import distributed
             with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                           dashboard_address=None) as cluster, distributed.Client(cluster) as client:
                 t, r = timed(lambda: gk.screen(sweep, executor=client.get_executor()))
-            runs.append(("`gk.screen`, Dask LocalCluster", 2, t, same(py_rows(r), reference, 1e-9)))
+            runs.append(("`gk.screen`, Dask LocalCluster", 2, t, same(py_rows(r), reference)))
         except ImportError:
             print("python3-distributed is not installed: no Dask row", file=sys.stderr)
     print(f"{n} designs of data/screen_three_disk.toml (100-DOF FE rotor)\n")
