@@ -4,15 +4,21 @@
 #include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/scene.hpp>
+#include <gyrokit/reports/critical_map_reports.hpp>
+
+#include "reports.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
 namespace py = pybind11;
 using namespace gyrokit;
+using namespace gyrokit_python;
 
 void bind_critical_map(py::module_& m) {
-    m.def("critical_speed_map", [](const Scene& scene, const std::vector<double>& stiffness, int modes) {
+    m.def("critical_speed_map", [](const Scene& scene, const std::vector<double>& stiffness, int modes,
+                                   const std::string& unit) {
+        const SpeedUnit u = SpeedUnit::parse(unit);
         if (!scene.rotor_model)
             throw InputError(scene.path + ": a critical speed map of a [model] of type " + scene.model_type +
                              "; allowed: an fe_rotor model");
@@ -54,6 +60,9 @@ void bind_critical_map(py::module_& m) {
         }
         d["bearings"] = curves;
         d["max_backward_error"] = map.max_backward_error;
+        d["tables"] = tables_list({critical_map_table(map, u), bearing_curve_table(map, u)});
+        d["figure"] = figure_dict(critical_map_figure(map, u, scene.title));
         return d;
-    }, py::arg("scene"), py::arg("stiffness"), py::arg("modes"));
+    }, py::arg("scene"), py::arg("stiffness"), py::arg("modes"), py::arg("unit") = "rad/s");
+
 }

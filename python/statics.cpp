@@ -1,13 +1,17 @@
 // The static analysis of an FE rotor scene (static_study) as NumPy arrays.
 #include "statics.hpp"
 
+#include <gyrokit/reports/static_reports.hpp>
 #include <gyrokit/study/static_study.hpp>
+
+#include "reports.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
 namespace py = pybind11;
 using namespace gyrokit;
+using namespace gyrokit_python;
 
 namespace {
 
@@ -61,6 +65,9 @@ void bind_statics(py::module_& m) {
         d["balance_error"] = s.balance_error;
         d["condition"] = s.condition;
         d["error_bound"] = s.error_bound;
+        d["tables"] = tables_list({static_node_table(s), static_summary_table(s), static_reaction_table(s),
+                                   static_section_table(s)});
+        d["figure"] = figure_dict(static_figure(s, scene.title));
         return d;
     }, py::arg("scene"), py::arg("gravity"), py::arg("loads"));
 }

@@ -2,6 +2,10 @@
 // (load_scene) or parsed from text (parse_scene).
 #include "system.hpp"
 
+#include "reports.hpp"
+
+#include <gyrokit/reports/model_reports.hpp>
+
 #include <gyrokit/gyrokit.hpp>
 
 #include <pybind11/complex.h>
@@ -16,6 +20,7 @@
 
 namespace py = pybind11;
 using namespace gyrokit;
+using namespace gyrokit_python;
 
 namespace {
 
@@ -131,6 +136,14 @@ py::class_<Scene> bind_system(py::module_& m) {
             return py::array_t<double>(static_cast<py::ssize_t>(p.size()), p.data());
         });
 
+    // What a model is: the CLI's `gyrokit model` table and, for an FE rotor, its drawing.
+    m.def("model_summary", [](const Scene& scene) {
+        py::dict d;
+        d["tables"] = tables_list({model_summary(scene)});
+        d["figure"] = scene.fe_rotor ? py::object(figure_dict(fe_rotor_figure(*scene.fe_rotor, scene.system, scene.title)))
+                                     : py::object(py::none());
+        return d;
+    }, py::arg("scene"));
     m.def("load_scene", [](const std::string& path, const std::map<std::string, double>& overrides,
                            const std::string& motion) { return load_scene(path, overrides, motion); },
           py::arg("path"), py::arg("overrides") = std::map<std::string, double>{}, py::arg("motion") = "");

@@ -66,14 +66,8 @@ std::vector<Command> add_frf_commands(CLI::App& app) {
                  const FrequencyResponse r = frequency_response(sys, spin, frequencies, input, outputs,
                                                                 use_sparse(c) ? SolverKind::Sparse : SolverKind::Dense);
                  write_table(out, frf_table(sys.dof_names, sys.dof_units, r, c.unit), c.format);
-                 if (o->common.plot.empty()) return;
-                 const std::vector<std::string> units = frf_units(sys.dof_units, input);
-                 const std::string title = fmt::format("FRF, force at {}, spin {:.6g} {}", sys.dof_names[input],
-                                                       c.unit.factor * spin, c.unit.name);
-                 plot_if(o->common.plot, o->polar ? response_polar_figure(sys.dof_names, units, frf_curve(r), c.unit,
-                                                                          title, {}, "frequency")
-                                                  : response_figure(sys.dof_names, units, frf_curve(r), c.unit, title,
-                                                                    {}, "frequency"));
+                 if (!o->common.plot.empty())
+                     plot_if(o->common.plot, frf_figure(sys.dof_names, sys.dof_units, r, c.unit, o->polar));
              }}};
 }
 

@@ -24,7 +24,7 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "Sommerfeld",
            "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
            "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap", "frf",
-           "FrequencyResponse", "Table", "load_tables", "draw"]
+           "FrequencyResponse", "Table", "load_tables", "draw", "summary", "ModelSummary"]
 
 
 def load_scene(path, overrides=None, motion=None) -> Scene:
@@ -424,15 +424,17 @@ def screen(sweep, designs=None, *, scene=None, jobs=0, progress=None, executor=N
 class FrequencyResponse(_Result):
     """Steady response to a unit harmonic force (or moment) at DOF `input`, the rotor spinning at `speed`:
     H[i, k] of DOF dofs[k] at frequencies[i] (complex, the output's unit per N or N m); amplitude, phase (deg).
-    Speeds and frequencies in `unit`."""
+    Speeds and frequencies in `unit`. plot(): the CLI's Bode plot; plot_polar(): its polar plot."""
 
-    def __init__(self, speed, frequencies, input, dofs, H, unit):
+    def __init__(self, speed, frequencies, input, dofs, d, unit):
         self.speed, self.unit, self.input = speed, unit, input
         self.frequencies = _np.asarray(frequencies, dtype=float)
         self.dofs = list(dofs)
-        self.H = H
-        self.amplitude = _np.abs(H)
-        self.phase = _np.degrees(_np.angle(H))
+        self.H = d["H"]
+        self.amplitude = _np.abs(self.H)
+        self.phase = _np.degrees(_np.angle(self.H))
+        self._take_reports(d)
+        self._polar = d["polar_figure"]
 
     def to_pandas(self):
         return self._frame({"frequency": _np.repeat(self.frequencies, len(self.dofs)),
@@ -440,31 +442,9 @@ class FrequencyResponse(_Result):
                             "im": self.H.imag.ravel(), "amplitude": self.amplitude.ravel(),
                             "phase": self.phase.ravel()})
 
-    def plot(self, axes=None):
-        """Bode plot: amplitude (log) and phase over frequency, one line per DOF; two axes."""
-        plt = self._pyplot()
-        if axes is None:
-            axes = plt.subplots(2, 1, sharex=True)[1]
-        for k, name in enumerate(self.dofs):
-            axes[0].semilogy(self.frequencies, self.amplitude[:, k], label=name)
-            axes[1].plot(self.frequencies, self.phase[:, k], label=name)
-        axes[0].set_ylabel("|H|")
-        axes[0].legend()
-        axes[1].set_ylabel("phase [deg]")
-        axes[1].set_xlabel(f"frequency [{self.unit}]")
-        return axes
-
-    def plot_polar(self, ax=None):
-        """Im H against Re H over the frequencies, one line per DOF, equal axes."""
-        plt = self._pyplot()
-        ax = ax or plt.subplots()[1]
-        for k, name in enumerate(self.dofs):
-            ax.plot(self.H[:, k].real, self.H[:, k].imag, label=name)
-        ax.set_aspect("equal", adjustable="datalim")
-        ax.set_xlabel("Re H")
-        ax.set_ylabel("Im H")
-        ax.legend()
-        return ax
+    def plot_polar(self, path=None, axes=None):
+        """The CLI's polar plot (--plot --polar): Im H against Re H, true to shape."""
+        return self._draw_figure(self._polar, path, axes)
 
 
 def frf(model, speed, input, frequencies, *, dofs=None, unit="rad/s", solver=None) -> FrequencyResponse:
@@ -483,9 +463,9 @@ def frf(model, speed, input, frequencies, *, dofs=None, unit="rad/s", solver=Non
             raise InputError(f"{key}: {d!r} is not a DOF of the model; allowed: names such as {names[0]!r}")
     factor = _UNITS[unit]
     w = _np.asarray(frequencies, dtype=float) / factor
-    H = _core.frf(system, float(speed) / factor, list(w), names.index(input), [names.index(d) for d in dofs],
-                  solver or (model.solver if isinstance(model, Scene) else "auto"))
-    return FrequencyResponse(float(speed), _np.asarray(frequencies, dtype=float), input, dofs, H, unit)
+    d = _core.frf(system, float(speed) / factor, list(w), names.index(input), [names.index(d) for d in dofs],
+                  solver or (model.solver if isinstance(model, Scene) else "auto"), unit)
+    return FrequencyResponse(float(speed), _np.asarray(frequencies, dtype=float), input, dofs, d, unit)
 
 
 class StaticDeflection(_Result):
@@ -503,32 +483,13 @@ class StaticDeflection(_Result):
         self.balance_error = d["balance_error"]
         self.condition = d["condition"]
         self.error_bound = d["error_bound"]
+        self._take_reports(d)   # deflection, summary, reactions, internal_forces; plot(): deflection and moment
 
     def to_pandas(self, table="nodes"):
         """One table: "nodes", "sections" or "reactions"."""
         if table not in ("nodes", "sections", "reactions"):
             raise InputError(f"table = {table!r}; allowed: nodes, sections, reactions")
         return self._frame(getattr(self, table))
-
-    def plot(self, axes=None):
-        """Deflection (um) and bending moment (N m) along the shaft, reactions marked; two axes."""
-        plt = self._pyplot()
-        if axes is None:
-            axes = plt.subplots(2, 1, sharex=True)[1]
-        top, bottom = axes
-        n = self.nodes
-        top.plot(n["z"], n["x"] * 1e6, "o-", label="x")
-        top.plot(n["z"], n["y"] * 1e6, "o-", label="y")
-        top.plot(self.reactions["z"], _np.zeros(len(self.reactions["z"])), "k^", label="reactions")
-        top.set_ylabel("deflection [um]")
-        top.legend()
-        s = self.sections
-        bottom.plot(s["z"], s["moment_x"], label="horizontal (x)")
-        bottom.plot(s["z"], s["moment_y"], label="vertical (y)")
-        bottom.set_xlabel("z [m]")
-        bottom.set_ylabel("bending moment [N m]")
-        bottom.legend()
-        return axes
 
 
 class CriticalSpeedMap(_Result):
@@ -546,30 +507,11 @@ class CriticalSpeedMap(_Result):
             t["speed"] = t["speed"] * factor
         self.bearings = [dict(c, speed=_np.asarray(c["speed"]) * factor) for c in d["bearings"]]
         self.max_backward_error = d["max_backward_error"]
+        self._take_reports(d)   # the map and the bearings' curves; plot(): the CLI's log-log map
 
     def to_pandas(self):
         rows = {k: list(self.points[k]) + list(self.rigid[k]) for k in self.points}
         return self._frame(rows)
-
-    def plot(self, ax=None):
-        """The map, log-log: forward solid, backward dashed, rigid supports dotted, bearings in black."""
-        plt = self._pyplot()
-        ax = ax or plt.subplots()[1]
-        p = self.points
-        for whirl, style in (("forward", "-"), ("backward", "--")):
-            for n in sorted(set(p["critical"])):
-                sel = [i for i in range(len(p["speed"])) if p["whirl"][i] == whirl and p["critical"][i] == n]
-                if sel:
-                    ax.loglog(p["stiffness"][sel], p["speed"][sel], style, color=f"C{n - 1}", label=f"{whirl} {n}")
-        for i, w in enumerate(self.rigid["speed"]):
-            if self.rigid["whirl"][i] == "forward":
-                ax.axhline(w, color="0.5", linestyle=":")
-        for c in self.bearings:
-            ax.loglog(c["stiffness"], c["speed"], "k-", linewidth=1)
-        ax.set_xlabel("bearing stiffness [N/m]")
-        ax.set_ylabel(f"critical speed [{self.unit}]")
-        ax.legend()
-        return ax
 
 
 def critical_speed_map(model, *, stiffness=None, modes=3, unit="rad/s") -> CriticalSpeedMap:
@@ -579,7 +521,8 @@ def critical_speed_map(model, *, stiffness=None, modes=3, unit="rad/s") -> Criti
     if not isinstance(model, Scene):
         raise InputError(f"critical_speed_map: expected a gyrokit.Scene of an FE rotor, got {type(model).__name__}")
     _factor(unit)
-    return CriticalSpeedMap(_core.critical_speed_map(model, [float(k) for k in (stiffness or [])], int(modes)), unit)
+    return CriticalSpeedMap(_core.critical_speed_map(model, [float(k) for k in (stiffness or [])], int(modes), unit),
+                            unit)
 
 
 def static(model, *, gravity=9.80665, loads=None) -> StaticDeflection:
@@ -598,6 +541,24 @@ def static(model, *, gravity=9.80665, loads=None) -> StaticDeflection:
             raise InputError(f"loads[{i}]: node = {l['node']!r}; allowed: a node number")
         rows.append([float(l["node"])] + [float(l.get(k, 0.0)) for k in ("fx", "fy", "mx", "my")])
     return StaticDeflection(_core.static(model, float(gravity), rows))
+
+
+class ModelSummary(_Result):
+    """What a model is, as `gyrokit model` prints it: `tables` (quantity, value, unit: DOFs, mass, nodes,
+    damping, bearings, ...); plot(): the drawing of an FE rotor (sections, disks, bearings, supports)."""
+
+    def __init__(self, d):
+        self._take_reports(d)
+
+    def __str__(self):
+        return str(self.tables[0])
+
+
+def summary(scene) -> ModelSummary:
+    """The model summary of a scene and, for an FE rotor, its drawing (ModelSummary)."""
+    if not isinstance(scene, Scene):
+        raise InputError(f"summary: expected a gyrokit.Scene, got {type(scene).__name__}")
+    return ModelSummary(_core.model_summary(scene))
 
 
 class PervasiveLosses(_Result):

@@ -321,3 +321,47 @@ class Sommerfeld:
 
 def balancer(scene: Union[str, PathLike[str]]) -> BalancerStates: ...
 def sommerfeld(scene: Union[str, PathLike[str]]) -> Sommerfeld: ...
+
+class FrequencyResponse(_Result):
+    speed: float
+    unit: str
+    input: str
+    frequencies: npt.NDArray[np.float64]
+    dofs: list[str]
+    H: npt.NDArray[np.complex128]
+    amplitude: npt.NDArray[np.float64]
+    phase: npt.NDArray[np.float64]  # degrees
+    def to_pandas(self) -> Any: ...
+    def plot_polar(self, path: Optional[Path] = ..., axes: Any = ...) -> Any: ...
+
+def frf(model: Model, speed: float, input: str, frequencies: npt.ArrayLike, *, dofs: Optional[Sequence[str]] = ...,
+        unit: str = ..., solver: Optional[str] = ...) -> FrequencyResponse: ...
+
+class StaticDeflection(_Result):
+    nodes: dict[str, Any]
+    sections: dict[str, Any]
+    reactions: dict[str, Any]
+    weight: float
+    backward_error: float
+    balance_error: float
+    condition: float
+    error_bound: float
+    def to_pandas(self, table: str = ...) -> Any: ...
+
+def static(model: Scene, *, gravity: float = ..., loads: Optional[Sequence[Mapping[str, float]]] = ...) -> StaticDeflection: ...
+
+class CriticalSpeedMap(_Result):
+    unit: str
+    stiffness: npt.NDArray[np.float64]
+    points: dict[str, Any]
+    rigid: dict[str, Any]
+    bearings: list[dict[str, Any]]
+    max_backward_error: float
+    def to_pandas(self) -> Any: ...
+
+def critical_speed_map(model: Scene, *, stiffness: Optional[Sequence[float]] = ..., modes: int = ...,
+                       unit: str = ...) -> CriticalSpeedMap: ...
+
+class ModelSummary(_Result): ...
+
+def summary(scene: Scene) -> ModelSummary: ...

@@ -128,3 +128,25 @@ def test_figures_are_the_clis_drawn_by_matplotlib_or_gnuplot(tmp_path, scene, di
     assert "<svg" in open(tmp_path / "polar.svg").read()
     with pytest.raises(gk.InputError, match="axes: 1 given; allowed: one per panel"):
         diagram.plot(axes=[fig.axes[0]])
+
+
+def test_frf_static_map_and_summary_carry_the_clis_tables(tmp_path, scene):
+    f = gk.frf(scene, 600.0, "y12", np.array([0.0, 400.0, 800.0, 1200.0]))
+    assert open(f.save(tmp_path / "frf.csv")).read() == cli(
+        "frf", SCENE, "--input", "y12", "--speed", "600", "--frequencies", "0:1200:4", "--format", "csv")
+    s = gk.static(scene)
+    s.save(tmp_path / "static.json")
+    assert json.load(open(tmp_path / "static.json")) == json.loads(cli("static", SCENE, "--format", "json"))
+    m = gk.critical_speed_map(scene, stiffness=[1e7, 1e8], modes=2, unit="rpm")
+    assert open(m.save(tmp_path / "map.csv")).read() == cli(
+        "critical-map", SCENE, "--stiffness", "1e7:1e8:2", "--modes", "2", "--units", "rpm", "--format", "csv")
+    text = cli("model", SCENE)
+    summary = gk.summary(scene)
+    assert str(summary) in text   # the CLI heads it with the scene's path
+    pytest.importorskip("matplotlib")
+    import matplotlib
+    matplotlib.use("Agg")
+    for result in (s, m, summary, f):
+        assert result.plot().axes
+    f.plot_polar(tmp_path / "frf_polar.png")
+    assert os.path.getsize(tmp_path / "frf_polar.png") > 1000

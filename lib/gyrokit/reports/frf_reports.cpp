@@ -1,6 +1,7 @@
 #include <gyrokit/reports/frf_reports.hpp>
 
 #include <gyrokit/reports/detail/cells.hpp>
+#include <gyrokit/reports/response_reports.hpp>
 
 #include <cmath>
 #include <fmt/format.h>
@@ -34,6 +35,15 @@ Table frf_table(const std::vector<std::string>& names, const std::vector<std::st
                        std::abs(h), std::abs(h) == 0.0 ? 0.0 : detail::degrees(std::arg(h))});
         }
     return t;
+}
+
+Figure frf_figure(const std::vector<std::string>& names, const std::vector<std::string>& units,
+                  const FrequencyResponse& r, const SpeedUnit& u, bool polar) {
+    const std::vector<std::string> per = frf_units(units, r.input);
+    const std::string title = fmt::format("FRF, force at {}, spin {:.6g} {}", names.at(static_cast<std::size_t>(r.input)),
+                                          u.factor * r.spin, u.name);
+    return polar ? response_polar_figure(names, per, frf_curve(r), u, title, {}, "frequency")
+                 : response_figure(names, per, frf_curve(r), u, title, {}, "frequency");
 }
 
 }  // namespace gyrokit

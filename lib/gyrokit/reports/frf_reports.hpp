@@ -1,10 +1,11 @@
-// Frequency response functions as a table; the Bode and polar figures are the
-// response's (response_figure with axis "frequency").
+// Frequency response functions as a table and a figure (the response's Bode or
+// polar figure over frequency).
 #pragma once
 
 #include <gyrokit/analysis/frequency_response.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/core/speed_range.hpp>
+#include <gyrokit/io/plot.hpp>
 #include <gyrokit/io/table.hpp>
 
 #include <string>
@@ -20,5 +21,9 @@ ResponseCurve frf_curve(const FrequencyResponse& r);
 // Key "frf": one row per frequency and output DOF: re, im, amplitude, phase (deg).
 Table frf_table(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
                 const FrequencyResponse& r, const SpeedUnit& u);
+// Bode (amplitude per unit, phase) or, with `polar`, Im H against Re H; titled with the
+// input DOF and the spin speed.
+Figure frf_figure(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
+                  const FrequencyResponse& r, const SpeedUnit& u, bool polar);
 
 }  // namespace gyrokit
