@@ -26,6 +26,9 @@ struct Options {
 // Rows of the printed table: the envelope in at most this many windows of whole revolutions.
 constexpr int kTableWindows = 20;
 
+// The unit of an angular acceleration in the speed unit: rad/s^2, Hz/s, rpm/s.
+std::string per_second(const SpeedUnit& u) { return u.name == "rad/s" ? "rad/s^2" : u.name + "/s"; }
+
 double number(const std::string& text, const std::string& option, const std::string& allowed) {
     try {
         std::size_t pos = 0;
@@ -55,13 +58,13 @@ SpeedProfile profile_of(const Options& o, const SpeedUnit& u) {
     if (from < 0.0 || to < 0.0 || from == to)
         throw InputError(fmt::format("--run-up '{}': allowed: {}", o.run_up, allowed));
     if (o.acceleration.empty())
-        throw InputError(fmt::format("--run-up needs --acceleration A ({}/s; > 0 for a run-up, < 0 for a run-down)",
-                                     u.name));
+        throw InputError(fmt::format("--run-up needs --acceleration A ({}; > 0 for a run-up, < 0 for a run-down)",
+                                     per_second(u)));
     const std::string sign = to > from ? "> 0" : "< 0";
-    const double a = number(o.acceleration, "--acceleration", fmt::format("a finite number {} ({}/s)", sign, u.name));
+    const double a = number(o.acceleration, "--acceleration", fmt::format("a finite number {} ({})", sign, per_second(u)));
     if ((to - from) * a <= 0.0)
-        throw InputError(fmt::format("--acceleration {} {}/s with a {} from {} to {} {}: allowed: a finite number {}",
-                                     o.acceleration, u.name, to > from ? "run-up" : "run-down", from, to, u.name,
+        throw InputError(fmt::format("--acceleration {} {} with a {} from {} to {} {}: allowed: a finite number {}",
+                                     o.acceleration, per_second(u), to > from ? "run-up" : "run-down", from, to, u.name,
                                      sign));
     return {from / u.factor, to / u.factor, a / u.factor};
 }
@@ -99,8 +102,8 @@ std::vector<int> outputs_of(const Options& o, const GyroscopicSystem& sys) {
 std::string describe(const SpeedProfile& p, const SpeedUnit& u, bool steady) {
     const std::string from = steady ? "from its steady state" : "from rest";
     if (p.acceleration == 0.0) return fmt::format("at {:.6g} {} {}", u.factor * p.from, u.name, from);
-    return fmt::format("{} {:.6g} to {:.6g} {} at {:.6g} {}/s {}", p.to > p.from ? "run-up" : "run-down",
-                       u.factor * p.from, u.factor * p.to, u.name, u.factor * p.acceleration, u.name, from);
+    return fmt::format("{} {:.6g} to {:.6g} {} at {:.6g} {} {}", p.to > p.from ? "run-up" : "run-down",
+                       u.factor * p.from, u.factor * p.to, u.name, u.factor * p.acceleration, per_second(u), from);
 }
 
 void draw(const Options& o, const Context& c, const TransientResult& r, SolverKind kind) {
@@ -127,7 +130,9 @@ void draw(const Options& o, const Context& c, const TransientResult& r, SolverKi
 }
 
 void run(const Options& o, std::ostream& out) {
-    check_plot_path(o.waterfall);
+    const std::string ext = o.waterfall.size() > 4 ? o.waterfall.substr(o.waterfall.size() - 4) : "";
+    if (!o.waterfall.empty() && ext != ".svg" && ext != ".png")
+        throw InputError("--waterfall '" + o.waterfall + "': allowed: a file name ending in .svg or .png");
     if (o.start != "rest" && o.start != "steady")
         throw InputError("--start '" + o.start + "': allowed: rest, steady");
     const Context c = open_scene(o.common, false);
