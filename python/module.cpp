@@ -14,6 +14,7 @@
 #include "screening.hpp"
 #include "statics.hpp"
 #include "system.hpp"
+#include "transient.hpp"
 
 #include <pybind11/pybind11.h>
 
@@ -71,6 +72,7 @@ PYBIND11_MODULE(_core, m) {
     bind_statics(m);
     bind_critical_map(m);
     bind_frf(m);
+    bind_transient(m);
     bind_analyses(m);
     bind_screening(m);
     bind_balancing(m);

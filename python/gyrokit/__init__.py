@@ -15,6 +15,7 @@ import numpy as _np
 from ._core import Error, InputError, Scene, SolverError, System, __version__
 from ._core import Bearing, Disk, Pedestal, Rotor, Section, Support, coupling
 from . import _core
+from ._transient import TransientResponse, transient
 
 __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene", "eig", "campbell",
            "critical_speeds", "stability", "screen", "EigResult", "CampbellResult", "CriticalSpeeds",
@@ -22,7 +23,7 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "Sommerfeld",
            "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
            "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap", "frf",
-           "FrequencyResponse"]
+           "FrequencyResponse", "transient", "TransientResponse"]
 
 
 def load_scene(path, overrides=None, motion=None) -> Scene:
