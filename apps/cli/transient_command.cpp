@@ -116,7 +116,7 @@ void draw(const Options& o, const Context& c, const TransientResult& r, SolverKi
     } else if (!o.common.plot.empty()) {
         std::vector<double> speeds;
         const double lo = std::min(r.profile.from, r.profile.to), hi = r.profile.top();
-        for (int i = 0; i <= 300; ++i) speeds.push_back(lo + (hi - lo) * i / 300.0);
+        for (int i = 0; i <= 1000; ++i) speeds.push_back(lo + (hi - lo) * i / 1000.0);
         const TransientEnvelope fine = transient_envelope(r, 400);
         plot_if(o.common.plot, transient_runup_figure(sys.dof_names, sys.dof_units, fine, speeds,
                                                       steady_amplitudes(sys, speeds, r.dofs, kind), c.unit,

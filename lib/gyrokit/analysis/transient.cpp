@@ -62,7 +62,7 @@ bool present(const SparseMatrix& A) { return A.rows() > 0 && A.nonZeros() > 0; }
 // Residual corrections with a factorization of S at another speed before S is refactored.
 constexpr int kMaxCorrections = 3;
 // A solve is accepted when ||S z - r|| <= kSolveTolerance (||S|| ||z|| + ||r||) ...
-constexpr double kSolveTolerance = 1e-13;
+constexpr double kSolveTolerance = 1e-14;
 // ... or, with S factored at this very speed, up to kSingularTolerance (beyond: singular).
 constexpr double kSingularTolerance = 1e-8;
 
