@@ -208,6 +208,17 @@ TEST_CASE("transient: the three-disk rotor at constant speed stays on its steady
     INFO("gap " << gap / scale << ", off " << off / scale);
     CHECK(gap >= std::pow(w * r.dt, 2) / 12.0 * 0.1 * scale);   // the phase error shows
     CHECK(off <= 3.0 * gap);
+    // The waterfall reads the 1x amplitude (frequency 200 of 301 up to 1.5 w is w): the
+    // response, within its transient and the Hann window's leakage from -w (32 bins away: 1e-4).
+    const Waterfall wf = transient_waterfall(r, 0, 5, 301);
+    REQUIRE(wf.frequencies[200] == Approx(w).epsilon(1e-15));
+    CHECK(wf.window == Approx(16.0 * 2.0 * M_PI / w).epsilon(0.01));
+    for (Eigen::Index i = 0; i < wf.amplitude.rows(); ++i) {
+        Eigen::Index at = 0;
+        wf.amplitude.row(i).maxCoeff(&at);
+        CHECK(at == 200);
+        CHECK(std::abs(wf.amplitude(i, 200) - std::abs(Z(r.dofs[0]))) <= off + 1e-3 * scale);
+    }
     // Started exactly on Newmark's steady state (v = i w_hat Zhat), the integrator stays on it.
     const double what = newmark_frequency(w, r.dt);
     NewmarkIntegrator integ(sys, r.dt, w);

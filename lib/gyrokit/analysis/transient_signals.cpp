@@ -128,14 +128,21 @@ Waterfall transient_waterfall(const TransientResult& r, int column, int windows,
     if (samples < 4) throw InputError("waterfall: the run has fewer than 4 samples; allowed: a longer run");
     const double band = kBandMargin * r.profile.top();
     for (int j = 0; j < frequencies; ++j) wf.frequencies.push_back(band * j / (frequencies - 1));
-    // Windows of 2 T / windows samples, centres evenly spaced from the first to the last half window.
+    // Windows of 2 T / windows, at least kWaterfallPeriods periods of the top speed (the
+    // resolution), at most the run; centres evenly spaced from the first to the last half window.
     const std::size_t last = samples - 1;
-    const std::size_t length = std::max<std::size_t>(3, std::min(last, 2 * last / static_cast<std::size_t>(windows)));
+    const double periods = kWaterfallPeriods * 2.0 * M_PI / r.profile.top();
+    const auto shortest = static_cast<std::size_t>(std::ceil(periods / r.dt));
+    const std::size_t length =
+        std::min(last, std::max<std::size_t>({3, shortest, 2 * last / static_cast<std::size_t>(windows)}));
+    if (length == last) windows = 1;
     wf.window = r.t[length] - r.t[0];
     wf.amplitude.resize(windows, frequencies);
     for (int i = 0; i < windows; ++i) {
         throw_if_interrupted();
-        const auto i0 = static_cast<std::size_t>(std::llround(static_cast<double>(last - length) * i / (windows - 1)));
+        const auto i0 = windows == 1 ? std::size_t(0)
+                                     : static_cast<std::size_t>(std::llround(static_cast<double>(last - length) * i /
+                                                                             (windows - 1)));
         const std::size_t mid = i0 + length / 2;
         wf.t.push_back(r.t[mid]);
         wf.speed.push_back(r.speed[mid]);

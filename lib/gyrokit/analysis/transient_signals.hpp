@@ -43,9 +43,15 @@ struct Waterfall {
     double window = 0.0;              // length of each window, s (resolution ~ 2 pi / window)
 };
 
+// The shortest window of a waterfall in periods of the top speed: its resolution,
+// about 2 / kWaterfallPeriods of the top speed between the Hann window's first zeros.
+constexpr double kWaterfallPeriods = 16.0;
+
 // Spectra of `windows` Hann-weighted windows of the recorded column `column`, each
-// twice the run's length / windows long (half overlapping), at `frequencies` points.
-// InputError for a column out of range or counts out of [2, 10000].
+// twice the run's length / windows long (half overlapping) but at least
+// kWaterfallPeriods periods of the top speed, at `frequencies` points; one window of
+// the whole run where the run is shorter. InputError for a column out of range or
+// counts out of [2, 10000].
 Waterfall transient_waterfall(const TransientResult& r, int column, int windows = 40, int frequencies = 300);
 
 }  // namespace gyrokit
