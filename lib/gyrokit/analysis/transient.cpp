@@ -60,7 +60,7 @@ namespace {
 bool present(const SparseMatrix& A) { return A.rows() > 0 && A.nonZeros() > 0; }
 
 // Residual corrections with a factorization of S at another speed before S is refactored.
-constexpr int kMaxCorrections = 3;
+constexpr int kMaxCorrections = 2;
 // A solve is accepted when ||S z - r|| <= kSolveTolerance (||S|| ||z|| + ||r||) ...
 constexpr double kSolveTolerance = 1e-14;
 // ... or, with S factored at this very speed, up to kSingularTolerance (beyond: singular).
