@@ -61,7 +61,7 @@ class TransientResponse:
 
     def plot(self, ax=None):
         """The orbit (constant speed: the second DOF against the first) or the run-up picture (the envelope's
-        peaks against speed, the steady response dashed)."""
+        peaks against speed, the steady response as a thin line)."""
         import matplotlib.pyplot as plt
         ax = ax or plt.subplots()[1]
         if self._profile[2] == 0.0 and len(self.dofs) >= 2:
@@ -73,7 +73,7 @@ class TransientResponse:
         e = self.envelope
         for k, name in enumerate(self.dofs):
             line, = ax.plot(e["speed"][:, k], e["peak"][:, k], label=f"{name} run")
-            ax.plot(e["speed"][:, k], e["steady"][:, k], "--", color=line.get_color(), linewidth=0.8,
+            ax.plot(e["speed"][:, k], e["steady"][:, k], color=line.get_color(), linewidth=0.7,
                     label=f"{name} steady")
         ax.set_xlabel(f"speed [{self.unit}]")
         ax.set_ylabel("amplitude")

@@ -91,9 +91,9 @@ Figure transient_runup_figure(const std::vector<std::string>& names, const std::
             const std::string name = names[static_cast<std::size_t>(e.dofs[k])];
             Series run, ss;
             run.label = name + " run (peak per window)";
-            ss.label = name + " steady";
+            ss.label = name + " steady response";
             run.color = ss.color = colour(k);
-            ss.style = "dashed";
+            ss.style = "thin";
             for (Eigen::Index i = 0; i < e.peak.rows(); ++i) {
                 run.x.push_back(u.factor * e.speed(i, static_cast<Eigen::Index>(k)));
                 run.y.push_back(e.peak(i, static_cast<Eigen::Index>(k)));

@@ -28,7 +28,7 @@ Figure transient_orbit_figure(const std::vector<std::string>& dof_names, const s
                               const TransientResult& r, int cx, int cy, std::complex<double> Zx,
                               std::complex<double> Zy, const std::string& title);
 // The run-up picture: the envelope (peak per window) of each DOF against speed, and the
-// steady response amplitude at `speeds` (speeds x DOFs) dashed in the same colour.
+// steady response amplitude at `speeds` (speeds x DOFs) as a thin line in the same colour.
 Figure transient_runup_figure(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
                               const TransientEnvelope& e, const std::vector<double>& speeds,
                               const Eigen::MatrixXd& steady, const SpeedUnit& u, const std::string& title);
