@@ -219,6 +219,12 @@ TEST_CASE("transient: the three-disk rotor at constant speed stays on its steady
         CHECK(at == 200);
         CHECK(std::abs(wf.amplitude(i, 200) - std::abs(Z(r.dofs[0]))) <= off + 1e-3 * scale);
     }
+    // The sparse LU (models above kAutoSparseDofs) gives the same run: each step's solve to
+    // 1e-14 of the residual, a few cond(S) eps apart.
+    TransientOptions sparse = o;
+    sparse.kind = SolverKind::Sparse;
+    const TransientResult rs = transient_response(sys, sparse);
+    CHECK((rs.z - r.z).cwiseAbs().maxCoeff() <= 1e-8 * scale);
     // Started exactly on Newmark's steady state (v = i w_hat Zhat), the integrator stays on it.
     const double what = newmark_frequency(w, r.dt);
     NewmarkIntegrator integ(sys, r.dt, w);
@@ -413,4 +419,11 @@ TEST_CASE("transient: bad input names the option, the value and the allowed rang
     integ.start(0.0, 0.0, Eigen::VectorXd::Ones(1), Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1));
     CHECK_THROWS_AS(integ.step(0.0, Eigen::VectorXd::Zero(1)), SolverError);
     CHECK_THROWS_WITH(integ.step(0.0, Eigen::VectorXd::Zero(1)), Catch::Contains("effective matrix"));
+    // A DOF without mass: no initial acceleration.
+    GyroscopicSystem massless = sys;
+    massless.M = Eigen::Vector2d(10.0, 0.0).asDiagonal();
+    NewmarkIntegrator start(massless, 1e-4, 300.0);
+    CHECK_THROWS_WITH(start.start(0.0, 300.0, Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(2),
+                                  Eigen::VectorXd::Ones(2)),
+                      Catch::Contains("the mass matrix is singular"));
 }
