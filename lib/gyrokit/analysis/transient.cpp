@@ -69,7 +69,7 @@ constexpr double kSingularTolerance = 1e-8;
 }  // namespace
 
 struct NewmarkIntegrator::Impl {
-    const GyroscopicSystem& sys;
+    GyroscopicSystem sys;   // a copy: a temporary model is safe
     double dt, scale;
     bool dense, speed_dependent = false;
     double c0, c1, c2;   // 4/dt^2, 2/dt, 4/dt
@@ -187,6 +187,10 @@ NewmarkIntegrator::~NewmarkIntegrator() = default;
 void NewmarkIntegrator::start(double t, double w, const Eigen::VectorXd& z, const Eigen::VectorXd& v,
                               const Eigen::VectorXd& f) {
     Impl& m = *impl_;
+    const auto n = static_cast<Eigen::Index>(m.sys.size());
+    if (z.size() != n || v.size() != n || f.size() != n)
+        throw InputError(fmt::format("Newmark start: z, z' and f of sizes {}, {}, {}; allowed: {} (the model's DOFs)",
+                                     z.size(), v.size(), f.size(), n));
     m.hold(w);
     m.factor(w);
     m.t = t;
@@ -211,6 +215,9 @@ void NewmarkIntegrator::start(double t, double w, const Eigen::VectorXd& z, cons
 void NewmarkIntegrator::step(double w, const Eigen::VectorXd& f) {
     Impl& m = *impl_;
     if (m.w_ref < 0.0) throw Error("NewmarkIntegrator::step before start");
+    if (f.size() != m.z.size())
+        throw InputError(fmt::format("Newmark step: a force of size {}; allowed: {} (the model's DOFs)", f.size(),
+                                     m.z.size()));
     // Speed-dependent coefficients held within kCoefficientSpeedStep of the speed.
     if (m.speed_dependent &&
         std::abs(w - m.w_ref) > kCoefficientSpeedStep * std::max(std::abs(m.w_ref), 0.01 * m.scale)) {

@@ -66,6 +66,8 @@ public:
         double max_residual = 0.0;   // largest ||S z - r|| / (||S|| ||z|| + ||r||) accepted
     };
 
+    // Keeps a copy of `sys`; `speed_scale` (rad/s, e.g. the top speed) sets the coefficient
+    // rule's floor near standstill. InputError for a dt that is not finite and > 0.
     NewmarkIntegrator(const GyroscopicSystem& sys, double dt, double speed_scale, SolverKind kind = SolverKind::Auto);
     ~NewmarkIntegrator();
     NewmarkIntegrator(const NewmarkIntegrator&) = delete;
