@@ -70,6 +70,7 @@ int main(int argc, char** argv) {
     for (auto& c : cli::add_tracking_commands(app)) commands.push_back(std::move(c));
     for (auto& c : cli::add_response_commands(app)) commands.push_back(std::move(c));
     for (auto& c : cli::add_frf_commands(app)) commands.push_back(std::move(c));
+    for (auto& c : cli::add_transient_commands(app)) commands.push_back(std::move(c));
     for (auto& c : cli::add_static_commands(app)) commands.push_back(std::move(c));
     for (auto& c : cli::add_critical_map_commands(app)) commands.push_back(std::move(c));
     // Further command groups register here, one line each.

@@ -15,6 +15,7 @@
 #include "screening.hpp"
 #include "statics.hpp"
 #include "system.hpp"
+#include "transient.hpp"
 
 #include <pybind11/pybind11.h>
 
@@ -77,6 +78,7 @@ PYBIND11_MODULE(_core, m) {
     bind_critical_map(m);
     bind_frf(m);
     bind_reports(m);
+    bind_transient(m);
     bind_analyses(m);
     bind_screening(m);
     bind_balancing(m);

@@ -106,6 +106,8 @@ cases = [
     ["sommerfeld", f"{data}/sommerfeld_rotor.toml", "--table", "folds"],
     ["sommerfeld", f"{data}/sommerfeld_rotor.toml", "--table", "summary"],
     ["screen", sweep, "--limit", "4"],
+    ["transient", fe, "--speed", "300", "--duration", "0.05"],
+    ["transient", fe, "--run-up", "100:300", "--acceleration", "2000"],
 ]
 for case in cases:
     check_csv(case)

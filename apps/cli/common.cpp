@@ -89,7 +89,10 @@ std::string flag_words(const std::string& field) {
         {"directory", "--dir"},       {"jobs", "--jobs"},     {"lanczos_vectors", "--lanczos"},
         {"method", "--method"},       {"modes", "--modes"},   {"motion", "--motion"},
         {"solver", "--solver"},       {"speeds", "--speeds"}, {"target", "--target"},
-        {"target_order", "--target-order"}, {"units", "--units"}, {"rows", "--rows, or --format csv|json"}, {"plot", "--plot FILE.svg"}};
+        {"target_order", "--target-order"}, {"units", "--units"}, {"rows", "--rows, or --format csv|json"},
+        {"plot", "--plot FILE.svg"},        {"dt", "--dt"},         {"duration", "--duration"},
+        {"max_steps", "--max-steps"},       {"speed", "--speed"},   {"run_up", "--run-up"},
+        {"acceleration", "--acceleration"}};
     for (const auto& [name, flag] : flags)
         if (field == name) return flag;
     return "";

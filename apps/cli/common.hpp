@@ -115,6 +115,9 @@ std::vector<Command> add_screen_commands(CLI::App& app);
 // Frequency response functions at a fixed spin speed: frf.
 std::vector<Command> add_frf_commands(CLI::App& app);
 
+// Transient response by time integration: transient.
+std::vector<Command> add_transient_commands(CLI::App& app);
+
 // FE rotors: critical-map (undamped critical speeds against bearing stiffness).
 std::vector<Command> add_critical_map_commands(CLI::App& app);
 

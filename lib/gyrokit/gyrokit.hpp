@@ -18,6 +18,8 @@
 #include <gyrokit/core/diagnostics.hpp>
 #include <gyrokit/study/rotor_study.hpp>
 #include <gyrokit/study/static_study.hpp>
+#include <gyrokit/analysis/transient.hpp>
+#include <gyrokit/analysis/transient_signals.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/balancing/autobalancer.hpp>
 #include <gyrokit/balancing/balancer_scene.hpp>

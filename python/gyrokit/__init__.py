@@ -17,6 +17,7 @@ from ._core import Bearing, Disk, Pedestal, Rotor, Section, Support, coupling
 from . import _core
 from ._results import Result as _Result, Table, draw, load_tables
 from ._results import UNITS as _UNITS, factor as _factor
+from ._transient import TransientResponse, transient
 
 __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene", "eig", "campbell",
            "critical_speeds", "stability", "screen", "EigResult", "CampbellResult", "CriticalSpeeds",
@@ -24,7 +25,8 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "Sommerfeld",
            "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
            "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap", "frf",
-           "FrequencyResponse", "Table", "load_tables", "draw", "summary", "ModelSummary"]
+           "FrequencyResponse", "Table", "load_tables", "draw", "summary", "ModelSummary", "transient",
+           "TransientResponse"]
 
 
 def load_scene(path, overrides=None, motion=None) -> Scene:

@@ -365,3 +365,21 @@ def critical_speed_map(model: Scene, *, stiffness: Optional[Sequence[float]] = .
 class ModelSummary(_Result): ...
 
 def summary(scene: Scene) -> ModelSummary: ...
+
+class TransientResponse(_Result):
+    unit: str
+    t: npt.NDArray[np.float64]
+    speed: npt.NDArray[np.float64]
+    z: npt.NDArray[np.float64]
+    dofs: list[str]
+    dt: float
+    notes: list[str]
+    stats: dict[str, Any]
+    envelope: dict[str, npt.NDArray[Any]]
+    def to_pandas(self, table: str = ...) -> Any: ...
+    def waterfall(self, dof: Union[str, int] = ..., windows: int = ..., frequencies: int = ...) -> dict[str, Any]: ...
+    def plot_waterfall(self, path: Optional[Path] = ..., axes: Any = ...) -> Any: ...
+def transient(model: Model, speed: Optional[float] = ..., *, run_up: Optional[tuple[float, float]] = ...,
+              acceleration: Optional[float] = ..., duration: Optional[float] = ..., dt: Optional[float] = ...,
+              dofs: Optional[Sequence[str]] = ..., node: Optional[int] = ..., unit: str = ..., start: str = ...,
+              max_steps: int = ..., solver: Optional[str] = ..., windows: int = ...) -> TransientResponse: ...

@@ -150,3 +150,12 @@ def test_frf_static_map_and_summary_carry_the_clis_tables(tmp_path, scene):
         assert result.plot().axes
     f.plot_polar(tmp_path / "frf_polar.png")
     assert os.path.getsize(tmp_path / "frf_polar.png") > 1000
+
+
+def test_a_transient_run_carries_the_clis_table_and_pictures(tmp_path, scene):
+    r = gk.transient(scene, 600.0, duration=0.05, start="steady")
+    assert open(r.save(tmp_path / "run.csv")).read() == cli(
+        "transient", SCENE, "--speed", "600", "--duration", "0.05", "--start", "steady", "--format", "csv")
+    r.plot(tmp_path / "orbit.png")
+    r.plot_waterfall(tmp_path / "waterfall.svg")
+    assert os.path.getsize(tmp_path / "orbit.png") > 1000 and "<svg" in open(tmp_path / "waterfall.svg").read()

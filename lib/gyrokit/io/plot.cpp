@@ -67,13 +67,14 @@ struct TempDir {
 std::string with_clause(const Series& s) {
     std::string w;
     if (s.style == "lines") w = "lines lw 1.5";
+    else if (s.style == "thin") w = "lines lw 0.7";
     else if (s.style == "dashed") w = "lines dt 2 lw 1.5";
     else if (s.style == "dotted") w = "lines dt 3 lw 1.5";
     else if (s.style == "points") w = "points pt 7 ps 0.6";
     else if (s.style == "linespoints") w = "linespoints pt 7 ps 0.6 lw 1.5";
     else
-        throw InputError(fmt::format("unknown plot style '{}' for series '{}'; allowed: lines, dashed, "
-                                     "dotted, points, linespoints", s.style, s.label));
+        throw InputError(fmt::format("unknown plot style '{}' for series '{}'; allowed: lines, thin, "
+                                     "dashed, dotted, points, linespoints", s.style, s.label));
     if (!s.color.empty()) w += " lc rgb " + gp_quote(s.color);
     return w + (s.label.empty() ? " notitle" : " title " + gp_quote(s.label));
 }

@@ -11,7 +11,7 @@ namespace gyrokit {
 struct Series {
     std::vector<double> x, y;
     std::string label;           // legend entry ("" = no legend entry)
-    std::string style = "lines"; // "lines", "dashed", "dotted", "points", "linespoints"
+    std::string style = "lines"; // "lines", "thin" (a thinner line), "dashed", "dotted", "points", "linespoints"
     std::string color;           // e.g. "#d62728"; "" = gnuplot default
 };
 

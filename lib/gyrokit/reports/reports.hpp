@@ -14,3 +14,4 @@
 #include <gyrokit/reports/sommerfeld_reports.hpp>
 #include <gyrokit/reports/spectrum_reports.hpp>
 #include <gyrokit/reports/static_reports.hpp>
+#include <gyrokit/reports/transient_reports.hpp>
