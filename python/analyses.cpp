@@ -170,8 +170,9 @@ py::dict py_eig(const GyroscopicSystem& s, double speed, const std::string& solv
 // gk.mode_shapes: the shapes as columns, and their orbits per whirl pair (the CLI's --per node table).
 py::dict py_mode_shapes(const GyroscopicSystem& s, double speed, const std::string& solver, int modes,
                         const py::object& target, double target_order, const std::string& method, int lanczos,
-                        const std::string& unit, const std::string& title) {
+                        const std::string& unit, const std::string& title, const std::string& length_unit) {
     const SpeedUnit u = SpeedUnit::parse(unit);
+    const LengthUnit length = LengthUnit::parse(length_unit);
     if (!(std::isfinite(speed) && speed >= 0))
         throw InputError("speed = " + std::to_string(speed) + ": allowed: a finite number >= 0 (rad/s)");
     const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
@@ -230,9 +231,9 @@ py::dict py_mode_shapes(const GyroscopicSystem& s, double speed, const std::stri
     orbits["whirl"] = orbit_whirl;
     d["orbits"] = orbits;
     put_reports(d,
-                {mode_list_table(shapes, s.dof_names, speed, u), mode_orbit_table(shapes, speed, u),
+                {mode_list_table(shapes, s.dof_names, speed, u), mode_orbit_table(shapes, speed, u, length),
                  mode_dof_table(shapes, s.dof_names, s.dof_units, speed, u)},
-                mode_shape_figure(shapes, speed, u, title));
+                mode_shape_figure(shapes, speed, u, title, length));
     return d;
 }
 
@@ -431,7 +432,7 @@ void bind_analyses(py::module_& m) {
 
     m.def("mode_shapes", &py_mode_shapes, py::arg("system"), py::arg("speed"), py::arg("solver"), py::arg("modes"),
           py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("unit") = "rad/s",
-          py::arg("title") = "");
+          py::arg("title") = "", py::arg("length_unit") = "m");
 
     m.def("campbell", &py_campbell, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
           py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),

@@ -65,9 +65,8 @@ void bind_statics(py::module_& m) {
         d["balance_error"] = s.balance_error;
         d["condition"] = s.condition;
         d["error_bound"] = s.error_bound;
-        d["tables"] = tables_list({static_node_table(s), static_summary_table(s), static_reaction_table(s),
-                                   static_section_table(s)});
-        d["figure"] = figure_dict(static_figure(s, scene.title));
+        d["tables"] = tables_list(static_tables(s, scene.length_unit()));
+        d["figure"] = figure_dict(static_figure(s, scene.title, scene.length_unit()));
         return d;
     }, py::arg("scene"), py::arg("gravity"), py::arg("loads"));
 }

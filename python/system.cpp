@@ -123,6 +123,7 @@ py::class_<Scene> bind_system(py::module_& m) {
     py::class_<Scene> scene(m, "Scene", "A scene file: a model with its analysis settings");
     scene.def_readonly("path", &Scene::path)
         .def_readonly("title", &Scene::title)
+        .def_property_readonly("length_unit", [](const Scene& s) { return s.length_unit().name; })
         .def_readonly("model_type", &Scene::model_type)
         .def_readonly("system", &Scene::system)
         .def_readonly("modes", &Scene::modes)

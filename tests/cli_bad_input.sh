@@ -137,6 +137,33 @@ END
 expect "node 0 has no free lateral translation" response "$dir/pinned.toml" --nodes 0
 expect "--at 0: node 0 has no free lateral translation" response "$dir/pinned.toml" --at 0
 expect "--at 1.5: axial position 1.5 m is off the shaft; allowed: [0, 1] m" response "$dir/pinned.toml" --at 1.5
+# In an mm scene positions are typed and read in mm: the same rotor, --at 500 is node 2.
+cat > "$dir/pinned_mm.toml" <<'END'
+[model]
+type = "fe_rotor"
+material = "steel"
+length_unit = "mm"
+[[model.shaft]]
+length = 1000
+elements = 4
+outer_diameter = 50
+[[model.disk]]
+z = 500
+outer_diameter = 200
+width = 30
+unbalance = 1e-4
+[[model.support]]
+z = 0
+[[model.support]]
+z = 1000
+[speeds]
+from = 0
+to = 1000
+count = 11
+END
+"$cli" response "$dir/pinned_mm.toml" --at 500 --format csv | cut -d, -f2 | sort -u | tr '\n' ' ' | grep -qx "dof x2 y2 " ||
+    { echo "FAIL: --at 500 in an mm scene gives x2, y2"; fail=1; }
+expect "--at 1500: axial position 1500 mm is off the shaft; allowed: [0, 1000] mm" response "$dir/pinned_mm.toml" --at 1500
 "$cli" response "$dir/pinned.toml" --at 0.5 --format csv | cut -d, -f2 | sort -u | tr '\n' ' ' | grep -qx "dof x2 y2 " ||
     { echo "FAIL: --at 0.5 gives x2, y2"; fail=1; }
 # Inputs that are not regular files, or nested beyond the parser's stack: one line, never a hang.

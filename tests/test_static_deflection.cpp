@@ -2,6 +2,10 @@
 // shaft with a central disk under gravity (Euler-Bernoulli and Timoshenko), a
 // horizontal point load, reactions and internal forces, and a rotor not held.
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/io/scene.hpp>
+#include <gyrokit/reports/static_reports.hpp>
+#include <gyrokit/study/static_study.hpp>
+#include <fmt/format.h>
 #include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/fe_statics.hpp>
 
@@ -126,4 +130,27 @@ TEST_CASE("static: a rotor its supports leave free, and bad options, are refused
     CHECK_THROWS_WITH(fe_static(r, o), Catch::Contains("load 0 at node 13; allowed: 0 to 12"));
     r.motion = FeMotion::torsional;
     CHECK_THROWS_WITH(fe_static(r, {}), Catch::Contains("motion is torsional"));
+}
+
+TEST_CASE("static: an mm scene prints positions and deflections in mm, the same numbers scaled") {
+    const auto text = [](const std::string& unit, double scale) {
+        return fmt::format("[model]\ntype = \"fe_rotor\"\nmaterial = \"steel\"\nlength_unit = \"{}\"\n"
+                           "[[model.shaft]]\nlength = {}\nelements = 4\nouter_diameter = {}\n"
+                           "[[model.disk]]\nz = {}\nouter_diameter = {}\nwidth = {}\n"
+                           "[[model.support]]\nz = 0\n[[model.support]]\nz = {}\n",
+                           unit, 1.0 * scale, 0.05 * scale, 0.5 * scale, 0.2 * scale, 0.03 * scale, 1.0 * scale);
+    };
+    const Scene m = parse_scene(text("m", 1.0), "m.toml", "."), mm = parse_scene(text("mm", 1000.0), "mm.toml", ".");
+    REQUIRE(mm.length_unit().name == "mm");
+    const Table a = static_node_table(static_study(m, {}), m.length_unit());
+    const Table b = static_node_table(static_study(mm, {}), mm.length_unit());
+    CHECK(a.columns()[1] == "z_m");
+    CHECK(b.columns() == std::vector<std::string>{"node", "z_mm", "x_mm", "y_mm", "slope_x_rad", "slope_y_rad"});
+    REQUIRE(a.rows() == b.rows());
+    // The mm scene's inputs differ from the m scene's by the rounding of 1e-3 (a few ulp): so do the results.
+    for (std::size_t i = 0; i < a.rows(); ++i)
+        for (std::size_t j = 1; j < 4; ++j) {
+            const double x = std::get<double>(a.row(i)[j]), y = std::get<double>(b.row(i)[j]);
+            CHECK(std::abs(y - 1000.0 * x) <= 1e-12 * std::max(1.0, std::abs(y)));
+        }
 }

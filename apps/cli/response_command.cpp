@@ -34,7 +34,7 @@ std::vector<std::string> split_list(const std::string& text) {
 
 // The response outputs: DOFs by name (--dofs), the DOFs in metres of nodes
 // (--nodes) and of the nodes nearest axial positions (--at, m); empty: all.
-std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys);
+std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys, const LengthUnit& length);
 
 // DOF indices from a list of names (empty: all).
 std::vector<int> parse_dofs(const std::string& text, const std::vector<std::string>& names) {
@@ -55,7 +55,7 @@ std::vector<int> parse_dofs(const std::string& text, const std::vector<std::stri
     return out;
 }
 
-std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys) {
+std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys, const LengthUnit& length) {
     std::vector<int> out = parse_dofs(o.dofs, sys.dof_names);
     const auto add_node = [&](int node) {
         const std::vector<int> dofs = sys.node_translations(node);
@@ -86,10 +86,11 @@ std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys)
             z = std::stod(item, &pos);
             if (pos != item.size()) throw std::invalid_argument(item);
         } catch (const std::exception&) {
-            throw InputError("--at '" + o.at + "': allowed: axial positions in m separated by commas");
+            throw InputError("--at '" + o.at + "': allowed: axial positions in " + length.name +
+                             " (the scene's length_unit) separated by commas");
         }
         try {
-            add_node(sys.nearest_node(z));
+            add_node(sys.nearest_node(length.to_metres(z), length));
         } catch (const InputError& e) {
             throw InputError("--at " + item + ": " + e.what());
         }
@@ -111,7 +112,7 @@ std::vector<Command> add_response_commands(CLI::App& app) {
     resp->add_flag("--polar", o->polar, "with --plot: a polar plot (Im Z against Re Z) instead of amplitude and phase");
     resp->add_option("--dofs", o->dofs, "DOFs reported, by name, e.g. x3,y3 (default: all)");
     resp->add_option("--nodes", o->nodes, "DOFs reported: the lateral translations x, y of these nodes, e.g. 12,20");
-    resp->add_option("--at", o->at, "DOFs reported: the lateral translations x, y of the nodes nearest these axial positions (m)");
+    resp->add_option("--at", o->at, "DOFs reported: the lateral translations x, y of the nodes nearest these axial positions (in the scene's length_unit: m or mm)");
     resp->add_flag("--extrema", o->extrema, "print the peaks and antiresonances instead of the curve");
     resp->add_flag("--rows", o->rows, "table format: every row of the curve instead of the summary");
     resp->add_option("--modes", o->modes, "modes checked for stability over the range (0 = all); default: the scene's, "
@@ -121,7 +122,7 @@ std::vector<Command> add_response_commands(CLI::App& app) {
         if (o->polar && o->common.plot.empty()) throw InputError("--polar: only together with --plot FILE");
         const Context c = open_scene(o->common, true);
         const Scene& sc = c.scene;
-        const std::vector<int> outputs = response_outputs(*o, sc.system);
+        const std::vector<int> outputs = response_outputs(*o, sc.system, sc.length_unit());
         // The sparse LU of the dynamic stiffness where the solver choice is sparse.
         const SolverKind kind = use_sparse(c) ? SolverKind::Sparse : SolverKind::Dense;
         const std::vector<std::string>& names = sc.system.dof_names;

@@ -68,12 +68,12 @@ std::vector<Command> add_static_commands(CLI::App& app) {
                  for (const std::string& l : o->loads) opt.loads.push_back(parse_load(l));
                  const Scene sc = load_motion_scene(o->common);
                  const StaticResult s = static_study(sc, opt);
-                 std::vector<Table> tables = {static_node_table(s), static_summary_table(s), static_reaction_table(s),
-                                              static_section_table(s)};
-                 if (format == TableFormat::Text && o->table.empty())
-                     tables = {static_summary_table(s), static_reaction_table(s), static_node_table(s)};
+                 const LengthUnit length = sc.length_unit();
+                 std::vector<Table> tables = static_tables(s, length);
+                 // A person reads the summary and the reactions first; the element ends on request.
+                 if (format == TableFormat::Text && o->table.empty()) tables = {tables[1], tables[2], tables[0]};
                  write_result(out, tables, format, o->table);
-                 plot_if(o->common.plot, static_figure(s, sc.title));
+                 plot_if(o->common.plot, static_figure(s, sc.title, length));
              }}};
 }
 

@@ -285,8 +285,9 @@ def modes(model, speed, *, solver=None, modes=None, target=None, target_order=No
     """Mode shapes at one speed (in `unit`): the `modes` lowest (None: the scene's, 0: all)."""
     system, o = _options(model, solver, modes, target, target_order)
     w = float(speed) / _factor(unit)
+    length = model.length_unit if isinstance(model, Scene) else "m"
     return ModeShapes(_core.mode_shapes(system, w, method=method, lanczos=int(lanczos), unit=unit,
-                                        title=_title(model), **o), w, system.dof_names, unit)
+                                        title=_title(model), length_unit=length, **o), w, system.dof_names, unit)
 
 
 def campbell(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,

@@ -137,12 +137,13 @@ Eigen::VectorXcd GyroscopicSystem::unbalance_force(double w) const {
     return (w * w) * unbalance;
 }
 
-int GyroscopicSystem::nearest_node(double z) const {
+int GyroscopicSystem::nearest_node(double z, const LengthUnit& unit) const {
     if (node_z.empty()) throw InputError("this model has no nodes on an axis; allowed: DOFs by name");
     const auto [lo, hi] = std::minmax_element(node_z.begin(), node_z.end());
     const double slack = 1e-9 * std::max(1.0, *hi - *lo);
     if (!std::isfinite(z) || z < *lo - slack || z > *hi + slack)
-        throw InputError(fmt::format("axial position {} m is off the shaft; allowed: [{}, {}] m", z, *lo, *hi));
+        throw InputError(fmt::format("axial position {:.6g} {} is off the shaft; allowed: [{:.6g}, {:.6g}] {}", unit.in_unit(z),
+                                     unit.name, unit.in_unit(*lo), unit.in_unit(*hi), unit.name));
     int best = 0;
     for (int k = 1; k < static_cast<int>(node_z.size()); ++k)
         if (std::abs(node_z[static_cast<size_t>(k)] - z) < std::abs(node_z[static_cast<size_t>(best)] - z)) best = k;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <gyrokit/core/bearing_table.hpp>
+#include <gyrokit/core/length_unit.hpp>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -111,8 +112,9 @@ public:
 
     int size() const { return static_cast<int>(M.rows()); }
     // The node nearest the axial position z (m); InputError if the model has no
-    // nodes or z lies off the shaft (outside its first and last node).
-    int nearest_node(double z) const;
+    // nodes or z lies off the shaft (outside its first and last node), naming
+    // positions in `unit`.
+    int nearest_node(double z, const LengthUnit& unit = {}) const;
     // The DOFs of a node, those in `unit` only if one is given; InputError if the
     // model has no such node.
     std::vector<int> node_dofs(int node, const std::string& unit = "") const;

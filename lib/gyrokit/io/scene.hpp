@@ -4,6 +4,7 @@
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/core/speed_range.hpp>
+#include <gyrokit/core/length_unit.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/rotor_model.hpp>
 #include <gyrokit/models/fluid_rotor.hpp>
@@ -31,6 +32,8 @@ struct Scene {
     std::optional<FeRotor> fe_rotor;   // and its mesh (speed-dependent bearings in system)
 
     int dofs() const { return system.size(); }
+    // The unit the scene states lengths in (an FE rotor's length_unit; else metres).
+    LengthUnit length_unit() const { return rotor_model ? LengthUnit::parse(rotor_model->length_unit) : LengthUnit{}; }
     // [analysis] solver, modes, target and target_order as solver options.
     SolverOptions solver_options() const;
     const std::vector<std::string>& dof_names() const { return system.dof_names; }

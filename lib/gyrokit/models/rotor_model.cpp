@@ -1,6 +1,7 @@
 #include <gyrokit/models/rotor_model.hpp>
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/length_unit.hpp>
 #include <gyrokit/models/fe_statics.hpp>
 #include <gyrokit/models/materials.hpp>
 
@@ -19,20 +20,10 @@ std::string origin_of(const std::string& origin, const char* kind, std::size_t i
     return origin.empty() ? fmt::format("{} {}", kind, i) : origin;
 }
 
-struct Unit {
-    double scale = 1.0;   // metres per printed unit
-    const char* name = "m";
-};
+// How messages print lengths: the model's length_unit.
+LengthUnit unit_of(const RotorModel& m) { return LengthUnit::parse(m.length_unit); }
 
-Unit unit_of(const RotorModel& m) {
-    if (m.length_unit == "mm") return {1e-3, "mm"};
-    if (m.length_unit != "m")
-        throw InputError("length_unit = '" + m.length_unit + "'; allowed: \"m\" or \"mm\"");
-    return {};
-}
-
-// The node at axial position z: a node within 1e-9 of the rotor's length.
-int node_at(const std::vector<double>& nodes, double z, const std::string& where, const Unit& unit) {
+int node_at(const std::vector<double>& nodes, double z, const std::string& where, const LengthUnit& unit) {
     const double L = nodes.back();
     const auto it = std::lower_bound(nodes.begin(), nodes.end(), z - 1e-9 * L);
     if (!std::isfinite(z) || it == nodes.end() || std::abs(*it - z) > 1e-9 * L) {
@@ -41,7 +32,7 @@ int node_at(const std::vector<double>& nodes, double z, const std::string& where
             if (std::abs(x - z) < std::abs(nearest - z)) nearest = x;
         throw InputError(fmt::format("{} = {} {} is not a node of the mesh; allowed: a section end or "
                                      "subdivision, the nearest is {:.12g} (rotor length {:.12g})",
-                                     where, z / unit.scale, unit.name, nearest / unit.scale, L / unit.scale));
+                                     where, z / unit.metres, unit.name, nearest / unit.metres, L / unit.metres));
     }
     return static_cast<int>(it - nodes.begin());
 }
@@ -87,7 +78,7 @@ void mesh_sections(const RotorModel& model, FeRotor& r, std::vector<double>& z) 
 // bearing as a rigid support (constant bearings as their springs); films at one node
 // share their node's reaction equally.
 void set_auto_loads(const FeRotor& r, const std::vector<const RotorBearing*>& speed_dependent,
-                    const std::vector<int>& nodes, std::vector<JournalBearing>& films, const Unit& unit) {
+                    const std::vector<int>& nodes, std::vector<JournalBearing>& films, const LengthUnit& unit) {
     std::vector<int> auto_nodes;
     for (std::size_t i = 0; i < nodes.size(); ++i)
         if (speed_dependent[i]->auto_load) auto_nodes.push_back(nodes[i]);
@@ -104,12 +95,12 @@ void set_auto_loads(const FeRotor& r, const std::vector<const RotorBearing*>& sp
                                          "weight, or load = a number (N) with load_angle",
                                          b.origin, share, nodes[i]));
         films[i].load = share;
-        films[i].validate(b.origin, unit.scale, unit.name);
+        films[i].validate(b.origin, unit.metres, unit.name.c_str());
     }
 }
 
 // Disks at their nodes, with mass and inertias from the geometry where it is given.
-void place_disks(const RotorModel& model, const std::vector<double>& z, const Unit& unit, FeRotor& r) {
+void place_disks(const RotorModel& model, const std::vector<double>& z, const LengthUnit& unit, FeRotor& r) {
     for (std::size_t i = 0; i < model.disks.size(); ++i) {
         const RotorDisk& d = model.disks[i];
         const std::string origin = origin_of(d.origin, "disk", i);
@@ -140,7 +131,7 @@ struct SpeedDependentBearings {
 };
 
 // Constant bearings go into the FE rotor; the speed-dependent ones are returned.
-SpeedDependentBearings place_bearings(const RotorModel& model, const std::vector<double>& z, const Unit& unit,
+SpeedDependentBearings place_bearings(const RotorModel& model, const std::vector<double>& z, const LengthUnit& unit,
                                       FeRotor& r) {
     SpeedDependentBearings sd;
     for (std::size_t i = 0; i < model.bearings.size(); ++i) {
@@ -157,7 +148,7 @@ SpeedDependentBearings place_bearings(const RotorModel& model, const std::vector
             continue;
         }
         if (b.kind == RotorBearing::Kind::fluid_film && !b.auto_load)
-            b.film.validate(origin_of(b.origin, "bearing", i), unit.scale, unit.name);
+            b.film.validate(origin_of(b.origin, "bearing", i), unit.metres, unit.name.c_str());
         sd.bearings.push_back(&b);
         sd.nodes.push_back(node);
         sd.films.push_back(b.film);
@@ -165,7 +156,7 @@ SpeedDependentBearings place_bearings(const RotorModel& model, const std::vector
     return sd;
 }
 
-void place_supports(const RotorModel& model, const std::vector<double>& z, const Unit& unit, FeRotor& r) {
+void place_supports(const RotorModel& model, const std::vector<double>& z, const LengthUnit& unit, FeRotor& r) {
     for (std::size_t i = 0; i < model.supports.size(); ++i) {
         FeSupport s = model.supports[i].hold;
         s.node = node_at(z, model.supports[i].z, origin_of(model.supports[i].origin, "support", i) + " z", unit);
@@ -175,7 +166,7 @@ void place_supports(const RotorModel& model, const std::vector<double>& z, const
 
 // Pedestals: a mass on springs to the ground under the bearings of its node (constant
 // ones in r, speed-dependent ones at sd_nodes), one per node.
-void place_pedestals(const RotorModel& model, const std::vector<double>& z, const Unit& unit,
+void place_pedestals(const RotorModel& model, const std::vector<double>& z, const LengthUnit& unit,
                      const std::vector<int>& sd_nodes, FeRotor& r) {
     for (std::size_t i = 0; i < model.pedestals.size(); ++i) {
         const std::string where = origin_of(model.pedestals[i].origin, "pedestal", i) + " z";
@@ -308,7 +299,7 @@ Eigen::SparseMatrix<double> shaft_damping_matrix(const FeRotor& r, const ShaftDa
 }  // namespace
 
 BuiltRotor build(const RotorModel& model) {
-    const Unit unit = unit_of(model);
+    const LengthUnit unit = unit_of(model);
     BuiltRotor out;
     FeRotor& r = out.rotor;
     r.shear_deformation = model.shear_deformation;

@@ -45,11 +45,11 @@ Table mode_list_table(const std::vector<ModeShape>& shapes, const std::vector<st
     return t;
 }
 
-Table mode_orbit_table(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u) {
+Table mode_orbit_table(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u, const LengthUnit& length) {
     // Node and axial position only for a model whose pairs sit on an axis.
     const bool nodes = !shapes.empty() && !shapes.front().orbits.empty() && shapes.front().orbits.front().node >= 0;
     std::vector<std::string> columns{u.column("speed"), "mode", u.column("frequency"), "pair"};
-    if (nodes) columns.insert(columns.end(), {"node", "z_m"});
+    if (nodes) columns.insert(columns.end(), {"node", length.column("z")});
     columns.insert(columns.end(), {"unit", "major", "minor", "angle_deg", "phase_deg", "whirl"});
     Table t(columns);
     t.key = "mode_orbits";
@@ -57,7 +57,7 @@ Table mode_orbit_table(const std::vector<ModeShape>& shapes, double speed, const
     for (const auto& s : shapes) {
         for (const auto& p : s.orbits) {
             std::vector<Cell> row{u.factor * speed, ll(s.number), u.factor * s.mode.frequency(), p.name};
-            if (nodes) row.insert(row.end(), {ll(p.node), p.z});
+            if (nodes) row.insert(row.end(), {ll(p.node), length.in_unit(p.z)});
             row.insert(row.end(), {p.unit, p.orbit.major, p.orbit.minor, p.orbit.angle * kDegrees,
                                    p.orbit.phase * kDegrees, to_string(p.orbit.whirl)});
             t.add_row(std::move(row));
@@ -83,7 +83,7 @@ Table mode_dof_table(const std::vector<ModeShape>& shapes, const std::vector<std
 }
 
 Figure mode_shape_figure(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u,
-                         const std::string& title) {
+                         const std::string& title, const LengthUnit& length) {
     static const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
                                    "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
     Figure f;
@@ -98,8 +98,9 @@ Figure mode_shape_figure(const std::vector<ModeShape>& shapes, double speed, con
                            to_string(s.mode.whirl));
     };
     if (along_axis) {
-        Panel shape{"z [m]", "deflection at t = 0, plane of the largest entry", "", false, {}, {}, {}, {}, {}};
-        Panel envelope{"z [m]", "orbit major semi-axis", "", false, {}, 0.0, {}, {}, {}};
+        const std::string z = "z [" + length.name + "]";
+        Panel shape{z, "deflection at t = 0, plane of the largest entry", "", false, {}, {}, {}, {}, {}};
+        Panel envelope{z, "orbit major semi-axis", "", false, {}, 0.0, {}, {}, {}};
         for (size_t k = 0; k < shapes.size(); ++k) {
             Series d, e;
             d.label = label(k);
@@ -110,9 +111,9 @@ Figure mode_shape_figure(const std::vector<ModeShape>& shapes, double speed, con
             const bool v_plane = std::any_of(pairs.begin(), pairs.end(),
                                              [&](const PairOrbit* p) { return p->v == shapes[k].reference; });
             for (const PairOrbit* p : pairs) {
-                d.x.push_back(p->z);
+                d.x.push_back(length.in_unit(p->z));
                 d.y.push_back(shapes[k].shape(v_plane ? p->v : p->u).real());
-                e.x.push_back(p->z);
+                e.x.push_back(length.in_unit(p->z));
                 e.y.push_back(p->orbit.major);
             }
             shape.series.push_back(std::move(d));

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <gyrokit/analysis/mode_shapes.hpp>
+#include <gyrokit/core/length_unit.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/io/plot.hpp>
 #include <gyrokit/io/table.hpp>
@@ -14,7 +15,9 @@ namespace gyrokit {
 
 // Mode shapes at one speed: one row per mode and whirl pair (the orbit: semi-axes
 // in the pair's unit, angle and phase in degrees, whirl), in axial order.
-Table mode_orbit_table(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u);
+// Axial positions z in `length` (the scene's unit).
+Table mode_orbit_table(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u,
+                       const LengthUnit& length = {});
 // One row per mode and DOF: the scaled eigenvector entry (re, im, amplitude, phase).
 Table mode_dof_table(const std::vector<ModeShape>& shapes, const std::vector<std::string>& dof_names,
                      const std::vector<std::string>& dof_units, double speed, const SpeedUnit& u);
@@ -25,6 +28,6 @@ Table mode_list_table(const std::vector<ModeShape>& shapes, const std::vector<st
 // of the reference entry, each translational pair) and the orbit's major semi-axis along z, one line per
 // mode. Otherwise: each mode's orbits (ellipses of the pairs in metres, else all).
 Figure mode_shape_figure(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u,
-                         const std::string& title);
+                         const std::string& title, const LengthUnit& length = {});
 
 }  // namespace gyrokit

@@ -26,40 +26,43 @@ struct Vouched {
 
 }  // namespace
 
-Table static_node_table(const StaticResult& s) {
-    Table t({"node", "z_m", "x_m", "y_m", "slope_x_rad", "slope_y_rad"});
+Table static_node_table(const StaticResult& s, const LengthUnit& length) {
+    const LengthUnit& u = length;
+    Table t({"node", u.column("z"), u.column("x"), u.column("y"), "slope_x_rad", "slope_y_rad"});
     t.key = "deflection";
     t.title = "deflection at the nodes (slope_x = dx/dz, slope_y = dy/dz)";
     const Vouched d(s.nodes, [](const StaticNode& n) { return std::max(std::abs(n.x), std::abs(n.y)); }, s);
     const Vouched a(s.nodes, [](const StaticNode& n) { return std::max(std::abs(n.slope_x), std::abs(n.slope_y)); }, s);
-    for (const StaticNode& n : s.nodes) t.add_row({ll(n.node), n.z, d(n.x), d(n.y), a(n.slope_x), a(n.slope_y)});
+    for (const StaticNode& n : s.nodes)
+        t.add_row({ll(n.node), u.in_unit(n.z), u.in_unit(d(n.x)), u.in_unit(d(n.y)), a(n.slope_x), a(n.slope_y)});
     return t;
 }
 
-Table static_section_table(const StaticResult& s) {
-    Table t({"element", "z_m", "shear_x_n", "moment_x_n_m", "shear_y_n", "moment_y_n_m"});
+Table static_section_table(const StaticResult& s, const LengthUnit& length) {
+    Table t({"element", length.column("z"), "shear_x_n", "moment_x_n_m", "shear_y_n", "moment_y_n_m"});
     t.key = "internal_forces";
     t.title = "shear force and bending moment at each element's ends (M = E I y'' vertical, E I x'' horizontal)";
     const Vouched v(s.sections, [](const StaticSection& c) { return std::max(std::abs(c.shear_x), std::abs(c.shear_y)); }, s);
     const Vouched m(s.sections, [](const StaticSection& c) { return std::max(std::abs(c.moment_x), std::abs(c.moment_y)); },
                     s);
     for (const StaticSection& c : s.sections)
-        t.add_row({ll(c.element), c.z, v(c.shear_x), m(c.moment_x), v(c.shear_y), m(c.moment_y)});
+        t.add_row({ll(c.element), length.in_unit(c.z), v(c.shear_x), m(c.moment_x), v(c.shear_y), m(c.moment_y)});
     return t;
 }
 
-Table static_reaction_table(const StaticResult& s) {
-    Table t({"reaction", "node", "z_m", "fx_n", "fy_n", "mx_n_m", "my_n_m"});
+Table static_reaction_table(const StaticResult& s, const LengthUnit& length) {
+    Table t({"reaction", "node", length.column("z"), "fx_n", "fy_n", "mx_n_m", "my_n_m"});
     t.key = "reactions";
     t.title = "reactions: forces and moments on the rotor";
     const Vouched f(s.reactions, [](const StaticReaction& r) { return std::max(std::abs(r.fx), std::abs(r.fy)); }, s);
     const Vouched m(s.reactions, [](const StaticReaction& r) { return std::max(std::abs(r.mx), std::abs(r.my)); }, s);
-    for (const StaticReaction& r : s.reactions) t.add_row({r.what, ll(r.node), r.z, f(r.fx), f(r.fy), m(r.mx), m(r.my)});
+    for (const StaticReaction& r : s.reactions)
+        t.add_row({r.what, ll(r.node), length.in_unit(r.z), f(r.fx), f(r.fy), m(r.mx), m(r.my)});
     return t;
 }
 
-Table static_summary_table(const StaticResult& s) {
-    Table t({"quantity", "value", "unit", "at_z_m"});
+Table static_summary_table(const StaticResult& s, const LengthUnit& length) {
+    Table t({"quantity", "value", "unit", length.column("at_z")});
     t.key = "static";
     t.title = "static analysis";
     const StaticNode* far = nullptr;
@@ -69,10 +72,12 @@ Table static_summary_table(const StaticResult& s) {
     for (const StaticSection& c : s.sections)
         if (!bent || std::hypot(c.moment_x, c.moment_y) > std::hypot(bent->moment_x, bent->moment_y)) bent = &c;
     t.add_row({std::string("weight"), s.weight, std::string("N"), std::string("-")});
-    if (far) t.add_row({std::string("largest deflection"), std::hypot(far->x, far->y), std::string("m"), far->z});
+    if (far)
+        t.add_row({std::string("largest deflection"), length.in_unit(std::hypot(far->x, far->y)), length.name,
+                   length.in_unit(far->z)});
     if (bent)
         t.add_row({std::string("largest bending moment"), std::hypot(bent->moment_x, bent->moment_y),
-                   std::string("N m"), bent->z});
+                   std::string("N m"), length.in_unit(bent->z)});
     // Bounds and estimates: two digits are all they hold.
     const auto bound = [&](const char* what, double v) {
         t.add_row({std::string(what), fmt::format("{:.2g}", v), std::string("1"), std::string("-")});
@@ -84,23 +89,29 @@ Table static_summary_table(const StaticResult& s) {
     return t;
 }
 
-Figure static_figure(const StaticResult& s, const std::string& title) {
+std::vector<Table> static_tables(const StaticResult& s, const LengthUnit& length) {
+    return {static_node_table(s, length), static_summary_table(s, length), static_reaction_table(s, length),
+            static_section_table(s, length)};
+}
+
+Figure static_figure(const StaticResult& s, const std::string& title, const LengthUnit& length) {
+    const std::string zlabel = "z [" + length.name + "]";
     Figure f;
     f.title = title.empty() ? "static deflection" : title;
-    Panel deflection{"z [m]", "deflection [um]", "deflection at the nodes", false, {}, {}, {}, {}, {}, false};
+    Panel deflection{zlabel, "deflection [um]", "deflection at the nodes", false, {}, {}, {}, {}, {}, false};
     Series x{{}, {}, "x", "linespoints", "#1f77b4"}, y{{}, {}, "y", "linespoints", "#d62728"};
     for (const StaticNode& n : s.nodes) {
-        x.x.push_back(n.z), x.y.push_back(n.x * 1e6);
-        y.x.push_back(n.z), y.y.push_back(n.y * 1e6);
+        x.x.push_back(length.in_unit(n.z)), x.y.push_back(n.x * 1e6);
+        y.x.push_back(length.in_unit(n.z)), y.y.push_back(n.y * 1e6);
     }
     Series held{{}, {}, "reactions", "points", "#000000"};
-    for (const StaticReaction& r : s.reactions) held.x.push_back(r.z), held.y.push_back(0.0);
+    for (const StaticReaction& r : s.reactions) held.x.push_back(length.in_unit(r.z)), held.y.push_back(0.0);
     deflection.series = {x, y, held};
-    Panel moment{"z [m]", "bending moment [N m]", "bending moment (E I x'', E I y'')", false, {}, {}, {}, {}, {}, false};
+    Panel moment{zlabel, "bending moment [N m]", "bending moment (E I x'', E I y'')", false, {}, {}, {}, {}, {}, false};
     Series mx{{}, {}, "horizontal (x)", "lines", "#1f77b4"}, my{{}, {}, "vertical (y)", "lines", "#d62728"};
     for (const StaticSection& c : s.sections) {
-        mx.x.push_back(c.z), mx.y.push_back(c.moment_x);
-        my.x.push_back(c.z), my.y.push_back(c.moment_y);
+        mx.x.push_back(length.in_unit(c.z)), mx.y.push_back(c.moment_x);
+        my.x.push_back(length.in_unit(c.z)), my.y.push_back(c.moment_y);
     }
     moment.series = {mx, my};
     f.panels = {deflection, moment};
