@@ -7,6 +7,7 @@
 #include <gyrokit/gyrokit.hpp>
 
 #include "common.hpp"
+#include "frf.hpp"
 #include "reports.hpp"
 
 #include <gyrokit/reports/reports.hpp>
@@ -388,9 +389,11 @@ py::dict py_pervasive(const GyroscopicSystem& s, const std::vector<double>& spee
 // gk.response: the unbalance response per speed and DOF, with the CLI's stability warnings.
 py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
                      const std::string& solver, int modes, const py::object& target, double target_order,
-                     const std::vector<int>& outputs, const std::string& unit, const std::string& title) {
+                     const std::vector<int>& outputs, const std::string& unit, const std::string& title,
+                     const std::vector<std::pair<int, double>>& probe_list) {
     const SpeedUnit u = SpeedUnit::parse(unit);
     const std::vector<double> w = checked_speeds(speeds);
+    const std::vector<Probe> probes = probes_of(s, probe_list);
     const SolverOptions o = solver_options(solver, modes, target, target_order, "qz", 0);
     const SolverKind kind = resolve_solver_kind(s.size(), o.kind);
     Eigen::MatrixXcd Z(static_cast<Eigen::Index>(w.size()), s.size());
@@ -408,19 +411,31 @@ py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speed
     py::dict d;
     d["Z"] = Z;
     put_diagnostics(d, warnings);
-    // The curve of the DOFs asked for (all: every DOF), as the CLI's table and Bode and polar plots; of
-    // many DOFs the plots show the six largest of each unit (by their grid maxima).
+    // The curve of the DOFs asked for (all: every DOF), or of the probes' readings (named
+    // NODE@ANGLE, in m), as the CLI's table and Bode and polar plots; of many DOFs the plots
+    // show the six largest of each unit (by their grid maxima).
     ResponseCurve rc;
     rc.speeds = w;
-    for (int k = 0; k < s.size(); ++k)
-        if (outputs.empty() || std::find(outputs.begin(), outputs.end(), k) != outputs.end()) rc.dofs.push_back(k);
-    rc.Z.resize(Z.rows(), static_cast<Eigen::Index>(rc.dofs.size()));
-    for (std::size_t j = 0; j < rc.dofs.size(); ++j) rc.Z.col(static_cast<Eigen::Index>(j)) = Z.col(rc.dofs[j]);
+    ProbeOutputs named{s.dof_names, s.dof_units, {}};
+    if (!probes.empty()) {
+        named = probe_outputs(s, probes);
+        std::vector<int> all(static_cast<std::size_t>(s.size()));
+        for (int k = 0; k < s.size(); ++k) all[static_cast<std::size_t>(k)] = k;
+        rc.dofs = named.outputs;
+        rc.Z = probe_readings(probes, all, Z);
+        d["probe_readings"] = rc.Z;
+        d["probe_names"] = std::vector<std::string>(named.names.begin() + s.size(), named.names.end());
+    } else {
+        for (int k = 0; k < s.size(); ++k)
+            if (outputs.empty() || std::find(outputs.begin(), outputs.end(), k) != outputs.end()) rc.dofs.push_back(k);
+        rc.Z.resize(Z.rows(), static_cast<Eigen::Index>(rc.dofs.size()));
+        for (std::size_t j = 0; j < rc.dofs.size(); ++j) rc.Z.col(static_cast<Eigen::Index>(j)) = Z.col(rc.dofs[j]);
+    }
     const std::vector<int> shown = rc.dofs.size() <= 6 ? std::vector<int>{}
-                                                       : largest_responses(s.dof_units, response_maxima(rc, {}), 6);
-    put_reports(d, {response_table(s.dof_names, s.dof_units, rc, u)},
-                response_figure(s.dof_names, s.dof_units, rc, u, title, shown));
-    d["polar_figure"] = figure_dict(response_polar_figure(s.dof_names, s.dof_units, rc, u, title, shown));
+                                                       : largest_responses(named.units, response_maxima(rc, {}), 6);
+    put_reports(d, {response_table(named.names, named.units, rc, u)},
+                response_figure(named.names, named.units, rc, u, title, shown));
+    d["polar_figure"] = figure_dict(response_polar_figure(named.names, named.units, rc, u, title, shown));
     return d;
 }
 
@@ -452,5 +467,5 @@ void bind_analyses(py::module_& m) {
 
     m.def("response", &py_response, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
           py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("outputs") = std::vector<int>{},
-          py::arg("unit") = "rad/s", py::arg("title") = "");
+          py::arg("unit") = "rad/s", py::arg("title") = "", py::arg("probes") = std::vector<std::pair<int, double>>{});
 }

@@ -164,6 +164,11 @@ END
 "$cli" response "$dir/pinned_mm.toml" --at 500 --format csv | cut -d, -f2 | sort -u | tr '\n' ' ' | grep -qx "dof x2 y2 " ||
     { echo "FAIL: --at 500 in an mm scene gives x2, y2"; fail=1; }
 expect "--at 1500: axial position 1500 mm is off the shaft; allowed: [0, 1000] mm" response "$dir/pinned_mm.toml" --at 1500
+expect "--probes '2@x': allowed: NODE@ANGLE items" response "$dir/pinned.toml" --probes 2@x
+expect "--probes '2@400': allowed" response "$dir/pinned.toml" --probes 2@400
+expect "--probes 0@45: node 0 has no free x and y translations" response "$dir/pinned.toml" --probes 0@45
+expect "--probes: '2@45' is listed twice" frf "$dir/pinned.toml" --input y2 --probes 2@45,2@45
+expect "--probes and --dofs, --nodes, --at: allowed: probes alone" response "$dir/pinned.toml" --probes 2@45 --dofs x2
 "$cli" response "$dir/pinned.toml" --at 0.5 --format csv | cut -d, -f2 | sort -u | tr '\n' ' ' | grep -qx "dof x2 y2 " ||
     { echo "FAIL: --at 0.5 gives x2, y2"; fail=1; }
 # Inputs that are not regular files, or nested beyond the parser's stack: one line, never a hang.

@@ -84,6 +84,39 @@ void note_extrapolation(const Context& c, double speed) {
     for (const auto& n : extrapolation_notes(c.scene.system.bearings, speed, speed)) std::cerr << "note: " << n << "\n";
 }
 
+std::vector<Probe> parse_probes(const std::string& text, const GyroscopicSystem& sys) {
+    std::vector<Probe> out;
+    std::size_t start = 0;
+    while (!text.empty() && start <= text.size()) {
+        const std::size_t end = std::min(text.find(',', start), text.size());
+        const std::string item = text.substr(start, end - start);
+        start = end + 1;
+        const std::size_t at = item.find('@');
+        int node = 0;
+        double angle = 0.0;
+        try {
+            std::size_t a = 0, b = 0;
+            if (at == std::string::npos) throw std::invalid_argument(item);
+            node = std::stoi(item.substr(0, at), &a);
+            angle = std::stod(item.substr(at + 1), &b);
+            if (a != at || b != item.size() - at - 1 || !std::isfinite(angle) || std::abs(angle) > 360.0)
+                throw std::invalid_argument(item);
+        } catch (const std::exception&) {
+            throw InputError(fmt::format("--probes '{}': allowed: NODE@ANGLE items separated by commas, e.g. "
+                                         "12@45,12@-45 (angle in degrees from +x towards +y, -360 to 360)",
+                                         item));
+        }
+        for (const Probe& p : out)
+            if (p.name == item) throw InputError(fmt::format("--probes: '{}' is listed twice; allowed: each once", item));
+        try {
+            out.push_back(probe_at_node(sys, item, node, angle));
+        } catch (const InputError& e) {
+            throw InputError(fmt::format("--probes {}: {}", item, e.what()));
+        }
+    }
+    return out;
+}
+
 std::string flag_words(const std::string& field) {
     static const std::pair<const char*, const char*> flags[] = {
         {"directory", "--dir"},       {"jobs", "--jobs"},     {"lanczos_vectors", "--lanczos"},

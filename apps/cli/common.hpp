@@ -2,6 +2,7 @@
 // parsing of speeds and harmonics, plotting.
 #pragma once
 
+#include <gyrokit/analysis/probe.hpp>
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
@@ -27,6 +28,10 @@ struct Command {
 
 // The command line's words for the library's option fields (Error::message,
 // notes): modes -> "--modes", lanczos_vectors -> "--lanczos", ...
+// --probes NODE@ANGLE,...: a displacement probe at each node (x cos + y sin, the angle in
+// degrees from +x towards +y), named as written ("12@45").
+std::vector<Probe> parse_probes(const std::string& text, const GyroscopicSystem& sys);
+
 std::string flag_words(const std::string& field);
 
 // Options every scene command shares.

@@ -15,7 +15,7 @@ namespace {
 
 struct Options {
     Common common;
-    std::string speed = "0", input, dofs, frequencies;
+    std::string speed = "0", input, dofs, frequencies, probes;
     bool polar = false;
 };
 
@@ -38,6 +38,8 @@ std::vector<Command> add_frf_commands(CLI::App& app) {
     cmd->add_option("--speed", o->speed, "spin speed (in --units), default 0")->capture_default_str();
     cmd->add_option("--input", o->input, "the DOF the force acts on, by name, e.g. y12 (a moment: tx12)")->required();
     cmd->add_option("--dofs", o->dofs, "output DOFs by name, e.g. x12,y12 (default: the input DOF: the driving point)");
+    cmd->add_option("--probes", o->probes, "outputs: displacement probes NODE@ANGLE, e.g. 12@45,12@-45 (x cos + y sin, "
+                                           "degrees from +x towards +y)");
     cmd->add_option("--frequencies", o->frequencies, "excitation frequencies FROM:TO:N (in --units); default: the "
                                                      "scene's [speeds] range");
     cmd->add_option("--plot", o->common.plot, "Bode plot (amplitude and phase) into FILE.svg|.png");
@@ -54,7 +56,10 @@ std::vector<Command> add_frf_commands(CLI::App& app) {
                                                         "table in the scene");
                  const double spin = parse_speed(o->speed, "--speed", c.unit);
                  const int input = dof_index(sys.dof_names, o->input, "--input");
-                 std::vector<int> outputs;
+                 if (!o->dofs.empty() && !o->probes.empty())
+                     throw InputError("--dofs and --probes: allowed: one of them");
+                 const std::vector<Probe> probes = parse_probes(o->probes, sys);
+                 std::vector<int> outputs = probe_dofs(probes);
                  std::size_t start = 0;
                  while (!o->dofs.empty() && start <= o->dofs.size()) {
                      const std::size_t end = std::min(o->dofs.find(',', start), o->dofs.size());
@@ -63,11 +68,18 @@ std::vector<Command> add_frf_commands(CLI::App& app) {
                  }
                  if (outputs.empty()) outputs.push_back(input);
                  note_extrapolation(c, spin);
-                 const FrequencyResponse r = frequency_response(sys, spin, frequencies, input, outputs,
-                                                                use_sparse(c) ? SolverKind::Sparse : SolverKind::Dense);
-                 write_table(out, frf_table(sys.dof_names, sys.dof_units, r, c.unit), c.format);
+                 FrequencyResponse r = frequency_response(sys, spin, frequencies, input, outputs,
+                                                          use_sparse(c) ? SolverKind::Sparse : SolverKind::Dense);
+                 // Probes: their readings are the outputs, named as given.
+                 ProbeOutputs named{sys.dof_names, sys.dof_units, {}};
+                 if (!probes.empty()) {
+                     named = probe_outputs(sys, probes);
+                     r.H = probe_readings(probes, r.outputs, r.H);
+                     r.outputs = named.outputs;
+                 }
+                 write_table(out, frf_table(named.names, named.units, r, c.unit), c.format);
                  if (!o->common.plot.empty())
-                     plot_if(o->common.plot, frf_figure(sys.dof_names, sys.dof_units, r, c.unit, o->polar));
+                     plot_if(o->common.plot, frf_figure(named.names, named.units, r, c.unit, o->polar));
              }}};
 }
 

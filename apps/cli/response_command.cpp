@@ -15,7 +15,7 @@ namespace {
 
 struct Options {
     Common common;
-    std::string dofs, nodes, at;
+    std::string dofs, nodes, at, probes;
     int modes = -1;
     bool extrema = false, rows = false, polar = false;
 };
@@ -113,6 +113,8 @@ std::vector<Command> add_response_commands(CLI::App& app) {
     resp->add_option("--dofs", o->dofs, "DOFs reported, by name, e.g. x3,y3 (default: all)");
     resp->add_option("--nodes", o->nodes, "DOFs reported: the lateral translations x, y of these nodes, e.g. 12,20");
     resp->add_option("--at", o->at, "DOFs reported: the lateral translations x, y of the nodes nearest these axial positions (in the scene's length_unit: m or mm)");
+    resp->add_option("--probes", o->probes, "outputs: displacement probes NODE@ANGLE, e.g. 12@45,12@-45 (x cos + y "
+                                            "sin, degrees from +x towards +y), instead of DOFs");
     resp->add_flag("--extrema", o->extrema, "print the peaks and antiresonances instead of the curve");
     resp->add_flag("--rows", o->rows, "table format: every row of the curve instead of the summary");
     resp->add_option("--modes", o->modes, "modes checked for stability over the range (0 = all); default: the scene's, "
@@ -122,15 +124,31 @@ std::vector<Command> add_response_commands(CLI::App& app) {
         if (o->polar && o->common.plot.empty()) throw InputError("--polar: only together with --plot FILE");
         const Context c = open_scene(o->common, true);
         const Scene& sc = c.scene;
+        if (!o->probes.empty() && !(o->dofs.empty() && o->nodes.empty() && o->at.empty()))
+            throw InputError("--probes and --dofs, --nodes, --at: allowed: probes alone");
+        const std::vector<Probe> probes = parse_probes(o->probes, sc.system);
         const std::vector<int> outputs = response_outputs(*o, sc.system, sc.length_unit());
         // The sparse LU of the dynamic stiffness where the solver choice is sparse.
         const SolverKind kind = use_sparse(c) ? SolverKind::Sparse : SolverKind::Dense;
-        const std::vector<std::string>& names = sc.system.dof_names;
-        const std::vector<std::string>& units = sc.system.dof_units;
-        const ResponseSolver solve = [&](double w) { return unbalance_response(sc.system, w, kind); };
+        // With probes the outputs are their readings, named as given (in m); else the model's DOFs.
+        ProbeOutputs named{sc.system.dof_names, sc.system.dof_units, {}};
+        if (!probes.empty()) {
+            named.names.clear(), named.units.clear();
+            for (const Probe& p : probes) named.names.push_back(p.name), named.units.push_back("m");
+        }
+        const std::vector<std::string>& names = named.names;
+        const std::vector<std::string>& units = named.units;
+        const ResponseSolver solve = [&](double w) -> Eigen::VectorXcd {
+            const Eigen::VectorXcd Z = unbalance_response(sc.system, w, kind);
+            if (probes.empty()) return Z;
+            Eigen::VectorXcd reading(static_cast<Eigen::Index>(probes.size()));
+            for (std::size_t k = 0; k < probes.size(); ++k) reading(static_cast<Eigen::Index>(k)) = probe_response(probes[k], Z);
+            return reading;
+        };
         for (const auto& n : extrapolation_notes(sc.system.bearings, c.speeds.front(), c.speeds.back()))
             std::cerr << "note: " << n << "\n";
-        const ResponseCurve rc = unbalance_response(solve, sc.dofs(), c.speeds, outputs);
+        const ResponseCurve rc =
+            unbalance_response(solve, probes.empty() ? sc.dofs() : static_cast<int>(probes.size()), c.speeds, outputs);
         print_diagnostics(
             response_stability_warnings(sc.system, study_of(c, wanted_modes(c, o->modes), c.scene.harmonics, true)));
         const bool summary = c.format == TableFormat::Text && !o->rows && !o->extrema;

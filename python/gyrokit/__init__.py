@@ -450,11 +450,28 @@ class FrequencyResponse(_Result):
         return self._draw_figure(self._polar, path, axes)
 
 
-def frf(model, speed, input, frequencies, *, dofs=None, unit="rad/s", solver=None) -> FrequencyResponse:
+def _probes(probes):
+    """[(node, angle in degrees), ...] for the core; InputError for anything else."""
+    out = []
+    for i, p in enumerate(probes or []):
+        try:
+            node, angle = p
+            out.append((int(node), float(angle)))
+            if int(node) != node:
+                raise ValueError
+        except (TypeError, ValueError):
+            raise InputError(f"probes[{i}] = {p!r}; allowed: (node, angle in degrees from +x towards +y)") from None
+    return out
+
+
+def frf(model, speed, input, frequencies, *, dofs=None, probes=None, unit="rad/s", solver=None) -> FrequencyResponse:
     """Frequency response functions of `model` (a System or Scene) spinning at `speed`: the response of `dofs`
-    (names; default: the input itself, the driving point) to a unit harmonic force at DOF `input` (a name: "y12";
-    a moment: "tx12"), at `frequencies`; `speed` and `frequencies` in `unit` (rad/s, Hz, rpm). Dense or sparse LU
-    by `solver` (auto: sparse above 200 DOFs). See docs/frf.md."""
+    (names; default: the input itself, the driving point) or of displacement `probes` [(node, angle), ...] (x cos +
+    y sin, degrees from +x towards +y; outputs named "NODE@ANGLE") to a unit harmonic force at DOF `input` (a name:
+    "y12"; a moment: "tx12"), at `frequencies`; `speed` and `frequencies` in `unit` (rad/s, Hz, rpm). Dense or
+    sparse LU by `solver` (auto: sparse above 200 DOFs). See docs/frf.md."""
+    if dofs is not None and probes is not None:
+        raise InputError("dofs and probes: allowed: one of them")
     _factor(unit)
     system = model.system if isinstance(model, Scene) else model
     if not isinstance(system, System):
@@ -467,7 +484,9 @@ def frf(model, speed, input, frequencies, *, dofs=None, unit="rad/s", solver=Non
     factor = _UNITS[unit]
     w = _np.asarray(frequencies, dtype=float) / factor
     d = _core.frf(system, float(speed) / factor, list(w), names.index(input), [names.index(d) for d in dofs],
-                  solver or (model.solver if isinstance(model, Scene) else "auto"), unit)
+                  solver or (model.solver if isinstance(model, Scene) else "auto"), unit, _probes(probes))
+    if probes is not None:
+        dofs = list(d["names"])
     return FrequencyResponse(float(speed), _np.asarray(frequencies, dtype=float), input, dofs, d, unit)
 
 
@@ -620,11 +639,15 @@ def pervasive(model, speeds=None, *, tolerance=1e-8, solver=None, modes=None, ta
                                            lanczos=int(lanczos), jobs=int(jobs), unit=unit, **o), unit)
 
 
-def response(model, speeds=None, *, dofs=None, solver=None, harmonics=None, modes=None, unit="rad/s") -> Response:
+def response(model, speeds=None, *, dofs=None, probes=None, solver=None, harmonics=None, modes=None,
+             unit="rad/s") -> Response:
     """Unbalance response at `speeds` (in `unit`) of the named DOFs (default: all), by a dense or (solver "sparse";
     "auto" above 200 DOFs) sparse LU of the dynamic stiffness. As the CLI, the modes (`modes`, default
     those in range) are tracked over the range: each unstable range is a RuntimeWarning and in `warnings`
-    (the response there is not a steady state)."""
+    (the response there is not a steady state). `probes` [(node, angle), ...]: the readings of displacement probes
+    (x cos + y sin, degrees from +x towards +y) instead of DOFs, named "NODE@ANGLE"."""
+    if dofs is not None and probes is not None:
+        raise InputError("dofs and probes: allowed: one of them")
     system, o = _options(model, solver, modes, None, None)
     names = system.dof_names
     missing = [d for d in (dofs or []) if d not in names]
@@ -632,9 +655,12 @@ def response(model, speeds=None, *, dofs=None, solver=None, harmonics=None, mode
         raise InputError(f"dofs: {missing[0]!r} is not a DOF of the model; allowed: names such as {names[0]!r}")
     w = _speeds(model, speeds, unit)
     cols = [] if dofs is None else [names.index(x) for x in dofs]
-    d = _core.response(system, w, _harmonics(model, harmonics), outputs=cols, unit=unit, title=_title(model), **o)
+    d = _core.response(system, w, _harmonics(model, harmonics), outputs=cols, unit=unit, title=_title(model),
+                       probes=_probes(probes), **o)
     for msg in d["warnings"]:
         _warnings.warn(msg, RuntimeWarning, stacklevel=2)
+    if probes is not None:
+        return Response(w, list(d["probe_names"]), d["probe_readings"], d, unit)
     if dofs is None:
         return Response(w, names, d["Z"], d, unit)
     return Response(w, list(dofs), d["Z"][:, cols], d, unit)

@@ -221,6 +221,7 @@ def pervasive(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, tolerance:
               target_order: Optional[float] = ..., method: str = ..., lanczos: int = ...,
               jobs: int = ..., unit: str = ...) -> PervasiveLosses: ...
 def response(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, dofs: Optional[Sequence[str]] = ...,
+             probes: Optional[Sequence[tuple[int, float]]] = ...,
              solver: Optional[str] = ..., harmonics: Optional[Sequence[int]] = ...,
              modes: Optional[int] = ..., unit: str = ...) -> Response: ...
 def gyrostat(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
@@ -336,7 +337,8 @@ class FrequencyResponse(_Result):
     def plot_polar(self, path: Optional[Path] = ..., axes: Any = ...) -> Any: ...
 
 def frf(model: Model, speed: float, input: str, frequencies: npt.ArrayLike, *, dofs: Optional[Sequence[str]] = ...,
-        unit: str = ..., solver: Optional[str] = ...) -> FrequencyResponse: ...
+        probes: Optional[Sequence[tuple[int, float]]] = ..., unit: str = ...,
+        solver: Optional[str] = ...) -> FrequencyResponse: ...
 
 class StaticDeflection(_Result):
     nodes: dict[str, Any]

@@ -159,3 +159,23 @@ def test_a_transient_run_carries_the_clis_table_and_pictures(tmp_path, scene):
     r.plot(tmp_path / "orbit.png")
     r.plot_waterfall(tmp_path / "waterfall.svg")
     assert os.path.getsize(tmp_path / "orbit.png") > 1000 and "<svg" in open(tmp_path / "waterfall.svg").read()
+
+
+def test_probes_at_any_angle_read_x_cos_plus_y_sin_as_the_cli(tmp_path, scene):
+    speeds = np.linspace(0.0, 1500.0, 16)
+    xy = gk.response(scene, speeds, dofs=["x12", "y12"])
+    p = gk.response(scene, speeds, probes=[(12, 0), (12, 90), (12, 30)])
+    assert p.dofs == ["12@0", "12@90", "12@30"]
+    np.testing.assert_array_equal(p.amplitudes[:, 0], xy.amplitudes[:, 0])   # 0 and 90 degrees: exact
+    np.testing.assert_array_equal(p.amplitudes[:, 1], xy.amplitudes[:, 1])
+    c, s = np.cos(np.pi / 6), np.sin(np.pi / 6)
+    ref = c * xy.amplitudes[:, 0] + s * xy.amplitudes[:, 1]
+    assert np.all(np.abs(p.amplitudes[:, 2] - ref) <= 4 * EPS * (np.abs(xy.amplitudes[:, 0]) + np.abs(xy.amplitudes[:, 1])))
+    f = gk.frf(scene, 600.0, "y12", np.array([0.0, 600.0, 1200.0]), probes=[(12, 90), (12, -45)])
+    assert open(f.save(tmp_path / "frf.csv")).read() == cli(
+        "frf", SCENE, "--input", "y12", "--speed", "600", "--frequencies", "0:1200:3", "--probes", "12@90,12@-45",
+        "--format", "csv")
+    with pytest.raises(gk.InputError, match=r"probes\[0\]: node 99 does not exist; allowed: 0 to 24"):
+        gk.response(scene, speeds, probes=[(99, 0)])
+    with pytest.raises(gk.InputError, match="dofs and probes: allowed: one of them"):
+        gk.frf(scene, 600.0, "y12", [0.0], dofs=["x12"], probes=[(12, 0)])

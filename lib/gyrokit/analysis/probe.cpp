@@ -51,4 +51,45 @@ Probe probe_at_node(const GyroscopicSystem& sys, const std::string& name, int no
                                  node));
 }
 
+std::vector<int> probe_dofs(const std::vector<Probe>& probes) {
+    std::vector<int> out;
+    for (const Probe& p : probes)
+        for (int d : {p.dof_x, p.dof_y})
+            if (std::find(out.begin(), out.end(), d) == out.end()) out.push_back(d);
+    return out;
+}
+
+Eigen::MatrixXcd probe_readings(const std::vector<Probe>& probes, const std::vector<int>& dofs,
+                                const Eigen::MatrixXcd& Z) {
+    const auto column = [&](const Probe& p, int dof) {
+        const auto it = std::find(dofs.begin(), dofs.end(), dof);
+        if (it == dofs.end())
+            throw InputError(fmt::format("probe '{}': DOF {} is not among the response's outputs", p.name, dof));
+        return static_cast<int>(it - dofs.begin());
+    };
+    Eigen::MatrixXcd R(Z.rows(), static_cast<Eigen::Index>(probes.size()));
+    for (std::size_t k = 0; k < probes.size(); ++k) {
+        // The probe on the columns of Z: the same reading, cos and sin exact at multiples of 90 degrees.
+        Probe local = probes[k];
+        local.dof_x = column(probes[k], probes[k].dof_x);
+        local.dof_y = column(probes[k], probes[k].dof_y);
+        for (Eigen::Index i = 0; i < Z.rows(); ++i)
+            R(i, static_cast<Eigen::Index>(k)) = probe_response(local, Z.row(i).transpose());
+    }
+    return R;
+}
+
+ProbeOutputs probe_outputs(const GyroscopicSystem& sys, const std::vector<Probe>& probes) {
+    ProbeOutputs o;
+    o.names = sys.dof_names;
+    o.units = sys.dof_units;
+    o.units.resize(o.names.size());
+    for (const Probe& p : probes) {
+        o.outputs.push_back(static_cast<int>(o.names.size()));
+        o.names.push_back(p.name);
+        o.units.push_back("m");
+    }
+    return o;
+}
+
 }  // namespace gyrokit

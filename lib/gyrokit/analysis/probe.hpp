@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 #include <complex>
 #include <string>
+#include <vector>
 
 namespace gyrokit {
 
@@ -34,5 +35,21 @@ double probe_amplitude(const Probe& p, const Eigen::VectorXcd& Z);
 // has no free pair of translations (a support holds x or y, or the model has no
 // lateral motion).
 Probe probe_at_node(const GyroscopicSystem& sys, const std::string& name, int node, double angle_degrees);
+
+// The model DOFs the probes read, each once, in order of first use.
+std::vector<int> probe_dofs(const std::vector<Probe>& probes);
+// The probes' readings of a response known at the model DOFs `dofs` (the columns of Z,
+// one row per speed or frequency): one column per probe. InputError if a probe's DOF
+// is not among `dofs`.
+Eigen::MatrixXcd probe_readings(const std::vector<Probe>& probes, const std::vector<int>& dofs,
+                                const Eigen::MatrixXcd& Z);
+// Output names for the report functions, which name an output by its index: the model's
+// DOF names and units followed by one entry per probe (its name, "m"); `outputs` the
+// probes' indices in them (the model's size on).
+struct ProbeOutputs {
+    std::vector<std::string> names, units;
+    std::vector<int> outputs;
+};
+ProbeOutputs probe_outputs(const GyroscopicSystem& sys, const std::vector<Probe>& probes);
 
 }  // namespace gyrokit
