@@ -390,8 +390,9 @@ py::dict py_pervasive(const GyroscopicSystem& s, const std::vector<double>& spee
 py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
                      const std::string& solver, int modes, const py::object& target, double target_order,
                      const std::vector<int>& outputs, const std::string& unit, const std::string& title,
-                     const std::vector<std::pair<int, double>>& probe_list) {
+                     const std::vector<std::pair<int, double>>& probe_list, const std::string& length_unit) {
     const SpeedUnit u = SpeedUnit::parse(unit);
+    const LengthUnit length = LengthUnit::parse(length_unit);
     const std::vector<double> w = checked_speeds(speeds);
     const std::vector<Probe> probes = probes_of(s, probe_list);
     const SolverOptions o = solver_options(solver, modes, target, target_order, "qz", 0);
@@ -431,6 +432,7 @@ py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speed
         rc.Z.resize(Z.rows(), static_cast<Eigen::Index>(rc.dofs.size()));
         for (std::size_t j = 0; j < rc.dofs.size(); ++j) rc.Z.col(static_cast<Eigen::Index>(j)) = Z.col(rc.dofs[j]);
     }
+    to_length_unit(rc.dofs, rc.Z, named.units, length);   // the tables and figures as the scene states lengths
     const std::vector<int> shown = rc.dofs.size() <= 6 ? std::vector<int>{}
                                                        : largest_responses(named.units, response_maxima(rc, {}), 6);
     put_reports(d, {response_table(named.names, named.units, rc, u)},
@@ -467,5 +469,6 @@ void bind_analyses(py::module_& m) {
 
     m.def("response", &py_response, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
           py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("outputs") = std::vector<int>{},
-          py::arg("unit") = "rad/s", py::arg("title") = "", py::arg("probes") = std::vector<std::pair<int, double>>{});
+          py::arg("unit") = "rad/s", py::arg("title") = "", py::arg("probes") = std::vector<std::pair<int, double>>{},
+          py::arg("length_unit") = "m");
 }

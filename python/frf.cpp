@@ -7,6 +7,7 @@
 #include <gyrokit/analysis/frequency_response.hpp>
 #include <gyrokit/analysis/probe.hpp>
 #include <gyrokit/reports/frf_reports.hpp>
+#include <gyrokit/reports/response_reports.hpp>
 
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
@@ -45,7 +46,7 @@ std::vector<Probe> probes_of(const GyroscopicSystem& s, const std::vector<std::p
 void bind_frf(py::module_& m) {
     m.def("frf", [](const GyroscopicSystem& s, double spin, const std::vector<double>& frequencies, int input,
                     std::vector<int> outputs, const std::string& solver, const std::string& unit,
-                    const std::vector<std::pair<int, double>>& probe_list) {
+                    const std::vector<std::pair<int, double>>& probe_list, const std::string& length_unit) {
         const SolverKind kind = parse_solver_kind(solver);
         const SpeedUnit u = SpeedUnit::parse(unit);
         const std::vector<Probe> probes = probes_of(s, probe_list);
@@ -63,12 +64,14 @@ void bind_frf(py::module_& m) {
             r.outputs = named.outputs;
         }
         py::dict d;
-        d["H"] = r.H;
+        d["H"] = r.H;   // SI: m/N, rad/N, ...; the tables and figures in the scene's length unit
+        to_length_unit(r.outputs, r.H, named.units, LengthUnit::parse(length_unit));
         d["names"] = std::vector<std::string>(named.names.begin() + s.size(), named.names.end());
         d["tables"] = tables_list({frf_table(named.names, named.units, r, u)});
         d["figure"] = figure_dict(frf_figure(named.names, named.units, r, u, false));
         d["polar_figure"] = figure_dict(frf_figure(named.names, named.units, r, u, true));
         return d;
     }, py::arg("system"), py::arg("spin"), py::arg("frequencies"), py::arg("input"), py::arg("outputs"),
-          py::arg("solver"), py::arg("unit") = "rad/s", py::arg("probes") = std::vector<std::pair<int, double>>{});
+          py::arg("solver"), py::arg("unit") = "rad/s", py::arg("probes") = std::vector<std::pair<int, double>>{},
+          py::arg("length_unit") = "m");
 }

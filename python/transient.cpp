@@ -41,12 +41,14 @@ struct TransientRun {
     TransientResult result;
     SolverKind kind = SolverKind::Dense;
     bool steady_start = false;
+    LengthUnit length;
 };
 
 py::dict run(const GyroscopicSystem& s, const SpeedProfile& profile, double duration, double dt,
              const std::vector<int>& outputs, bool steady, long long max_steps, const std::string& solver,
-             int windows, const std::string& unit) {
+             int windows, const std::string& unit, const std::string& length_unit) {
     const SpeedUnit u = SpeedUnit::parse(unit);
+    const LengthUnit length = LengthUnit::parse(length_unit);
     TransientOptions o;
     o.profile = profile;
     o.duration = duration;
@@ -76,9 +78,9 @@ py::dict run(const GyroscopicSystem& s, const SpeedProfile& profile, double dura
                           py::arg("max_corrections") = r.stats.max_corrections,
                           py::arg("max_residual") = r.stats.max_residual);
     d["envelope"] = envelope_dict(e, at_peaks);
-    d["tables"] = tables_list({transient_run_table(s, r, u, steady, o.kind)});
+    d["tables"] = tables_list({transient_run_table(s, r, u, steady, o.kind, length)});
     d["figure"] = py::none();
-    d["run"] = TransientRun{s, r, o.kind, steady};
+    d["run"] = TransientRun{s, r, o.kind, steady, length};
     return d;
 }
 
@@ -90,21 +92,23 @@ void bind_transient(py::module_& m) {
             Figure f;
             {
                 py::gil_scoped_release free;
-                f = transient_figure(t.system, t.result, SpeedUnit::parse(unit), t.steady_start, t.kind);
+                f = transient_figure(t.system, t.result, SpeedUnit::parse(unit), t.steady_start, t.kind, t.length);
             }
             return figure_dict(f);
         }, py::arg("unit"))
         .def("waterfall_figure", [](const TransientRun& t, const std::string& unit) {
-            return figure_dict(transient_waterfall_figure(t.system, t.result, SpeedUnit::parse(unit), t.steady_start));
+            return figure_dict(
+                transient_waterfall_figure(t.system, t.result, SpeedUnit::parse(unit), t.steady_start, t.length));
         }, py::arg("unit"));
     m.def("transient", [](const GyroscopicSystem& s, double from, double to, double acceleration, double duration,
                           double dt, const std::vector<int>& outputs, bool steady, long long max_steps,
-                          const std::string& solver, int windows, const std::string& unit) {
+                          const std::string& solver, int windows, const std::string& unit,
+                          const std::string& length_unit) {
         return run(s, SpeedProfile{from, to, acceleration}, duration, dt, outputs, steady, max_steps, solver, windows,
-                   unit);
+                   unit, length_unit);
     }, py::arg("system"), py::arg("from"), py::arg("to"), py::arg("acceleration"), py::arg("duration"), py::arg("dt"),
           py::arg("outputs"), py::arg("steady"), py::arg("max_steps"), py::arg("solver"), py::arg("windows"),
-          py::arg("unit") = "rad/s");
+          py::arg("unit") = "rad/s", py::arg("length_unit") = "m");
     // The waterfall of one recorded signal x(t) of a run with this speed history and step.
     m.def("transient_waterfall", [](const std::vector<double>& t, const std::vector<double>& speed,
                                     const Eigen::VectorXd& x, double from, double to, double acceleration, double dt,

@@ -102,5 +102,8 @@ k = 2e7
     CHECK(std::get<long long>(value(t, "couplings")) == 1);
     CHECK(std::get<double>(value(t, "pedestal1_mass")) == 20.0);
     CHECK(std::get<double>(value(t, "bearing2_z")) == Approx(0.0).margin(1e-15));
-    CHECK(std::get<double>(value(t, "shaft_outer_diameter_min")) == Approx(0.04).epsilon(1e-14));
+    // Lengths as the scene states them (length_unit = "mm"): 40 mm, not 0.04 m.
+    CHECK(std::get<double>(value(t, "shaft_outer_diameter_min")) == Approx(40.0).epsilon(1e-14));
+    for (std::size_t i = 0; i < t.rows(); ++i)
+        if (std::get<std::string>(t.row(i)[0]) == "shaft_outer_diameter_min") CHECK(std::get<std::string>(t.row(i)[2]) == "mm");
 }

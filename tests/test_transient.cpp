@@ -47,6 +47,34 @@ Scene three_disk() { return load_scene(std::string(GYROKIT_DATA_DIR) + "/three_d
 
 }  // namespace
 
+// A 2-DOF run `coarse` (x, y recorded) against RK4 of the same equations (`rhs`: the state
+// x, y, x', y' at time t), `substeps` RK4 steps per Newmark step, and against `fine`, the
+// same run at half the step: the largest differences of x and y, and the largest |x|, |y|.
+struct Rk4Comparison {
+    double newmark = 0.0, richardson = 0.0, peak = 0.0;
+};
+template <class Rhs>
+Rk4Comparison against_rk4(const TransientResult& coarse, const TransientResult& fine, const Rhs& rhs, int substeps) {
+    Rk4Comparison out;
+    Eigen::Vector4d s = Eigen::Vector4d::Zero();
+    const double h = coarse.dt / substeps;
+    for (std::size_t n = 1; n < coarse.t.size(); ++n) {
+        for (int i = 0; i < substeps; ++i) {
+            const double t = coarse.t[n - 1] + i * h;
+            const Eigen::Vector4d k1 = rhs(t, s), k2 = rhs(t + h / 2, s + h / 2 * k1),
+                                  k3 = rhs(t + h / 2, s + h / 2 * k2), k4 = rhs(t + h, s + h * k3);
+            s += h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
+        }
+        const auto row = static_cast<Eigen::Index>(n);
+        for (Eigen::Index k = 0; k < 2; ++k) {
+            out.newmark = std::max(out.newmark, std::abs(coarse.z(row, k) - s(k)));
+            out.richardson = std::max(out.richardson, std::abs(coarse.z(row, k) - fine.z(2 * row, k)));
+            out.peak = std::max(out.peak, std::abs(s(k)));
+        }
+    }
+    return out;
+}
+
 TEST_CASE("transient: the unbalance force reduces to w^2 Re(u e^{iwt}) and adds the phi'' term", "[transient]") {
     const Eigen::Vector2cd u(cd(2.0, 0.5), cd(0.5, -2.0));
     SpeedProfile constant{300.0, 300.0, 0.0};
@@ -281,23 +309,7 @@ TEST_CASE("transient: a Jeffcott run-up through its critical speed agrees with a
         const double fy = j.me * (w * w * std::sin(phi) - acc * std::cos(phi));
         return Eigen::Vector4d(s(2), s(3), (fx - j.c * s(2) - j.k * s(0)) / j.m, (fy - j.c * s(3) - j.k * s(1)) / j.m);
     };
-    Eigen::Vector4d s = Eigen::Vector4d::Zero();
-    double newmark = 0.0, richardson = 0.0, peak = 0.0;
-    const double h = coarse.dt / 8.0;
-    for (std::size_t n = 1; n < coarse.t.size(); ++n) {
-        for (int i = 0; i < 8; ++i) {
-            const double t = coarse.t[n - 1] + i * h;
-            const Eigen::Vector4d k1 = rhs(t, s), k2 = rhs(t + h / 2, s + h / 2 * k1),
-                                  k3 = rhs(t + h / 2, s + h / 2 * k2), k4 = rhs(t + h, s + h * k3);
-            s += h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
-        }
-        const auto row = static_cast<Eigen::Index>(n);
-        for (Eigen::Index k = 0; k < 2; ++k) {
-            newmark = std::max(newmark, std::abs(coarse.z(row, k) - s(k)));
-            richardson = std::max(richardson, std::abs(coarse.z(row, k) - fine.z(2 * row, k)));
-            peak = std::max(peak, std::abs(s(k)));
-        }
-    }
+    const auto [newmark, richardson, peak] = against_rk4(coarse, fine, rhs, 8);
     // Second order: the coarse run's error is 4/3 of its difference to the half-step run
     // (Richardson); RK4's own error at h is O(h^4), far below.
     INFO("Newmark error " << newmark / peak << ", Richardson estimate " << 4.0 / 3.0 * richardson / peak);
@@ -345,23 +357,7 @@ TEST_CASE("transient: a run-up on a speed-dependent bearing table agrees with RK
         const double fy = j.me * (w * w * std::sin(phi) - acc * std::cos(phi));
         return Eigen::Vector4d(s(2), s(3), (fx - c * s(2) - k * s(0)) / j.m, (fy - c * s(3) - k * s(1)) / j.m);
     };
-    Eigen::Vector4d s = Eigen::Vector4d::Zero();
-    double newmark = 0.0, richardson = 0.0, peak = 0.0;
-    const double h = coarse.dt / 4.0;
-    for (std::size_t n = 1; n < coarse.t.size(); ++n) {
-        for (int i = 0; i < 4; ++i) {
-            const double t = coarse.t[n - 1] + i * h;
-            const Eigen::Vector4d k1 = rhs(t, s), k2 = rhs(t + h / 2, s + h / 2 * k1),
-                                  k3 = rhs(t + h / 2, s + h / 2 * k2), k4 = rhs(t + h, s + h * k3);
-            s += h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4);
-        }
-        const auto row = static_cast<Eigen::Index>(n);
-        for (Eigen::Index k = 0; k < 2; ++k) {
-            newmark = std::max(newmark, std::abs(coarse.z(row, k) - s(k)));
-            richardson = std::max(richardson, std::abs(coarse.z(row, k) - fine.z(2 * row, k)));
-            peak = std::max(peak, std::abs(s(k)));
-        }
-    }
+    const auto [newmark, richardson, peak] = against_rk4(coarse, fine, rhs, 4);
     // Holding a coefficient over 0.1 % of the speed changes k by at most 4e5 / 600 * 1e-3 w, 3.3e-4 of k
     // (c by less); near the resonance that moves the response by up to Q = 1 / (2 zeta) ~ 9 times as much.
     // Both runs hold at the same speeds, so the Richardson difference measures Newmark's error alone.

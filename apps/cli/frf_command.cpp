@@ -77,6 +77,7 @@ std::vector<Command> add_frf_commands(CLI::App& app) {
                      r.H = probe_readings(probes, r.outputs, r.H);
                      r.outputs = named.outputs;
                  }
+                 to_length_unit(r.outputs, r.H, named.units, c.scene.length_unit());   // mm in an mm scene
                  write_table(out, frf_table(named.names, named.units, r, c.unit), c.format);
                  if (!o->common.plot.empty())
                      plot_if(o->common.plot, frf_figure(named.names, named.units, r, c.unit, o->polar));

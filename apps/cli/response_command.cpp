@@ -136,13 +136,19 @@ std::vector<Command> add_response_commands(CLI::App& app) {
             named.names.clear(), named.units.clear();
             for (const Probe& p : probes) named.names.push_back(p.name), named.units.push_back("m");
         }
+        // Lengths as the scene states them (an mm scene prints mm).
+        const LengthUnit length = sc.length_unit();
+        Eigen::VectorXd shown_in = Eigen::VectorXd::Ones(sc.dofs());   // models without DOF units: as they are
+        for (std::size_t k = 0; k < sc.system.dof_units.size(); ++k)
+            shown_in(static_cast<Eigen::Index>(k)) = length.display_factor(sc.system.dof_units[k]);
         const std::vector<std::string>& names = named.names;
-        const std::vector<std::string>& units = named.units;
+        const std::vector<std::string> units = length.display_units(named.units);
         const ResponseSolver solve = [&](double w) -> Eigen::VectorXcd {
             const Eigen::VectorXcd Z = unbalance_response(sc.system, w, kind);
-            if (probes.empty()) return Z;
+            if (probes.empty()) return Z.cwiseProduct(shown_in.cast<std::complex<double>>());
             Eigen::VectorXcd reading(static_cast<Eigen::Index>(probes.size()));
-            for (std::size_t k = 0; k < probes.size(); ++k) reading(static_cast<Eigen::Index>(k)) = probe_response(probes[k], Z);
+            for (std::size_t k = 0; k < probes.size(); ++k)
+                reading(static_cast<Eigen::Index>(k)) = length.display_factor("m") * probe_response(probes[k], Z);
             return reading;
         };
         for (const auto& n : extrapolation_notes(sc.system.bearings, c.speeds.front(), c.speeds.back()))

@@ -95,8 +95,8 @@ std::vector<int> outputs_of(const Options& o, const GyroscopicSystem& sys) {
 
 void draw(const Options& o, const Context& c, const TransientResult& r, SolverKind kind) {
     const bool steady = o.start == "steady";
-    if (!o.common.plot.empty()) plot_if(o.common.plot, transient_figure(c.scene.system, r, c.unit, steady, kind));
-    if (!o.waterfall.empty()) plot_if(o.waterfall, transient_waterfall_figure(c.scene.system, r, c.unit, steady));
+    if (!o.common.plot.empty()) plot_if(o.common.plot, transient_figure(c.scene.system, r, c.unit, steady, kind, c.scene.length_unit()));
+    if (!o.waterfall.empty()) plot_if(o.waterfall, transient_waterfall_figure(c.scene.system, r, c.unit, steady, c.scene.length_unit()));
 }
 
 void run(const Options& o, std::ostream& out) {
@@ -127,7 +127,7 @@ void run(const Options& o, std::ostream& out) {
     }
     const TransientResult r = transient_response(sys, opt);
     for (const std::string& n : r.notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
-    const Table t = transient_run_table(sys, r, c.unit, opt.start_steady, opt.kind);
+    const Table t = transient_run_table(sys, r, c.unit, opt.start_steady, opt.kind, c.scene.length_unit());
     write_table(out, t, c.format);
     if (history.is_open()) {
         write_table(history, transient_history_table(sys.dof_names, r, c.unit), TableFormat::Csv);

@@ -82,6 +82,11 @@ def _title(model):
     return model.title if isinstance(model, Scene) else ""
 
 
+def _length(model):
+    """The unit a scene states lengths in (its tables and figures print them so); m for a System."""
+    return model.length_unit if isinstance(model, Scene) else "m"
+
+
 def _log_dec(lam):
     """-2 pi Re / Im of each eigenvalue (NaN where it does not oscillate), as the CLI's log_dec."""
     lam = _np.asarray(lam)
@@ -285,7 +290,7 @@ def modes(model, speed, *, solver=None, modes=None, target=None, target_order=No
     """Mode shapes at one speed (in `unit`): the `modes` lowest (None: the scene's, 0: all)."""
     system, o = _options(model, solver, modes, target, target_order)
     w = float(speed) / _factor(unit)
-    length = model.length_unit if isinstance(model, Scene) else "m"
+    length = _length(model)
     return ModeShapes(_core.mode_shapes(system, w, method=method, lanczos=int(lanczos), unit=unit,
                                         title=_title(model), length_unit=length, **o), w, system.dof_names, unit)
 
@@ -484,7 +489,8 @@ def frf(model, speed, input, frequencies, *, dofs=None, probes=None, unit="rad/s
     factor = _UNITS[unit]
     w = _np.asarray(frequencies, dtype=float) / factor
     d = _core.frf(system, float(speed) / factor, list(w), names.index(input), [names.index(d) for d in dofs],
-                  solver or (model.solver if isinstance(model, Scene) else "auto"), unit, _probes(probes))
+                  solver or (model.solver if isinstance(model, Scene) else "auto"), unit, _probes(probes),
+                  _length(model))
     if probes is not None:
         dofs = list(d["names"])
     return FrequencyResponse(float(speed), _np.asarray(frequencies, dtype=float), input, dofs, d, unit)
@@ -656,7 +662,7 @@ def response(model, speeds=None, *, dofs=None, probes=None, solver=None, harmoni
     w = _speeds(model, speeds, unit)
     cols = [] if dofs is None else [names.index(x) for x in dofs]
     d = _core.response(system, w, _harmonics(model, harmonics), outputs=cols, unit=unit, title=_title(model),
-                       probes=_probes(probes), **o)
+                       probes=_probes(probes), length_unit=_length(model), **o)
     for msg in d["warnings"]:
         _warnings.warn(msg, RuntimeWarning, stacklevel=2)
     if probes is not None:

@@ -130,5 +130,5 @@ def transient(model, speed=None, *, run_up=None, acceleration=None, duration=Non
     d = _core.transient(system, *profile, float(0.0 if duration is None else duration),
                         float(0.0 if dt is None else dt), _outputs(system, dofs, node), start == "steady",
                         int(max_steps), solver or (model.solver if isinstance(model, Scene) else "auto"),
-                        int(windows), unit)
+                        int(windows), unit, model.length_unit if isinstance(model, Scene) else "m")
     return TransientResponse(d, system.dof_names, unit, profile)

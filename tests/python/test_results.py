@@ -179,3 +179,46 @@ def test_probes_at_any_angle_read_x_cos_plus_y_sin_as_the_cli(tmp_path, scene):
         gk.response(scene, speeds, probes=[(99, 0)])
     with pytest.raises(gk.InputError, match="dofs and probes: allowed: one of them"):
         gk.frf(scene, 600.0, "y12", [0.0], dofs=["x12"], probes=[(12, 0)])
+
+
+def _pinned(tmp_path, unit, scale):
+    path = tmp_path / f"pinned_{unit}.toml"
+    path.write_text(f"""[model]
+type = "fe_rotor"
+material = "steel"
+length_unit = "{unit}"
+[[model.shaft]]
+length = {1.0 * scale}
+elements = 4
+outer_diameter = {0.05 * scale}
+[[model.disk]]
+z = {0.5 * scale}
+outer_diameter = {0.2 * scale}
+width = {0.03 * scale}
+unbalance = 1e-4
+[[model.support]]
+z = 0
+[[model.support]]
+z = {1.0 * scale}
+""")
+    return gk.load_scene(str(path))
+
+
+def test_an_mm_scene_prints_lengths_in_mm_and_keeps_arrays_si(tmp_path):
+    m, mm = _pinned(tmp_path, "m", 1.0), _pinned(tmp_path, "mm", 1000.0)
+    assert (m.length_unit, mm.length_unit) == ("m", "mm")
+    speeds = np.linspace(100.0, 1000.0, 4)
+    a, b = gk.response(m, speeds, dofs=["x2", "y2"]), gk.response(mm, speeds, dofs=["x2", "y2"])
+    # The mm scene's inputs differ from the m scene's by the rounding of 1e-3: a few ulp in the results.
+    np.testing.assert_allclose(b.amplitude, a.amplitude, rtol=1e-12)        # arrays: SI in both
+    ta, tb = a.table("response"), b.table("response")
+    assert set(tb.column("unit")) == {"mm"} and set(ta.column("unit")) == {"m"}
+    np.testing.assert_allclose(tb.column("amplitude"), 1000.0 * np.array(ta.column("amplitude")), rtol=1e-12)
+    f = gk.frf(mm, 300.0, "y2", [100.0, 400.0])
+    assert set(f.table("frf").column("unit")) == {"mm/N"}
+    tr = gk.transient(mm, 300.0, duration=0.2, node=2, start="steady").table("transient")
+    assert set(tr.column("unit")) == {"mm"}
+    peaks = np.array(tr.column("peak")) / np.array(tr.column("steady"))
+    assert np.all(np.abs(peaks - 1.0) < 0.01)   # started steady: the peaks are the steady amplitude, both in mm
+    rows = {r[0]: (r[1], r[2]) for r in gk.summary(mm).tables[0].rows}
+    assert rows["disk1_z"] == (pytest.approx(500.0, rel=1e-12), "mm")

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace gyrokit {
 
@@ -16,6 +17,14 @@ struct LengthUnit {
     double to_metres(double value) const { return value * metres; }
     // A column name that records the unit: "z" -> z_m, z_mm.
     std::string column(const std::string& base) const { return base + "_" + name; }
+    // A DOF's value as printed: a length ("m") in this unit, any other unit (rad) as it is.
+    double display_factor(const std::string& dof_unit) const { return dof_unit == "m" ? 1.0 / metres : 1.0; }
+    std::string display_unit(const std::string& dof_unit) const { return dof_unit == "m" ? name : dof_unit; }
+    std::vector<std::string> display_units(const std::vector<std::string>& dof_units) const {
+        std::vector<std::string> out;
+        for (const std::string& u : dof_units) out.push_back(display_unit(u));
+        return out;
+    }
 };
 
 }  // namespace gyrokit

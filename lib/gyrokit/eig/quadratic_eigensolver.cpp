@@ -177,6 +177,67 @@ constexpr double kStateVerifyTolerance = 1e-10;
 // backward errors below this on the quadratic is kept as it is.
 constexpr double kStateRoundingLevel = 1e-14;
 
+// Two vectors of one double eigenvalue turned to one direction: the later keeps
+// its own vector and eigenvalue (and dgeev's left vector where there is one).
+void keep_double_vectors(std::vector<Mode>& modes, const std::vector<Mode>& raw, int n) {
+    for (size_t i = 0; i < modes.size(); ++i)
+        for (size_t k = 0; k < i; ++k)
+            if (std::abs(modes[i].lambda - modes[k].lambda) <= 1e-8 * std::abs(modes[i].lambda) &&
+                mac(modes[i].right, modes[k].right) > 0.999 && raw[i].backward_error <= kStateVerifyTolerance) {
+                modes[i].lambda = raw[i].lambda;
+                modes[i].right = raw[i].right;
+                modes[i].backward_error = raw[i].backward_error;
+                if (raw[i].left.size() == n) modes[i].left = raw[i].left;   // dgeev's, where it gave one
+                break;
+            }
+}
+
+// A double eigenvalue (an isotropic rotor at standstill): its left vectors from
+// separate refinements are any two of its left plane, so y^H P' x may nearly
+// vanish and inflate the condition number. Turned biorthogonal to the right
+// vectors (Y^H P'(lambda) X = I), as QZ's are, they give the bounds QZ gives.
+void biorthogonalize_double_left(std::vector<Mode>& modes, const SparsePencil& sp, int n) {
+    std::vector<bool> done(modes.size(), false);
+    for (size_t i = 0; i < modes.size(); ++i) {
+        if (done[i] || modes[i].left.size() != n) continue;
+        std::vector<size_t> group{i};
+        for (size_t k = i + 1; k < modes.size(); ++k)
+            if (!done[k] && modes[k].left.size() == n &&
+                std::abs(modes[k].lambda - modes[i].lambda) <= 1e-6 * std::abs(modes[i].lambda))
+                group.push_back(k);
+        for (size_t k : group) done[k] = true;
+        if (group.size() < 2) continue;
+        const Eigen::Index k = static_cast<Eigen::Index>(group.size());
+        Eigen::MatrixXcd X(n, k), Y(n, k);
+        for (Eigen::Index c = 0; c < k; ++c) {
+            X.col(c) = modes[group[static_cast<size_t>(c)]].right;
+            Y.col(c) = modes[group[static_cast<size_t>(c)]].left;
+        }
+        const cd l = modes[i].lambda;
+        Eigen::MatrixXcd dX(n, k);   // P'(lambda) X
+        for (Eigen::Index c = 0; c < k; ++c)
+            dX.col(c) = (2.0 * l) * real_times(sp.M, X.col(c)) + real_times(sp.C, X.col(c));
+        const Eigen::MatrixXcd D = Y.adjoint() * dX;
+        const Eigen::FullPivLU<Eigen::MatrixXcd> dlu(D);
+        if (!dlu.isInvertible()) continue;
+        const Eigen::MatrixXcd Yb = Y * dlu.inverse().adjoint();
+        for (Eigen::Index c = 0; c < k; ++c) modes[group[static_cast<size_t>(c)]].left = unit_vector(Yb.col(c));
+    }
+}
+
+// A left vector that does not solve y^H P(lambda) = 0 gives no bound (infinite): dropped.
+void drop_unsolving_left(std::vector<Mode>& modes, const Eigen::SparseMatrix<double>& Mt,
+                         const Eigen::SparseMatrix<double>& Ct, const Eigen::SparseMatrix<double>& Kt,
+                         const PencilAction& action, int n) {
+    for (Mode& m : modes) {
+        if (m.left.size() != n) continue;
+        const cd l = std::conj(m.lambda);
+        const Eigen::VectorXcd r = (l * l) * real_times(Mt, m.left) + l * real_times(Ct, m.left) + real_times(Kt, m.left);
+        const double a = std::abs(m.lambda);
+        if (!(r.norm() <= 1e-8 * (a * a * action.norm_M + a * action.norm_C + action.norm_K))) m.left.resize(0);
+    }
+}
+
 QuadraticSpectrum solve_state(const QuadraticPencil& p) {
     const int n = static_cast<int>(p.M.rows());
     const PencilAction action = action_of(p);
@@ -249,56 +310,9 @@ QuadraticSpectrum solve_state(const QuadraticPencil& p) {
             refine_eigenpair(sp, sa, m, 1e-6 * kStateVerifyTolerance, s.scale);
             ++s.refined;
         }
-    // Two vectors of one double eigenvalue turned to one direction: the later keeps
-    // its own vector and eigenvalue (and dgeev's left vector where there is one).
-    for (size_t i = 0; i < s.modes.size(); ++i)
-        for (size_t k = 0; k < i; ++k)
-            if (std::abs(s.modes[i].lambda - s.modes[k].lambda) <= 1e-8 * std::abs(s.modes[i].lambda) &&
-                mac(s.modes[i].right, s.modes[k].right) > 0.999 && raw[i].backward_error <= kStateVerifyTolerance) {
-                s.modes[i].lambda = raw[i].lambda;
-                s.modes[i].right = raw[i].right;
-                s.modes[i].backward_error = raw[i].backward_error;
-                if (raw[i].left.size() == n) s.modes[i].left = raw[i].left;   // dgeev's, where it gave one
-                break;
-            }
-    // A double eigenvalue (an isotropic rotor at standstill): its left vectors from
-    // separate refinements are any two of its left plane, so y^H P' x may nearly
-    // vanish and inflate the condition number. Turned biorthogonal to the right
-    // vectors (Y^H P'(lambda) X = I), as QZ's are, they give the bounds QZ gives.
-    std::vector<bool> done(s.modes.size(), false);
-    for (size_t i = 0; i < s.modes.size(); ++i) {
-        if (done[i] || s.modes[i].left.size() != n) continue;
-        std::vector<size_t> group{i};
-        for (size_t k = i + 1; k < s.modes.size(); ++k)
-            if (!done[k] && s.modes[k].left.size() == n &&
-                std::abs(s.modes[k].lambda - s.modes[i].lambda) <= 1e-6 * std::abs(s.modes[i].lambda))
-                group.push_back(k);
-        for (size_t k : group) done[k] = true;
-        if (group.size() < 2) continue;
-        const Eigen::Index k = static_cast<Eigen::Index>(group.size());
-        Eigen::MatrixXcd X(n, k), Y(n, k);
-        for (Eigen::Index c = 0; c < k; ++c) {
-            X.col(c) = s.modes[group[static_cast<size_t>(c)]].right;
-            Y.col(c) = s.modes[group[static_cast<size_t>(c)]].left;
-        }
-        const cd l = s.modes[i].lambda;
-        Eigen::MatrixXcd dX(n, k);   // P'(lambda) X
-        for (Eigen::Index c = 0; c < k; ++c)
-            dX.col(c) = (2.0 * l) * real_times(sp.M, X.col(c)) + real_times(sp.C, X.col(c));
-        const Eigen::MatrixXcd D = Y.adjoint() * dX;
-        const Eigen::FullPivLU<Eigen::MatrixXcd> dlu(D);
-        if (!dlu.isInvertible()) continue;
-        const Eigen::MatrixXcd Yb = Y * dlu.inverse().adjoint();
-        for (Eigen::Index c = 0; c < k; ++c) s.modes[group[static_cast<size_t>(c)]].left = unit_vector(Yb.col(c));
-    }
-    for (Mode& m : s.modes) {
-        // A left vector that does not solve y^H P(lambda) = 0 gives no bound (infinite).
-        if (m.left.size() != n) continue;
-        const cd l = std::conj(m.lambda);
-        const Eigen::VectorXcd r = (l * l) * real_times(Mt, m.left) + l * real_times(Ct, m.left) + real_times(Kt, m.left);
-        const double a = std::abs(m.lambda);
-        if (!(r.norm() <= 1e-8 * (a * a * action.norm_M + a * action.norm_C + action.norm_K))) m.left.resize(0);
-    }
+    keep_double_vectors(s.modes, raw, n);
+    biorthogonalize_double_left(s.modes, sp, n);
+    drop_unsolving_left(s.modes, Mt, Ct, Kt, action, n);
     return s;
 }
 

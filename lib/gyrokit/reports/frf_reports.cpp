@@ -11,7 +11,8 @@ namespace gyrokit {
 std::vector<std::string> frf_units(const std::vector<std::string>& dof_units, int input) {
     if (dof_units.empty()) return {};
     const std::string& in = dof_units[static_cast<std::size_t>(input)];
-    const std::string per = in == "m" ? "N" : in == "rad" ? "(N m)" : "(unit force)";
+    // A force drives a translation (in m, or mm as printed), a moment a rotation.
+    const std::string per = in == "m" || in == "mm" ? "N" : in == "rad" ? "(N m)" : "(unit force)";
     std::vector<std::string> out;
     for (const std::string& u : dof_units) out.push_back(u + "/" + per);
     return out;

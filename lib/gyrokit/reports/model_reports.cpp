@@ -57,9 +57,17 @@ std::string circulatory(const GyroscopicSystem& s) {
 
 // The rows only an FE rotor has: elements, masses, diameters, and where its disks,
 // bearings, supports and pedestals stand.
-void add_fe_rotor_rows(Table& t, const FeRotor& r, const GyroscopicSystem& s) {
-    const auto add = [&](const std::string& q, const Cell& v, const std::string& unit = "") {
+// A row; a length (unit "m") in the scene's unit.
+void add_row(Table& t, const LengthUnit& length, const std::string& q, const Cell& v, const std::string& unit) {
+    if (unit == "m" && std::holds_alternative<double>(v))
+        t.add_row({q, length.in_unit(std::get<double>(v)), length.name});
+    else
         t.add_row({q, v, unit});
+}
+
+void add_fe_rotor_rows(Table& t, const FeRotor& r, const GyroscopicSystem& s, const LengthUnit& length) {
+    const auto add = [&](const std::string& q, const Cell& v, const std::string& unit = "") {
+        add_row(t, length, q, v, unit);
     };
     add("elements", ll(static_cast<int>(r.elements.size())));
     add("motion", std::string(to_string(r.motion)));
@@ -119,8 +127,9 @@ Table model_summary(const Scene& sc) {
     t.key = "model";
     t.title = "model " + sc.path + (sc.title.empty() ? std::string() : ": " + sc.title);
     const GyroscopicSystem& s = sc.system;
+    const LengthUnit length = sc.length_unit();
     const auto add = [&](const std::string& q, const Cell& v, const std::string& unit = "") {
-        t.add_row({q, v, unit});
+        add_row(t, length, q, v, unit);
     };
     add("type", sc.model_type);
     add("dofs", ll(s.size()));
@@ -161,11 +170,12 @@ Table model_summary(const Scene& sc) {
     } else {
         add("rigid_body_eigenvalues_at_rest", std::string("not computed (sparse model)"));
     }
-    if (sc.fe_rotor) add_fe_rotor_rows(t, *sc.fe_rotor, s);
+    if (sc.fe_rotor) add_fe_rotor_rows(t, *sc.fe_rotor, s, length);
     return t;
 }
 
-Figure fe_rotor_figure(const FeRotor& r, const GyroscopicSystem& sys, const std::string& title) {
+Figure fe_rotor_figure(const FeRotor& r, const GyroscopicSystem& sys, const std::string& title,
+                       const LengthUnit& length) {
     Figure f;
     f.title = title.empty() ? std::string("Finite-element rotor") : title;
     Panel p{"z [m]", "radius [m]", "", false, {}, {}, {}, {}, {}};
@@ -240,6 +250,15 @@ Figure fe_rotor_figure(const FeRotor& r, const GyroscopicSystem& sys, const std:
     for (const double x : z) axis.x.push_back(x), axis.y.push_back(0.0);
     p.series.push_back(axis);
     f.panels = {p};
+    // Drawn in the scene's length unit: every coordinate is a length.
+    for (Panel& panel : f.panels) {
+        panel.xlabel = "z [" + length.name + "]";
+        panel.ylabel = "radius [" + length.name + "]";
+        for (Series& sr : panel.series) {
+            for (double& x : sr.x) x = length.in_unit(x);
+            for (double& y : sr.y) y = length.in_unit(y);
+        }
+    }
     return f;
 }
 

@@ -21,6 +21,8 @@ Table model_summary(const Scene& scene);
 // An FE rotor's geometry along z: the shaft sections (outer and inner radius),
 // the disks (radius and width of the solid cylinder with their mass, Id and Ip),
 // bearings and supports at their nodes, the nodes on the axis.
-Figure fe_rotor_figure(const FeRotor& rotor, const GyroscopicSystem& system, const std::string& title);
+// Lengths in `length` (the scene's unit).
+Figure fe_rotor_figure(const FeRotor& rotor, const GyroscopicSystem& system, const std::string& title,
+                       const LengthUnit& length = {});
 
 }  // namespace gyrokit

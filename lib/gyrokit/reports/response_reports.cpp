@@ -15,6 +15,14 @@ using detail::speed_label;
 using detail::unit_of;
 using detail::units_in;
 
+void to_length_unit(const std::vector<int>& outputs, Eigen::MatrixXcd& Z, std::vector<std::string>& units,
+                    const LengthUnit& length) {
+    if (units.empty()) return;   // a model without DOF units: as it is
+    for (std::size_t j = 0; j < outputs.size(); ++j)
+        Z.col(static_cast<Eigen::Index>(j)) *= length.display_factor(units.at(static_cast<std::size_t>(outputs[j])));
+    units = length.display_units(units);
+}
+
 Table response_table(const std::vector<std::string>& names, const std::vector<std::string>& units,
                      const ResponseCurve& c, const SpeedUnit& u) {
     Table t({u.column("speed"), "dof", "unit", "amplitude", "phase_deg"});

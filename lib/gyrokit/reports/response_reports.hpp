@@ -3,6 +3,7 @@
 #pragma once
 
 #include <gyrokit/analysis/unbalance_response.hpp>
+#include <gyrokit/core/length_unit.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/io/plot.hpp>
 #include <gyrokit/io/table.hpp>
@@ -12,6 +13,12 @@
 #include <vector>
 
 namespace gyrokit {
+
+// Lengths as the scene states them: the columns of `Z` (the outputs `outputs`, indices
+// into `units`) whose unit is m scaled to `length`, and `units` renamed ("m" -> "mm").
+// Before the tables and figures of an mm scene; other units (rad) stay.
+void to_length_unit(const std::vector<int>& outputs, Eigen::MatrixXcd& Z, std::vector<std::string>& units,
+                    const LengthUnit& length);
 
 // Every row of the curve; `unit` is the DOF's unit ("" if the model names none).
 Table response_table(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,

@@ -163,18 +163,45 @@ std::string transient_description(const SpeedProfile& p, const SpeedUnit& u, boo
                        u.factor * p.from, u.factor * p.to, u.name, u.factor * p.acceleration, per_second_unit(u), from);
 }
 
+namespace {
+
+// The run as the scene states lengths: the recorded columns in m scaled to `length`
+// (`factor` per column), the DOF units renamed.
+struct ShownRun {
+    TransientResult run;
+    std::vector<std::string> units;
+    Eigen::VectorXd factor;
+};
+
+ShownRun shown(const GyroscopicSystem& sys, const TransientResult& r, const LengthUnit& length) {
+    ShownRun out{r, length.display_units(sys.dof_units), Eigen::VectorXd::Ones(static_cast<Eigen::Index>(r.dofs.size()))};
+    if (sys.dof_units.empty()) return out;
+    for (std::size_t k = 0; k < r.dofs.size(); ++k) {
+        const double f = length.display_factor(sys.dof_units.at(static_cast<std::size_t>(r.dofs[k])));
+        out.factor(static_cast<Eigen::Index>(k)) = f;
+        if (f != 1.0) out.run.z.col(static_cast<Eigen::Index>(k)) *= f;
+    }
+    return out;
+}
+
+}  // namespace
+
 Table transient_run_table(const GyroscopicSystem& sys, const TransientResult& r, const SpeedUnit& u, bool steady_start,
-                          SolverKind kind) {
-    const TransientEnvelope e = transient_envelope(r, kTransientTableWindows);
-    Table t = transient_table(sys.dof_names, sys.dof_units, e, envelope_steady(sys, e, kind), u);
+                          SolverKind kind, const LengthUnit& length) {
+    const ShownRun s = shown(sys, r, length);
+    const TransientEnvelope e = transient_envelope(s.run, kTransientTableWindows);
+    const Eigen::MatrixXd steady = envelope_steady(sys, e, kind) * s.factor.asDiagonal();
+    Table t = transient_table(sys.dof_names, s.units, e, steady, u);
     t.title = fmt::format("transient unbalance response {}: peak |z| over the whole revolutions of each 1/{} of the "
                           "run, where it occurred; steady: the steady response at that speed",
                           transient_description(r.profile, u, steady_start), kTransientTableWindows);
     return t;
 }
 
-Figure transient_figure(const GyroscopicSystem& sys, const TransientResult& r, const SpeedUnit& u, bool steady_start,
-                        SolverKind kind) {
+Figure transient_figure(const GyroscopicSystem& sys, const TransientResult& run, const SpeedUnit& u,
+                        bool steady_start, SolverKind kind, const LengthUnit& length) {
+    const ShownRun s = shown(sys, run, length);
+    const TransientResult& r = s.run;
     const std::string what = transient_description(r.profile, u, steady_start);
     if (r.profile.acceleration == 0.0) {
         if (r.dofs.size() < 2)
@@ -182,21 +209,24 @@ Figure transient_figure(const GyroscopicSystem& sys, const TransientResult& r, c
                                          "allowed: a node, or two DOFs",
                                          r.dofs.size()));
         const Eigen::VectorXcd Z = unbalance_response(sys, r.profile.from, kind);
-        return transient_orbit_figure(sys.dof_names, sys.dof_units, r, 0, 1, Z(r.dofs[0]), Z(r.dofs[1]), "Orbit " + what);
+        return transient_orbit_figure(sys.dof_names, s.units, r, 0, 1, s.factor(0) * Z(r.dofs[0]),
+                                      s.factor(1) * Z(r.dofs[1]), "Orbit " + what);
     }
     std::vector<double> speeds;
     const double lo = std::min(r.profile.from, r.profile.to), hi = r.profile.top();
     for (int i = 0; i <= 1000; ++i) speeds.push_back(lo + (hi - lo) * i / 1000.0);
     const TransientEnvelope fine = transient_envelope(r, 400);
-    return transient_runup_figure(sys.dof_names, sys.dof_units, fine, speeds, steady_amplitudes(sys, speeds, r.dofs, kind),
-                                  u, "Unbalance response, " + what);
+    const Eigen::MatrixXd steady = steady_amplitudes(sys, speeds, r.dofs, kind) * s.factor.asDiagonal();
+    return transient_runup_figure(sys.dof_names, s.units, fine, speeds, steady, u, "Unbalance response, " + what);
 }
 
-Figure transient_waterfall_figure(const GyroscopicSystem& sys, const TransientResult& r, const SpeedUnit& u,
-                                  bool steady_start) {
+Figure transient_waterfall_figure(const GyroscopicSystem& sys, const TransientResult& run, const SpeedUnit& u,
+                                  bool steady_start, const LengthUnit& length) {
+    const ShownRun s = shown(sys, run, length);
+    const TransientResult& r = s.run;
     std::vector<Waterfall> ws;
     for (int k = 0; k < std::min<int>(2, static_cast<int>(r.dofs.size())); ++k) ws.push_back(transient_waterfall(r, k));
-    return waterfall_figure(sys.dof_names, sys.dof_units, ws, u, r.profile.acceleration != 0.0,
+    return waterfall_figure(sys.dof_names, s.units, ws, u, r.profile.acceleration != 0.0,
                             "Waterfall, " + transient_description(r.profile, u, steady_start));
 }
 

@@ -4,6 +4,7 @@
 
 #include <gyrokit/analysis/transient.hpp>
 #include <gyrokit/analysis/transient_signals.hpp>
+#include <gyrokit/core/length_unit.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/io/plot.hpp>
 #include <gyrokit/io/table.hpp>
@@ -46,16 +47,17 @@ std::string transient_description(const SpeedProfile& p, const SpeedUnit& u, boo
 // The table a person reads of a run (the CLI's, Python's first): the envelope over 20
 // windows of whole revolutions against the steady response, titled with the run.
 constexpr int kTransientTableWindows = 20;
+// Lengths in `length` (the scene's unit), here and in the figures below.
 Table transient_run_table(const GyroscopicSystem& sys, const TransientResult& r, const SpeedUnit& u, bool steady_start,
-                          SolverKind kind);
+                          SolverKind kind, const LengthUnit& length = {});
 
 // The picture of a run as the CLI's --plot draws it: at a constant speed the orbit of the
 // first two recorded DOFs with the steady orbit (none with fewer than two: InputError), else
 // the run-up envelope (400 windows) against the steady response on 1001 speeds.
 Figure transient_figure(const GyroscopicSystem& sys, const TransientResult& r, const SpeedUnit& u,
-                        bool steady_start, SolverKind kind);
+                        bool steady_start, SolverKind kind, const LengthUnit& length = {});
 // The waterfall of the first two recorded DOFs (--waterfall).
 Figure transient_waterfall_figure(const GyroscopicSystem& sys, const TransientResult& r, const SpeedUnit& u,
-                                  bool steady_start);
+                                  bool steady_start, const LengthUnit& length = {});
 
 }  // namespace gyrokit

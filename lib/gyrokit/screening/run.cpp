@@ -274,6 +274,34 @@ ParsedFile parse_result_file(const Sweep& s, const std::string& path, const Shar
     return pf;
 }
 
+// The results file of a run, locked: read back and cut after its last whole line
+// (resume: its rows into `res`, their designs into `done`) or emptied, with the
+// identity and header lines where it has none, into `out` (left empty without --out).
+void open_results(const Sweep& s, const RunOptions& opt, RunResult& res, std::set<std::size_t>& done,
+                  std::optional<ResultFile>& out) {
+    check_output_path(opt.out, {s.path, s.scene}, opt.resume ? "--resume" : "--out");
+    // Held from before the file is read back (resume) or cut (a fresh run): a second
+    // writer of the same file is refused instead of interleaving with this one.
+    if (opt.out.empty()) return;
+    out.emplace(opt.out);
+    bool need_header = true, has_identity = false;
+    if (opt.resume && fs::file_size(opt.out) > 0) {
+        ParsedFile pf = parse_result_file(s, opt.out, &opt.shard);
+        need_header = !pf.has_header;
+        has_identity = pf.has_identity;
+        out->truncate(pf.valid_bytes);   // drop the partial last line before appending
+        for (auto& r : pf.rows) done.insert(r.index);
+        res.resumed = pf.rows.size();
+        res.rows = std::move(pf.rows);
+    } else {
+        out->truncate(0);
+    }
+    if (need_header) {
+        out->write((has_identity ? std::string() : study_identity_line(s) + '\n') + header_line(s) + '\n');
+        out->sync();
+    }
+}
+
 }  // namespace
 
 RunResult run_screening(const Sweep& s, const RunOptions& opt) {
@@ -284,29 +312,8 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
     res.shard_designs = n > first ? (n - first + step - 1) / step : 0;
 
     std::set<std::size_t> done;
-    check_output_path(opt.out, {s.path, s.scene}, opt.resume ? "--resume" : "--out");
-    // Held from before the file is read back (resume) or cut (a fresh run): a second
-    // writer of the same file is refused instead of interleaving with this one.
     std::optional<ResultFile> out;
-    if (!opt.out.empty()) {
-        out.emplace(opt.out);
-        bool need_header = true, has_identity = false;
-        if (opt.resume && fs::file_size(opt.out) > 0) {
-            ParsedFile pf = parse_result_file(s, opt.out, &opt.shard);
-            need_header = !pf.has_header;
-            has_identity = pf.has_identity;
-            out->truncate(pf.valid_bytes);   // drop the partial last line before appending
-            for (auto& r : pf.rows) done.insert(r.index);
-            res.resumed = pf.rows.size();
-            res.rows = std::move(pf.rows);
-        } else {
-            out->truncate(0);
-        }
-        if (need_header) {
-            out->write((has_identity ? std::string() : study_identity_line(s) + '\n') + header_line(s) + '\n');
-            out->sync();
-        }
-    }
+    open_results(s, opt, res, done, out);
     // The designs of this run are issued one at a time in index order (the k-th
     // issued is the k-th row written): nothing is allocated per design of the grid,
     // so a 1e8-design grid with --limit 2 costs two designs.
