@@ -171,9 +171,12 @@ py::dict py_eig(const GyroscopicSystem& s, double speed, const std::string& solv
 // gk.mode_shapes: the shapes as columns, and their orbits per whirl pair (the CLI's --per node table).
 py::dict py_mode_shapes(const GyroscopicSystem& s, double speed, const std::string& solver, int modes,
                         const py::object& target, double target_order, const std::string& method, int lanczos,
-                        const std::string& unit, const std::string& title, const std::string& length_unit) {
+                        const std::string& unit, const std::string& title, const std::string& length_unit,
+                        const py::object& scene) {
     const SpeedUnit u = SpeedUnit::parse(unit);
     const LengthUnit length = LengthUnit::parse(length_unit);
+    // A scene's FE rotor: its disks, bearings and supports marked on the shapes.
+    const AxisMarks marks = scene.is_none() ? AxisMarks{} : axis_marks(scene.cast<const Scene&>());
     if (!(std::isfinite(speed) && speed >= 0))
         throw InputError("speed = " + std::to_string(speed) + ": allowed: a finite number >= 0 (rad/s)");
     const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
@@ -234,7 +237,7 @@ py::dict py_mode_shapes(const GyroscopicSystem& s, double speed, const std::stri
     put_reports(d,
                 {mode_list_table(shapes, s.dof_names, speed, u), mode_orbit_table(shapes, speed, u, length),
                  mode_dof_table(shapes, s.dof_names, s.dof_units, speed, u)},
-                mode_shape_figure(shapes, speed, u, title, length));
+                mode_shape_figure(shapes, speed, u, title, length, marks));
     return d;
 }
 
@@ -449,7 +452,7 @@ void bind_analyses(py::module_& m) {
 
     m.def("mode_shapes", &py_mode_shapes, py::arg("system"), py::arg("speed"), py::arg("solver"), py::arg("modes"),
           py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("unit") = "rad/s",
-          py::arg("title") = "", py::arg("length_unit") = "m");
+          py::arg("title") = "", py::arg("length_unit") = "m", py::arg("scene") = py::none());
 
     m.def("campbell", &py_campbell, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
           py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),

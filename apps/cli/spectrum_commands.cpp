@@ -107,7 +107,8 @@ Command modes_command(CLI::App& app, const std::shared_ptr<Options>& o) {
             write_tables(out, {mode_list_table(shapes, sys.dof_names, w, c.unit), detail}, c.format);
         else
             write_table(out, detail, c.format);
-        plot_if(o->common.plot, mode_shape_figure(shapes, w, c.unit, c.scene.title, c.scene.length_unit()));
+        plot_if(o->common.plot,
+                mode_shape_figure(shapes, w, c.unit, c.scene.title, c.scene.length_unit(), axis_marks(c.scene)));
     }};
 }
 

@@ -292,7 +292,9 @@ def modes(model, speed, *, solver=None, modes=None, target=None, target_order=No
     w = float(speed) / _factor(unit)
     length = _length(model)
     return ModeShapes(_core.mode_shapes(system, w, method=method, lanczos=int(lanczos), unit=unit,
-                                        title=_title(model), length_unit=length, **o), w, system.dof_names, unit)
+                                        title=_title(model), length_unit=length,
+                                        scene=model if isinstance(model, Scene) else None, **o),
+                      w, system.dof_names, unit)
 
 
 def campbell(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,

@@ -117,7 +117,8 @@ def test_figures_are_the_clis_drawn_by_matplotlib_or_gnuplot(tmp_path, scene, di
     cli("campbell", SCENE, "--units", "rpm", "--plot", str(tmp_path / "cli.png"))
     assert os.path.getsize(tmp_path / "campbell.png") > 1000 and os.path.getsize(tmp_path / "cli.png") > 1000
     shapes = gk.modes(scene, 600.0, modes=3)
-    assert len(shapes.plot().axes) >= 1
+    labels = [line.get_label() for line in shapes.plot().axes[0].lines]
+    assert "disks" in labels and "bearings" in labels   # marked on the axis, as the CLI draws them
     ax = shapes.plot_orbits(2)
     pairs = sum(1 for k in range(len(shapes.orbits["mode"]))
                 if shapes.orbits["mode"][k] == 2 and shapes.orbits["unit"][k] == "m")

@@ -83,7 +83,7 @@ Table mode_dof_table(const std::vector<ModeShape>& shapes, const std::vector<std
 }
 
 Figure mode_shape_figure(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u,
-                         const std::string& title, const LengthUnit& length) {
+                         const std::string& title, const LengthUnit& length, const AxisMarks& marks) {
     static const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
                                    "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
     Figure f;
@@ -119,6 +119,18 @@ Figure mode_shape_figure(const std::vector<ModeShape>& shapes, double speed, con
             shape.series.push_back(std::move(d));
             envelope.series.push_back(std::move(e));
         }
+        // Disks, bearings and supports as points on the axis (deflection 0) of both panels.
+        const auto mark = [&](const std::vector<double>& z, const char* what, const char* color) {
+            if (z.empty()) return;
+            Series m{{}, {}, what, "points", color};
+            for (double zi : z) m.x.push_back(length.in_unit(zi)), m.y.push_back(0.0);
+            shape.series.push_back(m);
+            m.label.clear();
+            envelope.series.push_back(std::move(m));
+        };
+        mark(marks.disks, "disks", "#000000");
+        mark(marks.bearings, "bearings", "#7f7f7f");
+        mark(marks.supports, "supports", "#bcbd22");
         f.panels = {std::move(shape), std::move(envelope)};
         return f;
     }

@@ -27,7 +27,12 @@ Table mode_list_table(const std::vector<ModeShape>& shapes, const std::vector<st
 // Rotor with nodes on its axis: the deflected shape at t = 0 (in the plane, u or v,
 // of the reference entry, each translational pair) and the orbit's major semi-axis along z, one line per
 // mode. Otherwise: each mode's orbits (ellipses of the pairs in metres, else all).
+// Where an FE rotor's disks and bearings (and supports) sit on its axis (m), marked
+// on the shape panels; empty: nothing marked.
+struct AxisMarks {
+    std::vector<double> disks, bearings, supports;
+};
 Figure mode_shape_figure(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u,
-                         const std::string& title, const LengthUnit& length = {});
+                         const std::string& title, const LengthUnit& length = {}, const AxisMarks& marks = {});
 
 }  // namespace gyrokit

@@ -174,6 +174,20 @@ Table model_summary(const Scene& sc) {
     return t;
 }
 
+AxisMarks axis_marks(const Scene& scene) {
+    AxisMarks m;
+    if (!scene.fe_rotor || scene.system.node_z.empty()) return m;
+    const FeRotor& r = *scene.fe_rotor;
+    const std::vector<double>& z = scene.system.node_z;
+    const auto at = [&](int node) { return z.at(static_cast<std::size_t>(node)); };
+    for (const auto& d : r.disks) m.disks.push_back(at(d.node));
+    for (const auto& b : r.bearings) m.bearings.push_back(at(b.node));
+    for (const auto& b : scene.system.bearings)
+        if (const int node = bearing_node(scene.system, b); node >= 0) m.bearings.push_back(at(node));
+    for (const auto& sp : r.supports) m.supports.push_back(at(sp.node));
+    return m;
+}
+
 Figure fe_rotor_figure(const FeRotor& r, const GyroscopicSystem& sys, const std::string& title,
                        const LengthUnit& length) {
     Figure f;

@@ -5,6 +5,7 @@
 #include <gyrokit/io/plot.hpp>
 #include <gyrokit/io/scene.hpp>
 #include <gyrokit/io/table.hpp>
+#include <gyrokit/reports/mode_shape_reports.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 
 #include <string>
@@ -21,6 +22,9 @@ Table model_summary(const Scene& scene);
 // An FE rotor's geometry along z: the shaft sections (outer and inner radius),
 // the disks (radius and width of the solid cylinder with their mass, Id and Ip),
 // bearings and supports at their nodes, the nodes on the axis.
+// Where the scene's FE rotor has disks, bearings (constant and tabulated) and supports
+// on its axis, for the mode shape figure; empty for other models.
+AxisMarks axis_marks(const Scene& scene);
 // Lengths in `length` (the scene's unit).
 Figure fe_rotor_figure(const FeRotor& rotor, const GyroscopicSystem& system, const std::string& title,
                        const LengthUnit& length = {});
