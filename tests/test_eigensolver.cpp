@@ -156,6 +156,24 @@ TEST_CASE("state-matrix path: agrees on ordinary cases, refuses singular M", "[e
     CHECK_THROWS_WITH(solve_at_speed(t, 0.0, {EigenMethod::StateMatrix, false}), Catch::Contains("M is singular"));
 }
 
+// A zero mass matrix made the companion form's scaling NaN, and LAPACK's multishift
+// QZ (dggev3 through its _work form, which has no NaN check) wrote out of bounds on
+// it: the fuzz target's empty input. Refused with an error naming M instead.
+TEST_CASE("zero or non-finite pencils are refused before LAPACK sees them", "[eig][extremes]") {
+    GyroscopicSystem z;
+    z.M = Eigen::Matrix2d::Zero();
+    z.K = Eigen::Matrix2d::Zero();
+    z.dof_names = {"a", "b"};
+    CHECK_THROWS_WITH(solve_at_speed(z, 0.0), Catch::Contains("mass matrix M is zero"));
+    z.K = Eigen::Matrix2d::Identity();
+    CHECK_THROWS_WITH(solve_at_speed(z, 1.0), Catch::Contains("mass matrix M is zero"));
+    z.M = Eigen::Matrix2d::Identity();
+    Eigen::Matrix2d k = Eigen::Matrix2d::Identity();
+    k(0, 1) = k(1, 0) = std::numeric_limits<double>::infinity();
+    z.K = k;
+    CHECK_THROWS_AS(solve_at_speed(z, 1.0), Error);
+}
+
 TEST_CASE("double eigenvalue: the plane is turned into backward and forward circular modes, a split pair is kept",
           "[whirl]") {
     // x, y with M = I, C = 0, K = diag(k, k (1 + a)): eigenvalues i sqrt(k) and

@@ -33,6 +33,11 @@ lapack_int dggev3_zeroed(char jobvl, lapack_int n, Eigen::MatrixXd& A, Eigen::Ma
 
 GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_left, bool classic) {
     const lapack_int n = static_cast<lapack_int>(A.rows());
+    // The _work form skips LAPACKE's NaN check, and the QZ routines index out of
+    // bounds on NaN input (memory corruption, not an error code): check here.
+    if (!A.allFinite() || !B.allFinite())
+        throw SolverError("the pencil for LAPACK's QZ holds NaN or infinite entries: the model's matrices "
+                          "are zero where they may not be (a zero mass matrix) or too badly scaled");
     Eigen::VectorXd ar = Eigen::VectorXd::Zero(n), ai = Eigen::VectorXd::Zero(n), be = Eigen::VectorXd::Zero(n);
     Eigen::MatrixXd vl = Eigen::MatrixXd::Zero(want_left ? n : 1, want_left ? n : 1);
     Eigen::MatrixXd vr = Eigen::MatrixXd::Zero(n, n);

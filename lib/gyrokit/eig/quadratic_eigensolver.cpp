@@ -130,6 +130,9 @@ QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left, bool
                             t.asDiagonal() * original.K * t.asDiagonal()};
     // Fan-Lin-Van Dooren: lambda = gamma mu, coefficients of norm about one.
     const double nm = p.M.norm(), nc = p.C.norm(), nk = p.K.norm();
+    if (!(nm > 0.0))
+        throw SolverError("the mass matrix M is zero (or not finite): a vibration problem needs mass; "
+                          "allowed: M with at least one nonzero entry");
     const double gamma = (nk > 0.0) ? std::sqrt(nk / nm) : (nc > 0.0 ? nc / nm : 1.0);
     const double delta = 2.0 / (nk + nc * gamma + nm * gamma * gamma * (nk > 0.0 ? 0.0 : 1.0));
     // First companion form A - mu B, eigenvector [mu x; x].
