@@ -7,10 +7,12 @@
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/continuation.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/io/scene.hpp>
 #include <gyrokit/study/rotor_study.hpp>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -226,4 +228,72 @@ TEST_CASE("a Campbell study gives the same bits on one worker, on two processes,
                 CHECK(other.branches[b].points[k].mode.lambda == one.branches[b].points[k].mode.lambda);
         }
     }
+}
+
+TEST_CASE("the K lowest modes on the continuation: the same branches as a full solve at every speed, within their "
+          "bounds, on every dense data/ scene",
+          "[continuation]") {
+    int compared = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(data)) {
+        if (entry.path().extension() != ".toml") continue;
+        Scene sc;
+        try {
+            sc = load_scene(entry.path().string());
+        } catch (const Error&) {
+            continue;
+        }
+        if (!sc.speeds || sc.dofs() > 400 || sc.dofs() < 4) continue;
+        const std::vector<double> grid = thinned(sc.speeds->points(), 26);
+        if (grid.size() < 2) continue;
+        const std::string where = entry.path().filename().string();
+        for (const int k : {1, 4}) {
+            StudyOptions so;
+            so.speeds = grid;
+            so.solver.modes = k;
+            so.solver.kind = SolverKind::Dense;
+            const CampbellDiagram cont = campbell_study(sc.system, so).diagram;
+            CampbellOptions co;
+            co.modes = k;
+            const CampbellDiagram full = campbell(dense_solver(sc.system), grid, co);
+            INFO(where << ", " << k << " modes, band " << cont.band);
+            // The band holds the K branches with room, or every mode was solved.
+            CHECK((cont.band_of_modes || !std::isfinite(cont.band)));
+            REQUIRE(cont.branches.size() == full.branches.size());
+            for (size_t b = 0; b < full.branches.size(); ++b) {
+                // Both diagrams hold the grid speeds; bisections may add others to either.
+                for (const BranchPoint& p : full.branches[b].points) {
+                    const auto q = std::find_if(cont.branches[b].points.begin(), cont.branches[b].points.end(),
+                                                [&](const BranchPoint& c) { return c.speed == p.speed; });
+                    if (q == cont.branches[b].points.end()) continue;
+                    INFO("branch " << b + 1 << " at " << p.speed << " rad/s: " << q->mode.lambda << " vs "
+                                   << p.mode.lambda);
+                    CHECK(std::abs(q->mode.lambda - p.mode.lambda) <= q->mode.error_bound + p.mode.error_bound);
+                    ++compared;
+                }
+            }
+        }
+    }
+    CHECK(compared >= 500);
+}
+
+TEST_CASE("the band of the K lowest modes: 1.25 times the largest of the K + 2 lowest at the anchors",
+          "[continuation]") {
+    const Scene sc = load_scene(data + "/ross_rotor_example/scene.toml");
+    const std::vector<double> grid = SpeedRange{0.0, 1000.0, 11}.points();
+    ContinuationOptions o;
+    o.lowest = 6;
+    o.anchor_stride = 5;
+    ContinuationReport rep;
+    (void)continuation_solver(std::make_shared<const GyroscopicSystem>(sc.system), grid, o, &rep);
+    REQUIRE(rep.anchors == std::vector<double>{0.0, 500.0, 1000.0});
+    double top = 0.0;
+    const SpectrumSolver full = dense_solver(sc.system).make();
+    for (double w : rep.anchors) {
+        std::vector<Mode> m = full(w).modes;
+        sort_by_frequency(m);
+        for (size_t i = 0; i < 8; ++i) top = std::max(top, m[i].lambda.imag());
+    }
+    CHECK(rep.band == 1.25 * top);
+    o.lowest = -1;
+    CHECK_THROWS_AS(continuation_solver(std::make_shared<const GyroscopicSystem>(sc.system), grid, o), InputError);
 }

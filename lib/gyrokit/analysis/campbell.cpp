@@ -2,6 +2,7 @@
 #include <gyrokit/analysis/campbell.hpp>
 
 #include <gyrokit/analysis/assignment.hpp>
+#include <gyrokit/analysis/continuation.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <fmt/format.h>
@@ -243,7 +244,46 @@ CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std:
 SolverFactory tracking_solver(const SolverFactory& make, const CampbellOptions& co, const std::vector<double>& speeds) {
     // K modes of a dense solver stay full solves: their stability verdict covers every mode.
     if (!std::isfinite(co.band) || co.modes != 0 || !make.continued || speeds.empty()) return make;
-    return make.continued(speeds, co.band, co.threads);
+    ContinuationOptions o;
+    o.band = co.band;
+    o.workers = co.threads;
+    return make.continued(speeds, o, nullptr);
+}
+
+namespace {
+
+// Whether each reported branch runs through every speed and stays below 90 % of the band.
+bool branches_inside(const CampbellDiagram& cd) {
+    for (const Branch& b : cd.branches) {
+        if (b.points.size() != cd.speeds.size()) return false;
+        for (const BranchPoint& p : b.points)
+            if (!(frequency_rank(p.mode).second <= 0.9 * cd.band)) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+Tracking track(const SolverFactory& make, CampbellOptions co, const std::vector<double>& speeds) {
+    if (co.modes > 0 && !std::isfinite(co.band) && make.continued && speeds.size() >= 2 &&
+        make.dofs >= kLowestContinuationDofs) {
+        ContinuationOptions o;
+        o.lowest = co.modes;
+        o.workers = co.threads;
+        co.band_of_modes = true;
+        for (int widen = 0; widen <= 3; ++widen, o.band_margin *= 2.0) {
+            ContinuationReport rep;
+            Tracking t{make.continued(speeds, o, &rep), {}};
+            co.band = rep.band;
+            t.diagram = campbell(t.solver, speeds, co);
+            if (branches_inside(t.diagram)) return t;
+        }
+        co.band = std::numeric_limits<double>::infinity();   // every mode at every speed, as the dense solver gives
+        co.band_of_modes = false;
+    }
+    Tracking t{tracking_solver(make, co, speeds), {}};
+    t.diagram = campbell(t.solver, speeds, co);
+    return t;
 }
 
 CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>& speeds, const CampbellOptions& opt) {
@@ -282,7 +322,8 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
     // Number the branches by frequency at their first point; keep the K lowest
     // among those present at the first speed.
     std::vector<Branch>& br = out.branches;
-    if (opt.modes == 0 || t.window) out.band = opt.band;
+    if (opt.modes == 0 || t.window || opt.band_of_modes) out.band = opt.band;
+    out.band_of_modes = opt.band_of_modes && std::isfinite(opt.band);
     out.partial = t.window;
     std::stable_sort(br.begin(), br.end(), [&](const Branch& a, const Branch& b) {
         const bool a0 = a.points.front().speed == speeds.front(), b0 = b.points.front().speed == speeds.front();

@@ -24,6 +24,8 @@ struct CampbellOptions {
     // range are out of range (CampbellDiagram::out_of_range: named, not judged);
     // infinity: every mode. excitation_band gives the engineer's default.
     double band = std::numeric_limits<double>::infinity();
+    // The band holds the K lowest modes (lowest_modes_band), not the excitation range.
+    bool band_of_modes = false;
     int max_refine = 8;       // bisection levels allowed between two grid speeds
     double mac_min = 0.9;     // a match with a lower MAC is ambiguous
     Workers threads = 1;      // grid speeds solved in parallel: this many threads or worker processes
@@ -60,6 +62,7 @@ struct CampbellDiagram {
     // With a band (CampbellOptions::band): the branches above it at every speed,
     // eigenvalues only, ids after the reported ones. Not judged by any verdict.
     double band = std::numeric_limits<double>::infinity();
+    bool band_of_modes = false;   // the band was chosen to hold the K lowest modes (CampbellOptions)
     std::vector<Branch> out_of_range;
 };
 
@@ -83,6 +86,19 @@ CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std:
 // speeds and stability thresholds after it: with a band (the modes in range) and
 // a dense solver, the continuation (continuation_solver); else `make`.
 SolverFactory tracking_solver(const SolverFactory& make, const CampbellOptions& co, const std::vector<double>& speeds);
+
+// A tracking and the solver it stood on (for the critical speeds and stability
+// thresholds after it).
+struct Tracking {
+    SolverFactory solver;
+    CampbellDiagram diagram;
+};
+
+// The Campbell diagram every front end draws: on tracking_solver; and for the K
+// lowest modes of a dense solver, on the continuation in a band that holds them
+// (ContinuationOptions::lowest), widened (x 2) while a reported branch leaves it or reaches
+// within 10 % of its edge, and after three widenings a full solve at every speed.
+Tracking track(const SolverFactory& make, CampbellOptions co, const std::vector<double>& speeds);
 
 // Dense: every mode of the system, solved with opt.eig.
 CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>& speeds,

@@ -47,6 +47,7 @@ struct Solved {
 struct Shared {
     std::shared_ptr<const GyroscopicSystem> model;
     ContinuationOptions opt;
+    std::vector<double> grid;                       // the speeds, increasing
     Eigen::MatrixXd Q;                              // n x r, orthonormal columns (empty: not used)
     std::map<double, QuadraticSpectrum> anchors;   // the full solves, kept to the band
     std::map<double, Solved> anchor_tracks;
@@ -234,23 +235,78 @@ std::optional<QuadraticSpectrum> reduced_solve(const Shared& sh, double w) {
     return out;
 }
 
+// One solver's position: its last step along the branches, and the speed it was
+// last asked for.
+struct Walk {
+    std::optional<Solved> last;
+    double at = std::numeric_limits<double>::quiet_NaN();
+};
+
+QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w) {
+    throw_if_interrupted();
+    // A grid speed is reached from the anchor at or below it over the grid speeds
+    // between: a solver that starts mid-grid (a worker's block) walks there first.
+    const auto g = std::lower_bound(sh.grid.begin(), sh.grid.end(), w);
+    if (g != sh.grid.end() && *g == w && !sh.anchors.count(w) && !(state.at == *std::prev(g))) {
+        const auto a = std::prev(sh.anchor_tracks.upper_bound(w));   // the first speed is an anchor
+        state.last = a->second;
+        state.at = a->first;
+        for (auto k = std::upper_bound(sh.grid.begin(), sh.grid.end(), a->first); k != g; ++k)
+            (void)solve_one(sh, state, *k);
+    }
+    state.at = w;
+    if (const auto it = sh.anchors.find(w); it != sh.anchors.end()) {
+        state.last = sh.anchor_tracks.at(w);
+        return it->second;
+    }
+    // Continue from the nearest speed solved along the branches or in full.
+    const Solved* from = state.last ? &*state.last : nullptr;
+    const auto consider = [&](const Solved& s) {
+        if (!from || std::abs(s.w - w) < std::abs(from->w - w)) from = &s;
+    };
+    const auto a = sh.anchor_tracks.lower_bound(w);
+    if (a != sh.anchor_tracks.end()) consider(a->second);
+    if (a != sh.anchor_tracks.begin()) consider(std::prev(a)->second);
+    Solved next;
+    if (from && sh.opt.along_branches)
+        if (std::optional<QuadraticSpectrum> s = branch_solve(sh, *from, w, next)) {
+            state.last = std::move(next);
+            return std::move(*s);
+        }
+    if (sh.Q.cols() > 0)
+        if (std::optional<QuadraticSpectrum> s = reduced_solve(sh, w)) return std::move(*s);
+    // Verified by the full solve itself (a step near a crossing, a double eigenvalue splitting).
+    QuadraticSpectrum s = full_solve(sh, w, &next);
+    state.last = std::move(next);
+    return s;
+}
+
 }  // namespace
 
 SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model, const std::vector<double>& speeds,
                                   const ContinuationOptions& opt, ContinuationReport* report) {
-    if (!(opt.band > 0.0) || !std::isfinite(opt.band))
-        throw InputError(fmt::format("continuation band {}: allowed: a finite frequency > 0 (rad/s)", opt.band));
+    if (opt.lowest < 0) throw InputError(fmt::format("continuation lowest {}: allowed: 0 or more modes", opt.lowest));
+    if (opt.lowest > 0 ? !(opt.band_margin >= 1.0) || !std::isfinite(opt.band_margin)
+                       : !(opt.band > 0.0) || !std::isfinite(opt.band))
+        throw InputError(fmt::format("continuation band {} (margin {}): allowed: a finite frequency > 0 (rad/s), a "
+                                     "margin >= 1",
+                                     opt.band, opt.band_margin));
     if (opt.anchor_stride < 1)
         throw InputError(fmt::format("anchor_stride {}: allowed: 1 or more", opt.anchor_stride));
     if (speeds.empty()) throw InputError("continuation: no speeds; allowed: one or more speeds >= 0");
+    for (size_t k = 1; k < speeds.size(); ++k)
+        if (!(speeds[k] > speeds[k - 1]))
+            throw InputError("continuation: speeds not increasing; allowed: distinct speeds in increasing order");
     auto sh = std::make_shared<Shared>();
     sh->model = model;
     sh->opt = opt;
+    sh->grid = speeds;
     const int n = model->size();
     ContinuationReport rep;
     rep.dofs = n;
+    const auto stride = static_cast<size_t>(opt.anchor_stride);
     std::vector<double> anchors;
-    for (size_t k = 0; k < speeds.size(); k += static_cast<size_t>(opt.anchor_stride)) anchors.push_back(speeds[k]);
+    for (size_t k = 0; k < speeds.size(); k += stride) anchors.push_back(speeds[k]);
     if (anchors.back() != speeds.back()) anchors.push_back(speeds.back());
     rep.anchors = anchors;
     EigenOptions full = opt.eig;
@@ -258,7 +314,21 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     const SolverFactory dense = dense_solver(*model, full);
     std::vector<QuadraticSpectrum> solved = solve_speeds(dense, anchors, opt.workers);
 
-    const double band = opt.band;
+    if (opt.lowest > 0) {   // the band of the lowest modes, from the anchors
+        double top = 0.0;
+        for (const QuadraticSpectrum& s : solved) {
+            std::vector<Mode> m = s.modes;
+            sort_by_frequency(m);
+            for (size_t i = 0; i < std::min(m.size(), static_cast<size_t>(opt.lowest) + 2); ++i)
+                top = std::max(top, frequency_rank(m[i]).second);
+        }
+        if (!(top > 0.0) || !std::isfinite(top))
+            throw SolverError(fmt::format("continuation: no band holds the {} lowest modes (largest frequency {})",
+                                          opt.lowest, top));
+        sh->opt.band = opt.band_margin * top;
+    }
+    const double band = sh->opt.band;
+    rep.band = band;
 
     // The basis: real and imaginary parts of the right and left vectors of every
     // mode within twice the band (modes that enter the band between anchors are
@@ -295,35 +365,8 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
 
     SolverFactory f;
     f.make = [sh]() -> SpectrumSolver {
-        // This solver's last step along the branches (the speeds of a block come in order).
-        auto last = std::make_shared<std::optional<Solved>>();
-        return [sh, last](double w) {
-            throw_if_interrupted();
-            if (const auto it = sh->anchors.find(w); it != sh->anchors.end()) {
-                *last = sh->anchor_tracks.at(w);
-                return it->second;
-            }
-            // Continue from the nearest speed solved along the branches or in full.
-            const Solved* from = last->has_value() ? &**last : nullptr;
-            const auto consider = [&](const Solved& s) {
-                if (!from || std::abs(s.w - w) < std::abs(from->w - w)) from = &s;
-            };
-            const auto a = sh->anchor_tracks.lower_bound(w);
-            if (a != sh->anchor_tracks.end()) consider(a->second);
-            if (a != sh->anchor_tracks.begin()) consider(std::prev(a)->second);
-            Solved next;
-            if (from && sh->opt.along_branches)
-                if (std::optional<QuadraticSpectrum> s = branch_solve(*sh, *from, w, next)) {
-                    *last = std::move(next);
-                    return std::move(*s);
-                }
-            if (sh->Q.cols() > 0)
-                if (std::optional<QuadraticSpectrum> s = reduced_solve(*sh, w)) return std::move(*s);
-            // Verified by the full solve itself (a step near a crossing, a double eigenvalue splitting).
-            QuadraticSpectrum s = full_solve(*sh, w, &next);
-            *last = std::move(next);
-            return s;
-        };
+        auto state = std::make_shared<Walk>();
+        return [sh, state](double w) { return solve_one(*sh, *state, w); };
     };
     return f;
 }

@@ -17,6 +17,11 @@ namespace gyrokit {
 
 struct ContinuationOptions {
     double band = 0;            // rad/s: the modes kept (frequency <= band; a real eigenvalue |lambda| <= band)
+    // > 0: the band is chosen to hold this many lowest modes: band_margin times the
+    // largest frequency (|lambda| of a real eigenvalue) among the lowest + 2 by
+    // frequency_rank at the anchors (ContinuationReport::band); `band` is then unused.
+    int lowest = 0;
+    double band_margin = 1.25;
     int anchor_stride = 25;     // a full solve every this many speeds of the grid, and at both ends
     double tolerance = 1e-10;   // a pair is kept if the backward errors of its right and left vectors are below
     // The basis is used only if its dimension is at most this fraction of the DOFs:
@@ -33,6 +38,7 @@ struct ContinuationReport {
     bool used = false;          // false: the basis would not pay (the projected solve is skipped)
     int basis = 0;              // dimension of the reduced basis
     int dofs = 0;
+    double band = 0;            // the band used (rad/s)
     std::vector<double> anchors;   // speeds solved in full to build the basis
 };
 
@@ -53,7 +59,10 @@ struct ContinuationReport {
 // Every mode gets its error bound, whirl and slope as from the dense solver;
 // spectra hold every mode within the band (not marked partial: the band is not a
 // moving window), `method` names the path. At an anchor speed
-// the full solve's modes in the band are returned.
+// the full solve's modes in the band are returned. A grid speed is always reached
+// from the anchor at or below it through the grid speeds between (a solver that
+// starts mid-grid walks there first), so the answers do not depend on how the grid
+// is shared among workers: the same bits on one worker or several.
 SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model, const std::vector<double>& speeds,
                                   const ContinuationOptions& opt, ContinuationReport* report = nullptr);
 

@@ -23,6 +23,7 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
     // The solvers share ownership of one copy: a temporary system outlives the call.
     const auto model = std::make_shared<const GyroscopicSystem>(sys);
     SolverFactory f;
+    f.dofs = model->size();
     f.make = [model, eig]() -> SpectrumSolver {
                 return [model, eig](double w) {
                     throw_if_interrupted();
@@ -35,12 +36,11 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
                     return s;
                 };
             };
-    f.continued = [model, eig](const std::vector<double>& speeds, double band, Workers workers) {
-        ContinuationOptions o;
-        o.band = band;
+    f.continued = [model, eig](const std::vector<double>& speeds, const ContinuationOptions& opt,
+                               ContinuationReport* report) {
+        ContinuationOptions o = opt;
         o.eig = eig;
-        o.workers = workers;
-        return continuation_solver(model, speeds, o);
+        return continuation_solver(model, speeds, o, report);
     };
     return f;
 }

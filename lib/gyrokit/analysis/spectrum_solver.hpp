@@ -19,12 +19,16 @@
 
 namespace gyrokit {
 
+struct ContinuationOptions;   // analysis/continuation.hpp
+struct ContinuationReport;
+
 struct SolverFactory {
     std::function<SpectrumSolver()> make;
     // ARPACK keeps its iteration state in Fortran SAVE variables, so two
     // ARPACK runs must not share a process: such solvers run in parallel in
     // worker processes instead of threads.
     bool thread_safe = true;
+    int dofs = 0;   // the model's size (0: not known)
     // A window of modes (sparse solvers): a solver whose window is centred on the
     // frequency nu (rad/s), so that a root search refines a mode on its own shift and
     // the sweep's window cannot move the result. Empty for solvers of every mode.
@@ -35,9 +39,11 @@ struct SolverFactory {
     // window; nothing where the step does not verify (then the window is solved).
     std::function<std::optional<Mode>(const Mode& from, double w, std::complex<double> predicted, double reach)>
         follow;
-    // Dense solvers: the continuation (continuation_solver) over `speeds` for the
-    // modes within `band`. Empty for the others.
-    std::function<SolverFactory(const std::vector<double>& speeds, double band, Workers workers)> continued;
+    // Dense solvers: the continuation (continuation_solver) over `speeds` with
+    // options `opt` (their eig replaced by this solver's). Empty for the others.
+    std::function<SolverFactory(const std::vector<double>& speeds, const ContinuationOptions& opt,
+                                ContinuationReport* report)>
+        continued;
     SpectrumSolver operator()() const { return make(); }
 };
 

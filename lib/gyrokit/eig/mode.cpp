@@ -267,11 +267,14 @@ double error_bound_in(const std::vector<Mode>& modes, size_t i, const PencilActi
     }
     const double eta = backward_error(pencil, m.lambda, in(m.right));
     const Eigen::MatrixXcd S = Y.adjoint() * dPX;
-    const double smin = Eigen::JacobiSVD<Eigen::MatrixXcd>(S).singularValues()(k - 1);
+    // A simple eigenvalue (the usual case): the singular values of 1 x 1 and n x 1
+    // matrices are their moduli and norms.
+    const auto largest = [](const Eigen::MatrixXcd& A) {
+        return A.cols() == 1 ? A.norm() : Eigen::JacobiSVD<Eigen::MatrixXcd>(A).singularValues()(0);
+    };
+    const double smin = k == 1 ? std::abs(S(0, 0)) : Eigen::JacobiSVD<Eigen::MatrixXcd>(S).singularValues()(k - 1);
     const double a = std::abs(m.lambda);
-    const double scale = (a * a * pencil.norm_M + a * pencil.norm_C + pencil.norm_K) *
-                         Eigen::JacobiSVD<Eigen::MatrixXcd>(X).singularValues()(0) *
-                         Eigen::JacobiSVD<Eigen::MatrixXcd>(Y).singularValues()(0);
+    const double scale = (a * a * pencil.norm_M + a * pencil.norm_C + pencil.norm_K) * largest(X) * largest(Y);
     const double eps = std::numeric_limits<double>::epsilon();
     return smin > 0.0 && std::isfinite(eta) ? 10.0 * std::max(eta, eps) * scale / smin
                                             : std::numeric_limits<double>::infinity();

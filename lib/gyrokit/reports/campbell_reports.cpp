@@ -28,6 +28,10 @@ std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const S
 
 std::string out_of_range_note(const CampbellDiagram& cd, const SpeedUnit& u) {
     if (!std::isfinite(cd.band)) return "";
+    if (cd.band_of_modes)
+        return fmt::format("modes above {:.6g} {} (beyond the {} asked for and their neighbours) are not computed, not "
+                           "judged; {} 0 judges every mode",
+                           u.factor * cd.band, u.name, cd.branches.size(), option_field("modes"));
     if (cd.out_of_range.empty())   // a solver of the band alone (continuation, a sparse window) has not computed them
         return fmt::format("modes above {:.6g} {} ({} times the highest excitation) are out of range, not judged; "
                            "{} 0 judges every mode",
@@ -103,7 +107,8 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
     window = window || (cd.partial && !std::isfinite(cd.band));   // the K lowest of a continuation
     const std::string which =
         window ? fmt::format("the {} tracked modes (the others are not checked)", cd.branches.size())
-               : (std::isfinite(cd.band) ? "every mode in range" : "every mode");
+               : (cd.band_of_modes ? fmt::format("every mode up to {}", speed(cd.band))
+                                   : std::isfinite(cd.band) ? "every mode in range" : "every mode");
     std::string verdict = unstable.empty() ? fmt::format("{} stable over the range (no real part beyond its error "
                                                          "bound)",
                                                          which)

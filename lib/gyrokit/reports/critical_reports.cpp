@@ -67,12 +67,23 @@ double round_to_bound(double x, double bound) {
     return std::round(x / q) * q;
 }
 
+namespace {
+
+// A bound is vouched for by its order of magnitude: one digit, rounded up.
+double bound_digit(double bound) {
+    if (!(bound > 0.0) || !std::isfinite(bound)) return bound;
+    const double q = std::pow(10.0, std::floor(std::log10(bound)));
+    return std::ceil(bound / q * (1.0 - 1e-12)) * q;
+}
+
+}  // namespace
+
 Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u) {
     Table t({u.column("speed"), u.column("bound"), "mode", "change", u.column("frequency")});
     t.key = "stability_changes";
     t.title = "stability changes (a mode's real part passes its error bound; the speed within the bound)";
     for (const auto& c : sc)
-        t.add_row({round_to_bound(u.factor * c.speed, u.factor * c.bound), u.factor * c.bound, ll(c.branch),
+        t.add_row({round_to_bound(u.factor * c.speed, u.factor * c.bound), bound_digit(u.factor * c.bound), ll(c.branch),
                    std::string(c.becomes_unstable ? "unstable" : "stable"), u.factor * c.mode.frequency()});
     return t;
 }

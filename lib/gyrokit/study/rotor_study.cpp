@@ -54,8 +54,9 @@ CampbellStudy campbell_study(const GyroscopicSystem& sys, const StudyOptions& op
     CampbellOptions co = tracking_options(s.plan, opt.solver.modes, opt.speeds, opt.harmonics, opt.workers);
     co.eig = opt.solver.eig;
     co.progress = opt.progress;
-    s.solver = tracking_solver(s.plan.make, co, opt.speeds);
-    s.diagram = campbell(s.solver, opt.speeds, co);
+    Tracking t = track(s.plan.make, co, opt.speeds);
+    s.solver = std::move(t.solver);
+    s.diagram = std::move(t.diagram);
     diagram_diagnostics(s.diagram, opt.unit, s.diagnostics);
     return s;
 }
