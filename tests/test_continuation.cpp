@@ -52,20 +52,30 @@ void same_modes(const QuadraticSpectrum& a, const QuadraticSpectrum& b, double b
         }
 }
 
-}  // namespace
-
-TEST_CASE("continuation: the modes in range equal the full solve's within their bounds on every data/ scene",
-          "[continuation]") {
-    int used = 0;
+// The rotor scenes of data/ with a speed grid and min_dofs to 400 DOFs (the dense
+// solver's), by file name; the balancer, Sommerfeld and fluid scenes have their own tools.
+std::vector<std::pair<std::string, Scene>> dense_rotor_scenes(int min_dofs) {
+    std::vector<std::pair<std::string, Scene>> out;
     for (const auto& entry : std::filesystem::directory_iterator(data)) {
         if (entry.path().extension() != ".toml") continue;
         Scene sc;
         try {
             sc = load_scene(entry.path().string());
         } catch (const Error&) {
-            continue;   // not a rotor scene (balancer, Sommerfeld and fluid scenes have their own tools)
+            continue;
         }
-        if (!sc.speeds || sc.dofs() > 400 || sc.dofs() < 2) continue;
+        if (sc.speeds && sc.dofs() <= 400 && sc.dofs() >= min_dofs)
+            out.emplace_back(entry.path().filename().string(), std::move(sc));
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("continuation: the modes in range equal the full solve's within their bounds on every data/ scene",
+          "[continuation]") {
+    int used = 0;
+    for (const auto& [name, sc] : dense_rotor_scenes(2)) {
         const std::vector<double> grid = thinned(sc.speeds->points(), 26);
         const double band = excitation_band(grid, sc.harmonics);
         if (!std::isfinite(band)) continue;
@@ -89,7 +99,7 @@ TEST_CASE("continuation: the modes in range equal the full solve's within their 
                 f.modes = std::move(kept);
                 const QuadraticSpectrum r = reduced(w);
                 for (const Mode& m : r.modes) CHECK(m.backward_error <= 1e-10);
-                same_modes(r, f, band, entry.path().filename().string() + " at " + std::to_string(w) + " rad/s");
+                same_modes(r, f, band, name + " at " + std::to_string(w) + " rad/s");
             }
             // Between the grid speeds too (a root search's speeds).
             for (size_t k = 0; k + 1 < grid.size(); k += 7) {
@@ -99,7 +109,7 @@ TEST_CASE("continuation: the modes in range equal the full solve's within their 
                 for (Mode& m : f.modes)
                     if (within_band(m, band, f.real_tol)) kept.push_back(std::move(m));
                 f.modes = std::move(kept);
-                same_modes(reduced(w), f, band, entry.path().filename().string() + " at " + std::to_string(w) + " rad/s");
+                same_modes(reduced(w), f, band, name + " at " + std::to_string(w) + " rad/s");
             }
         }
     }
@@ -234,18 +244,9 @@ TEST_CASE("the K lowest modes on the continuation: the same branches as a full s
           "bounds, on every dense data/ scene",
           "[continuation]") {
     int compared = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(data)) {
-        if (entry.path().extension() != ".toml") continue;
-        Scene sc;
-        try {
-            sc = load_scene(entry.path().string());
-        } catch (const Error&) {
-            continue;
-        }
-        if (!sc.speeds || sc.dofs() > 400 || sc.dofs() < 4) continue;
+    for (const auto& [where, sc] : dense_rotor_scenes(kLowestContinuationDofs)) {
         const std::vector<double> grid = thinned(sc.speeds->points(), 26);
         if (grid.size() < 2) continue;
-        const std::string where = entry.path().filename().string();
         for (const int k : {1, 4}) {
             StudyOptions so;
             so.speeds = grid;

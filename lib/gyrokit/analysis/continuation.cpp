@@ -364,6 +364,13 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     }
 
     SolverFactory f;
+    f.dofs = n;
+    // A root search follows its branch's mode alone (a few factorizations of the full
+    // pencil) rather than stepping every mode of the band.
+    f.follow = [model, tol = opt.tolerance](const Mode& from, double w, cd predicted, double reach) {
+        return follow_mode([&model](double v) { return model->sparse_at_speed(v); }, model->whirl_pairs, from, w,
+                           predicted, reach, tol);
+    };
     f.make = [sh]() -> SpectrumSolver {
         auto state = std::make_shared<Walk>();
         return [sh, state](double w) { return solve_one(*sh, *state, w); };
