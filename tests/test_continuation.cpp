@@ -244,23 +244,27 @@ TEST_CASE("the K lowest modes on the continuation: the same branches as a full s
           "bounds, on every dense data/ scene",
           "[continuation]") {
     int compared = 0;
+    // Up to 200 DOFs: the full solves of the reference dominate the time (the 336-DOF
+    // compressor's continuation is checked by the modes-in-range case above).
     for (const auto& [where, sc] : dense_rotor_scenes(kLowestContinuationDofs)) {
+        if (sc.dofs() > 200) continue;
         const std::vector<double> grid = thinned(sc.speeds->points(), 26);
         if (grid.size() < 2) continue;
+        CampbellOptions co;
+        co.modes = 4;   // the reference: a full solve at every speed, its 4 lowest branches
+        const CampbellDiagram full = campbell(dense_solver(sc.system), grid, co);
         for (const int k : {1, 4}) {
             StudyOptions so;
             so.speeds = grid;
             so.solver.modes = k;
             so.solver.kind = SolverKind::Dense;
             const CampbellDiagram cont = campbell_study(sc.system, so).diagram;
-            CampbellOptions co;
-            co.modes = k;
-            const CampbellDiagram full = campbell(dense_solver(sc.system), grid, co);
             INFO(where << ", " << k << " modes, band " << cont.band);
             // The band holds the K branches with room, or every mode was solved.
             CHECK((cont.band_of_modes || !std::isfinite(cont.band)));
-            REQUIRE(cont.branches.size() == full.branches.size());
-            for (size_t b = 0; b < full.branches.size(); ++b) {
+            REQUIRE(cont.branches.size() == static_cast<size_t>(k));
+            REQUIRE(full.branches.size() >= cont.branches.size());
+            for (size_t b = 0; b < cont.branches.size(); ++b) {
                 // Both diagrams hold the grid speeds; bisections may add others to either.
                 for (const BranchPoint& p : full.branches[b].points) {
                     const auto q = std::find_if(cont.branches[b].points.begin(), cont.branches[b].points.end(),
