@@ -298,7 +298,11 @@ TEST_CASE("the band of the K lowest modes: 1.25 times the largest of the K + 2 l
         sort_by_frequency(m);
         for (size_t i = 0; i < 8; ++i) top = std::max(top, m[i].lambda.imag());
     }
-    CHECK(rep.band == 1.25 * top);
+    CHECK(rep.band == Approx(1.25 * top).epsilon(1e-12));
     o.lowest = -1;
     CHECK_THROWS_AS(continuation_solver(std::make_shared<const GyroscopicSystem>(sc.system), grid, o), InputError);
+    o.lowest = 6;
+    o.band_margin = 0.5;   // a band below the modes it should hold
+    CHECK_THROWS_WITH(continuation_solver(std::make_shared<const GyroscopicSystem>(sc.system), grid, o),
+                      Catch::Contains("a margin >= 1"));
 }

@@ -242,7 +242,7 @@ CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std:
 }
 
 SolverFactory tracking_solver(const SolverFactory& make, const CampbellOptions& co, const std::vector<double>& speeds) {
-    // K modes of a dense solver stay full solves: their stability verdict covers every mode.
+    // The K lowest modes: track() puts them on the continuation where it pays, else full solves.
     if (!std::isfinite(co.band) || co.modes != 0 || !make.continued || speeds.empty()) return make;
     ContinuationOptions o;
     o.band = co.band;

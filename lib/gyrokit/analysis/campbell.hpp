@@ -24,7 +24,7 @@ struct CampbellOptions {
     // range are out of range (CampbellDiagram::out_of_range: named, not judged);
     // infinity: every mode. excitation_band gives the engineer's default.
     double band = std::numeric_limits<double>::infinity();
-    // The band holds the K lowest modes (lowest_modes_band), not the excitation range.
+    // The band holds the K lowest modes (track, ContinuationOptions::lowest), not the excitation range.
     bool band_of_modes = false;
     int max_refine = 8;       // bisection levels allowed between two grid speeds
     double mac_min = 0.9;     // a match with a lower MAC is ambiguous
