@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <mutex>
+#include <optional>
 #include <type_traits>
 
 namespace gyrokit::detail {
@@ -150,7 +151,6 @@ void check_arnoldi(const char* routine, a_int info, const ArnoldiSize& sz) {
                                       option_field("lanczos_vectors"), sz.ncv));
 }
 
-// Complex shift: complex Arnoldi (znaupd) on the complex operator.
 // ARPACK keeps its iteration state in Fortran SAVE variables between the
 // reverse-communication calls: two iterations in one process must not overlap
 // (threads of a design study, scripts). Parallel speeds run in worker processes.
@@ -159,6 +159,83 @@ std::mutex& arpack_mutex() {
     return m;
 }
 
+// One Arnoldi run of at most `restarts` restarts on ARPACK's reverse communication,
+// in the arithmetic of Scalar: dnaupd/dneupd (double) or znaupd/zneupd (complex).
+template <class Scalar>
+struct ArnoldiRun {
+    using Vec = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+    static constexpr bool complex = std::is_same_v<Scalar, cd>;
+    a_int N, nev, ncv, lworkl;
+    double tolerance;
+    std::vector<Scalar> resid, V, workd, workl;
+    std::vector<double> rwork;   // znaupd only
+    a_int iparam[11];
+    a_int ipntr[14] = {};
+    a_int ido = 0, info = 1;     // info = 1: ARPACK starts from resid
+
+    ArnoldiRun(const ArnoldiSize& sz, a_int restarts, double tol, const Vec& start)
+        : N(sz.N), nev(sz.nev), ncv(sz.ncv), lworkl(3 * ncv * ncv + (complex ? 5 : 6) * ncv), tolerance(tol),
+          resid(start.data(), start.data() + N), V(static_cast<size_t>(N * ncv)), workd(3 * static_cast<size_t>(N)),
+          workl(static_cast<size_t>(lworkl)), rwork(complex ? static_cast<size_t>(ncv) : 0),
+          iparam{1, 0, restarts, 1, 0, 0, 1, 0, 0, 0, 0} {}   // exact shifts, mode 1 on OP
+
+    // The reverse-communication loop; apply(x, y) is y = OP x.
+    template <class Apply>
+    void iterate(const Apply& apply) {
+        while (true) {
+            throw_if_interrupted();
+            if constexpr (complex)
+                arpack::naupd(ido, arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, tolerance,
+                              resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl,
+                              rwork.data(), info);
+            else
+                arpack::naupd(ido, arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, tolerance,
+                              resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl,
+                              info);
+            if (ido != -1 && ido != 1) return;
+            apply(workd.data() + ipntr[0] - 1, workd.data() + ipntr[1] - 1);
+        }
+    }
+    a_int converged() const { return iparam[4]; }
+    int restarts() const { return static_cast<int>(iparam[2]); }
+};
+
+// The start vector: the caller's (a real shift takes the real vector spanning the
+// same directions as the complex one), else a fixed one.
+template <class Scalar>
+Eigen::Matrix<Scalar, Eigen::Dynamic, 1> start_vector(const SparseEigenOptions& opt, a_int N) {
+    const bool given = opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0;
+    if constexpr (std::is_same_v<Scalar, cd>)
+        return given ? Eigen::VectorXcd(opt.start) : Eigen::VectorXcd(fixed_random_vector(static_cast<int>(N)).cast<cd>());
+    else
+        return given ? Eigen::VectorXd(opt.start.real() + opt.start.imag()) : fixed_random_vector(static_cast<int>(N));
+}
+
+// Runs ARPACK with each restart budget in turn: a quick run, then the full one.
+// `extract(run, ritz)` turns a finished run into the Ritz pairs, or nullopt when
+// it stopped at the limit short of the wanted values (the next budget, or an error).
+template <class Scalar, class Apply, class Extract>
+std::vector<Ritz> staged_arnoldi(const SparseEigenOptions& opt, const ArnoldiSize& sz, const Apply& apply,
+                                 const Extract& extract, int& iterations) {
+    const char* routine = std::is_same_v<Scalar, cd> ? "znaupd" : "dnaupd";
+    const auto start = start_vector<Scalar>(opt, sz.N);
+    const std::lock_guard<std::mutex> one_at_a_time(arpack_mutex());
+    a_int converged = 0;
+    for (const a_int budget : restart_budgets(opt.max_iterations)) {
+        ArnoldiRun<Scalar> run(sz, budget, opt.tolerance, start);
+        run.iterate(apply);
+        check_arnoldi(routine, run.info, sz);
+        converged = run.converged();
+        if (run.info == 1 && converged < 1) continue;
+        std::optional<std::vector<Ritz>> out = extract(run, arnoldi_ritz_values(run.workl, run.ipntr, run.ncv));
+        if (!out) continue;
+        iterations = run.restarts();
+        return *std::move(out);
+    }
+    throw not_converged(opt, sz, converged);
+}
+
+// Complex shift: complex Arnoldi (znaupd) on the complex operator.
 std::vector<Ritz> ritz_complex(const SparsePencil& p, const SparseEigenOptions& opt, const ArnoldiSize& sz,
                                const Eigen::VectorXd& t, int& iterations) {
     const int n = static_cast<int>(p.M.rows());
@@ -166,63 +243,33 @@ std::vector<Ritz> ritz_complex(const SparsePencil& p, const SparseEigenOptions& 
     Eigen::SparseLU<SpC, Eigen::COLAMDOrdering<int>> lu;
     factorize(lu, p, s, t);
     const SpC Mc = p.M.cast<cd>(), CsM = p.C.cast<cd>() + s * p.M.cast<cd>();
-    const std::lock_guard<std::mutex> one_at_a_time(arpack_mutex());
-    const a_int N = sz.N, nev = sz.nev, ncv = sz.ncv, lworkl = 3 * ncv * ncv + 5 * ncv;
-    const std::vector<a_int> budgets = restart_budgets(opt.max_iterations);
-    for (size_t stage = 0; stage < budgets.size(); ++stage) {
-        const bool last = stage + 1 == budgets.size();
-        std::vector<cd> resid(static_cast<size_t>(N)), V(static_cast<size_t>(N * ncv)),
-            workd(3 * static_cast<size_t>(N)), workl(static_cast<size_t>(lworkl));
-        std::vector<double> rwork(static_cast<size_t>(ncv));
-        a_int iparam[11] = {1, 0, budgets[stage], 1, 0, 0, 1, 0, 0, 0, 0};   // exact shifts, mode 1 on OP
-        a_int ipntr[14] = {};
-        a_int ido = 0, info = 0;
-        // ARPACK starts from resid (info = 1): the caller's start, else a fixed one.
-        if (opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0)
-            Eigen::Map<Eigen::VectorXcd>(resid.data(), N) = opt.start;
-        else
-            Eigen::Map<Eigen::VectorXcd>(resid.data(), N) = fixed_random_vector(N).cast<cd>();
-        info = 1;
-        while (true) {
-            throw_if_interrupted();
-            arpack::naupd(ido, arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
-                          resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl,
-                          rwork.data(), info);
-            if (ido != -1 && ido != 1) break;
-            apply_operator(lu, Mc, CsM, s, workd.data() + ipntr[0] - 1, workd.data() + ipntr[1] - 1, n);
-        }
-        check_arnoldi("znaupd", info, sz);
-        if (info == 1 && iparam[4] < 1) {
-            if (!last) continue;
-            throw not_converged(opt, sz, iparam[4]);
-        }
-        const ArnoldiRitz ritz = arnoldi_ritz_values(workl, ipntr, ncv);
-
+    const auto apply = [&](const cd* x, cd* y) { apply_operator(lu, Mc, CsM, s, x, y, n); };
+    const auto extract = [&](ArnoldiRun<cd>& run, const ArnoldiRitz& ritz) -> std::optional<std::vector<Ritz>> {
+        const a_int N = run.N, nev = run.nev;
         std::vector<cd> d(static_cast<size_t>(nev + 1)), Z(static_cast<size_t>(N * nev)),
-            workev(2 * static_cast<size_t>(ncv));
-        std::vector<a_int> select(static_cast<size_t>(ncv));
+            workev(2 * static_cast<size_t>(run.ncv));
+        std::vector<a_int> select(static_cast<size_t>(run.ncv));
         a_int info2 = 0;
         arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), d.data(), Z.data(), N, cd(0.0), workev.data(),
-                      arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance, resid.data(),
-                      ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl, rwork.data(), info2);
+                      arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, run.tolerance,
+                      run.resid.data(), run.ncv, run.V.data(), N, run.iparam, run.ipntr, run.workd.data(),
+                      run.workl.data(), run.lworkl, run.rwork.data(), info2);
         if (info2 != 0) throw SolverError(fmt::format("ARPACK zneupd failed with info = {}", info2));
-        iterations = static_cast<int>(iparam[2]);
-        const a_int found = std::min<a_int>(iparam[4], nev);
+        const a_int found = std::min<a_int>(run.converged(), nev);
         // Upper half-plane eigenvalues count (the modes); their conjugates do not.
         const auto upper = [&](cd theta) {
             const cd l = s + 1.0 / theta;
             return l.imag() >= -1e-7 * std::abs(l);
         };
-        if (info == 1 && found < nev && !wanted_complete({d.begin(), d.begin() + found}, ritz.values, ritz.bounds, sz.wanted, upper)) {
-            if (!last) continue;
-            throw not_converged(opt, sz, iparam[4]);
-        }
+        if (run.info == 1 && found < nev &&
+            !wanted_complete({d.begin(), d.begin() + found}, ritz.values, ritz.bounds, sz.wanted, upper))
+            return std::nullopt;
         std::vector<Ritz> out;
         for (a_int j = 0; j < found; ++j)
             out.push_back({d[static_cast<size_t>(j)], Eigen::Map<const Eigen::VectorXcd>(Z.data() + j * N, N)});
         return out;
-    }
-    return {};
+    };
+    return staged_arnoldi<cd>(opt, sz, apply, extract, iterations);
 }
 
 // Real shift: the operator is real, so real Arnoldi (dnaupd) on a real LU
@@ -236,54 +283,25 @@ std::vector<Ritz> ritz_real(const SparsePencil& p, const SparseEigenOptions& opt
     Eigen::SparseLU<SpD, Eigen::COLAMDOrdering<int>> lu;
     factorize(lu, p, s, t);
     const SpD CsM = p.C + s * p.M;
-    const std::lock_guard<std::mutex> one_at_a_time(arpack_mutex());
-    const a_int N = sz.N, nev = sz.nev, ncv = sz.ncv, lworkl = 3 * ncv * ncv + 6 * ncv;
-    const std::vector<a_int> budgets = restart_budgets(opt.max_iterations);
-    for (size_t stage = 0; stage < budgets.size(); ++stage) {
-        const bool last = stage + 1 == budgets.size();
-        std::vector<double> resid(static_cast<size_t>(N)), V(static_cast<size_t>(N * ncv)),
-            workd(3 * static_cast<size_t>(N)), workl(static_cast<size_t>(lworkl));
-        a_int iparam[11] = {1, 0, budgets[stage], 1, 0, 0, 1, 0, 0, 0, 0};   // exact shifts, mode 1 on OP
-        a_int ipntr[14] = {};
-        a_int ido = 0, info = 0;
-        if (opt.start.size() == N && opt.start.allFinite() && opt.start.norm() > 0)
-            // A real start spanning the same directions as the complex one.
-            Eigen::Map<Eigen::VectorXd>(resid.data(), N) = opt.start.real() + opt.start.imag();
-        else
-            Eigen::Map<Eigen::VectorXd>(resid.data(), N) = fixed_random_vector(N);
-        info = 1;
-        while (true) {
-            throw_if_interrupted();
-            arpack::naupd(ido, arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
-                          resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl, info);
-            if (ido != -1 && ido != 1) break;
-            apply_operator(lu, p.M, CsM, s, workd.data() + ipntr[0] - 1, workd.data() + ipntr[1] - 1, n);
-        }
-        check_arnoldi("dnaupd", info, sz);
-        if (info == 1 && iparam[4] < 1) {
-            if (!last) continue;
-            throw not_converged(opt, sz, iparam[4]);
-        }
-        const ArnoldiRitz ritz = arnoldi_ritz_values(workl, ipntr, ncv);
-
+    const auto apply = [&](const double* x, double* y) { apply_operator(lu, p.M, CsM, s, x, y, n); };
+    const auto extract = [&](ArnoldiRun<double>& run, const ArnoldiRitz& ritz) -> std::optional<std::vector<Ritz>> {
+        const a_int N = run.N, nev = run.nev;
         // dneupd may return one value more than nev (a conjugate pair across the edge).
         std::vector<double> dr(static_cast<size_t>(nev + 1)), di(static_cast<size_t>(nev + 1)),
-            Z(static_cast<size_t>(N * (nev + 1))), workev(3 * static_cast<size_t>(ncv));
-        std::vector<a_int> select(static_cast<size_t>(ncv));
+            Z(static_cast<size_t>(N * (nev + 1))), workev(3 * static_cast<size_t>(run.ncv));
+        std::vector<a_int> select(static_cast<size_t>(run.ncv));
         a_int info2 = 0;
         arpack::neupd(1, arpack::howmny::ritz_vectors, select.data(), dr.data(), di.data(), Z.data(), N, 0.0, 0.0,
-                      workev.data(), arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, opt.tolerance,
-                      resid.data(), ncv, V.data(), N, iparam, ipntr, workd.data(), workl.data(), lworkl, info2);
+                      workev.data(), arpack::bmat::identity, N, arpack::which::largest_magnitude, nev, run.tolerance,
+                      run.resid.data(), run.ncv, run.V.data(), N, run.iparam, run.ipntr, run.workd.data(),
+                      run.workl.data(), run.lworkl, info2);
         if (info2 != 0) throw SolverError(fmt::format("ARPACK dneupd failed with info = {}", info2));
-        iterations = static_cast<int>(iparam[2]);
-        const a_int found = std::min<a_int>(iparam[4], nev + 1);
-        if (info == 1 && found < nev) {
+        const a_int found = std::min<a_int>(run.converged(), nev + 1);
+        if (run.info == 1 && found < nev) {
             std::vector<cd> converged;
             for (a_int j = 0; j < found; ++j) converged.emplace_back(dr[static_cast<size_t>(j)], di[static_cast<size_t>(j)]);
-            if (!wanted_complete(converged, ritz.values, ritz.bounds, sz.wanted, [](cd) { return true; })) {
-                if (!last) continue;
-                throw not_converged(opt, sz, iparam[4]);
-            }
+            if (!wanted_complete(converged, ritz.values, ritz.bounds, sz.wanted, [](cd) { return true; }))
+                return std::nullopt;
         }
         std::vector<Ritz> out;
         for (a_int j = 0; j < found; ++j) {
@@ -304,8 +322,8 @@ std::vector<Ritz> ritz_real(const SparsePencil& p, const SparseEigenOptions& opt
             }
         }
         return out;
-    }
-    return {};
+    };
+    return staged_arnoldi<double>(opt, sz, apply, extract, iterations);
 }
 
 }  // namespace
