@@ -144,7 +144,7 @@ Context open_scene(const Common& o, bool need_speeds) {
     Context c;
     c.format = parse_format(o);
     c.unit = SpeedUnit::parse(o.units);
-    c.eig.method = parse_eigen_method(o.method);
+    const EigenMethod method = parse_eigen_method(o.method);
     check_plot_path(o.plot);
     if (o.lanczos < 0) throw InputError(fmt::format("--lanczos {}: allowed: 0 (automatic) or a count", o.lanczos));
     if (!o.solver.empty() && o.solver != "auto" && o.solver != "dense" && o.solver != "sparse")
@@ -154,7 +154,7 @@ Context open_scene(const Common& o, bool need_speeds) {
     for (const auto& n : notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
     c.scene = load_motion_scene(o);
     c.solver = c.scene.solver_options();
-    c.solver.eig = c.eig;
+    c.solver.eig.method = method;
     c.solver.lanczos_vectors = o.lanczos;
     if (!o.solver.empty()) c.solver.kind = parse_solver_kind(o.solver);
     if (!o.target.empty()) c.solver.target = parse_speed(o.target, "--target", c.unit);

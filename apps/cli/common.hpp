@@ -55,7 +55,6 @@ struct Context {
     Scene scene;
     TableFormat format;
     SpeedUnit unit;
-    EigenOptions eig;
     std::vector<double> speeds;
     // The scene's [analysis] solver options with --solver, --target,
     // --target-order, --lanczos and --method in their place.

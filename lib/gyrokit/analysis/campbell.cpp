@@ -287,7 +287,7 @@ Tracking track(const SolverFactory& make, CampbellOptions co, const std::vector<
 }
 
 CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>& speeds, const CampbellOptions& opt) {
-    return campbell(dense_solver(sys, opt.eig), speeds, opt);
+    return campbell(dense_solver(sys), speeds, opt);
 }
 
 CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& speeds, const CampbellOptions& opt) {

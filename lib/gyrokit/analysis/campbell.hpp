@@ -15,8 +15,8 @@
 
 namespace gyrokit {
 
+// The solver (its method, sparse window) is the SolverFactory's; these are the tracking's.
 struct CampbellOptions {
-    EigenOptions eig;
     int modes = 0;            // keep the K lowest branches by frequency at the first speed (oscillating
                               // ones first, real eigenvalues after them); 0 = all.
                               // Dense: only these (and the next two) decide whether a step is ambiguous
@@ -100,7 +100,8 @@ struct Tracking {
 // within 10 % of its edge, and after three widenings a full solve at every speed.
 Tracking track(const SolverFactory& make, CampbellOptions co, const std::vector<double>& speeds);
 
-// Dense: every mode of the system, solved with opt.eig.
+// Dense: every mode of the system, by the scaled QZ (another method:
+// campbell(dense_solver(sys, eig), speeds, opt)).
 CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>& speeds,
                          const CampbellOptions& opt = {});
 

@@ -70,7 +70,6 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
     const bool dense = solver.kind == SolverKind::Dense;
     SpectrumSolver solve = solver.make();
     CampbellOptions co = tracking_options(solver, opt.modes, speeds, {1}, opt.threads);
-    co.eig = so.eig;
     const CampbellDiagram cd = campbell(solver.make, speeds, co);
     // The residual over a mode's left plane, from the dense or the sparse pencil.
     const auto plane = [&](double w, const Mode& m, const Eigen::MatrixXcd& Y) {

@@ -52,7 +52,6 @@ CampbellStudy campbell_study(const GyroscopicSystem& sys, const StudyOptions& op
     add_notes(s.diagnostics, Topic::Extrapolation,
               extrapolation_notes(sys.bearings, opt.speeds.front(), opt.speeds.back()));
     CampbellOptions co = tracking_options(s.plan, opt.solver.modes, opt.speeds, opt.harmonics, opt.workers);
-    co.eig = opt.solver.eig;
     co.progress = opt.progress;
     Tracking t = track(s.plan.make, co, opt.speeds);
     s.solver = std::move(t.solver);
