@@ -84,39 +84,6 @@ void note_extrapolation(const Context& c, double speed) {
     for (const auto& n : extrapolation_notes(c.scene.system.bearings, speed, speed)) std::cerr << "note: " << n << "\n";
 }
 
-std::vector<Probe> parse_probes(const std::string& text, const GyroscopicSystem& sys) {
-    std::vector<Probe> out;
-    std::size_t start = 0;
-    while (!text.empty() && start <= text.size()) {
-        const std::size_t end = std::min(text.find(',', start), text.size());
-        const std::string item = text.substr(start, end - start);
-        start = end + 1;
-        const std::size_t at = item.find('@');
-        int node = 0;
-        double angle = 0.0;
-        try {
-            std::size_t a = 0, b = 0;
-            if (at == std::string::npos) throw std::invalid_argument(item);
-            node = std::stoi(item.substr(0, at), &a);
-            angle = std::stod(item.substr(at + 1), &b);
-            if (a != at || b != item.size() - at - 1 || !std::isfinite(angle) || std::abs(angle) > 360.0)
-                throw std::invalid_argument(item);
-        } catch (const std::exception&) {
-            throw InputError(fmt::format("--probes '{}': allowed: NODE@ANGLE items separated by commas, e.g. "
-                                         "12@45,12@-45 (angle in degrees from +x towards +y, -360 to 360)",
-                                         item));
-        }
-        for (const Probe& p : out)
-            if (p.name == item) throw InputError(fmt::format("--probes: '{}' is listed twice; allowed: each once", item));
-        try {
-            out.push_back(probe_at_node(sys, item, node, angle));
-        } catch (const InputError& e) {
-            throw InputError(fmt::format("--probes {}: {}", item, e.what()));
-        }
-    }
-    return out;
-}
-
 std::string flag_words(const std::string& field) {
     static const std::pair<const char*, const char*> flags[] = {
         {"directory", "--dir"},       {"jobs", "--jobs"},     {"lanczos_vectors", "--lanczos"},
@@ -167,56 +134,6 @@ Context open_scene(const Common& o, bool need_speeds) {
         throw InputError(o.scene + ": no speed range; give --speeds FROM:TO:N or a [speeds] table in the scene");
     }
     return c;
-}
-
-namespace {
-
-// A finite number >= 0 spelled out completely, or nothing.
-std::optional<double> nonnegative(const std::string& text) {
-    try {
-        size_t pos = 0;
-        const double v = std::stod(text, &pos);
-        if (pos == text.size() && std::isfinite(v) && v >= 0.0) return v;
-    } catch (const std::exception&) {
-    }
-    return std::nullopt;
-}
-
-}  // namespace
-
-double parse_speed(const std::string& text, const std::string& option, const SpeedUnit& u) {
-    if (const auto v = nonnegative(text)) return *v / u.factor;
-    throw InputError(fmt::format("{} '{}': allowed: a finite number >= 0 ({})", option, text, u.name));
-}
-
-double parse_order(const std::string& text, const std::string& option) {
-    if (const auto v = nonnegative(text)) return *v;
-    throw InputError(fmt::format("{} '{}': allowed: a finite number >= 0 (a multiple of the speed)", option, text));
-}
-
-std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>& fallback,
-                                 const std::string& option) {
-    if (text.empty()) return fallback;
-    std::vector<int> h;
-    size_t start = 0;
-    while (start <= text.size()) {
-        const size_t end = std::min(text.find(',', start), text.size());
-        const std::string item = text.substr(start, end - start);
-        long v = 0;
-        try {
-            size_t pos = 0;
-            v = std::stol(item, &pos);
-            if (pos != item.size() || v < 1 || v > 1000) throw std::out_of_range(item);
-        } catch (const std::exception&) {
-            throw InputError(fmt::format("{} '{}': allowed: whole numbers in [1, 1000] separated by commas", option,
-                                         text));
-        }
-        if (std::find(h.begin(), h.end(), static_cast<int>(v)) != h.end())
-            throw InputError(fmt::format("{} '{}': {} is listed twice; allowed: each value once", option, text, v));
-        h.push_back(static_cast<int>(v));
-        start = end + 1;
-    }
-    return h;
 }
 
 }  // namespace gyrokit::cli
