@@ -1,7 +1,8 @@
-// Helpers shared by the benchmark programs (apps/bench_*.cpp): speed grids,
-// wall-time measurement, eigenvalue matching, and the cases and runs of the
-// liquid-filled rotor, auto-balancer and Sommerfeld benchmarks, so that every
-// program measures them the same way. Header-only.
+// Helpers shared by the benchmark programs (apps/bench_*.cpp and the files of
+// apps/bench_tradeoffs/): speed grids, wall-time measurement, eigenvalue
+// matching, and the cases and runs of the liquid-filled rotor, auto-balancer
+// and Sommerfeld benchmarks, so that every program measures them the same way.
+// Header-only.
 #pragma once
 
 #include <gyrokit/analysis/fluid_critical_speeds.hpp>
