@@ -1,7 +1,7 @@
 // The undamped critical speed map against closed forms: a uniform Rayleigh shaft
 // (rotary inertia and gyroscopic moments, no shear) whose rigid-support limit is the
 // pinned-pinned spinning beam, forward and backward, and whose soft-bearing end is the
-// rigid rotor on springs (cylindrical and conical modes).
+// rigid rotor on springs (cylindrical and conical modes) and, above it, the free-free beam.
 #include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/core/error.hpp>
 
@@ -99,6 +99,34 @@ TEST_CASE("critical speed map: on soft bearings the shaft is a rigid rotor on sp
     CHECK(find(map.points, k, "backward", 1)->speed == Approx(cylindrical).epsilon(1e-5));
     CHECK(find(map.points, k, "forward", 2)->speed == Approx(conical_f).epsilon(1e-5));
     CHECK(find(map.points, k, "backward", 2)->speed == Approx(conical_b).epsilon(1e-5));
+}
+
+TEST_CASE("critical speed map: the free-free limit, above the two rigid-body lines, is the free beam's bending") {
+    // Without rotary inertia (and so without gyroscopic moments) the shaft is an
+    // Euler-Bernoulli beam: free-free bending at w = (beta L)^2 sqrt(E I / (rho A L^4)),
+    // beta L = 4.730041, 7.853205, in both planes. On 1e-3 N/m springs (1e-9 of the shaft's own
+    // stiffness) the lines above the rigid-body ones are these modes.
+    const double A = pi * D * D / 4, I = pi * std::pow(D, 4) / 64;
+    RotorModel m = shaft_on_end_bearings();
+    m.rotary_inertia = false;
+    CriticalSpeedMapOptions o;
+    o.stiffness = {1e-3};
+    o.modes = 8;
+    const CriticalSpeedMap map = critical_speed_map(m, o);
+    // Without gyroscopic moments the whirl is planar and every mode comes twice (the x
+    // and y planes): lines 1-4 are the rigid-body ones, 5-6 and 7-8 the bending modes.
+    const double beta_l[] = {4.730041, 7.853205};   // cos(bL) cosh(bL) = 1, to 7 digits
+    for (int line = 5; line <= 8; ++line) {
+        INFO("line " << line);
+        const double bl = beta_l[(line - 5) / 2];
+        const double exact = bl * bl * std::sqrt(E * I / (rho * A)) / (L * L);
+        const MapPoint* p = find(map.points, 1e-3, "planar", line);
+        REQUIRE(p);
+        // Cubic elements: (k h)^4 / 1440 ~ 1e-6 for the second mode on 40 elements;
+        // beta L to 7 digits gives 3e-7 in w.
+        CHECK(p->speed == Approx(exact).epsilon(1e-5));
+    }
+    CHECK(find(map.points, 1e-3, "planar", 4)->speed < 1e-3 * find(map.points, 1e-3, "planar", 5)->speed);
 }
 
 TEST_CASE("critical speed map: bad options and a model without bearings are refused") {

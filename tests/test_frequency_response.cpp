@@ -29,6 +29,8 @@ TEST_CASE("frequency response: a damped Jeffcott rotor, H_xx = 1 / (k - m w^2 + 
     }
     CHECK_THROWS_WITH(frequency_response(s, 50.0, w, 2), Catch::Contains("input DOF 2; allowed: 0 to 1"));
     CHECK_THROWS_WITH(frequency_response(s, 50.0, {-1.0}, 0), Catch::Contains("frequency -1"));
+    CHECK_THROWS_WITH(frequency_response(s, 50.0, {}, 0), Catch::Contains("no frequencies; allowed: one or more"));
+    CHECK_THROWS_AS(frequency_response(s, 50.0, {}, 0), InputError);
 }
 
 TEST_CASE("frequency response: an FE rotor's FRF equals the modal superposition of its state matrix") {

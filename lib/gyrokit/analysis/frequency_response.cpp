@@ -17,6 +17,8 @@ FrequencyResponse frequency_response(const GyroscopicSystem& sys, double spin, c
         throw InputError(fmt::format("frequency response: input DOF {}; allowed: 0 to {}", input, n - 1));
     if (!(std::isfinite(spin) && spin >= 0))
         throw InputError(fmt::format("frequency response: spin speed {}; allowed: a finite number >= 0 (rad/s)", spin));
+    if (frequencies.empty())
+        throw InputError("frequency response: no frequencies; allowed: one or more finite frequencies >= 0 (rad/s)");
     for (const double w : frequencies)
         if (!(std::isfinite(w) && w >= 0))
             throw InputError(fmt::format("frequency response: frequency {}; allowed: finite numbers >= 0 (rad/s)", w));
