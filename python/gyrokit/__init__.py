@@ -88,10 +88,14 @@ def _length(model):
 
 
 def _log_dec(lam):
-    """-2 pi Re / Im of each eigenvalue (NaN where it does not oscillate), as the CLI's log_dec."""
-    lam = _np.asarray(lam)
+    """-2 pi Re / Im of each eigenvalue, as the CLI's log_dec: a real eigenvalue (no oscillation) gives
+    +inf where it decays, -inf where it grows, 0 at zero; NaN where a branch has no point."""
+    lam = _np.asarray(lam, dtype=complex)
+    real = _np.isfinite(lam) & (lam.imag == 0)
+    not_oscillating = _np.where(lam.real < 0, _np.inf, _np.where(lam.real > 0, -_np.inf, 0.0))
     with _np.errstate(divide="ignore", invalid="ignore"):
-        return _np.where(lam.imag > 0, -2 * _np.pi * lam.real / _np.where(lam.imag > 0, lam.imag, 1.0), _np.nan)
+        return _np.where(lam.imag > 0, -2 * _np.pi * lam.real / _np.where(lam.imag > 0, lam.imag, 1.0),
+                         _np.where(real, not_oscillating, _np.nan))
 
 
 def _zeta(lam):

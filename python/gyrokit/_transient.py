@@ -53,7 +53,16 @@ class TransientResponse(Result):
         """Spectra of `windows` Hann windows (half overlapping) of the recorded DOF `dof` (a name or a column):
         a dict with the window centres' t and speed (in `unit`), the frequencies (in `unit`, up to 1.5 x the top
         speed) and amplitude[window, frequency] (a sine of amplitude A reads A)."""
-        k = self.dofs.index(dof) if isinstance(dof, str) else int(dof)
+        if isinstance(dof, str):
+            if dof not in self.dofs:
+                raise InputError(f"waterfall dof '{dof}': allowed: a recorded DOF ({', '.join(self.dofs)}) "
+                                       f"or a column 0 to {len(self.dofs) - 1}")
+            k = self.dofs.index(dof)
+        else:
+            k = int(dof)
+            if not 0 <= k < len(self.dofs):
+                raise InputError(f"waterfall dof {dof}: allowed: a column 0 to {len(self.dofs) - 1} or a "
+                                       f"recorded DOF ({', '.join(self.dofs)})")
         w = _core.transient_waterfall(list(self.t), list(self.speed / _UNITS[self.unit]), self.z[:, k],
                                       *self._profile, self.dt, int(windows), int(frequencies))
         w["speed"] = w["speed"] * _UNITS[self.unit]

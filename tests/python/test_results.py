@@ -73,6 +73,14 @@ def test_log_decrements_and_damping_ratios_equal_the_librarys(diagram):
     assert checked > 100
 
 
+def test_log_decrements_of_real_eigenvalues_are_the_clis_infinities():
+    # Mode::log_decrement: a decaying real eigenvalue +inf, a growing one -inf, zero 0; no point: NaN.
+    lam = np.array([-3.0 + 0j, 2.0 + 0j, 0j, complex(np.nan, np.nan), -1.0 + 2.0j])
+    d = gk._log_dec(lam)
+    assert d[0] == np.inf and d[1] == -np.inf and d[2] == 0.0 and np.isnan(d[3])
+    assert d[4] == pytest.approx(np.pi, rel=2 * EPS)
+
+
 def test_notes_and_tables_name_options_in_pythons_words(diagram):
     summary = str(diagram.tables[0])
     assert "modes = 0 judges every mode" in summary and "--modes" not in summary and "--rows" not in summary

@@ -53,6 +53,10 @@ def test_a_steady_start_stays_on_the_steady_response_and_the_waterfall_reads_it(
     assert np.all(np.argmax(w["amplitude"], axis=1) == 200)
     assert w["amplitude"][:, 200] == pytest.approx(r.envelope["steady"][0, 0], rel=0.02)
     assert r.notes[0].startswith("Newmark average acceleration")
+    with pytest.raises(gk.InputError, match="waterfall dof 'zz': allowed: a recorded DOF"):
+        r.waterfall("zz")
+    with pytest.raises(gk.InputError, match="waterfall dof -1: allowed: a column 0 to"):
+        r.waterfall(-1)
 
 
 def test_bad_keywords_name_themselves_the_value_and_the_range():
