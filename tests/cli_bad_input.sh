@@ -171,6 +171,17 @@ expect "--probes: '2@45' is listed twice" frf "$dir/pinned.toml" --input y2 --pr
 expect "--probes and --dofs, --nodes, --at: allowed: probes alone" response "$dir/pinned.toml" --probes 2@45 --dofs x2
 "$cli" response "$dir/pinned.toml" --at 0.5 --format csv | cut -d, -f2 | sort -u | tr '\n' ' ' | grep -qx "dof x2 y2 " ||
     { echo "FAIL: --at 0.5 gives x2, y2"; fail=1; }
+# The FRF, static and critical-map options: each bad value named with its allowed range.
+three_disk="$data/three_disk_rotor.toml"
+expect "--input 'q9': not a DOF of the model" frf "$three_disk" --input q9
+expect "--frequencies '5:1:3': FROM = 5 is greater than TO = 1" frf "$three_disk" --input y12 --frequencies 5:1:3
+expect "--speed '-3': allowed: a finite number >= 0" frf "$three_disk" --input y12 --speed -3
+expect "--load '12:x:1': allowed: NODE:FX:FY or NODE:FX:FY:MX:MY" static "$three_disk" --load 12:x:1
+expect "load 0 at node 99; allowed: 0 to 24" static "$three_disk" --load 99:0:1
+expect "--gravity: Value -1 not in range" static "$three_disk" --gravity -1
+expect "--modes: Value 0 not in range 1 to 1000" critical-map "$three_disk" --modes 0
+expect "--stiffness '1e9:1e6:5': allowed: FROM:TO:N with 0 < FROM < TO" critical-map "$three_disk" --stiffness 1e9:1e6:5
+expect "--units 'furlong' is unknown" critical-map "$three_disk" --units furlong
 # Inputs that are not regular files, or nested beyond the parser's stack: one line, never a hang.
 printf '[model]\ntype = "matrices"\nM = "M2.mtx"\nK = "/dev/zero"\n' > "$dir/devzero.toml"
 expect "/dev/zero: is not a regular file (a device, FIFO or socket); expected a Matrix Market file" eig "$dir/devzero.toml" --speed 1
