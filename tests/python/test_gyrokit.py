@@ -561,6 +561,33 @@ def test_the_cli_and_python_run_one_study_with_the_same_notes(name):
     assert [f"warning: {w}" for w in c.warnings] == [x for x in lines if x.startswith("warning: ")]
 
 
+def test_screening_judges_the_critical_speeds_the_cli_and_python_find():
+    # The separation criterion runs the same study (the library's study layer) on the design's scene,
+    # over 0 to 1.05 (1 + margin) x the top operating speed in 121 speeds: design 0 of the three-disk
+    # family (bearings 1e7 N/m, mid-section 90 mm) equals Python and the CLI on that scene and grid.
+    # Tolerance: the screening row prints 12 digits, and the crossing's eigenvalue error bound is
+    # about 3e-7 rad/s (1e-9 of it); the roots themselves are refined to 1e-13.
+    ov = {"model.bearing[*].kxx": 1e7, "model.bearing[*].kyy": 1e7, "model.shaft[2].outer_diameter": 0.09}
+    r = gk.screen(scene("screen_three_disk.toml"), designs=[{"k_bearing": 1e7, "model.shaft[2].outer_diameter": 0.09}],
+                  jobs=1)
+    screened = r.quantities["critical_speed_rpm"][0]
+    assert "branch 2" in r.reason[0]
+    top = 12000 * 1.15 * 1.05
+    c = gk.critical_speeds(gk.load_scene(scene("three_disk_rotor.toml"), overrides=ov), np.linspace(0, top, 121),
+                           unit="rpm")
+    assert c.speeds[list(c.branch).index(2)] == pytest.approx(screened, rel=1e-9)
+    edited = os.path.join(os.environ.get("TMPDIR", "/tmp"), f"design0_{os.getpid()}.toml")
+    with open(edited, "w") as f:
+        f.write(gk.load_scene(scene("three_disk_rotor.toml"), overrides=ov).to_toml())
+    try:
+        run = subprocess.run([CLI, "critical", edited, "--units", "rpm", "--speeds", f"0:{top}:121", "--format", "csv"],
+                             check=True, capture_output=True, text=True)
+    finally:
+        os.remove(edited)
+    rows = [r for r in csv.DictReader(io.StringIO(run.stdout)) if r["mode"] == "2"]
+    assert float(rows[0]["speed_rpm"]) == pytest.approx(screened, rel=1e-9)
+
+
 def _rows(r):
     return list(zip(r.design, r.verdict, r.reason, *[list(v) for v in r.quantities.values()]))
 
