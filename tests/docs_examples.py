@@ -24,8 +24,25 @@ the width of the numbers, so it is not compared):
   - a `...` line skips any number of output lines; a trailing `...` lets the
     output continue.
 
+Pictures: every picture a page shows (`![...](img/NAME)`, a file of docs/img) is the
+file an example writes under that name into its working directory (top level), e.g.
+`$ gyrokit static ... --plot static.png` in the block above the picture. After the
+examples run, each file of such a name that an example wrote must be a valid picture
+of its extension (.png: the PNG signature, an IHDR of nonzero size and the closing
+IEND chunk; .svg: UTF-8 text with `<svg` and `</svg>`) of at least MIN_IMAGE_BYTES,
+and written by one block only (two would leave docs/img ambiguous). A picture that
+a page shows and no example writes is a failure naming it, unless it is listed in
+NOT_FROM_GYROKIT with the reason it cannot come from gyrokit; so is a picture a page
+shows that docs/img lacks. The report says which pictures differ from docs/img
+(gnuplot's version changes their bytes, so a difference alone is no failure).
+`--update-images` copies every valid picture the examples wrote into docs/img (only
+those whose bytes differ), so a maintainer regenerates the docs' pictures with one
+command; review them with `git status docs/img` and an image viewer, then commit.
+
 Usage: python3 tests/docs_examples.py --gyrokit BUILD/apps/gyrokit --root REPO [--min N]
-Exit 0 when every example passes and at least N `$ gyrokit` examples were found.
+                                      [--jobs J] [--update-images]
+Exit 0 when every example passes, every picture of the docs is written by an
+example and valid, and at least N `$ gyrokit` examples were found.
 """
 
 import argparse
@@ -36,6 +53,7 @@ import os
 import re
 import shlex
 import shutil
+import struct
 import subprocess
 import sys
 import tempfile
@@ -43,6 +61,20 @@ import tempfile
 NUMBER = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
 NOISE = 1e-9
 TIMEOUT_S = 120
+
+# A picture of the docs: `![alt](img/NAME)` in docs/*.md, `![alt](docs/img/NAME)` in README.md.
+IMAGE_REFERENCE = re.compile(r"!\[[^\]]*\]\((?:docs/)?img/([^)\s]+)\)")
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+PNG_IEND = b"\x00\x00\x00\x00IEND\xaeB`\x82"
+# The smallest docs picture is a 900 x 380 PNG of about 20 kB; gnuplot's empty 900 x 380
+# frame with its axes takes about 7 kB (PNG) or 8.5 kB (SVG), so a smaller file is a
+# failed or truncated figure.
+MIN_IMAGE_BYTES = 2000
+# Pictures of docs/img that no gyrokit command can draw (photographs, hand-made
+# diagrams), NAME -> the reason; they are exempt from "written by an example". None today:
+# every picture of the docs is a gyrokit figure.
+NOT_FROM_GYROKIT = {
+}
 
 
 class Command:
@@ -57,9 +89,13 @@ class Command:
         return re.match(r"gyrokit(\s|$)", self.text) is not None
 
 
+def doc_files(root):
+    return [os.path.join(root, "README.md")] + sorted(glob.glob(os.path.join(root, "docs", "*.md")))
+
+
 def extract(root):
     """Blocks (lists of Commands) of README.md and docs/*.md that hold a gyrokit command."""
-    files = [os.path.join(root, "README.md")] + sorted(glob.glob(os.path.join(root, "docs", "*.md")))
+    files = doc_files(root)
     blocks = []
     for path in files:
         if not os.path.isfile(path):
@@ -83,6 +119,62 @@ def extract(root):
             elif block:
                 block[-1].expected.append(line.rstrip())
     return blocks
+
+
+def referenced_images(root):
+    """{NAME: ["doc:line", ...]} of the pictures the docs show (outside fenced blocks)."""
+    refs = {}
+    for path in doc_files(root):
+        if not os.path.isfile(path):
+            continue
+        rel = os.path.relpath(path, root)
+        in_fence = False
+        with open(path, encoding="utf-8") as f:
+            for number, line in enumerate(f, start=1):
+                if line.lstrip().startswith("```"):
+                    in_fence = not in_fence
+                    continue
+                if in_fence:
+                    continue
+                for m in IMAGE_REFERENCE.finditer(line):
+                    refs.setdefault(m.group(1), []).append(f"{rel}:{number}")
+    return refs
+
+
+def image_problem(name, data):
+    """None if data is a valid picture for the name's extension, else the reason."""
+    ext = os.path.splitext(name)[1].lower()
+    if len(data) < MIN_IMAGE_BYTES:
+        return f"{len(data)} bytes, less than a picture ({MIN_IMAGE_BYTES})"
+    if ext == ".png":
+        if not data.startswith(PNG_SIGNATURE):
+            return "not a PNG: no PNG signature"
+        if data[12:16] != b"IHDR":
+            return "not a PNG: no IHDR chunk first"
+        width, height = struct.unpack(">II", data[16:24])
+        if width == 0 or height == 0:
+            return f"an empty PNG ({width} x {height})"
+        if not data.endswith(PNG_IEND):
+            return "a truncated PNG: no IEND chunk at its end"
+        return None
+    if ext == ".svg":
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError:
+            return "not an SVG: not UTF-8 text"
+        if "<svg" not in text:
+            return "not an SVG: no <svg element"
+        if "</svg>" not in text:
+            return "a truncated SVG: no </svg>"
+        return None
+    return f"not a picture type the docs use ({ext or 'no extension'}; .png or .svg)"
+
+
+def image_summary(name, data):
+    if name.lower().endswith(".png"):
+        width, height = struct.unpack(">II", data[16:24])
+        return f"PNG {width}x{height}, {len(data)} bytes"
+    return f"SVG, {len(data)} bytes"
 
 
 def substitute(command, binary):
@@ -258,8 +350,25 @@ def make_workdir(root):
     return work
 
 
-def run_block(block, binary, root, env):
-    """[(command, reason or None, output lines)] for the commands of one block."""
+def collect_images(work, block, names):
+    """{NAME: (bytes, Command)} for the files of the working directory (top level, no
+    links) that have the name of a docs picture; the Command is the first that names
+    the file, else the block's first."""
+    images = {}
+    for name in sorted(os.listdir(work)):
+        path = os.path.join(work, name)
+        if name not in names or os.path.islink(path) or not os.path.isfile(path):
+            continue
+        with open(path, "rb") as f:
+            data = f.read()
+        writer = next((c for c in block if re.search(r"(^|[\s=/])" + re.escape(name) + r"(\s|$)", c.text)), block[0])
+        images[name] = (data, writer)
+    return images
+
+
+def run_block(block, binary, root, env, image_names=frozenset()):
+    """([(command, reason or None, output lines)], {picture NAME: (bytes, Command)})
+    for the commands of one block."""
     work = make_workdir(root)
     results = []
     try:
@@ -273,9 +382,70 @@ def run_block(block, binary, root, env):
             except subprocess.TimeoutExpired:
                 output, reason = [], f"no result within {TIMEOUT_S} s"
             results.append((cmd, reason, output))
+        images = collect_images(work, block, image_names)
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    return results
+    return results, images
+
+
+def check_images(root, refs, produced, update):
+    """Checks the pictures the examples wrote against the pictures the docs show (and,
+    with update, copies them into docs/img). Prints a line per picture; returns the
+    number of failures."""
+    img_dir = os.path.join(root, "docs", "img")
+    failures = differing = 0
+    for name in sorted(produced):
+        writers = produced[name]
+        where = ", ".join(f"{cmd.path}:{cmd.line}" for _, cmd in writers)
+        if len(writers) > 1:
+            failures += 1
+            print(f"FAIL img/{name}: written by {len(writers)} blocks ({where}); "
+                  f"a docs picture must come from one example: give the others another name")
+            continue
+        data, cmd = writers[0]
+        problem = image_problem(name, data)
+        if problem:
+            failures += 1
+            print(f"FAIL img/{name} from {where}: {problem}")
+            continue
+        target = os.path.join(img_dir, name)
+        old = None
+        if os.path.isfile(target):
+            with open(target, "rb") as f:
+                old = f.read()
+        state = "new, not in docs/img" if old is None else "same as docs/img" if old == data else "differs from docs/img"
+        differing += old != data
+        if update and old != data:
+            os.makedirs(img_dir, exist_ok=True)
+            with open(target, "wb") as f:
+                f.write(data)
+            state = "written to docs/img (new)" if old is None else "updated in docs/img"
+        if name not in refs:
+            state += "; shown by no page"
+        print(f"PASS img/{name} from {where} {cmd.text}: {image_summary(name, data)}, {state}")
+
+    missing = sorted(n for n in refs if n not in produced and n not in NOT_FROM_GYROKIT)
+    if missing:
+        failures += 1
+        print(f"FAIL pictures shown by the docs but written by no example ({len(missing)}): "
+              + ", ".join(f"{n} ({refs[n][0]})" for n in missing))
+        print("  add a run example `$ gyrokit ... --plot NAME` to the page that shows the picture, "
+              "or list it in NOT_FROM_GYROKIT with the reason")
+    absent = sorted(n for n in refs if not os.path.isfile(os.path.join(img_dir, n)))
+    if absent:
+        failures += 1
+        print("FAIL pictures shown by the docs that docs/img lacks: "
+              + ", ".join(f"{n} ({refs[n][0]})" for n in absent)
+              + ("" if update else " (--update-images writes those an example wrote)"))
+    for name in sorted(NOT_FROM_GYROKIT):
+        print(f"SKIP img/{name}: not from gyrokit: {NOT_FROM_GYROKIT[name]}")
+    unused = sorted(n for n in (os.listdir(img_dir) if os.path.isdir(img_dir) else ()) if n not in refs)
+    if unused:
+        print("note: docs/img files shown by no page: " + ", ".join(unused))
+    if differing:
+        print(f"note: {differing} written pictures are new or differ from docs/img"
+              + (" and were copied there" if update else " (--update-images copies them there)"))
+    return failures
 
 
 def main():
@@ -285,6 +455,8 @@ def main():
     parser.add_argument("--min", type=int, default=1, help="fail if fewer gyrokit examples are found")
     parser.add_argument("--jobs", type=int, default=min(4, os.cpu_count() or 1),
                         help="blocks run at once (default: up to 4)")
+    parser.add_argument("--update-images", action="store_true",
+                        help="copy the valid pictures the examples wrote into docs/img")
     args = parser.parse_args()
 
     binary = os.path.abspath(args.gyrokit)
@@ -299,11 +471,18 @@ def main():
     env.pop("LINES", None)
 
     blocks = extract(root)
+    refs = referenced_images(root)
+    img_dir = os.path.join(root, "docs", "img")
+    image_names = frozenset(refs) | frozenset(os.listdir(img_dir) if os.path.isdir(img_dir) else ())
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-        results = list(pool.map(lambda b: run_block(b, binary, root, env), blocks))
+        runs = list(pool.map(lambda b: run_block(b, binary, root, env, image_names), blocks))
 
     examples = failures = 0
-    for block_results in results:
+    produced = {}
+    for _, images in runs:
+        for name, item in images.items():
+            produced.setdefault(name, []).append(item)
+    for block_results, _ in runs:
         for cmd, reason, output in block_results:
             examples += cmd.is_gyrokit
             status = "PASS" if reason is None else "FAIL"
@@ -318,7 +497,11 @@ def main():
             if len(diff) > 40:
                 print(f"  | ... ({len(diff) - 40} more diff lines)")
 
-    print(f"{examples} gyrokit examples, {failures} failed")
+    image_failures = check_images(root, refs, produced, args.update_images)
+    valid = sum(1 for n, w in produced.items() if len(w) == 1 and image_problem(n, w[0][0]) is None)
+    print(f"{examples} gyrokit examples, {failures} failed; "
+          f"{len(refs)} pictures shown, {valid} written valid, {image_failures} picture checks failed")
+    failures += image_failures
     if examples < args.min:
         print(f"error: found {examples} gyrokit examples, expected at least {args.min}", file=sys.stderr)
         return 1
