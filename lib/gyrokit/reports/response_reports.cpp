@@ -120,8 +120,21 @@ std::vector<size_t> columns_shown(const ResponseCurve& c, const std::vector<int>
     return cols;
 }
 
-std::string amplitude_label(const std::string& unit, const char* what) {
-    return unit.empty() ? std::string(what) : std::string(what) + " [" + unit + "]";
+std::string amplitude_label(const std::string& unit, const std::string& what) {
+    return unit.empty() ? what : what + " [" + unit + "]";
+}
+
+// The response's symbol: H for a frequency response (per unit force), Z for the unbalance response.
+std::string symbol_of(const std::string& axis) { return axis == "frequency" ? "H" : "Z"; }
+
+// A power of 1000 that brings the largest |value| of the panel to [1, 1000): tick labels
+// such as -80 read where -8e-08 would run into its neighbours.
+double engineering_scale(const Panel& p) {
+    double top = 0.0;
+    for (const Series& s : p.series)
+        for (std::size_t i = 0; i < s.x.size(); ++i) top = std::max({top, std::abs(s.x[i]), std::abs(s.y[i])});
+    if (!(top > 0.0) || !std::isfinite(top)) return 1.0;
+    return std::pow(10.0, 3.0 * std::floor(std::log10(top) / 3.0));
 }
 
 }  // namespace
@@ -137,7 +150,7 @@ Figure response_figure(const std::vector<std::string>& names, const std::vector<
     const std::string xlabel = axis + " [" + u.name + "]";
     Panel ph{xlabel, "phase [deg]", "", false, {}, -180.0, 180.0, {}, {}};
     for (const std::string& unit : units_in(units, dofs)) {
-        Panel amp{xlabel, amplitude_label(unit, "amplitude |Z|"), "", true, {}, {}, {}, {}, {}};
+        Panel amp{xlabel, amplitude_label(unit, "amplitude |" + symbol_of(axis) + "|"), "", true, {}, {}, {}, {}, {}};
         for (const size_t k : cols) {
             if (unit_of(units, c.dofs[k]) != unit) continue;
             Series a, p;
@@ -165,11 +178,15 @@ Figure response_polar_figure(const std::vector<std::string>& names, const std::v
     f.title = (title.empty() ? std::string("Unbalance response") : title) +
               fmt::format(" (polar, {} {:.6g} to {:.6g} {})", axis, u.factor * c.speeds.front(),
                           u.factor * c.speeds.back(), u.name);
+    // True to shape, the plot is a square as high as the panel: taller panels give the
+    // horizontal tick labels room.
+    f.height_per_panel = 640;
     const std::vector<size_t> cols = columns_shown(c, shown);
     std::vector<int> dofs;
     for (const size_t k : cols) dofs.push_back(c.dofs[k]);
     for (const std::string& unit : units_in(units, dofs)) {
-        Panel p{amplitude_label(unit, "Re Z"), amplitude_label(unit, "Im Z"), "", false, {}, {}, {}, {}, {}};
+        const std::string z = symbol_of(axis);
+        Panel p{"", "", "", false, {}, {}, {}, {}, {}};
         p.equal_axes = true;
         for (const size_t k : cols) {
             if (unit_of(units, c.dofs[k]) != unit) continue;
@@ -182,6 +199,12 @@ Figure response_polar_figure(const std::vector<std::string>& names, const std::v
             }
             p.series.push_back(std::move(s));
         }
+        const double scale = engineering_scale(p);
+        for (Series& s : p.series)
+            for (std::size_t i = 0; i < s.x.size(); ++i) s.x[i] /= scale, s.y[i] /= scale;
+        const std::string per = scale == 1.0 ? unit : fmt::format("{:g} {}", scale, unit.empty() ? "1" : unit);
+        p.xlabel = amplitude_label(per, "Re " + z);
+        p.ylabel = amplitude_label(per, "Im " + z);
         f.panels.push_back(std::move(p));
     }
     return f;
