@@ -107,6 +107,20 @@ Figure static_figure(const StaticResult& s, const std::string& title, const Leng
     Series held{{}, {}, "reactions", "points", "#000000"};
     for (const StaticReaction& r : s.reactions) held.x.push_back(length.in_unit(r.z)), held.y.push_back(0.0);
     deflection.series = {x, y, held};
+    Panel slope{zlabel, "slope [mrad]", "slope (dx/dz, dy/dz)", false, {}, {}, {}, {}, {}, false};
+    Series sx{{}, {}, "dx/dz", "linespoints", "#1f77b4"}, sy{{}, {}, "dy/dz", "linespoints", "#d62728"};
+    for (const StaticNode& n : s.nodes) {
+        sx.x.push_back(length.in_unit(n.z)), sx.y.push_back(n.slope_x * 1e3);
+        sy.x.push_back(length.in_unit(n.z)), sy.y.push_back(n.slope_y * 1e3);
+    }
+    slope.series = {sx, sy};
+    Panel shear{zlabel, "shear force [N]", "shear force (V = dM/dz)", false, {}, {}, {}, {}, {}, false};
+    Series vx{{}, {}, "horizontal (x)", "lines", "#1f77b4"}, vy{{}, {}, "vertical (y)", "lines", "#d62728"};
+    for (const StaticSection& c : s.sections) {
+        vx.x.push_back(length.in_unit(c.z)), vx.y.push_back(c.shear_x);
+        vy.x.push_back(length.in_unit(c.z)), vy.y.push_back(c.shear_y);
+    }
+    shear.series = {vx, vy};
     Panel moment{zlabel, "bending moment [N m]", "bending moment (E I x'', E I y'')", false, {}, {}, {}, {}, {}, false};
     Series mx{{}, {}, "horizontal (x)", "lines", "#1f77b4"}, my{{}, {}, "vertical (y)", "lines", "#d62728"};
     for (const StaticSection& c : s.sections) {
@@ -114,7 +128,7 @@ Figure static_figure(const StaticResult& s, const std::string& title, const Leng
         my.x.push_back(length.in_unit(c.z)), my.y.push_back(c.moment_y);
     }
     moment.series = {mx, my};
-    f.panels = {deflection, moment};
+    f.panels = {deflection, slope, shear, moment};
     return f;
 }
 
