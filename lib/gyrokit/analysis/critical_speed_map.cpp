@@ -105,7 +105,7 @@ std::vector<BearingCurve> bearing_curves(const RotorModel& model, double top_spe
         if (b.constant.kyy != b.constant.kxx) out.push_back({"kyy " + name, {b.constant.kyy, b.constant.kyy}, {0.0, top_speed}});
     }
     for (const BearingTable& t : sys.bearings) {
-        BearingCurve kxx{"kxx " + t.name, {}, {}}, kyy{"kyy " + t.name, {}, {}};
+        BearingCurve kxx{"kxx " + t.label(), {}, {}}, kyy{"kyy " + t.label(), {}, {}};
         const double from = t.speeds.front(), to = t.model ? std::max(top_speed, from) : t.speeds.back();
         for (int s = 0; s <= 60; ++s) {
             const double w = from + (to - from) * s / 60.0;

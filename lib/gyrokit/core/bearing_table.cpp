@@ -4,9 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
 
 namespace gyrokit {
+
+std::string BearingTable::label() const {
+    const std::string file = std::filesystem::path(name).filename().string();
+    return file.empty() ? name : file;
+}
 
 BearingCoefficients BearingTable::at(double w) const {
     if (model) return model(std::max(w, speeds.front()));

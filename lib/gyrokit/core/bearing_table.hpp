@@ -22,6 +22,9 @@ struct BearingCoefficients {
 
 struct BearingTable {
     std::string name;             // e.g. the CSV file it came from; names it in messages
+    // The name without its folders (drive_end.csv): tables and legends, where the
+    // path the scene was opened by would only differ between machines.
+    std::string label() const;
     int dof_x = 0, dof_y = 0;     // 0-based DOF indices of the model
     int pedestal_x = -1, pedestal_y = -1;   // the pair it acts against; -1: the ground
     std::vector<double> speeds;   // rad/s, strictly increasing, at least two

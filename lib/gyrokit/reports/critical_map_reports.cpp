@@ -56,7 +56,8 @@ Figure critical_map_figure(const CriticalSpeedMap& map, const SpeedUnit& u, cons
             p.series.push_back({{k0, k1}, {u.factor * q.speed, u.factor * q.speed},
                                 q.number == 1 ? "rigid supports (forward)" : "", "dotted", "#7f7f7f"});
     for (const BearingCurve& c : map.bearings) {
-        Series s{c.stiffness, {}, c.name, "lines", "#000000"};
+        // kxx solid, kyy dashed: the two directions of one bearing apart.
+        Series s{c.stiffness, {}, c.name, c.name.rfind("kyy", 0) == 0 ? "dashed" : "lines", "#000000"};
         for (const double w : c.speed) s.y.push_back(u.factor * w);
         p.series.push_back(std::move(s));
     }

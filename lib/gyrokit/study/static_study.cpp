@@ -16,7 +16,7 @@ StaticResult static_study(const Scene& scene, StaticOptions options) {
             throw InputError(fmt::format("{}: bearing {} is speed-dependent and stands on a pedestal; allowed in a "
                                          "static analysis: constant bearings on pedestals",
                                          scene.path, b.name));
-        options.rigid.push_back({sys.node_of_dof[static_cast<std::size_t>(b.dof_x)], b.name});
+        options.rigid.push_back({sys.node_of_dof[static_cast<std::size_t>(b.dof_x)], b.label()});
     }
     return fe_static(*scene.fe_rotor, options);
 }
