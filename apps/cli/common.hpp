@@ -91,7 +91,7 @@ double parse_order(const std::string& text, const std::string& option);
 std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>& fallback,
                                  const std::string& option = "--harmonics");
 // Throws InputError unless the extension is .svg or .png (empty: no plot).
-void check_plot_path(const std::string& path);
+void check_plot_path(const std::string& path, const std::string& option = "--plot");
 void plot_if(const std::string& path, const Figure& f);
 // write_result, and a note on stderr naming the tables a CSV left out.
 void write_result(std::ostream& out, const std::vector<Table>& ts, TableFormat f, const std::string& table);

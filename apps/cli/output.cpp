@@ -10,11 +10,19 @@
 
 namespace gyrokit::cli {
 
-void check_plot_path(const std::string& path) {
+void check_plot_path(const std::string& path, const std::string& option) {
     if (path.empty()) return;
-    const std::string ext = std::filesystem::path(path).extension().string();
+    const std::filesystem::path p(path);
+    const std::string ext = p.extension().string();
     if (ext != ".svg" && ext != ".png")
-        throw InputError(fmt::format("--plot '{}': unsupported extension '{}'; allowed: .svg, .png", path, ext));
+        throw InputError(fmt::format("{} '{}': unsupported extension '{}'; allowed: .svg, .png", option, path, ext));
+    // Before the analysis runs, not after it: a long run must not end in a picture it cannot write.
+    const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec) || ::access(dir.c_str(), W_OK) != 0)
+        throw InputError(fmt::format("{} '{}': the folder '{}' does not exist or is not writable; allowed: a file in "
+                                     "a writable folder",
+                                     option, path, dir.string()));
 }
 
 void plot_if(const std::string& path, const Figure& f) {

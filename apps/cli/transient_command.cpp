@@ -100,9 +100,7 @@ void draw(const Options& o, const Context& c, const TransientResult& r, SolverKi
 }
 
 void run(const Options& o, std::ostream& out) {
-    const std::string ext = o.waterfall.size() > 4 ? o.waterfall.substr(o.waterfall.size() - 4) : "";
-    if (!o.waterfall.empty() && ext != ".svg" && ext != ".png")
-        throw InputError("--waterfall '" + o.waterfall + "': allowed: a file name ending in .svg or .png");
+    check_plot_path(o.waterfall, "--waterfall");
     if (o.start != "rest" && o.start != "steady")
         throw InputError("--start '" + o.start + "': allowed: rest, steady");
     const Context c = open_scene(o.common, false);
