@@ -114,7 +114,7 @@ namespace {
 // one (w_n = 5000 rad/s, far above the band of speeds up to 100 rad/s) with damping
 // c_high and a cross-coupled stiffness kxy that makes it unstable where
 // kxy / (2 sqrt(k m)) > c / (2 m) (at every speed: nothing here depends on speed).
-Scene two_rotors(double c_high, double kxy) {
+Scene two_rotors(double c_high, double kxy, double kxy_per_speed = 0.0) {
     Scene sc;
     GyroscopicSystem& g = sc.system;
     Eigen::MatrixXd M = Eigen::MatrixXd::Identity(4, 4), K = Eigen::MatrixXd::Zero(4, 4);
@@ -126,6 +126,11 @@ Scene two_rotors(double c_high, double kxy) {
     g.M = M;
     g.K = K;
     g.damping.push_back({"d", D});
+    if (kxy_per_speed != 0.0) {   // a cross-coupling growing with speed (K + w N): an onset inside the range
+        Eigen::MatrixXd N = Eigen::MatrixXd::Zero(4, 4);
+        N.bottomRightCorner(2, 2) = kxy_per_speed * J;
+        g.N = N;
+    }
     g.dof_names = {"x1", "y1", "x2", "y2"};
     g.whirl_pairs = {{0, 1}, {2, 3}};
     return sc;
@@ -136,7 +141,7 @@ Sweep two_rotor_sweep(const std::string& varied, const std::vector<double>& valu
     s.path = "two rotors";
     s.loader = [](const std::map<std::string, double>& o) {
         const auto get = [&](const std::string& k, double d) { return o.count(k) ? o.at(k) : d; };
-        return two_rotors(get("model.c_high", 100.0), get("model.kxy", 0.0));
+        return two_rotors(get("model.c_high", 100.0), get("model.kxy", 0.0), get("model.kxy_per_speed", 0.0));
     };
     SweepParameter p;
     p.name = varied;
@@ -165,4 +170,15 @@ TEST_CASE("screening stability: a mode far above the band that grows is caught, 
     const DesignResult r = evaluate_design(neg, 1);
     CHECK(r.verdict == Verdict::Fail);
     CHECK(r.reason.find("is unstable from 0 rad/s") != std::string::npos);
+    // A cross-coupling kxy = a w on the stiff rotor: lambda = i nu is a root of
+    // lambda^2 + c lambda + k - i kxy where nu^2 = k and c nu = kxy, so the onset is
+    // w = c sqrt(k) / a = 100 * 5000 / 1e4 = 50 rad/s, between two grid speeds (5 rad/s apart):
+    // found on the full spectra and bisected to 1e-9; the stability rule (Re lambda beyond
+    // its bound, ~1e-8 1/s, rising by 1 1/s per rad/s) moves it by less than 1e-7 of it.
+    const Sweep grow = two_rotor_sweep("model.kxy_per_speed", {1e4});
+    const DesignResult g = evaluate_design(grow, 0);
+    CHECK(g.verdict == Verdict::Fail);
+    CHECK(g.reason.find("a mode above the range") != std::string::npos);
+    REQUIRE(g.quantities.at(0));
+    CHECK(*g.quantities[0] == Approx(50.0).epsilon(1e-7));
 }

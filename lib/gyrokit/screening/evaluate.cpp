@@ -1,6 +1,7 @@
 // Criteria evaluation of one design.
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/campbell.hpp>
+#include <gyrokit/analysis/continuation.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/energy_bound.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
@@ -117,18 +118,61 @@ void check_log_dec(const Sweep& s, const CampbellDiagram& cd, const StudyOptions
                             what, *c.min_log_dec - ld.log_dec, c.up_to * s.unit.factor, s.unit.name);
 }
 
+// A mode above the band that grows: the first speed of `speeds` below `before` at which
+// one does (Re lambda beyond its bound), refined by bisection to 1e-9 of the speed.
+struct GrowingAbove {
+    double speed = inf;
+    double frequency = 0;
+};
+
+// The modes above the band need no tracking for a verdict: the full spectrum at a speed
+// says whether any of them grows, whatever their order (tracking them through their
+// crossings would insert thousands of speeds on a mesh's highest modes).
+GrowingAbove growing_above_band(const GyroscopicSystem& sys, const std::vector<double>& speeds, double band,
+                                double before) {
+    SpectrumSolver solve = dense_solver(sys).make();
+    GrowingAbove out;
+    const auto grows = [&](double w) {
+        const QuadraticSpectrum sp = solve(w);
+        for (const Mode& m : sp.modes)
+            if (!within_band(m, band, sp.real_tol) && m.stability() == Stability::Unstable) {
+                out.frequency = std::abs(m.lambda.imag()) > sp.real_tol ? m.lambda.imag() : std::abs(m.lambda);
+                return true;
+            }
+        return false;
+    };
+    for (std::size_t k = 0; k < speeds.size() && speeds[k] < before; ++k) {
+        throw_if_interrupted();
+        if (!grows(speeds[k])) continue;
+        double a = k > 0 ? speeds[k - 1] : speeds[k], b = speeds[k];
+        while (b - a > 1e-9 * b) {
+            const double m = 0.5 * (a + b);
+            (grows(m) ? b : a) = m;
+        }
+        grows(b);   // the frequency at the refined onset
+        out.speed = b;
+        return out;
+    }
+    return out;
+}
+
 void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& c, std::size_t& q,
                      DesignResult& r) {
     // The stability study of the CLI and Python, but a design is judged on every mode
     // unless the scene names a number: the modes in range are tracked, and those above
     // the band are covered by the energy bound where it shows that none of them can grow
-    // (symmetric stiffness, damping that dissipates); else every mode is solved at every
-    // speed (a sparse model: its window).
+    // (symmetric stiffness, damping that dissipates); else a dense model's full spectrum
+    // at each speed judges them (growing_above_band), a sparse model's window every mode.
     StudyOptions so = study_options(sc);
     so.speeds = SpeedRange{0.0, c.up_to, c.count}.points();
-    if (so.solver.modes == kModesInRange &&
-        !modes_above_band_decay(sc.system, so.speeds, excitation_band(so.speeds, so.harmonics)))
-        so.solver.modes = 0;
+    const double band = excitation_band(so.speeds, so.harmonics);
+    bool scan_above = false;
+    if (so.solver.modes == kModesInRange && !modes_above_band_decay(sc.system, so.speeds, band)) {
+        if (resolve_solver_kind(sc.dofs(), so.solver.kind, so.solver.modes) == SolverKind::Dense)
+            scan_above = true;
+        else
+            so.solver.modes = 0;
+    }
     const StabilityStudy st = stability_study(sc.system, so);
     const CampbellDiagram& cd = st.tracked.diagram;
     const std::vector<StabilityChange>& changes = st.changes;
@@ -147,14 +191,22 @@ void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& 
             break;
         }
     }
-    if (which) {
+    const GrowingAbove above = scan_above ? growing_above_band(sc.system, so.speeds, band, onset) : GrowingAbove{};
+    if (above.speed < onset) {
+        r.quantities[q] = above.speed * s.unit.factor;
+        r.failed.push_back("stability");
+        r.reason += fmt::format("{}stability: a mode above the range ({:.6g} {} at the onset) is unstable from {:.6g} "
+                                "{} (checked up to {:.6g} {})",
+                                r.reason.empty() ? "" : "; ", above.frequency * s.unit.factor, s.unit.name,
+                                above.speed * s.unit.factor, s.unit.name, c.up_to * s.unit.factor, s.unit.name);
+    } else if (which) {
         r.quantities[q] = onset * s.unit.factor;
         r.failed.push_back("stability");
         r.reason += fmt::format("{}stability: mode {} is unstable from {:.6g} {} (checked up to {:.6g} {})",
                                 r.reason.empty() ? "" : "; ", which->id, onset * s.unit.factor, s.unit.name,
                                 c.up_to * s.unit.factor, s.unit.name);
     }
-    if (c.min_log_dec) check_log_dec(s, cd, so, c, which != nullptr, q + 1, r);
+    if (c.min_log_dec) check_log_dec(s, cd, so, c, which != nullptr || above.speed < inf, q + 1, r);
     q += c.min_log_dec ? 3 : 1;
 }
 
