@@ -97,7 +97,7 @@ Sweep centrifuge_study(long long samples) {
     s.op_from = 24.0;
     s.op_to = 50.0;
     s.op_count = 27;
-    s.criteria.separation = SeparationCriterion{15.0, true, {}, 121};
+    s.criteria.separation = SeparationCriterion{15.0, true, {}, 121, false, std::nullopt};
     s.criteria.stability = StabilityCriterion{80.0, 121, std::nullopt};
     s.criteria.pervasive = PervasiveCriterion{};
     s.criteria.response = ResponseCriterion{2.6e-3, {"x", "y"}, {}};
@@ -119,7 +119,7 @@ Sweep rotor_study(int disks, long long samples) {
     s.op_from = 150.0;
     s.op_to = 300.0;
     s.op_count = 31;
-    s.criteria.separation = SeparationCriterion{15.0, true, {1}, 61};
+    s.criteria.separation = SeparationCriterion{15.0, true, {1}, 61, false, std::nullopt};
     s.criteria.stability = StabilityCriterion{400.0, 61, std::nullopt};
     s.criteria.pervasive = PervasiveCriterion{};
     // Translation of the middle disk, where the unbalance sits.

@@ -412,3 +412,59 @@ TEST_CASE("the study identity covers min_log_dec and the probes: a changed crite
         }
     }
 }
+
+TEST_CASE("amplification factor limit: the largest AF of the scan, 1/(2 zeta) for a Jeffcott rotor, and its verdict",
+          "[screening][separation]") {
+    // k = 5e3, m = 2: the critical speed at w_n = 50 rad/s, zeta = c_e / 200 = 0.005 and 0.05:
+    // AF = 100 and 10 to first order in zeta (half-power on the unbalance response, whose
+    // w^2 forcing moves the half-power points by O(zeta) of their distance: within 10 %).
+    Sweep s = jeffcott_sweep("model.c_e", {1.0, 10.0});
+    s.op_from = 60.0;
+    s.op_to = 80.0;
+    SeparationCriterion c;
+    c.margin_percent = 0.0;
+    c.count = 61;
+    c.max_amplification = 20.0;
+    s.criteria.separation = c;
+    finalize_sweep(s);
+    REQUIRE(quantity_columns(s) == std::vector<std::string>{"critical_speed_rad_s", "separation_percent",
+                                                            "max_amplification_factor",
+                                                            "max_amplification_speed_rad_s"});
+    for (std::size_t i = 0; i < 2; ++i) {
+        const DesignResult r = evaluate_design(s, i);
+        const double zeta = r.parameters[0] / 200.0;
+        INFO("zeta = " << zeta << ": " << r.reason);
+        REQUIRE(r.quantities[2]);
+        CHECK(*r.quantities[2] == Approx(1.0 / (2.0 * zeta)).epsilon(0.1));
+        // Im lambda = w_n sqrt(1 - zeta^2) at every speed (no gyroscopic term): the crossing, to
+        // the root search's 1e-13 and the eigenvalue's bound (~1e-12 of it).
+        CHECK(*r.quantities[3] == Approx(std::sqrt(5e3 / 2.0) * std::sqrt(1.0 - zeta * zeta)).epsilon(1e-9));
+        // The value the critical speed study gives the design's scene.
+        StudyOptions so = study_options(s.loader({{"model.c_e", r.parameters[0]}}));
+        so.speeds = SpeedRange{0.0, s.op_to * 1.05, c.count}.points();
+        const auto cs = critical_speed_study(s.loader({{"model.c_e", r.parameters[0]}}).system, so).critical;
+        double top = 0.0;
+        for (const auto& x : cs) top = std::max(top, x.amplification);
+        CHECK(*r.quantities[2] == top);
+        if (zeta < 0.01) {
+            CHECK(r.verdict == Verdict::Fail);
+            CHECK(r.failed == std::vector<std::string>{"amplification"});
+            CHECK(r.reason.find("amplification: critical speed") != std::string::npos);
+            CHECK(r.reason.find("allowed at most 20") != std::string::npos);
+        } else {
+            CHECK(r.verdict == Verdict::Pass);
+        }
+    }
+}
+
+TEST_CASE("max_amplification_factor in a sweep file: read, and refused below 1", "[screening][separation]") {
+    TempDir d;
+    const std::string head = "scene = \"" + (fs::path(GYROKIT_DATA_DIR) / "three_disk_rotor.toml").string() +
+                             "\"\n[[parameter]]\nname = \"model.bearing[0].kxx\"\nvalues = [1e7]\n"
+                             "[operating]\nfrom = 3000\nto = 5000\n[criteria.separation]\n";
+    CHECK(read_sweep(d.file("ok.toml", head + "max_amplification_factor = 8\n")).criteria.separation->max_amplification ==
+          8.0);
+    CHECK_FALSE(read_sweep(d.file("none.toml", head)).criteria.separation->max_amplification);
+    CHECK_THROWS_WITH(read_sweep(d.file("bad.toml", head + "max_amplification_factor = 0.5\n")),
+                      Catch::Contains("max_amplification_factor") && Catch::Contains("> 1"));
+}

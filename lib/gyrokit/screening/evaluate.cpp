@@ -38,6 +38,31 @@ double separation_margin(double wc, double from, double to) {
     return -100.0 * std::min((wc - from) / from, (to - wc) / to);
 }
 
+// max_amplification_factor: the largest amplification factor among the critical speeds
+// of the scan (those the separation criterion counts: its whirl), and its speed.
+void check_amplification(const Sweep& s, const SeparationCriterion& c, const std::vector<CriticalSpeed>& cs,
+                         std::size_t& q, DesignResult& r) {
+    const CriticalSpeed* top = nullptr;
+    for (const auto& x : cs) {
+        if (c.forward_only && x.mode.whirl != Whirl::Forward) continue;
+        if (!top || x.amplification > top->amplification) top = &x;
+    }
+    if (top) {
+        r.quantities[q] = top->amplification;
+        r.quantities[q + 1] = top->speed * s.unit.factor;
+        if (top->amplification > *c.max_amplification) {
+            r.failed.push_back("amplification");
+            r.reason += fmt::format("{}amplification: critical speed {:.6g} {} ({}x, {} whirl, branch {}) has AF {:.3g} "
+                                    "({}), allowed at most {:.3g}",
+                                    r.reason.empty() ? "" : "; ", top->speed * s.unit.factor, s.unit.name, top->harmonic,
+                                    to_string(top->mode.whirl), top->branch, top->amplification,
+                                    to_string(top->amplification_method),
+                                    *c.max_amplification);
+        }
+    }
+    q += 2;
+}
+
 void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion& c, std::size_t& q,
                       DesignResult& r) {
     const double w_scan = s.op_to * (1.0 + c.margin_percent / 100.0) * 1.05;
@@ -46,7 +71,7 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
     StudyOptions so = study_options(sc);
     so.speeds = SpeedRange{0.0, w_scan, c.count}.points();
     so.harmonics = c.harmonics;
-    so.amplification_factors = c.api684;   // only the API 684 rule reads them
+    so.amplification_factors = c.api684 || c.max_amplification.has_value();   // only these read them
     const std::vector<CriticalSpeed> cs = critical_speed_study(sc.system, so).critical;
     // The critical speed with the least margin to spare (its margin less the one it needs).
     const CriticalSpeed* worst = nullptr;
@@ -73,6 +98,7 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
         }
     }
     q += c.api684 ? 4 : 2;
+    if (c.max_amplification) check_amplification(s, c, cs, q, r);
 }
 
 // The least damped oscillating mode in range of a diagram: the smallest logarithmic
@@ -355,6 +381,8 @@ std::vector<std::string> quantity_columns(const Sweep& s) {
     if (s.criteria.separation) c.insert(c.end(), {s.unit.column("critical_speed"), "separation_percent"});
     if (s.criteria.separation && s.criteria.separation->api684)
         c.insert(c.end(), {"required_separation_percent", "amplification_factor"});
+    if (s.criteria.separation && s.criteria.separation->max_amplification)
+        c.insert(c.end(), {"max_amplification_factor", s.unit.column("max_amplification_speed")});
     if (s.criteria.stability) c.push_back(s.unit.column("instability_onset"));
     if (s.criteria.stability && s.criteria.stability->min_log_dec)
         c.insert(c.end(), {"min_log_dec", s.unit.column("min_log_dec_speed")});

@@ -41,6 +41,9 @@ struct SeparationCriterion {
     // rule "api684": each critical speed's margin from its amplification factor
     // (api684_required_margin; none below AF 2.5) instead of margin_percent.
     bool api684 = false;
+    // A limit on the amplification factor of every critical speed of the scan (a run-up
+    // passes through those below the range too); none: the factors only rule the margins.
+    std::optional<double> max_amplification;
 };
 
 // No mode with Re(lambda) > 0 from speed 0 up to `up_to`; with `min_log_dec`, also

@@ -155,7 +155,7 @@ void read_operating(const toml::table& root, const std::string& path, Sweep& s) 
 
 // [criteria.separation]: the margin of critical speeds from the operating range.
 SeparationCriterion read_separation(const TomlKeys& c) {
-    c.only({"margin_percent", "rule", "whirl", "harmonics", "count"});
+    c.only({"margin_percent", "rule", "whirl", "harmonics", "count", "max_amplification_factor"});
     SeparationCriterion sc;
     sc.api684 = c.choice("rule", "margin", {"margin", "api684"}) == "api684";
     if (sc.api684 && c.has("margin_percent"))
@@ -172,6 +172,9 @@ SeparationCriterion read_separation(const TomlKeys& c) {
         if (sc.harmonics.empty()) throw InputError(c.where("harmonics") + " is empty; allowed: e.g. [1]");
     }
     sc.count = static_cast<int>(c.integer("count", 121, 3, 100000));
+    if (c.has("max_amplification_factor"))
+        sc.max_amplification = c.number("max_amplification_factor", std::nullopt, 1.0, true,
+                                        "dimensionless; API 684 calls a peak below 2.5 critically damped");
     return sc;
 }
 
