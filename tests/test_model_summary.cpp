@@ -107,3 +107,29 @@ k = 2e7
     for (std::size_t i = 0; i < t.rows(); ++i)
         if (std::get<std::string>(t.row(i)[0]) == "shaft_outer_diameter_min") CHECK(std::get<std::string>(t.row(i)[2]) == "mm");
 }
+
+TEST_CASE("model summary names the shaft's own damping as the scene gives it", "[model]") {
+    const std::string rotor = R"(
+[model]
+type = "fe_rotor"
+material = "steel"
+%s
+[[model.shaft]]
+length = 1.0
+elements = 4
+outer_diameter = 0.05
+[[model.support]]
+z = 0
+[[model.support]]
+z = 1.0
+)";
+    const auto with = [&](const std::string& keys) {
+        std::string text = rotor;
+        text.replace(text.find("%s"), 2, keys);
+        return model_summary(parse_scene(text, "shaft damping"));
+    };
+    const Table p = with("damping_alpha = 2.0\ndamping_beta = 1e-5");
+    CHECK(std::get<double>(value(p, "shaft_damping_alpha")) == 2.0);
+    CHECK(std::get<double>(value(p, "shaft_damping_beta")) == 1e-5);
+    CHECK(std::get<std::string>(value(with("damping_zeta = [0.01, 0.02]"), "shaft_damping_zeta")) == "0.01, 0.02");
+}

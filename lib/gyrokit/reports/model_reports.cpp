@@ -161,6 +161,16 @@ Table model_summary(const Scene& sc) {
     std::string damping;
     for (const auto& n : s.damping_names()) damping += (damping.empty() ? "" : ", ") + n;
     add("damping", damping.empty() ? std::string("none") : damping);
+    if (sc.rotor_model) {   // the shaft's own damping as the scene gives it
+        const ShaftDamping& d = sc.rotor_model->shaft_damping;
+        if (d.alpha > 0.0) add("shaft_damping_alpha", d.alpha, "1/s");
+        if (d.beta > 0.0) add("shaft_damping_beta", d.beta, "s");
+        if (!d.modal.empty()) {
+            std::string z;
+            for (const double v : d.modal) z += (z.empty() ? "" : ", ") + fmt::format("{:g}", v);
+            add("shaft_damping_zeta", z);
+        }
+    }
     add("bearing_tables", ll(static_cast<int>(s.bearings.size())));
     add("unbalance", std::string(s.unbalance.size() > 0 && s.unbalance.norm() > 0 ? "yes" : "no"));
     if (s.size() <= kAutoSparseDofs) {
