@@ -18,6 +18,7 @@
 #include <functional>
 #include <map>
 #include <set>
+#include <sstream>
 #include <toml++/toml.h>
 
 namespace gyrokit {
@@ -248,6 +249,27 @@ void apply_overrides(toml::table& root, const std::string& path, const std::map<
 
 namespace {
 
+// The document with every string that names a file relative to `dir` (a matrix, a
+// table) made absolute: the same scene wherever its text is written.
+std::string portable_document(toml::table root, const fs::path& dir) {
+    const std::function<void(toml::node&)> walk = [&](toml::node& n) {
+        if (auto* t = n.as_table()) {
+            for (auto&& [k, v] : *t) walk(v);
+        } else if (auto* a = n.as_array()) {
+            for (auto& v : *a) walk(v);
+        } else if (auto* s = n.as_string()) {
+            const fs::path p(s->get());
+            std::error_code ec;
+            if (!s->get().empty() && p.is_relative() && fs::is_regular_file(dir / p, ec))
+                *s = fs::absolute(dir / p, ec).lexically_normal().string();
+        }
+    };
+    walk(root);
+    std::ostringstream out;
+    out << root << "\n";
+    return out.str();
+}
+
 // A parsed scene document: `path` names it in messages, `dir` resolves its relative files.
 Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
                  const std::map<std::string, double>& overrides, const std::string& fe_motion = "") {
@@ -279,6 +301,7 @@ Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
     if (sc.model_type.empty()) throw InputError(mk.where("type") + " is missing; allowed: " + types);
     model_readers().at(sc.model_type)(mk, dir, sc);
     sc.system.validate(path);
+    if (!sc.rotor_model) sc.document = portable_document(root, dir);
 
     if (const toml::table* sp = root.get_as<toml::table>("speeds")) {
         TomlKeys k(path, "speeds", *sp);

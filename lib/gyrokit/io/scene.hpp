@@ -30,6 +30,9 @@ struct Scene {
     std::optional<FluidRotorParameters> fluid;   // set for [model] type = "fluid_rotor"
     std::optional<RotorModel> rotor_model;   // set for [model] type = "fe_rotor": the rotor as described
     std::optional<FeRotor> fe_rotor;   // and its mesh (speed-dependent bearings in system)
+    // The document of any other model as read, overrides applied and relative file names
+    // made absolute, so that scene_text can write it back from anywhere.
+    std::string document;
 
     int dofs() const { return system.size(); }
     // The unit the scene states lengths in (an FE rotor's length_unit; else metres).

@@ -225,9 +225,10 @@ Scene rotor_scene(const RotorModel& model, const std::string& title) {
 }
 
 std::string scene_text(const Scene& sc) {
+    if (!sc.rotor_model && !sc.document.empty()) return sc.document;   // read from a document: as read
     if (!sc.rotor_model)
         throw InputError(fmt::format("{}: a [model] of type {} cannot be written; allowed: an fe_rotor model "
-                                     "(read from a scene or built as a RotorModel); keep other scenes' files",
+                                     "(read from a scene or built as a RotorModel), or any model read from a scene",
                                      sc.path, sc.model_type.empty() ? "(none)" : sc.model_type));
     const RotorModel& m = *sc.rotor_model;
     Writer w;

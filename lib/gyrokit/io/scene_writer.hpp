@@ -19,8 +19,11 @@ Scene rotor_scene(const RotorModel& model, const std::string& title = "");
 // rad/s, so the matrices are equal bit for bit; angles (unbalance phase, load angle)
 // are written in degrees, as the format has them, and come back within 1 ulp. A
 // bearing table read from a file is referred to by its absolute path.
-// InputError for what the format cannot say: a scene that is not an fe_rotor built
-// from a RotorModel, a support holding another set of DOFs than pinned or clamped.
+// Any other model read from a document (a file, a text, Python's gyrostat(...)) is
+// written as read: its document with overrides applied and file names absolute.
+// InputError for what the format cannot say: a scene assembled in code that is not
+// an fe_rotor built from a RotorModel, a support holding another set of DOFs than
+// pinned or clamped.
 std::string scene_text(const Scene& scene);
 
 // scene_text written to `path` (replaced whole: written to a temporary file beside
