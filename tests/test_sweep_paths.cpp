@@ -3,6 +3,7 @@
 // swept value changes exactly the element it names, as a hand-edited scene does.
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/scene.hpp>
+#include <gyrokit/io/scene_writer.hpp>
 #include <gyrokit/screening/screening.hpp>
 #include <gyrokit/screening/sweep.hpp>
 #include <gyrokit/study/rotor_study.hpp>
@@ -170,4 +171,22 @@ TEST_CASE("screening with rule api684 judges each critical speed by the margin i
     CHECK(*r.quantities[2] == Approx(above ? std::min(10.0 + 17.0 * (1.0 - 1.0 / (af - 1.5)), 26.0)
                                            : std::min(17.0 * (1.0 - 1.0 / (af - 1.5)), 16.0)));
     CHECK_THAT(r.reason, Catch::Contains("AF ") && Catch::Contains("lies inside the operating range"));
+}
+
+TEST_CASE("a sweep on a scene built in code (its written text) judges as the sweep on the scene file") {
+    // The three-disk rotor as a RotorModel read from its file and written back: the sweep file
+    // names no scene, read_sweep takes the text, and every design's row equals the file's.
+    const std::string sweep_file = std::string(GYROKIT_DATA_DIR) + "/screen_three_disk.toml";
+    const Scene built = rotor_scene(*load_scene(kScene).rotor_model);
+    const Sweep by_file = read_sweep(sweep_file);
+    const Sweep by_text = read_sweep(sweep_file, scene_text(built), "three-disk rotor built in code");
+    for (const std::size_t i : {std::size_t{0}, std::size_t{8}}) {
+        INFO("design " << i);
+        const DesignResult a = evaluate_design(by_file, i), b = evaluate_design(by_text, i);
+        CHECK(b.verdict == a.verdict);
+        CHECK(b.failed == a.failed);
+        CHECK(b.reason == a.reason);
+        REQUIRE(b.quantities.size() == a.quantities.size());
+        for (std::size_t q = 0; q < a.quantities.size(); ++q) CHECK(b.quantities[q] == a.quantities[q]);
+    }
 }
