@@ -6,6 +6,9 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include <array>
+#include <utility>
+
 namespace gyrokit {
 
 using detail::ll;
@@ -94,41 +97,43 @@ std::vector<Table> static_tables(const StaticResult& s, const LengthUnit& length
             static_section_table(s, length)};
 }
 
+namespace {
+
+// A panel of one quantity in the two planes along the shaft: `of(item)` gives the x and
+// y plane values of each node or element end.
+template <class Item, class Of>
+Panel two_planes(const std::vector<Item>& items, const LengthUnit& length, const std::string& ylabel,
+                 const std::string& title, const std::array<std::string, 2>& names, const std::string& style,
+                 const Of& of) {
+    Panel p{"z [" + length.name + "]", ylabel, title, false, {}, {}, {}, {}, {}, false};
+    Series x{{}, {}, names[0], style, "#1f77b4"}, y{{}, {}, names[1], style, "#d62728"};
+    for (const Item& i : items) {
+        const std::pair<double, double> v = of(i);
+        x.x.push_back(length.in_unit(i.z)), x.y.push_back(v.first);
+        y.x.push_back(length.in_unit(i.z)), y.y.push_back(v.second);
+    }
+    p.series = {x, y};
+    return p;
+}
+
+}  // namespace
+
 Figure static_figure(const StaticResult& s, const std::string& title, const LengthUnit& length) {
-    const std::string zlabel = "z [" + length.name + "]";
     Figure f;
     f.title = title.empty() ? "static deflection" : title;
-    Panel deflection{zlabel, "deflection [um]", "deflection at the nodes", false, {}, {}, {}, {}, {}, false};
-    Series x{{}, {}, "x", "linespoints", "#1f77b4"}, y{{}, {}, "y", "linespoints", "#d62728"};
-    for (const StaticNode& n : s.nodes) {
-        x.x.push_back(length.in_unit(n.z)), x.y.push_back(n.x * 1e6);
-        y.x.push_back(length.in_unit(n.z)), y.y.push_back(n.y * 1e6);
-    }
+    Panel deflection = two_planes(s.nodes, length, "deflection [um]", "deflection at the nodes", {"x", "y"},
+                                  "linespoints", [](const StaticNode& n) { return std::pair(n.x * 1e6, n.y * 1e6); });
     Series held{{}, {}, "reactions", "points", "#000000"};
     for (const StaticReaction& r : s.reactions) held.x.push_back(length.in_unit(r.z)), held.y.push_back(0.0);
-    deflection.series = {x, y, held};
-    Panel slope{zlabel, "slope [mrad]", "slope (dx/dz, dy/dz)", false, {}, {}, {}, {}, {}, false};
-    Series sx{{}, {}, "dx/dz", "linespoints", "#1f77b4"}, sy{{}, {}, "dy/dz", "linespoints", "#d62728"};
-    for (const StaticNode& n : s.nodes) {
-        sx.x.push_back(length.in_unit(n.z)), sx.y.push_back(n.slope_x * 1e3);
-        sy.x.push_back(length.in_unit(n.z)), sy.y.push_back(n.slope_y * 1e3);
-    }
-    slope.series = {sx, sy};
-    Panel shear{zlabel, "shear force [N]", "shear force (V = dM/dz)", false, {}, {}, {}, {}, {}, false};
-    Series vx{{}, {}, "horizontal (x)", "lines", "#1f77b4"}, vy{{}, {}, "vertical (y)", "lines", "#d62728"};
-    for (const StaticSection& c : s.sections) {
-        vx.x.push_back(length.in_unit(c.z)), vx.y.push_back(c.shear_x);
-        vy.x.push_back(length.in_unit(c.z)), vy.y.push_back(c.shear_y);
-    }
-    shear.series = {vx, vy};
-    Panel moment{zlabel, "bending moment [N m]", "bending moment (E I x'', E I y'')", false, {}, {}, {}, {}, {}, false};
-    Series mx{{}, {}, "horizontal (x)", "lines", "#1f77b4"}, my{{}, {}, "vertical (y)", "lines", "#d62728"};
-    for (const StaticSection& c : s.sections) {
-        mx.x.push_back(length.in_unit(c.z)), mx.y.push_back(c.moment_x);
-        my.x.push_back(length.in_unit(c.z)), my.y.push_back(c.moment_y);
-    }
-    moment.series = {mx, my};
-    f.panels = {deflection, slope, shear, moment};
+    deflection.series.push_back(held);
+    const std::array<std::string, 2> planes{"horizontal (x)", "vertical (y)"};
+    f.panels = {deflection,
+                two_planes(s.nodes, length, "slope [mrad]", "slope (dx/dz, dy/dz)", {"dx/dz", "dy/dz"}, "linespoints",
+                           [](const StaticNode& n) { return std::pair(n.slope_x * 1e3, n.slope_y * 1e3); }),
+                two_planes(s.sections, length, "shear force [N]", "shear force (V = dM/dz)", planes, "lines",
+                           [](const StaticSection& c) { return std::pair(c.shear_x, c.shear_y); }),
+                two_planes(s.sections, length, "bending moment [N m]", "bending moment (E I x'', E I y'')", planes,
+                           "lines", [](const StaticSection& c) { return std::pair(c.moment_x, c.moment_y); })};
     return f;
 }
 
