@@ -249,8 +249,8 @@ void apply_overrides(toml::table& root, const std::string& path, const std::map<
 
 namespace {
 
-// The document with every string that names a file relative to `dir` (a matrix, a
-// table) made absolute: the same scene wherever its text is written.
+// The document with every string of its [model] that names a file relative to `dir`
+// (a matrix, a table) made absolute: the same scene wherever its text is written.
 std::string portable_document(toml::table root, const fs::path& dir) {
     const std::function<void(toml::node&)> walk = [&](toml::node& n) {
         if (auto* t = n.as_table()) {
@@ -264,7 +264,7 @@ std::string portable_document(toml::table root, const fs::path& dir) {
                 *s = fs::absolute(dir / p, ec).lexically_normal().string();
         }
     };
-    walk(root);
+    if (toml::node* model = root.get("model")) walk(*model);
     std::ostringstream out;
     out << root << "\n";
     return out.str();
