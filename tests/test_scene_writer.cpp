@@ -230,3 +230,19 @@ TEST_CASE("scenes of other models are written as read: overrides applied, file n
         CHECK(b.modes == a.modes);
     }
 }
+
+TEST_CASE("a scene document keeps strings that only happen to name a file: type, DOF names", "[scene]") {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / ("gyrokit_document_" + std::to_string(std::rand()));
+    fs::create_directories(dir);
+    for (const char* f : {"M.mtx", "K.mtx", "C.mtx", "G.mtx", "u.mtx", "scene.toml"})
+        fs::copy_file(data(std::string("ross_rotor_example/") + f), dir / f);
+    std::ofstream(dir / "matrices") << "";   // files named like the model type and a DOF
+    std::ofstream(dir / "x0") << "";
+    const Scene a = load_scene((dir / "scene.toml").string());
+    const Scene b = parse_scene(scene_text(a), "written", "/");
+    CHECK(b.model_type == "matrices");
+    CHECK(b.system.dof_names == a.system.dof_names);
+    CHECK(Eigen::MatrixXd(SparseMatrix(b.system.K)) == Eigen::MatrixXd(SparseMatrix(a.system.K)));
+    fs::remove_all(dir);
+}

@@ -455,6 +455,22 @@ TEST_CASE("amplification factor limit: the largest AF of the scan, 1/(2 zeta) fo
             CHECK(r.verdict == Verdict::Pass);
         }
     }
+    // Undamped: AF = inf, a failing design (not an error), inf in its column; the summary counts it.
+    Sweep undamped = s;
+    undamped.parameters[0].values = {0.0};
+    finalize_sweep(undamped);
+    const DesignResult u = evaluate_design(undamped, 0);
+    INFO(u.reason);
+    CHECK(u.verdict == Verdict::Fail);
+    CHECK(u.failed == std::vector<std::string>{"amplification"});
+    REQUIRE(u.quantities[2]);
+    CHECK(std::isinf(*u.quantities[2]));
+    const RunResult run = run_screening(undamped, RunOptions{});
+    const Table t = summary_table(undamped, run.rows);
+    bool counted = false;
+    for (std::size_t i = 0; i < t.rows(); ++i)
+        if (std::get<std::string>(t.row(i)[0]) == "failing amplification") counted = std::get<long long>(t.row(i)[1]) == 1;
+    CHECK(counted);
 }
 
 TEST_CASE("max_amplification_factor in a sweep file: read, and refused below 1", "[screening][separation]") {

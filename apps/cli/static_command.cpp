@@ -58,7 +58,7 @@ std::vector<Command> add_static_commands(CLI::App& app) {
     cmd->add_option("--load", o->loads, "a point load NODE:FX:FY[:MX:MY] (N, N m); repeat for more");
     cmd->add_option("--table", o->table, "one table: static, deflection, internal_forces or reactions (a CSV holds one; "
                                          "default: the deflection)");
-    cmd->add_option("--plot", o->common.plot, "draw deflection and bending moment along the shaft into FILE.svg|.png");
+    cmd->add_option("--plot", o->common.plot, "draw deflection, slope, shear force and bending moment along the shaft into FILE.svg|.png");
     add_motion_option(cmd, o->common);
     return {{cmd, [o](std::ostream& out) {
                  const TableFormat format = parse_format(o->common);

@@ -249,22 +249,22 @@ void apply_overrides(toml::table& root, const std::string& path, const std::map<
 
 namespace {
 
-// The document with every string of its [model] that names a file relative to `dir`
-// (a matrix, a table) made absolute: the same scene wherever its text is written.
+// The document with the file names of its [model] (a matrices model's M, K, D, G, N,
+// unbalance and bearing tables; the other models name no files) made absolute: the
+// same scene wherever its text is written. Only these keys: any other string (a type,
+// a DOF name) stays as written even where a file of that name happens to exist.
 std::string portable_document(toml::table root, const fs::path& dir) {
-    const std::function<void(toml::node&)> walk = [&](toml::node& n) {
-        if (auto* t = n.as_table()) {
-            for (auto&& [k, v] : *t) walk(v);
-        } else if (auto* a = n.as_array()) {
-            for (auto& v : *a) walk(v);
-        } else if (auto* s = n.as_string()) {
-            const fs::path p(s->get());
-            std::error_code ec;
-            if (!s->get().empty() && p.is_relative() && fs::is_regular_file(dir / p, ec))
-                *s = fs::absolute(dir / p, ec).lexically_normal().string();
-        }
+    const auto absolute = [&](toml::node* n) {
+        if (auto* s = n ? n->as_string() : nullptr; s && !s->get().empty() && fs::path(s->get()).is_relative())
+            *s = (fs::absolute(dir) / s->get()).lexically_normal().string();
     };
-    if (toml::node* model = root.get("model")) walk(*model);
+    toml::table* model = root.get_as<toml::table>("model");
+    const auto* type = model ? model->get_as<std::string>("type") : nullptr;
+    if (type && type->get() == "matrices") {
+        for (const char* key : {"M", "K", "D", "G", "N", "unbalance"}) absolute(model->get(key));
+        if (toml::array* tables = model->get_as<toml::array>("bearings"))
+            for (auto& t : *tables) absolute(&t);
+    }
     std::ostringstream out;
     out << root << "\n";
     return out.str();

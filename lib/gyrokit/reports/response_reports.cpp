@@ -132,7 +132,9 @@ std::string symbol_of(const std::string& axis) { return axis == "frequency" ? "H
 double engineering_scale(const Panel& p) {
     double top = 0.0;
     for (const Series& s : p.series)
-        for (std::size_t i = 0; i < s.x.size(); ++i) top = std::max({top, std::abs(s.x[i]), std::abs(s.y[i])});
+        for (std::size_t i = 0; i < s.x.size(); ++i)   // an undamped resonance's point (inf) does not set the scale
+            for (const double v : {s.x[i], s.y[i]})
+                if (std::isfinite(v)) top = std::max(top, std::abs(v));
     if (!(top > 0.0) || !std::isfinite(top)) return 1.0;
     return std::pow(10.0, 3.0 * std::floor(std::log10(top) / 3.0));
 }

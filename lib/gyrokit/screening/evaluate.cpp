@@ -154,15 +154,15 @@ struct GrowingAbove {
 // The modes above the band need no tracking for a verdict: the full spectrum at a speed
 // says whether any of them grows, whatever their order (tracking them through their
 // crossings would insert thousands of speeds on a mesh's highest modes).
-GrowingAbove growing_above_band(const GyroscopicSystem& sys, const std::vector<double>& speeds, double band,
-                                double before) {
-    SpectrumSolver solve = dense_solver(sys).make();
+GrowingAbove growing_above_band(const GyroscopicSystem& sys, const EigenOptions& eig,
+                                const std::vector<double>& speeds, double band, double before) {
+    SpectrumSolver solve = dense_solver(sys, eig).make();
     GrowingAbove out;
     const auto grows = [&](double w) {
         const QuadraticSpectrum sp = solve(w);
         for (const Mode& m : sp.modes)
             if (!within_band(m, band, sp.real_tol) && m.stability() == Stability::Unstable) {
-                out.frequency = std::abs(m.lambda.imag()) > sp.real_tol ? m.lambda.imag() : std::abs(m.lambda);
+                out.frequency = std::abs(m.lambda.imag()) > sp.real_tol ? m.lambda.imag() : 0.0;   // 0: diverges
                 return true;
             }
         return false;
@@ -217,14 +217,17 @@ void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& 
             break;
         }
     }
-    const GrowingAbove above = scan_above ? growing_above_band(sc.system, so.speeds, band, onset) : GrowingAbove{};
+    const GrowingAbove above = scan_above ? growing_above_band(sc.system, so.solver.eig, so.speeds, band, onset) : GrowingAbove{};
     if (above.speed < onset) {
         r.quantities[q] = above.speed * s.unit.factor;
         r.failed.push_back("stability");
-        r.reason += fmt::format("{}stability: a mode above the range ({:.6g} {} at the onset) is unstable from {:.6g} "
-                                "{} (checked up to {:.6g} {})",
-                                r.reason.empty() ? "" : "; ", above.frequency * s.unit.factor, s.unit.name,
-                                above.speed * s.unit.factor, s.unit.name, c.up_to * s.unit.factor, s.unit.name);
+        const std::string what = above.frequency > 0.0
+                                     ? fmt::format("a mode above the range ({:.6g} {} at the onset)",
+                                                   above.frequency * s.unit.factor, s.unit.name)
+                                     : std::string("a real eigenvalue above the range (divergence)");
+        r.reason += fmt::format("{}stability: {} is unstable from {:.6g} {} (checked up to {:.6g} {})",
+                                r.reason.empty() ? "" : "; ", what, above.speed * s.unit.factor, s.unit.name,
+                                c.up_to * s.unit.factor, s.unit.name);
     } else if (which) {
         r.quantities[q] = onset * s.unit.factor;
         r.failed.push_back("stability");
@@ -433,7 +436,8 @@ DesignResult evaluate_design(const Sweep& s, std::size_t i) {
         // undamped mode; anything else non-finite is a failure.
         for (std::size_t k = 0; k < qc.size(); ++k)
             if (r.quantities[k] && !std::isfinite(*r.quantities[k]) &&
-                !((qc[k] == "max_amplitude" || qc[k] == "amplification_factor") && *r.quantities[k] > 0.0))
+                !((qc[k] == "max_amplitude" || qc[k] == "amplification_factor" || qc[k] == "max_amplification_factor") &&
+                  *r.quantities[k] > 0.0))
                 throw SolverError(qc[k] + " is not finite");
     } catch (const Interrupted&) {
         throw;

@@ -122,7 +122,7 @@ Table summary_table(const Sweep& s, const std::vector<ResultRow>& rows) {
     const std::size_t nc = result_columns(s).size();
     std::map<std::string, long long> verdicts{{"pass", 0}, {"fail", 0}, {"error", 0}};
     std::map<std::string, long long> failing;
-    for (const auto& q : {"separation", "stability", "pervasive", "response"}) failing[q] = 0;
+    for (const auto& q : {"separation", "amplification", "stability", "pervasive", "response"}) failing[q] = 0;
     for (const auto& r : rows) {
         ++verdicts[r.cells[nc - 3]];
         std::size_t start = 0;
@@ -140,6 +140,7 @@ Table summary_table(const Sweep& s, const std::vector<ResultRow>& rows) {
     for (const auto& v : {"pass", "fail", "error"}) t.add_row({std::string(v), verdicts[v]});
     const Criteria& c = s.criteria;
     const std::vector<std::pair<std::string, bool>> used{{"separation", c.separation.has_value()},
+                                                         {"amplification", c.separation && c.separation->max_amplification},
                                                          {"stability", c.stability.has_value()},
                                                          {"pervasive", c.pervasive.has_value()},
                                                          {"response", c.response.has_value()}};
