@@ -375,8 +375,9 @@ class ScreenResult(_Result):
         return ax
 
 
-def _screen_one(sweep, scene, names, values, index, number):
-    """One design of a study (module level, so that process pools and Dask workers can run it)."""
+def _screen_one(sweep, scene, names, values, index, number, attempt=0):
+    """One design of a study (module level, so that process pools and Dask workers can run it). `attempt`
+    only makes a retry a new task (Dask names a task by its arguments and would return the failed one)."""
     return _core.screen_design(sweep, scene, names, values, index, number)
 
 
@@ -385,38 +386,70 @@ def _one_design(values, i):
     return ([values[i]], 0) if values is not None else (None, i)
 
 
-def _screen_on(executor, sweep, scene, names, values, progress):
+def _screen_on(executor, sweep, scene, names, values, progress, retries):
     """The designs of a study on a concurrent.futures.Executor (a process pool, Dask's client.get_executor()):
-    the rows of the threaded run; a design whose task failed (a worker killed, a lost connection) is an error
-    row with the failure, never missing."""
+    the rows of the threaded run. A task that failed where it ran (a worker killed, a lost connection) is
+    submitted again, up to `retries` times; a design whose task still failed, or whose resubmission the
+    executor refused (a broken process pool), is an error row naming the failure, never missing."""
     plan = _core.screen_plan(sweep, scene, names, values)
     total = plan["designs"]
-    futures = [executor.submit(_screen_one, sweep, scene, names, *_one_design(values, i), i) for i in range(total)]
-    rows = []
-    for i, f in enumerate(futures):
+
+    def submit(i):
         try:
-            rows.append(list(f.result()))
-        except (KeyboardInterrupt, InputError):
-            for g in futures:
-                g.cancel()
-            raise
-        except Exception as e:   # the task, not the design, failed: say so in the design's row
-            reason = f"not evaluated: the executor's task failed ({type(e).__name__}: {e})".replace("\n", " ")
-            rows.append(list(_core.screen_error_row(sweep, scene, names, *_one_design(values, i), i, reason)))
-        if progress is not None:
-            progress(i + 1, total)
+            return executor.submit(_screen_one, sweep, scene, names, *_one_design(values, i), i, attempt=attempts[i])
+        except Exception as e:   # an executor that no longer takes tasks: the design's failure
+            return e
+
+    rows, failure, attempts = [None] * total, [None] * total, [0] * total
+    done = 0
+
+    def collect(pending):
+        nonlocal done
+        for i, f in pending.items():
+            attempts[i] += 1
+            try:
+                if isinstance(f, Exception):
+                    raise f
+                rows[i] = list(f.result())
+            except (KeyboardInterrupt, InputError):
+                for g in pending.values():
+                    if not isinstance(g, Exception):
+                        g.cancel()
+                raise
+            except Exception as e:   # the task, not the design, failed
+                failure[i] = e
+                continue
+            done += 1
+            if progress is not None:
+                progress(done, total)
+
+    collect({i: submit(i) for i in range(total)})
+    # Retries one design at a time: a design that kills its worker takes no other design with it.
+    for _ in range(retries):
+        for i in [i for i in range(total) if rows[i] is None]:
+            collect({i: submit(i)})
+    for i in range(total):
+        if rows[i] is None:
+            e = failure[i]
+            tries = "once" if attempts[i] == 1 else f"{attempts[i]} times"
+            reason = f"not evaluated: the executor's task failed {tries} ({type(e).__name__}: {e})".replace("\n", " ")
+            rows[i] = list(_core.screen_error_row(sweep, scene, names, *_one_design(values, i), i, reason))
+            done += 1
+            if progress is not None:
+                progress(done, total)
     return ScreenResult(dict(columns=plan["columns"], rows=rows, parameters=plan["parameters"],
                              quantities=plan["quantities"], labels=plan["labels"], unit=plan["unit"]))
 
 
-def screen(sweep, designs=None, *, scene=None, jobs=0, progress=None, executor=None) -> ScreenResult:
+def screen(sweep, designs=None, *, scene=None, jobs=0, progress=None, executor=None, retries=1) -> ScreenResult:
     """A design study: the criteria of the sweep file `sweep` on its own designs, or on `designs`, a list of
     dicts {parameter: value} (e.g. {"model.c_G": 400.0}). `scene` (a Scene, e.g. from rotor_scene) is the
     base scene in place of the sweep's `scene` key: its parameter paths address the scene it writes
     (Scene.to_toml()). Designs run on `jobs` threads (0 = all cores) with the interpreter released, or,
     with `executor` (any concurrent.futures.Executor: a process pool, a Dask cluster's
-    client.get_executor()), one task per design there, with the same rows; a task that fails gives its
-    design an error row. `progress(done, total)` is called after each design."""
+    client.get_executor()), one task per design there, with the same rows; a task that fails where it ran
+    is submitted again up to `retries` times (default 1), then gives its design an error row naming the
+    failure. `progress(done, total)` is called after each design."""
     if scene is not None and not isinstance(scene, Scene):
         raise InputError(f"scene: expected a gyrokit.Scene, got {type(scene).__name__}")
     base = None if scene is None else (scene.to_toml(), scene.path)
@@ -431,7 +464,9 @@ def screen(sweep, designs=None, *, scene=None, jobs=0, progress=None, executor=N
                 raise InputError(f"designs[{i}]: parameters {sorted(d)} differ from those of designs[0] {sorted(names)}")
         values = [[float(d[n]) for n in names] for d in designs]
     if executor is not None:
-        return _screen_on(executor, str(sweep), base, names, values, progress)
+        if isinstance(retries, bool) or not isinstance(retries, int) or retries < 0:
+            raise InputError(f"retries = {retries!r}: allowed: an integer >= 0")
+        return _screen_on(executor, str(sweep), base, names, values, progress, retries)
     return ScreenResult(_core.screen(str(sweep), base, names, values, int(jobs), progress))
 
 

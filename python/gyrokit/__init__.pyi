@@ -191,7 +191,7 @@ class ScreenResult:
 
 def screen(sweep: Union[str, PathLike[str]], designs: Optional[Sequence[Mapping[str, float]]] = ..., *,
            scene: Optional[Scene] = ..., jobs: int = ..., progress: Optional[Any] = ...,
-           executor: Optional[Any] = ...) -> ScreenResult: ...
+           executor: Optional[Any] = ..., retries: int = ...) -> ScreenResult: ...
 
 class PervasiveLosses(_Result):
     unit: str

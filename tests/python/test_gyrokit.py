@@ -618,25 +618,76 @@ class _KillsDesign:
     def __init__(self, pool, index):
         self.pool, self.index = pool, index
 
-    def submit(self, fn, *args):
+    def submit(self, fn, *args, **kwargs):
         if args[-1] == self.index:
             return self.pool.submit(os._exit, 9)
-        return self.pool.submit(fn, *args)
+        return self.pool.submit(fn, *args, **kwargs)
+
+
+def _same_or_reported(r, threaded):
+    """Every design is the threaded run's row or an error row naming the failed task; none is missing."""
+    assert len(r.verdict) == len(threaded.verdict)
+    np.testing.assert_array_equal(r.design, np.arange(len(threaded.verdict)))
+    for k in range(len(threaded.verdict)):
+        assert (r.verdict[k], r.reason[k]) == (threaded.verdict[k], threaded.reason[k]) or \
+            (r.verdict[k] == "error" and "task failed" in r.reason[k])
 
 
 def test_a_worker_killed_mid_run_leaves_its_designs_reported_not_lost():
+    # A process pool whose worker dies is broken: the retry is refused, the designs are error rows.
     from concurrent.futures import ProcessPoolExecutor
     sweep = scene("screen_centrifuge.toml")
     threaded = gk.screen(sweep, jobs=2)
     with ProcessPoolExecutor(max_workers=2) as pool:
         r = gk.screen(sweep, executor=_KillsDesign(pool, 5))
-    assert len(r.verdict) == len(threaded.verdict) == 24
-    np.testing.assert_array_equal(r.design, np.arange(24))
-    assert r.verdict[5] == "error" and "task failed" in r.reason[5]
-    # Every design is either the threaded run's row or an error row naming the failed task.
-    for k in range(24):
-        assert (r.verdict[k], r.reason[k]) == (threaded.verdict[k], threaded.reason[k]) or \
-            (r.verdict[k] == "error" and "task failed" in r.reason[k])
+    assert len(threaded.verdict) == 24
+    assert r.verdict[5] == "error" and "task failed 2 times" in r.reason[5]
+    assert "BrokenProcessPool" in r.reason[5]
+    _same_or_reported(r, threaded)
+    with ProcessPoolExecutor(max_workers=2) as pool:
+        with pytest.raises(gk.InputError, match="retries"):
+            gk.screen(sweep, executor=pool, retries=-1)
+
+
+def test_a_dask_worker_killed_mid_run_is_replaced_and_nothing_is_lost():
+    # A real worker process killed (SIGKILL) after the first design came back: Dask's nanny restarts
+    # it and the scheduler reruns its tasks (and the results it held): every row is the threaded one.
+    distributed = pytest.importorskip("distributed")
+    import signal
+    sweep = scene("screen_centrifuge.toml")
+    threaded = gk.screen(sweep, jobs=2)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        pids = list(client.run(os.getpid).values())
+        killed = []
+
+        def kill_one(done, total):
+            if not killed:
+                os.kill(pids[0], signal.SIGKILL)
+                killed.append(pids[0])
+        r = gk.screen(sweep, executor=client.get_executor(), progress=kill_one)
+        assert pids[0] not in client.run(os.getpid).values()
+    assert killed
+    assert r.verdict == threaded.verdict and r.reason == threaded.reason
+    for q in threaded.quantities:
+        np.testing.assert_array_equal(r.quantities[q], threaded.quantities[q])
+
+
+def test_a_design_that_kills_every_dask_worker_it_runs_on_is_reported():
+    # With no failures allowed per task, Dask gives up on the task that killed its worker (KilledWorker)
+    # and on the others that worker held; the retry reruns those on the restarted workers and reports
+    # design 5, which kills its worker each time, as an error row.
+    distributed = pytest.importorskip("distributed")
+    import dask
+    sweep = scene("screen_centrifuge.toml")
+    threaded = gk.screen(sweep, jobs=2)
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0}), \
+            distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        r = gk.screen(sweep, executor=_KillsDesign(client.get_executor(), 5), retries=2)
+    assert r.verdict[5] == "error" and "task failed 3 times" in r.reason[5] and "KilledWorker" in r.reason[5]
+    assert [k for k in range(24) if r.verdict[k] == "error"] == [5]
+    _same_or_reported(r, threaded)
 
 
 def test_screen_of_given_designs_on_an_executor_equals_the_threaded_run():
