@@ -4,6 +4,7 @@
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/analysis/workers.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/bearing_csv.hpp>
@@ -254,6 +255,39 @@ TEST_CASE("start-vector reuse gives the same modes", "[sparse]") {
             CHECK(gap <= allowed + 1e-14 * std::abs(m.lambda));
         }
     }
+}
+
+TEST_CASE("a sparse sweep continued along the branches gives the fresh window solves' modes within their bounds",
+          "[sparse][continuation]") {
+    // The window's modes from the first speed, continued speed to speed (inverse
+    // iteration on the band LU, verified two-sided), against ARPACK afresh at every
+    // speed with a wider window: each continued mode is one of the fresh ones within
+    // the sum of the two error bounds, and its own pair verifies.
+    const Scene sc = load_scene(data("fe_rotor.toml"));
+    const std::vector<double> speeds = SpeedRange{0.0, 3000.0, 31}.points();
+    SparseEigenOptions so;
+    so.modes = 4;
+    const auto walked = solve_speeds(sparse_solver(sc.system, so), speeds, Workers{2});
+    so.modes = 8;
+    const auto fresh = solve_speeds(sparse_solver(sc.system, so, false), speeds, Workers{2});
+    int continued = 0, compared = 0;
+    for (size_t k = 0; k < speeds.size(); ++k) {
+        CAPTURE(speeds[k], walked[k].method);
+        REQUIRE(walked[k].modes.size() == 4);
+        continued += walked[k].method == "continuation of the window (along the branches, verified)";
+        for (const Mode& m : walked[k].modes) {
+            CHECK(m.backward_error <= 1e-10);
+            double gap = INFINITY, allowed = 0.0;
+            for (const Mode& n : fresh[k].modes)
+                if (std::abs(m.lambda - n.lambda) < gap)
+                    gap = std::abs(m.lambda - n.lambda), allowed = m.error_bound + n.error_bound;
+            CHECK(gap <= allowed);
+            ++compared;
+        }
+    }
+    CHECK(compared == 4 * 31);
+    // Standstill (double eigenvalues: no slopes) and the step after it are full solves, the rest continued.
+    CHECK(continued >= 25);
 }
 
 TEST_CASE("sparse unbalance response equals the dense one", "[sparse][response]") {

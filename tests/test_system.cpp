@@ -150,8 +150,16 @@ TEST_CASE("spectra say which solver made them and what it took", "[system][statu
     CHECK(s.method == "ARPACK shift-invert");
     CHECK(s.iterations >= 1);
     CHECK(s.partial);
-    // Through a worker process the account arrives whole.
-    const auto viaprocess = solve_speeds(sparse_solver(g, so), {10.0, 20.0}, Workers{2, WorkerKind::Processes});
+    // Through a worker process the account arrives whole (speeds solved afresh: no
+    // continuation, so the speeds go to the workers).
+    const auto viaprocess =
+        solve_speeds(sparse_solver(g, so, false), {10.0, 20.0}, Workers{2, WorkerKind::Processes});
     CHECK(viaprocess[0].method == "ARPACK shift-invert");
     CHECK(viaprocess[1].iterations >= 1);
+    // A sweep continues the window's modes from speed to speed: the second speed says so.
+    const auto walked = solve_speeds(sparse_solver(g, so), {10.0, 20.0}, Workers{2, WorkerKind::Processes});
+    CHECK(walked[0].method == "ARPACK shift-invert");
+    CHECK(walked[1].method == "continuation of the window (along the branches, verified)");
+    CHECK(walked[1].iterations == 0);
+    CHECK(walked[1].partial);
 }

@@ -2,6 +2,7 @@
 
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>
+#include <gyrokit/core/parallel.hpp>
 
 #include <Eigen/SVD>
 #include <algorithm>
@@ -27,8 +28,8 @@ PencilAction action_of(const SparsePencil& p) { return sparse_pencil_action(p); 
 // Relative backward error of a left vector: |P(l)^H y| / ((|l|^2 |M| + |l| |C| + |K|) |y|).
 double left_backward_error(const SparsePencil& p, const PencilAction& a, cd l, const Eigen::VectorXcd& y) {
     const cd c = std::conj(l);
-    const Eigen::VectorXcd r = (c * c) * real_times(SparseMatrix(p.M.transpose()), y) +
-                               c * real_times(SparseMatrix(p.C.transpose()), y) + real_times(SparseMatrix(p.K.transpose()), y);
+    const Eigen::VectorXcd r = (c * c) * real_transpose_times(p.M, y) + c * real_transpose_times(p.C, y) +
+                               real_transpose_times(p.K, y);
     const double s = std::norm(l) * a.norm_M + std::abs(l) * a.norm_C + a.norm_K;
     return r.norm() / (s * y.norm());
 }
@@ -90,20 +91,42 @@ QuadraticSpectrum full_solve(const Shared& sh, double w, Solved* track = nullptr
     return keep_band(std::move(s), sh, w);
 }
 
+// What a continued solve needs of the model and the options: the continuation's
+// own (frame_of) or a window solver's (continue_window).
+struct Frame {
+    std::function<SparsePencil(double)> pencil;
+    const std::vector<std::pair<int, int>>* whirl_pairs = nullptr;
+    double tolerance = 1e-10;
+    double band = std::numeric_limits<double>::infinity();
+    bool keep_left = true;
+    double min_mac = 0.0;   // > 0: each corrected mode keeps at least this MAC with its shape before the step
+    int threads = 1;        // the modes of a step are corrected in parallel
+};
+
+Frame frame_of(const Shared& sh) {
+    Frame f;
+    const GyroscopicSystem* sys = sh.model.get();
+    f.pencil = [sys](double v) { return sys->sparse_at_speed(v); };
+    f.whirl_pairs = &sys->whirl_pairs;
+    f.tolerance = sh.opt.tolerance;
+    f.band = sh.opt.band;
+    f.keep_left = sh.opt.eig.left_vectors;
+    return f;
+}
+
 // The common end of the continued solves: whirl, rigid-body split, error bounds,
 // order and slopes of the verified pairs.
-QuadraticSpectrum finish(const Shared& sh, const SparsePencil& p, const PencilAction& action, QuadraticSpectrum out,
-                         std::vector<Mode> modes, double w) {
-    const GyroscopicSystem& sys = *sh.model;
-    for (Mode& m : modes) m.whirl = classify_whirl(m.lambda, m.right, sys.whirl_pairs, out.real_tol);
+QuadraticSpectrum finish(const Frame& fr, const SparsePencil& p, const PencilAction& action, QuadraticSpectrum out,
+                         std::vector<Mode> modes, double w, bool slopes = true) {
+    for (Mode& m : modes) m.whirl = classify_whirl(m.lambda, m.right, *fr.whirl_pairs, out.real_tol);
     split_rigid_body(modes, out.rigid_body, action, out.scale);
-    separate_double_whirl(modes, sys.whirl_pairs, out.real_tol, action);
+    separate_double_whirl(modes, *fr.whirl_pairs, out.real_tol, action);
     const Eigen::VectorXd t = sparse_dof_scaling(p, out.scale);
     const SparsePencil scaled{t.asDiagonal() * p.M * t.asDiagonal(), t.asDiagonal() * p.C * t.asDiagonal(),
                               t.asDiagonal() * p.K * t.asDiagonal()};
-    set_error_bounds(modes, action, action_of(scaled), t);
+    set_error_bounds(modes, action, action_of(scaled), t, fr.threads);
     sort_by_frequency(modes);
-    set_slopes(modes, [&](double v) { return sys.sparse_at_speed(v); }, w, out.scale);
+    if (slopes) set_slopes(modes, fr.pencil, w, out.scale, fr.threads);
     out.modes = std::move(modes);
     return out;
 }
@@ -149,10 +172,9 @@ bool lands_on_another(const std::vector<Mode>& modes, const Mode& m) {
 }
 
 // Step 1: every mode of `from` predicted along its slope and corrected at w.
-std::optional<QuadraticSpectrum> branch_solve(const Shared& sh, const Solved& from, double w, Solved& next) {
+std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& from, double w, Solved& next) {
     if (from.track.empty() || w == from.w) return std::nullopt;
-    const GyroscopicSystem& sys = *sh.model;
-    const SparsePencil p = sys.sparse_at_speed(w);
+    const SparsePencil p = fr.pencil(w);
     const PencilAction action = action_of(p);
     QuadraticSpectrum out = empty_spectrum(p, action, w);
     const double h = w - from.w;
@@ -171,33 +193,40 @@ std::optional<QuadraticSpectrum> branch_solve(const Shared& sh, const Solved& fr
         Eigen::VectorXcd Mx, Cx, Kx;
         action.apply(r.right, Mx, Cx, Kx);
         const double c_scale = (action.norm_C + out.scale * action.norm_M) * r.right.norm();
-        if (!(r.backward_error <= sh.opt.tolerance) || !(Cx.norm() <= sh.opt.tolerance * c_scale)) return std::nullopt;
+        if (!(r.backward_error <= fr.tolerance) || !(Cx.norm() <= fr.tolerance * c_scale)) return std::nullopt;
     }
+    // Each mode corrected on its own (in parallel), then the checks in order.
+    std::vector<Mode> fixed(from.track);
+    std::vector<char> ok(fixed.size(), 0);
+    for_each_index(fixed.size(), fr.threads, [&](size_t i) {
+        ok[i] = corrected(p, action, fixed[i], pred[i], fr.tolerance, out.scale, out.real_tol);
+    });
     std::vector<Mode> track;
-    for (size_t i = 0; i < from.track.size(); ++i) {
+    for (size_t i = 0; i < fixed.size(); ++i) {
         // The distance to the nearest other eigenvalue expected at w (the conjugate included).
         double gap = std::abs(pred[i].imag()) > out.real_tol ? 2.0 * std::abs(pred[i].imag())
                                                              : std::numeric_limits<double>::infinity();
         for (size_t j = 0; j < pred.size(); ++j)
             if (j != i) gap = std::min({gap, std::abs(pred[i] - pred[j]), std::abs(pred[i] - std::conj(pred[j]))});
         if (std::isfinite(from.beyond)) gap = std::min(gap, std::abs(from.beyond - std::abs(pred[i])));
-        Mode m = from.track[i];
-        if (!corrected(p, action, m, pred[i], sh.opt.tolerance, out.scale, out.real_tol)) return std::nullopt;
+        Mode& m = fixed[i];
+        if (!ok[i]) return std::nullopt;
         if (!(std::abs(m.lambda - pred[i]) <= 0.3 * gap) || lands_on_another(track, m)) return std::nullopt;
+        if (fr.min_mac > 0.0 && !(mac(m.right, from.track[i].right) >= fr.min_mac)) return std::nullopt;
         track.push_back(std::move(m));
     }
+    // Slopes of every tracked mode (the next step's predictions), the band's among them.
+    set_slopes(track, fr.pencil, w, out.scale, fr.threads);
     next.w = w;
     next.rigid = rigid;
     next.track = track;
     next.beyond = from.beyond;
     std::vector<Mode> modes;
     for (const Mode& m : track)
-        if (within_band(m, sh.opt.band, out.real_tol)) modes.push_back(m);
+        if (within_band(m, fr.band, out.real_tol)) modes.push_back(m);
     out.rigid_body = std::move(rigid);
-    out = finish(sh, p, action, std::move(out), std::move(modes), w);
-    // The modes beyond the band need slopes too, for the next step.
-    set_slopes(next.track, [&](double v) { return sys.sparse_at_speed(v); }, w, out.scale);
-    if (!sh.opt.eig.left_vectors)
+    out = finish(fr, p, action, std::move(out), std::move(modes), w, false);
+    if (!fr.keep_left)
         for (Mode& m : out.modes) m.left.resize(0);
     out.method = "continuation (along the branches, verified)";
     return out;
@@ -228,7 +257,7 @@ std::optional<QuadraticSpectrum> reduced_solve(const Shared& sh, double w) {
         if (!within_band(m, sh.opt.band, out.real_tol)) continue;
         modes.push_back(std::move(m));
     }
-    out = finish(sh, p, action, std::move(out), std::move(modes), w);
+    out = finish(frame_of(sh), p, action, std::move(out), std::move(modes), w);
     if (!sh.opt.eig.left_vectors)
         for (Mode& m : out.modes) m.left.resize(0);
     out.method = fmt::format("continuation (reduced basis of {} vectors, verified)", Q.cols());
@@ -269,7 +298,7 @@ QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w) {
     if (a != sh.anchor_tracks.begin()) consider(std::prev(a)->second);
     Solved next;
     if (from && sh.opt.along_branches)
-        if (std::optional<QuadraticSpectrum> s = branch_solve(sh, *from, w, next)) {
+        if (std::optional<QuadraticSpectrum> s = branch_solve(frame_of(sh), *from, w, next)) {
             state.last = std::move(next);
             return std::move(*s);
         }
@@ -397,6 +426,32 @@ std::optional<Mode> follow_mode(const std::function<SparsePencil(double)>& penci
     set_error_bounds(one, action, action_of(scaled), t);
     set_slopes(one, pencil, w, frame.scale);
     return std::move(one[0]);
+}
+
+std::optional<QuadraticSpectrum> continue_window(const std::function<SparsePencil(double)>& pencil,
+                                                 const std::vector<std::pair<int, int>>& whirl_pairs,
+                                                 const QuadraticSpectrum& from, double w, double tolerance,
+                                                 int threads) {
+    Frame fr;
+    fr.threads = threads;
+    fr.pencil = pencil;
+    fr.whirl_pairs = &whirl_pairs;
+    fr.tolerance = tolerance;
+    fr.min_mac = 0.9;
+    Solved start;
+    start.w = from.speed;
+    start.track = from.modes;
+    start.rigid = from.rigid_body;
+    for (const Mode& m : start.track)
+        if (m.left.size() != m.right.size()) return std::nullopt;
+    Solved next;
+    std::optional<QuadraticSpectrum> out = branch_solve(fr, start, w, next);
+    if (!out) return std::nullopt;
+    out->partial = from.partial;   // the window's modes, as the solve it continues
+    out->speed = w;
+    out->notes.clear();
+    out->method = "continuation of the window (along the branches, verified)";
+    return out;
 }
 
 }  // namespace gyrokit

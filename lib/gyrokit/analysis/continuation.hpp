@@ -76,6 +76,18 @@ std::optional<Mode> follow_mode(const std::function<SparsePencil(double)>& penci
                                 const std::vector<std::pair<int, int>>& whirl_pairs, const Mode& from, double w,
                                 std::complex<double> predicted, double reach, double tolerance = 1e-10);
 
+// Step 1 above alone, for window (sparse) solvers: the modes of `from`, a
+// verified spectrum at speed from.speed with left vectors and slopes, predicted
+// along their slopes and corrected at w, each kept if it verifies, stays within
+// 0.3 of its distance to the nearest other prediction and keeps MAC >= 0.9 with
+// its shape at from.speed (a mode outside the window cannot be seen, so the shape
+// tells a jump onto it). With left vectors and slopes; nothing if any mode fails.
+// The modes are corrected on `threads` threads (the same result on any number).
+std::optional<QuadraticSpectrum> continue_window(const std::function<SparsePencil(double)>& pencil,
+                                                 const std::vector<std::pair<int, int>>& whirl_pairs,
+                                                 const QuadraticSpectrum& from, double w, double tolerance = 1e-10,
+                                                 int threads = 1);
+
 // Whether a mode lies within the band: an oscillating one by its frequency, a
 // real (overdamped) one by its modulus.
 bool within_band(const Mode& m, double band, double real_tol);

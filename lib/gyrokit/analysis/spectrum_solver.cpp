@@ -3,6 +3,7 @@
 #include <gyrokit/analysis/continuation.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>
+#include <gyrokit/core/parallel.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -46,7 +47,7 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
 }
 
 void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(double)>& pencil, double w,
-                double scale) {
+                double scale, int threads) {
     using cd = std::complex<double>;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     if (modes.empty()) return;
@@ -57,23 +58,26 @@ void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(doubl
     const bool forward = w - h < 0.0;
     const SparsePencil p = pencil(w), hi = pencil(w + h), lo = pencil(forward ? w : w - h);
     const double span = forward ? h : 2.0 * h;
-    for (Mode& m : modes) {
+    // The differences once for all modes (the products below are per mode).
+    const SparseMatrix dM = hi.M - lo.M, dC = hi.C - lo.C, dK = hi.K - lo.K;
+    for_each_index(modes.size(), threads, [&](size_t i) {
+        Mode& m = modes[i];
         m.slope = {nan, 0.0};
-        if (m.left.size() != m.right.size() || m.right.size() == 0) continue;
+        if (m.left.size() != m.right.size() || m.right.size() == 0) return;
         // A double eigenvalue's vectors are any basis of its plane: no slope of its own.
         bool single = true;
         for (const Mode& o : modes)
             if (&o != &m && std::abs(o.lambda - m.lambda) <= 1e-6 * std::abs(m.lambda)) single = false;
-        if (!single) continue;
+        if (!single) return;
         const cd l = m.lambda;
         const Eigen::VectorXcd& x = m.right;
-        const Eigen::VectorXcd dPx = ((l * l) * ((hi.M - lo.M) * x) + l * ((hi.C - lo.C) * x) + (hi.K - lo.K) * x) / span;
-        const Eigen::VectorXcd dlPx = (2.0 * l) * (p.M * x) + p.C * x;
+        const Eigen::VectorXcd dPx = ((l * l) * real_times(dM, x) + l * real_times(dC, x) + real_times(dK, x)) / span;
+        const Eigen::VectorXcd dlPx = (2.0 * l) * real_times(p.M, x) + real_times(p.C, x);
         const cd den = m.left.dot(dlPx);   // y^H P'(lambda) x
-        if (std::abs(den) == 0.0) continue;
+        if (std::abs(den) == 0.0) return;
         m.slope = -m.left.dot(dPx) / den;
         if (!std::isfinite(m.slope.real()) || !std::isfinite(m.slope.imag())) m.slope = {nan, 0.0};
-    }
+    });
 }
 
 QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p) {
@@ -105,14 +109,28 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
                                                                   std::complex<double> predicted, double reach) {
         return follow_mode(pencil, whirl_pairs, from, w, predicted, reach, tol);
     };
-    f.make = [pencil, whirl_pairs, opt, reuse]() -> SpectrumSolver {
+    f.walk = [pencil, whirl_pairs, opt, reuse](int threads) -> SpectrumSolver {
         // The state vectors [lambda x; x] of the last speed's modes, summed: a
         // start vector rich in the wanted invariant subspace.
         auto start = std::make_shared<Eigen::VectorXcd>();
         // Rigid-body eigenvalues seen in the window at the last speed: asked for at once.
         auto rigid = std::make_shared<int>(0);
-        return [pencil, whirl_pairs, opt, reuse, start, rigid](double w) {
+        // The last speed's window with left vectors and slopes: the next speed continues its
+        // modes along their branches (a few factorizations each) where every one verifies.
+        auto last = std::make_shared<std::optional<QuadraticSpectrum>>();
+        return [pencil, whirl_pairs, opt, reuse, start, rigid, last, threads](double w) {
             throw_if_interrupted();
+            const auto keep = [&](QuadraticSpectrum q) {
+                *last = q;
+                if (!opt.left_vectors)
+                    for (Mode& m : q.modes) m.left.resize(0);
+                return q;
+            };
+            // A moving window (shift_order != 0) takes other modes in at each speed: solved afresh.
+            if (reuse && opt.shift_order == 0.0 && *last)
+                if (std::optional<QuadraticSpectrum> q =
+                        continue_window(pencil, whirl_pairs, **last, w, opt.verify_tolerance, threads))
+                    return keep(std::move(*q));
             const SparsePencil p = pencil(w);
             SparseEigenOptions o = opt;
             o.shift += std::complex<double>(0.0, opt.shift_order * w);   // continued along nu + k w
@@ -122,9 +140,8 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
             SparseSpectrum s = solve_quadratic_sparse(p, o, whirl_pairs);
             *rigid = static_cast<int>(s.rigid_body.size());
             QuadraticSpectrum q = to_spectrum(std::move(s), p);
+            q.speed = w;
             set_slopes(q.modes, pencil, w, q.scale);
-            if (!opt.left_vectors)
-                for (Mode& m : q.modes) m.left.resize(0);
             if (reuse && !q.modes.empty()) {
                 // Real and imaginary parts of [lambda x; x] span each mode and its
                 // conjugate (ARPACK wants both); a small random part keeps the
@@ -142,9 +159,13 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
                 const Eigen::VectorXcd r = fixed_random_vector(2 * n).cast<std::complex<double>>();
                 *start = v + 0.01 * r / r.norm();
             }
-            return q;
+            return keep(std::move(q));
         };
     };
+    f.make = [walk = f.walk]() { return walk(1); };
+    // Without state carried from speed to speed, or with a moving window, the
+    // speeds are independent: blocks of them go to the workers.
+    if (!reuse || opt.shift_order != 0.0) f.walk = nullptr;
     return f;
 }
 

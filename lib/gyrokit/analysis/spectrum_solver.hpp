@@ -44,6 +44,11 @@ struct SolverFactory {
     std::function<SolverFactory(const std::vector<double>& speeds, const ContinuationOptions& opt,
                                 ContinuationReport* report)>
         continued;
+    // Window solvers that continue from speed to speed: a solver whose steps use
+    // `threads` threads inside (the modes corrected in parallel). solve_speeds walks
+    // a grid with one such solver, in order, instead of sharing it among workers
+    // (a worker starting mid-grid would pay a full window solve there).
+    std::function<SpectrumSolver(int threads)> walk;
     SpectrumSolver operator()() const { return make(); }
 };
 
@@ -66,9 +71,10 @@ SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOption
 
 // Each mode's slope d lambda / d w (Mode::slope) from its right and left vectors
 // and the pencils pencil(w), pencil(w +- h) (central differences, h = 1e-4
-// max(w, scale); forward ones where w - h < 0). Both solvers of a model set it.
+// max(w, scale); forward ones where w - h < 0). Both solvers of a model set it;
+// the modes on `threads` threads.
 void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(double)>& pencil, double w,
-                double scale);
+                double scale, int threads = 1);
 
 // The ARPACK result as a spectrum of the dense interface.
 QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p);

@@ -364,6 +364,17 @@ std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std
 std::vector<QuadraticSpectrum> solve_speeds_unchecked(const SolverFactory& make, const std::vector<double>& speeds,
                                                       Workers workers,
                                                       const std::function<void(size_t, size_t)>& progress) {
+    if (make.walk) {
+        SpectrumSolver solve = make.walk(std::max(1, workers.count));
+        std::vector<QuadraticSpectrum> out(speeds.size());
+        for (size_t i = 0; i < speeds.size(); ++i) {
+            throw_if_interrupted();
+            out[i] = solve(speeds[i]);
+            out[i].speed = speeds[i];
+            if (progress) progress(i + 1, speeds.size());
+        }
+        return out;
+    }
     return run_on_workers(
         make, speeds.size(), workers,
         [&](SpectrumSolver& solve, size_t i) {

@@ -1,5 +1,7 @@
 #include <gyrokit/eig/mode.hpp>
 
+#include <gyrokit/core/parallel.hpp>
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
@@ -258,14 +260,21 @@ double error_bound_in(const std::vector<Mode>& modes, size_t i, const PencilActi
     if (k == 0) return std::numeric_limits<double>::infinity();   // a NaN or infinite eigenvalue
     Eigen::MatrixXcd X(m.right.size(), k), Y(m.right.size(), k), dPX(m.right.size(), k);
     Eigen::VectorXcd Mx, Cx, Kx;
+    double eta = std::numeric_limits<double>::quiet_NaN();
     for (Eigen::Index c = 0; c < k; ++c) {
         const Mode& o = modes[cluster[static_cast<size_t>(c)]];
         X.col(c) = in(o.right);
         Y.col(c) = in(o.left);
         pencil.apply(X.col(c), Mx, Cx, Kx);
         dPX.col(c) = (2.0 * m.lambda) * Mx + Cx;
+        if (cluster[static_cast<size_t>(c)] == i) {   // backward_error's formula on the products at hand
+            const Eigen::VectorXcd r = (m.lambda * m.lambda) * Mx + m.lambda * Cx + Kx;
+            const double a = std::abs(m.lambda);
+            const double whole = (a * a * pencil.norm_M + a * pencil.norm_C + pencil.norm_K) * X.col(c).norm();
+            eta = whole > 0.0 ? r.norm() / whole : 0.0;
+        }
     }
-    const double eta = backward_error(pencil, m.lambda, in(m.right));
+    if (std::isnan(eta)) eta = backward_error(pencil, m.lambda, in(m.right));
     const Eigen::MatrixXcd S = Y.adjoint() * dPX;
     // A simple eigenvalue (the usual case): the singular values of 1 x 1 and n x 1
     // matrices are their moduli and norms.
@@ -283,17 +292,16 @@ double error_bound_in(const std::vector<Mode>& modes, size_t i, const PencilActi
 }  // namespace
 
 void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil, const PencilAction& scaled,
-                      const Eigen::VectorXd& t) {
+                      const Eigen::VectorXd& t, int threads) {
     const Eigen::VectorXd one = Eigen::VectorXd::Ones(t.size());
-    for (size_t i = 0; i < modes.size(); ++i) {
-        Mode& m = modes[i];
-        if (m.left.size() != m.right.size()) {
-            m.error_bound = std::numeric_limits<double>::infinity();
-            continue;
-        }
+    std::vector<double> bound(modes.size(), std::numeric_limits<double>::infinity());
+    // The bounds first (each reads every mode), then stored.
+    for_each_index(modes.size(), threads, [&](size_t i) {
+        if (modes[i].left.size() != modes[i].right.size()) return;
         // Both are bounds on the same eigenvalue: the tighter one is kept.
-        m.error_bound = std::min(error_bound_in(modes, i, pencil, one), error_bound_in(modes, i, scaled, t));
-    }
+        bound[i] = std::min(error_bound_in(modes, i, pencil, one), error_bound_in(modes, i, scaled, t));
+    });
+    for (size_t i = 0; i < modes.size(); ++i) modes[i].error_bound = bound[i];
 }
 
 double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b) {

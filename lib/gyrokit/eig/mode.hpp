@@ -148,9 +148,9 @@ void separate_double_whirl(std::vector<Mode>& modes, const std::vector<std::pair
 // DOF scaling: the eigenvalues are the same, the vectors T^-1 x and T^-1 y, eta
 // and the condition number those of the scaled pencil), and the smaller is kept:
 // a stiff support inflates |K| and with it the normwise measures of the
-// original, not those of the scaled pencil.
+// original, not those of the scaled pencil. The modes on `threads` threads.
 void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil, const PencilAction& scaled,
-                      const Eigen::VectorXd& t);
+                      const Eigen::VectorXd& t, int threads = 1);
 
 // Modal assurance criterion |a^H b|^2 / (|a|^2 |b|^2), in [0, 1].
 double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);

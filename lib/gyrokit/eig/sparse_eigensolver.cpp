@@ -2,6 +2,7 @@
 
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/detail/arpack_ritz.hpp>
+#include <gyrokit/eig/detail/pencil_lu.hpp>
 
 #include <Eigen/SparseLU>
 #include <algorithm>
@@ -11,11 +12,24 @@
 
 namespace gyrokit {
 
+// One pass over A's columns (compressed): its entries read once for both the
+// real and the imaginary part.
 Eigen::VectorXcd real_times(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x) {
-    const Eigen::VectorXd re = A * x.real(), im = A * x.imag();
-    Eigen::VectorXcd y(re.size());
-    y.real() = re;
-    y.imag() = im;
+    Eigen::VectorXcd y = Eigen::VectorXcd::Zero(A.rows());
+    for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
+        const std::complex<double> xj = x[j];
+        for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it) y[it.index()] += it.value() * xj;
+    }
+    return y;
+}
+
+Eigen::VectorXcd real_transpose_times(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x) {
+    Eigen::VectorXcd y(A.cols());
+    for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
+        std::complex<double> s = 0.0;
+        for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it) s += it.value() * x[it.index()];
+        y[j] = s;
+    }
     return y;
 }
 
@@ -61,39 +75,48 @@ double backward_error(const SparsePencil& p, cd lambda, const Eigen::VectorXcd& 
 }
 
 double refine_eigenpair(const SparsePencil& p, const PencilAction& action, Mode& m, double accurate, double scale) {
-    const double raw = backward_error(action, m.lambda, m.right);
-    const cd off = 1e-12 * std::max(std::abs(m.lambda), kRigidBodyTolerance * scale) * std::polar(1.0, M_PI / 4);
-    const cd at = m.lambda + off;
-    const SpC P = (at * at) * p.M.cast<cd>() + at * p.C.cast<cd>() + p.K.cast<cd>();
-    Eigen::SparseLU<SpC, Eigen::COLAMDOrdering<int>> lu;
-    lu.compute(P);
-    if (lu.info() != Eigen::Success) return raw;   // no left vector: an infinite error bound
-    const SpC Mt = p.M.transpose().cast<cd>(), Ct = p.C.transpose().cast<cd>();
-    Eigen::VectorXcd x = m.right, y = m.right;
+    // The backward error of (l, x) from x's products M x, C x, K x (backward_error's
+    // formula, without multiplying again).
+    const auto error_of = [&](cd l, const Eigen::VectorXcd& Mx, const Eigen::VectorXcd& Cx, const Eigen::VectorXcd& Kx,
+                              double xnorm) {
+        const Eigen::VectorXcd r = (l * l) * Mx + l * Cx + Kx;
+        const double a = std::abs(l), whole = (a * a * action.norm_M + a * action.norm_C + action.norm_K) * xnorm;
+        return whole > 0.0 ? r.norm() / whole : 0.0;
+    };
     Eigen::VectorXcd Mx, Cx, Kx;
+    action.apply(m.right, Mx, Cx, Kx);
+    const double raw = error_of(m.lambda, Mx, Cx, Kx, m.right.norm());
+    const cd off = 1e-12 * std::max(std::abs(m.lambda), kRigidBodyTolerance * scale) * std::polar(1.0, M_PI / 4);
+    detail::PencilLU lu;
+    if (!lu.compute(p, m.lambda + off)) return raw;   // no left vector: an infinite error bound
+    Eigen::VectorXcd x = m.right, y = m.right;
+    Eigen::VectorXcd Mxn, Cxn, Kxn;
     cd lambda = m.lambda;
     double eta = raw;
     const bool update = raw > accurate;
     for (int step = 0; step < 4; ++step) {
         // Left: y <- P^{-H} P'(l)^H y, with P'(l)^H = 2 conj(l) M^T + C^T for real M, C.
-        Eigen::VectorXcd yn = lu.adjoint().solve(Eigen::VectorXcd((2.0 * std::conj(lambda)) * (Mt * y) + Ct * y));
+        Eigen::VectorXcd yn = lu.adjoint_solve(Eigen::VectorXcd((2.0 * std::conj(lambda)) * real_transpose_times(p.M, y) +
+                                                               real_transpose_times(p.C, y)));
         if (!yn.allFinite() || yn.norm() == 0.0) break;
         y = yn.normalized();
         if (!update) {
             if (step == 1) break;   // two steps give the left vector
             continue;
         }
-        action.apply(x, Mx, Cx, Kx);
         Eigen::VectorXcd xn = lu.solve(Eigen::VectorXcd((2.0 * lambda) * Mx + Cx));
         if (!xn.allFinite() || xn.norm() == 0.0) break;
         xn.normalize();
-        action.apply(xn, Mx, Cx, Kx);
-        const Eigen::VectorXcd r = (lambda * lambda) * Mx + lambda * Cx + Kx;
-        const cd slope = y.dot((2.0 * lambda) * Mx + Cx);
+        action.apply(xn, Mxn, Cxn, Kxn);
+        const Eigen::VectorXcd r = (lambda * lambda) * Mxn + lambda * Cxn + Kxn;
+        const cd slope = y.dot((2.0 * lambda) * Mxn + Cxn);
         const cd next = std::abs(slope) > 0.0 ? lambda - y.dot(r) / slope : lambda;
-        const double e = backward_error(action, next, xn);
+        const double e = error_of(next, Mxn, Cxn, Kxn, xn.norm());
         if (!(e < eta)) break;
         x = xn;
+        Mx.swap(Mxn);
+        Cx.swap(Cxn);
+        Kx.swap(Kxn);
         lambda = next;
         eta = e;
         if (eta <= accurate) break;

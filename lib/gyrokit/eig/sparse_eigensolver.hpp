@@ -49,6 +49,8 @@ struct SparseSpectrum {
 
 // Real sparse matrix times complex vector, without a complex copy of the matrix.
 Eigen::VectorXcd real_times(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x);
+// A^T x, without a transposed copy of A.
+Eigen::VectorXcd real_transpose_times(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x);
 
 // The action of a sparse pencil (its matrices referenced: they must outlive it).
 PencilAction sparse_pencil_action(const SparsePencil& p);

@@ -1,0 +1,36 @@
+// The LU factorization of P(lambda) = lambda^2 M + lambda C + K for inverse
+// iteration: LAPACK's band LU (zgbtrf) where the pencil's band is narrow (an FE
+// rotor in node order: 7 to 11 off-diagonals), else Eigen's SparseLU.
+#pragma once
+
+#include <gyrokit/core/gyroscopic_system.hpp>
+
+#include <Eigen/SparseLU>
+#include <complex>
+#include <vector>
+
+namespace gyrokit::detail {
+
+// The widest band the band LU takes (lower + upper + 1): beyond it the band's
+// fill costs more than SparseLU's ordering.
+constexpr int kMaxBandLU = 64;
+
+class PencilLU {
+public:
+    // Factors P(lambda); false if it is singular (or the factorization fails).
+    bool compute(const SparsePencil& p, std::complex<double> lambda);
+    Eigen::VectorXcd solve(const Eigen::VectorXcd& b) const;           // P x = b
+    Eigen::VectorXcd adjoint_solve(const Eigen::VectorXcd& b) const;   // P^H y = b
+    bool banded() const { return band_; }
+
+private:
+    bool band_ = false;
+    int n_ = 0, kl_ = 0, ku_ = 0;
+    std::vector<std::complex<double>> ab_;   // LAPACK band storage, 2 kl + ku + 1 rows
+    std::vector<int> ipiv_;
+    std::vector<std::complex<double>> inverse_pivot_;   // 1 / U's diagonal
+    // mutable: SparseLU::adjoint() is not const
+    mutable Eigen::SparseLU<Eigen::SparseMatrix<std::complex<double>>, Eigen::COLAMDOrdering<int>> sparse_;
+};
+
+}  // namespace gyrokit::detail
