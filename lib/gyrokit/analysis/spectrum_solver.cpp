@@ -64,18 +64,41 @@ void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(doubl
         Mode& m = modes[i];
         m.slope = {nan, 0.0};
         if (m.left.size() != m.right.size() || m.right.size() == 0) return;
-        // A double eigenvalue's vectors are any basis of its plane: no slope of its own.
-        bool single = true;
+        // A double eigenvalue's vectors are any basis of its plane: no slope of its own,
+        // unless the pair's vectors are the directions in which it splits (below).
+        std::vector<const Mode*> partners;
         for (const Mode& o : modes)
-            if (&o != &m && std::abs(o.lambda - m.lambda) <= 1e-6 * std::abs(m.lambda)) single = false;
-        if (!single) return;
+            if (&o != &m && std::abs(o.lambda - m.lambda) <= 1e-6 * std::abs(m.lambda)) partners.push_back(&o);
+        if (partners.size() > 1 || (partners.size() == 1 && partners[0]->left.size() != m.right.size())) return;
         const cd l = m.lambda;
-        const Eigen::VectorXcd& x = m.right;
-        const Eigen::VectorXcd dPx = ((l * l) * real_times(dM, x) + l * real_times(dC, x) + real_times(dK, x)) / span;
-        const Eigen::VectorXcd dlPx = (2.0 * l) * real_times(p.M, x) + real_times(p.C, x);
-        const cd den = m.left.dot(dlPx);   // y^H P'(lambda) x
-        if (std::abs(den) == 0.0) return;
-        m.slope = -m.left.dot(dPx) / den;
+        const auto dP = [&](const Eigen::VectorXcd& x) -> Eigen::VectorXcd {   // dP/dw x
+            return ((l * l) * real_times(dM, x) + l * real_times(dC, x) + real_times(dK, x)) / span;
+        };
+        const auto dlP = [&](const Eigen::VectorXcd& x) -> Eigen::VectorXcd {   // P'(lambda) x
+            return (2.0 * l) * real_times(p.M, x) + real_times(p.C, x);
+        };
+        if (partners.empty()) {
+            const cd den = m.left.dot(dlP(m.right));   // y^H P'(lambda) x
+            if (std::abs(den) == 0.0) return;
+            m.slope = -m.left.dot(dP(m.right)) / den;
+        } else {
+            // The pair splits as the eigenvalues of S = -(Y^H P' X)^-1 (Y^H dP/dw X) (first
+            // order for a semisimple double eigenvalue). If S is diagonal to 1e-2 of the
+            // split, X's columns are the splitting directions and each has slope S_ii.
+            const Mode& o = *partners[0];
+            Eigen::Matrix2cd A, B;
+            const Eigen::VectorXcd* X[2] = {&m.right, &o.right};
+            const Eigen::VectorXcd* Y[2] = {&m.left, &o.left};
+            for (int c = 0; c < 2; ++c) {
+                const Eigen::VectorXcd a = dlP(*X[c]), b = dP(*X[c]);
+                for (int r = 0; r < 2; ++r) A(r, c) = Y[r]->dot(a), B(r, c) = Y[r]->dot(b);
+            }
+            if (std::abs(A.determinant()) == 0.0) return;
+            const Eigen::Matrix2cd S = -A.inverse() * B;
+            const double split = std::abs(S(0, 0) - S(1, 1));
+            if (!(split > 0.0) || !(std::max(std::abs(S(0, 1)), std::abs(S(1, 0))) <= 1e-2 * split)) return;
+            m.slope = S(0, 0);
+        }
         if (!std::isfinite(m.slope.real()) || !std::isfinite(m.slope.imag())) m.slope = {nan, 0.0};
     });
 }

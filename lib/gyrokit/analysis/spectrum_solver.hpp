@@ -72,7 +72,10 @@ SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOption
 // Each mode's slope d lambda / d w (Mode::slope) from its right and left vectors
 // and the pencils pencil(w), pencil(w +- h) (central differences, h = 1e-4
 // max(w, scale); forward ones where w - h < 0). Both solvers of a model set it;
-// the modes on `threads` threads.
+// the modes on `threads` threads. The two modes of a double eigenvalue (an
+// isotropic rotor at standstill) get the slopes of its first-order split where
+// their vectors are the directions it splits in (as the whirl separation leaves
+// them), else NaN; a mode among three or more equal ones gets NaN.
 void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(double)>& pencil, double w,
                 double scale, int threads = 1);
 
