@@ -306,3 +306,58 @@ TEST_CASE("the band of the K lowest modes: 1.25 times the largest of the K + 2 l
     CHECK_THROWS_WITH(continuation_solver(std::make_shared<const GyroscopicSystem>(sc.system), grid, o),
                       Catch::Contains("a margin >= 1"));
 }
+
+TEST_CASE("a double eigenvalue at standstill gets the slopes of its split, equal to a difference quotient",
+          "[continuation][slopes]") {
+    // An isotropic rotor (equal kxx, kyy, cxx, cyy): at standstill each pair is double and
+    // is returned as its backward and forward circular mode; gyroscopic coupling splits it
+    // linearly in the speed. The slopes set_slopes gives those modes are the split's:
+    // (lambda(h) - lambda(0)) / h of the same whirl, to O(h) (h = 0.01 rad/s).
+    const std::string text = R"(
+[model]
+type = "fe_rotor"
+material = "steel"
+[[model.shaft]]
+length = 1.0
+elements = 10
+outer_diameter = 0.08
+[[model.disk]]
+z = 0.5
+outer_diameter = 0.4
+width = 0.05
+[[model.bearing]]
+z = 0.0
+kxx = 2e7
+kyy = 2e7
+cxx = 2e3
+cyy = 2e3
+[[model.bearing]]
+z = 1.0
+kxx = 2e7
+kyy = 2e7
+cxx = 2e3
+cyy = 2e3
+)";
+    const Scene sc = parse_scene(text, "isotropic.toml");
+    const SpectrumSolver solve = dense_solver(sc.system)();
+    const double h = 0.01;
+    const QuadraticSpectrum s0 = solve(0.0), sh = solve(h);
+    int doubles = 0;
+    for (size_t i = 0; i < 6; ++i) {
+        const Mode& m = s0.modes[i];
+        CAPTURE(i, m.lambda, m.slope);
+        // The same whirl, nearest at h.
+        const Mode* at = nullptr;
+        for (const Mode& o : sh.modes)
+            if (o.whirl == m.whirl && (!at || std::abs(o.lambda - m.lambda) < std::abs(at->lambda - m.lambda))) at = &o;
+        REQUIRE(at);
+        const std::complex<double> quotient = (at->lambda - m.lambda) / h;
+        bool pair = false;
+        for (const Mode& o : s0.modes)
+            if (&o != &m && std::abs(o.lambda - m.lambda) <= 1e-6 * std::abs(m.lambda)) pair = true;
+        doubles += pair;
+        REQUIRE(std::isfinite(m.slope.real()));
+        CHECK(std::abs(m.slope - quotient) <= 1e-3 * std::abs(quotient) + 1e-9);
+    }
+    CHECK(doubles == 6);   // three double pairs
+}

@@ -117,7 +117,7 @@ Frame frame_of(const Shared& sh) {
 // The common end of the continued solves: whirl, rigid-body split, error bounds,
 // order and slopes of the verified pairs.
 QuadraticSpectrum finish(const Frame& fr, const SparsePencil& p, const PencilAction& action, QuadraticSpectrum out,
-                         std::vector<Mode> modes, double w, bool slopes = true) {
+                         std::vector<Mode> modes, double w) {
     for (Mode& m : modes) m.whirl = classify_whirl(m.lambda, m.right, *fr.whirl_pairs, out.real_tol);
     split_rigid_body(modes, out.rigid_body, action, out.scale);
     separate_double_whirl(modes, *fr.whirl_pairs, out.real_tol, action);
@@ -126,7 +126,7 @@ QuadraticSpectrum finish(const Frame& fr, const SparsePencil& p, const PencilAct
                               t.asDiagonal() * p.K * t.asDiagonal()};
     set_error_bounds(modes, action, action_of(scaled), t, fr.threads);
     sort_by_frequency(modes);
-    if (slopes) set_slopes(modes, fr.pencil, w, out.scale, fr.threads);
+    set_slopes(modes, fr.pencil, w, out.scale, fr.threads);
     out.modes = std::move(modes);
     return out;
 }
@@ -215,17 +215,24 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
         if (fr.min_mac > 0.0 && !(mac(m.right, from.track[i].right) >= fr.min_mac)) return std::nullopt;
         track.push_back(std::move(m));
     }
-    // Slopes of every tracked mode (the next step's predictions), the band's among them.
-    set_slopes(track, fr.pencil, w, out.scale, fr.threads);
     next.w = w;
     next.rigid = rigid;
-    next.track = track;
     next.beyond = from.beyond;
     std::vector<Mode> modes;
     for (const Mode& m : track)
         if (within_band(m, fr.band, out.real_tol)) modes.push_back(m);
     out.rigid_body = std::move(rigid);
-    out = finish(fr, p, action, std::move(out), std::move(modes), w, false);
+    const size_t rigid_before = out.rigid_body.size();
+    out = finish(fr, p, action, std::move(out), std::move(modes), w);
+    // The next step continues from the reported modes as finish() left them (a double
+    // pair's vectors turned to its whirl directions, slopes on those) where they are
+    // all the tracked ones; else the tracked ones get slopes of their own.
+    if (out.modes.size() == track.size() && out.rigid_body.size() == rigid_before) {
+        next.track = out.modes;
+    } else {
+        next.track = std::move(track);
+        set_slopes(next.track, fr.pencil, w, out.scale, fr.threads);
+    }
     if (!fr.keep_left)
         for (Mode& m : out.modes) m.left.resize(0);
     out.method = "continuation (along the branches, verified)";

@@ -66,10 +66,17 @@ void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(doubl
         if (m.left.size() != m.right.size() || m.right.size() == 0) return;
         // A double eigenvalue's vectors are any basis of its plane: no slope of its own,
         // unless the pair's vectors are the directions in which it splits (below).
-        std::vector<const Mode*> partners;
-        for (const Mode& o : modes)
-            if (&o != &m && std::abs(o.lambda - m.lambda) <= 1e-6 * std::abs(m.lambda)) partners.push_back(&o);
-        if (partners.size() > 1 || (partners.size() == 1 && partners[0]->left.size() != m.right.size())) return;
+        const auto partners_of = [&](const Mode& a) {
+            std::vector<const Mode*> out;
+            for (const Mode& o : modes)
+                if (&o != &a && std::abs(o.lambda - a.lambda) <= 1e-6 * std::abs(a.lambda)) out.push_back(&o);
+            return out;
+        };
+        const std::vector<const Mode*> partners = partners_of(m);
+        // A double: each the other's only partner (not a cluster), both with left vectors.
+        if (partners.size() > 1 ||
+            (partners.size() == 1 && (partners[0]->left.size() != m.right.size() || partners_of(*partners[0]).size() != 1)))
+            return;
         const cd l = m.lambda;
         const auto dP = [&](const Eigen::VectorXcd& x) -> Eigen::VectorXcd {   // dP/dw x
             return ((l * l) * real_times(dM, x) + l * real_times(dC, x) + real_times(dK, x)) / span;
@@ -93,7 +100,8 @@ void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(doubl
                 const Eigen::VectorXcd a = dlP(*X[c]), b = dP(*X[c]);
                 for (int r = 0; r < 2; ++r) A(r, c) = Y[r]->dot(a), B(r, c) = Y[r]->dot(b);
             }
-            if (std::abs(A.determinant()) == 0.0) return;
+            // Nearly parallel vectors (left or right) make A singular to rounding: no split then.
+            if (!(std::abs(A.determinant()) > 1e-8 * A.squaredNorm())) return;
             const Eigen::Matrix2cd S = -A.inverse() * B;
             const double split = std::abs(S(0, 0) - S(1, 1));
             if (!(split > 0.0) || !(std::max(std::abs(S(0, 1)), std::abs(S(1, 0))) <= 1e-2 * split)) return;

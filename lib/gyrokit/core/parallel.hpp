@@ -32,7 +32,10 @@ void for_each_index(std::size_t n, int threads, const F& f) {
         }
     };
     std::vector<std::thread> pool;
-    for (std::size_t k = 1; k < t; ++k) pool.emplace_back(work);
+    try {
+        for (std::size_t k = 1; k < t; ++k) pool.emplace_back(work);
+    } catch (...) {   // no more threads: the ones started and this one do the work
+    }
     work();
     for (std::thread& th : pool) th.join();
     if (failure) std::rethrow_exception(failure);

@@ -49,6 +49,11 @@ CampbellStudy campbell_study(const GyroscopicSystem& sys, const StudyOptions& op
     CampbellStudy s;
     s.plan = choose_solver(sys, opt.solver);
     add_notes(s.diagnostics, Topic::Solver, s.plan.notes);
+    if (s.plan.make.walk && opt.speeds.size() > 1)
+        s.diagnostics.push_back({Level::Note, Topic::Solver,
+                                 "the sparse window holds the modes nearest the target at the first speed, followed "
+                                 "along their branches; a mode that comes nearer the target later joins it only where a "
+                                 "step falls back to a window solve (target_order moves the window with the speed)"});
     add_notes(s.diagnostics, Topic::Extrapolation,
               extrapolation_notes(sys.bearings, opt.speeds.front(), opt.speeds.back()));
     CampbellOptions co = tracking_options(s.plan, opt.solver.modes, opt.speeds, opt.harmonics, opt.workers);
