@@ -17,6 +17,10 @@ constexpr int kMaxBandLU = 64;
 
 class PencilLU {
 public:
+    PencilLU() = default;
+    PencilLU(const PencilLU&) = delete;
+    PencilLU& operator=(const PencilLU&) = delete;
+    ~PencilLU();
     // Factors P(lambda); false if it is singular (or the factorization fails).
     bool compute(const SparsePencil& p, std::complex<double> lambda);
     Eigen::VectorXcd solve(const Eigen::VectorXcd& b) const;           // P x = b
