@@ -43,7 +43,7 @@ struct SolverOptions {
     std::optional<double> target;         // rad/s: the sparse search centre (default 0: the lowest modes)
     double target_order = 0.0;            // the centre moves as target + target_order * speed
     int lanczos_vectors = 0;              // sparse: Arnoldi vectors, 0 = automatic
-    bool reuse = true;                    // sparse: start each speed from the last one's vectors
+    bool reuse = true;                    // sparse: continue each speed from the last one (continue_window)
 };
 
 struct SolverChoice {

@@ -61,9 +61,11 @@ constexpr int kDenseLimit = 3000;
 SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig = {});
 
 // `opt.modes` modes nearest the shift by ARPACK shift-invert on the pencils
-// `pencil(w)`. With `reuse`, each call after the first starts the Arnoldi
-// iteration from the previous speed's eigenvectors (fewer restarts when the
-// speed step is small).
+// `pencil(w)`. With `reuse` and a fixed shift (shift_order 0), each call after
+// the first continues the last speed's modes along their branches
+// (continue_window) and solves the window afresh only where a step fails, its
+// Arnoldi iteration started from the last window's eigenvectors; such a factory
+// has `walk` (sweeps solve its speeds in order).
 SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vector<std::pair<int, int>> whirl_pairs,
                             const SparseEigenOptions& opt, bool reuse = true);
 // The system's sparse pencils (one shared copy of the validated system).
