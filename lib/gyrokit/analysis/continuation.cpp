@@ -115,18 +115,16 @@ Frame frame_of(const Shared& sh) {
 }
 
 // The common end of the continued solves: whirl, rigid-body split, error bounds,
-// order and slopes of the verified pairs.
+// order and (unless the caller sets them) slopes of the verified pairs.
 QuadraticSpectrum finish(const Frame& fr, const SparsePencil& p, const PencilAction& action, QuadraticSpectrum out,
-                         std::vector<Mode> modes, double w) {
+                         std::vector<Mode> modes, double w, bool slopes = true) {
     for (Mode& m : modes) m.whirl = classify_whirl(m.lambda, m.right, *fr.whirl_pairs, out.real_tol);
     split_rigid_body(modes, out.rigid_body, action, out.scale);
     separate_double_whirl(modes, *fr.whirl_pairs, out.real_tol, action);
     const Eigen::VectorXd t = sparse_dof_scaling(p, out.scale);
-    const SparsePencil scaled{t.asDiagonal() * p.M * t.asDiagonal(), t.asDiagonal() * p.C * t.asDiagonal(),
-                              t.asDiagonal() * p.K * t.asDiagonal()};
-    set_error_bounds(modes, action, action_of(scaled), t, fr.threads);
+    set_error_bounds(modes, action, scaled_norms(p, t), t, fr.threads);
     sort_by_frequency(modes);
-    set_slopes(modes, fr.pencil, w, out.scale, fr.threads);
+    if (slopes) set_slopes(modes, fr.pencil, w, out.scale, fr.threads, &p);
     out.modes = std::move(modes);
     return out;
 }
@@ -223,15 +221,22 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
         if (within_band(m, fr.band, out.real_tol)) modes.push_back(m);
     out.rigid_body = std::move(rigid);
     const size_t rigid_before = out.rigid_body.size();
-    out = finish(fr, p, action, std::move(out), std::move(modes), w);
+    const size_t reported = modes.size();
+    out = finish(fr, p, action, std::move(out), std::move(modes), w, false);
     // The next step continues from the reported modes as finish() left them (a double
-    // pair's vectors turned to its whirl directions, slopes on those) where they are
-    // all the tracked ones; else the tracked ones get slopes of their own.
-    if (out.modes.size() == track.size() && out.rigid_body.size() == rigid_before) {
+    // pair's vectors turned to its whirl directions) and the tracked ones beyond the
+    // band, with slopes computed once for all of them. Where the rigid-body split took
+    // a reported mode, the tracked ones as corrected get slopes of their own.
+    if (out.modes.size() == reported && out.rigid_body.size() == rigid_before) {
         next.track = out.modes;
+        for (const Mode& m : track)
+            if (!within_band(m, fr.band, out.real_tol)) next.track.push_back(m);
+        set_slopes(next.track, fr.pencil, w, out.scale, fr.threads, &p);
+        for (size_t i = 0; i < out.modes.size(); ++i) out.modes[i].slope = next.track[i].slope;
     } else {
+        set_slopes(out.modes, fr.pencil, w, out.scale, fr.threads, &p);
         next.track = std::move(track);
-        set_slopes(next.track, fr.pencil, w, out.scale, fr.threads);
+        set_slopes(next.track, fr.pencil, w, out.scale, fr.threads, &p);
     }
     if (!fr.keep_left)
         for (Mode& m : out.modes) m.left.resize(0);
@@ -428,10 +433,8 @@ std::optional<Mode> follow_mode(const std::function<SparsePencil(double)>& penci
     std::vector<Mode> one{std::move(m)};
     one[0].whirl = classify_whirl(one[0].lambda, one[0].right, whirl_pairs, frame.real_tol);
     const Eigen::VectorXd t = sparse_dof_scaling(p, frame.scale);
-    const SparsePencil scaled{t.asDiagonal() * p.M * t.asDiagonal(), t.asDiagonal() * p.C * t.asDiagonal(),
-                              t.asDiagonal() * p.K * t.asDiagonal()};
-    set_error_bounds(one, action, action_of(scaled), t);
-    set_slopes(one, pencil, w, frame.scale);
+    set_error_bounds(one, action, scaled_norms(p, t), t);
+    set_slopes(one, pencil, w, frame.scale, 1, &p);
     return std::move(one[0]);
 }
 

@@ -46,8 +46,30 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
     return f;
 }
 
+namespace {
+
+// A - B without the entries that are equal in both (M, and most of K, do not change
+// with speed: their products then cost nothing). Where A and B share their pattern (a
+// model's pencils at two speeds), entry by entry on the value arrays.
+SparseMatrix change(const SparseMatrix& A, const SparseMatrix& B) {
+    SparseMatrix d;
+    if (A.isCompressed() && B.isCompressed() && A.rows() == B.rows() && A.cols() == B.cols() &&
+        A.nonZeros() == B.nonZeros() &&
+        std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, B.outerIndexPtr()) &&
+        std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), B.innerIndexPtr())) {
+        d = A;
+        Eigen::Map<Eigen::ArrayXd>(d.valuePtr(), d.nonZeros()) -= Eigen::Map<const Eigen::ArrayXd>(B.valuePtr(), B.nonZeros());
+    } else {
+        d = A - B;
+    }
+    d.prune(0.0);
+    return d;
+}
+
+}  // namespace
+
 void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(double)>& pencil, double w,
-                double scale, int threads) {
+                double scale, int threads, const SparsePencil* at_w) {
     using cd = std::complex<double>;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     if (modes.empty()) return;
@@ -56,10 +78,13 @@ void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(doubl
     // rounding of order eps |P| / h, the average slope across a table's kink.
     const double h = 1e-4 * std::max(std::abs(w), scale > 0.0 ? scale : 1.0);
     const bool forward = w - h < 0.0;
-    const SparsePencil p = pencil(w), hi = pencil(w + h), lo = pencil(forward ? w : w - h);
+    const SparsePencil p = at_w ? SparsePencil{} : pencil(w);
+    const SparsePencil& pw = at_w ? *at_w : p;
+    const SparsePencil hi = pencil(w + h), lo = forward ? SparsePencil{} : pencil(w - h);
+    const SparsePencil& low = forward ? pw : lo;
     const double span = forward ? h : 2.0 * h;
     // The differences once for all modes (the products below are per mode).
-    const SparseMatrix dM = hi.M - lo.M, dC = hi.C - lo.C, dK = hi.K - lo.K;
+    const SparseMatrix dM = change(hi.M, low.M), dC = change(hi.C, low.C), dK = change(hi.K, low.K);
     for_each_index(modes.size(), threads, [&](size_t i) {
         Mode& m = modes[i];
         m.slope = {nan, 0.0};
@@ -82,7 +107,7 @@ void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(doubl
             return ((l * l) * real_times(dM, x) + l * real_times(dC, x) + real_times(dK, x)) / span;
         };
         const auto dlP = [&](const Eigen::VectorXcd& x) -> Eigen::VectorXcd {   // P'(lambda) x
-            return (2.0 * l) * real_times(p.M, x) + real_times(p.C, x);
+            return (2.0 * l) * real_times(pw.M, x) + real_times(pw.C, x);
         };
         if (partners.empty()) {
             const cd den = m.left.dot(dlP(m.right));   // y^H P'(lambda) x

@@ -77,9 +77,10 @@ SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOption
 // the modes on `threads` threads. The two modes of a double eigenvalue (an
 // isotropic rotor at standstill) get the slopes of its first-order split where
 // their vectors are the directions it splits in (as the whirl separation leaves
-// them), else NaN; a mode among three or more equal ones gets NaN.
+// them), else NaN; a mode among three or more equal ones gets NaN. `at_w`:
+// pencil(w), where the caller has it at hand.
 void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(double)>& pencil, double w,
-                double scale, int threads = 1);
+                double scale, int threads = 1, const SparsePencil* at_w = nullptr);
 
 // The ARPACK result as a spectrum of the dense interface.
 QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p);

@@ -118,9 +118,10 @@ Whirl classify_whirl(std::complex<double> lambda, const Eigen::VectorXcd& x,
         turn += t;
         largest_turn = std::max(largest_turn, std::abs(t));
         largest_pair = std::max(largest_pair, 0.5 * (std::norm(x(u)) + std::norm(x(v))));
-        largest_pair_dof = std::max({largest_pair_dof, std::abs(x(u)), std::abs(x(v))});
+        largest_pair_dof = std::max({largest_pair_dof, std::norm(x(u)), std::norm(x(v))});
     }
-    if (largest_pair_dof <= kWhirlTolerance * x.cwiseAbs().maxCoeff()) return Whirl::None;
+    // Squared moduli (no square root per entry): the largest pair DOF against the largest DOF.
+    if (largest_pair_dof <= kWhirlTolerance * kWhirlTolerance * x.cwiseAbs2().maxCoeff()) return Whirl::None;
     if (largest_turn <= kWhirlTolerance * largest_pair) return Whirl::Planar;
     if (lambda.imag() < 0.0) turn = -turn;  // the conjugate pair turns the other way
     return turn >= 0.0 ? Whirl::Forward : Whirl::Backward;
@@ -204,9 +205,10 @@ double backward_error(const PencilAction& p, std::complex<double> lambda, const 
 Eigen::VectorXcd unit_vector(const Eigen::VectorXcd& v) {
     if (v.size() == 0) return v;
     // The first entry within kTieTolerance of the largest: a tie is not left to rounding.
-    const double top = v.cwiseAbs().maxCoeff();
+    // Squared moduli (no square root per entry).
+    const double top = v.cwiseAbs2().maxCoeff(), tie = (1.0 - kTieTolerance) * (1.0 - kTieTolerance);
     Eigen::Index k = 0;
-    while (k + 1 < v.size() && std::abs(v(k)) < (1.0 - kTieTolerance) * top) ++k;
+    while (k + 1 < v.size() && std::norm(v(k)) < tie * top) ++k;
     if (std::abs(v(k)) == 0.0) return v;
     const std::complex<double> phase = std::conj(v(k)) / std::abs(v(k));
     return v * phase / v.norm();
@@ -245,61 +247,86 @@ void separate_double_whirl(std::vector<Mode>& modes, const std::vector<std::pair
 
 namespace {
 
-// The first-order bound of mode i (set_error_bounds) on the pencil `pencil` of
-// the coordinates x = T^-1 x_original (t = 1: the original ones).
-double error_bound_in(const std::vector<Mode>& modes, size_t i, const PencilAction& pencil, const Eigen::VectorXd& t) {
-    const auto in = [&t](const Eigen::VectorXcd& v) -> Eigen::VectorXcd {
-        return (v.array() / t.array().cast<std::complex<double>>()).matrix().normalized();
-    };
-    const Mode& m = modes[i];
-    std::vector<size_t> cluster;
-    for (size_t j = 0; j < modes.size(); ++j)
-        if (modes[j].left.size() == m.right.size() && std::abs(modes[j].lambda - m.lambda) <= 1e-6 * std::abs(m.lambda))
-            cluster.push_back(j);
-    const Eigen::Index k = static_cast<Eigen::Index>(cluster.size());
-    if (k == 0) return std::numeric_limits<double>::infinity();   // a NaN or infinite eigenvalue
-    Eigen::MatrixXcd X(m.right.size(), k), Y(m.right.size(), k), dPX(m.right.size(), k);
-    Eigen::VectorXcd Mx, Cx, Kx;
-    double eta = std::numeric_limits<double>::quiet_NaN();
-    for (Eigen::Index c = 0; c < k; ++c) {
-        const Mode& o = modes[cluster[static_cast<size_t>(c)]];
-        X.col(c) = in(o.right);
-        Y.col(c) = in(o.left);
-        pencil.apply(X.col(c), Mx, Cx, Kx);
-        dPX.col(c) = (2.0 * m.lambda) * Mx + Cx;
-        if (cluster[static_cast<size_t>(c)] == i) {   // backward_error's formula on the products at hand
-            const Eigen::VectorXcd r = (m.lambda * m.lambda) * Mx + m.lambda * Cx + Kx;
-            const double a = std::abs(m.lambda);
-            const double whole = (a * a * pencil.norm_M + a * pencil.norm_C + pencil.norm_K) * X.col(c).norm();
-            eta = whole > 0.0 ? r.norm() / whole : 0.0;
-        }
+// Mode i's cluster (below): the right and left vectors, original coordinates, and
+// what the bound needs of their products: D = Y^H P'(l) X and mode i's residual r.
+struct Cluster {
+    Eigen::MatrixXcd x, y;
+    Eigen::MatrixXcd D;
+    Eigen::VectorXcd r;
+    Eigen::Index self = 0;   // mode i's column
+};
+
+// The first-order bound of mode i (set_error_bounds) in the coordinates x = T^-1 x_original
+// of the pencil T P T, whose norms are `norms` (t = 1: the original pencil). The unit
+// vectors there are x_j / t s_j with s_j = 1 / |x_j / t| (y likewise), and since
+// T P T (x / t) = t (P x): Y^H P'(l) X = diag(s_y) D diag(s_x) and P(l) x_i = s_i t r,
+// |X|'s square the largest eigenvalue of diag(s_x) X^H T^-2 X diag(s_x).
+double error_bound_in(const Cluster& c, std::complex<double> l, const PencilNorms& norms, const Eigen::VectorXd& t) {
+    const Eigen::Index k = c.x.cols();
+    const Eigen::ArrayXd w = t.array().inverse().square();
+    Eigen::VectorXd sx(k), sy(k);
+    for (Eigen::Index j = 0; j < k; ++j) {
+        sx(j) = 1.0 / std::sqrt((c.x.col(j).array().abs2() * w).sum());
+        sy(j) = 1.0 / std::sqrt((c.y.col(j).array().abs2() * w).sum());
     }
-    if (std::isnan(eta)) eta = backward_error(pencil, m.lambda, in(m.right));
-    const Eigen::MatrixXcd S = Y.adjoint() * dPX;
-    // A simple eigenvalue (the usual case): the singular values of 1 x 1 and n x 1
-    // matrices are their moduli and norms.
-    const auto largest = [](const Eigen::MatrixXcd& A) {
-        return A.cols() == 1 ? A.norm() : Eigen::JacobiSVD<Eigen::MatrixXcd>(A).singularValues()(0);
+    const double a = std::abs(l), whole = a * a * norms.M + a * norms.C + norms.K;
+    const double eta = whole > 0.0 ? sx(c.self) * (c.r.array() * t.array()).matrix().norm() / whole : 0.0;
+    const Eigen::MatrixXcd S = sy.asDiagonal() * c.D * sx.asDiagonal();
+    // The largest singular value of the unit columns (1 for one column).
+    const auto largest = [&](const Eigen::MatrixXcd& V, const Eigen::VectorXd& s) {
+        if (k == 1) return 1.0;
+        const Eigen::MatrixXcd gram = s.asDiagonal() * (V.adjoint() * (w.matrix().asDiagonal() * V)) * s.asDiagonal();
+        return std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd>(gram, Eigen::EigenvaluesOnly).eigenvalues()(k - 1));
     };
     const double smin = k == 1 ? std::abs(S(0, 0)) : Eigen::JacobiSVD<Eigen::MatrixXcd>(S).singularValues()(k - 1);
-    const double a = std::abs(m.lambda);
-    const double scale = (a * a * pencil.norm_M + a * pencil.norm_C + pencil.norm_K) * largest(X) * largest(Y);
     const double eps = std::numeric_limits<double>::epsilon();
-    return smin > 0.0 && std::isfinite(eta) ? 10.0 * std::max(eta, eps) * scale / smin
-                                            : std::numeric_limits<double>::infinity();
+    return smin > 0.0 && std::isfinite(eta)
+               ? 10.0 * std::max(eta, eps) * whole * largest(c.x, sx) * largest(c.y, sy) / smin
+               : std::numeric_limits<double>::infinity();
+}
+
+// Mode i's cluster: every mode with a left vector within 1e-6 relative of its
+// eigenvalue (a double eigenvalue's plane, whose computed bases need not pair up).
+Cluster cluster_of(const std::vector<Mode>& modes, size_t i, const PencilAction& pencil) {
+    const Mode& m = modes[i];
+    const std::complex<double> l = m.lambda;
+    std::vector<size_t> members;
+    for (size_t j = 0; j < modes.size(); ++j)
+        if (modes[j].left.size() == m.right.size() && std::abs(modes[j].lambda - l) <= 1e-6 * std::abs(l))
+            members.push_back(j);
+    const Eigen::Index n = m.right.size(), k = static_cast<Eigen::Index>(members.size());
+    Cluster c{Eigen::MatrixXcd(n, k), Eigen::MatrixXcd(n, k), Eigen::MatrixXcd(k, k), Eigen::VectorXcd()};
+    for (Eigen::Index j = 0; j < k; ++j) {
+        const Mode& o = modes[members[static_cast<size_t>(j)]];
+        c.x.col(j) = o.right;
+        c.y.col(j) = o.left;
+    }
+    Eigen::VectorXcd Mx, Cx, Kx;
+    for (Eigen::Index j = 0; j < k; ++j) {
+        pencil.apply(c.x.col(j), Mx, Cx, Kx);
+        c.D.col(j) = c.y.adjoint() * ((2.0 * l) * Mx + Cx);
+        if (members[static_cast<size_t>(j)] == i) {
+            c.self = j;
+            c.r = (l * l) * Mx + l * Cx + Kx;
+        }
+    }
+    return c;
 }
 
 }  // namespace
 
-void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil, const PencilAction& scaled,
+void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil, const PencilNorms& scaled,
                       const Eigen::VectorXd& t, int threads) {
     const Eigen::VectorXd one = Eigen::VectorXd::Ones(t.size());
+    const PencilNorms original{pencil.norm_M, pencil.norm_C, pencil.norm_K};
     std::vector<double> bound(modes.size(), std::numeric_limits<double>::infinity());
     // The bounds first (each reads every mode), then stored.
     for_each_index(modes.size(), threads, [&](size_t i) {
-        if (modes[i].left.size() != modes[i].right.size()) return;
+        const Mode& m = modes[i];
+        if (m.left.size() != m.right.size() || !std::isfinite(std::abs(m.lambda))) return;
+        const Cluster c = cluster_of(modes, i, pencil);
         // Both are bounds on the same eigenvalue: the tighter one is kept.
-        bound[i] = std::min(error_bound_in(modes, i, pencil, one), error_bound_in(modes, i, scaled, t));
+        bound[i] = std::min(error_bound_in(c, m.lambda, original, one), error_bound_in(c, m.lambda, scaled, t));
     });
     for (size_t i = 0; i < modes.size(); ++i) modes[i].error_bound = bound[i];
 }

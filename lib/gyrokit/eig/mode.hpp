@@ -146,10 +146,14 @@ void separate_double_whirl(std::vector<Mode>& modes, const std::vector<std::pair
 // left vector get an infinite bound. The bound is computed twice, on `pencil`
 // and on `scaled`, the pencil T P T of a diagonal congruence t > 0 (the solvers'
 // DOF scaling: the eigenvalues are the same, the vectors T^-1 x and T^-1 y, eta
-// and the condition number those of the scaled pencil), and the smaller is kept:
-// a stiff support inflates |K| and with it the normwise measures of the
-// original, not those of the scaled pencil. The modes on `threads` threads.
-void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil, const PencilAction& scaled,
+// and the condition number those of the scaled pencil, whose Frobenius norms are
+// `scaled`), and the smaller is kept: a stiff support inflates |K| and with it the
+// normwise measures of the original, not those of the scaled pencil. One product
+// per vector serves both (T P T (x / t) = t (P x)). The modes on `threads` threads.
+struct PencilNorms {
+    double M = 0.0, C = 0.0, K = 0.0;
+};
+void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil, const PencilNorms& scaled,
                       const Eigen::VectorXd& t, int threads = 1);
 
 // Modal assurance criterion |a^H b|^2 / (|a|^2 |b|^2), in [0, 1].

@@ -4,24 +4,94 @@
 
 #include <algorithm>
 #include <limits>
-#include <type_traits>
 
 namespace gyrokit::detail {
 
 using cd = std::complex<double>;
-static_assert(std::is_same_v<lapack_int, int>, "the pivots are kept as int");
 
 namespace {
 
-// Lower and upper bandwidths of the pencil's pattern.
+// Lower and upper bandwidths of the pencil's pattern: a column's first and last
+// stored rows (a compressed Eigen matrix keeps each column's rows sorted).
 void bandwidths(const SparsePencil& p, int& kl, int& ku) {
     kl = ku = 0;
-    for (const SparseMatrix* A : {&p.M, &p.C, &p.K})
-        for (Eigen::Index k = 0; k < A->outerSize(); ++k)
-            for (SparseMatrix::InnerIterator it(*A, k); it; ++it) {
-                kl = std::max(kl, static_cast<int>(it.row() - it.col()));
-                ku = std::max(ku, static_cast<int>(it.col() - it.row()));
-            }
+    for (const SparseMatrix* A : {&p.M, &p.C, &p.K}) {
+        const auto* start = A->outerIndexPtr();
+        const auto* rows = A->innerIndexPtr();
+        for (Eigen::Index c = 0; c < A->outerSize(); ++c) {
+            const auto b = start[c], e = A->isCompressed() ? start[c + 1] : start[c] + A->innerNonZeroPtr()[c];
+            if (b == e) continue;
+            ku = std::max(ku, static_cast<int>(c - rows[b]));
+            kl = std::max(kl, static_cast<int>(rows[e - 1] - c));
+        }
+    }
+}
+
+
+// |re| + |im|, the modulus LAPACK's pivot search (izamax) compares.
+double abs1(cd z) { return std::abs(z.real()) + std::abs(z.imag()); }
+
+// a[i] -= l[i] * t for i < count, in real arithmetic: std::complex's product checks
+// every result for NaN and keeps the loop from vectorizing.
+void subtract_multiple(cd* a, const cd* l, cd t, int count) {
+    double* ar = reinterpret_cast<double*>(a);
+    const double* lr = reinterpret_cast<const double*>(l);
+    const double tr = t.real(), ti = t.imag();
+    for (int i = 0; i < count; ++i) {
+        const double re = lr[2 * i], im = lr[2 * i + 1];
+        ar[2 * i] -= re * tr - im * ti;
+        ar[2 * i + 1] -= re * ti + im * tr;
+    }
+}
+
+// sum of conj(a[i]) * x[i] for i < count, in real arithmetic (as above).
+cd conjugate_dot(const cd* a, const cd* x, int count) {
+    const double* ar = reinterpret_cast<const double*>(a);
+    const double* xr = reinterpret_cast<const double*>(x);
+    double re = 0.0, im = 0.0;
+    for (int i = 0; i < count; ++i) {
+        re += ar[2 * i] * xr[2 * i] + ar[2 * i + 1] * xr[2 * i + 1];
+        im += ar[2 * i] * xr[2 * i + 1] - ar[2 * i + 1] * xr[2 * i];
+    }
+    return {re, im};
+}
+
+// LU with partial pivoting of a band matrix in LAPACK's band storage (zgbtrf's
+// unblocked algorithm, zgbtf2, which zgbtrf itself runs for bands this narrow): by
+// columns, the pivot the first of the largest |re| + |im| below the diagonal, rows
+// interchanged over the columns U reaches. Own code because zgbtf2 makes four BLAS
+// calls per column, which at 7 subdiagonals cost several times the arithmetic.
+// Column c is stored by fill(c) just before the elimination first reaches it (while
+// it is in cache). False at an exactly zero pivot.
+template <class Fill>
+bool band_factor(int n, int kl, int ku, cd* ab, int* ipiv, const Fill& fill) {
+    const int kv = kl + ku;
+    const size_t ldab = static_cast<size_t>(2 * kl + ku + 1);
+    // A(r, c) is ab[c * ldab + kv + r - c].
+    const auto at = [&](int r, int c) -> cd& { return ab[static_cast<size_t>(c) * ldab + static_cast<size_t>(kv + r - c)]; };
+    int ju = 0;   // the last column U reaches so far
+    for (int c = 0; c < std::min(kv, n); ++c) fill(c);
+    for (int j = 0; j < n; ++j) {
+        if (j + kv < n) fill(j + kv);
+        cd* column = &at(j, j);   // column[i] = A(j + i, j)
+        const int km = std::min(kl, n - 1 - j);
+        int jp = 0;
+        double largest = abs1(column[0]);
+        for (int i = 1; i <= km; ++i)
+            if (abs1(column[i]) > largest) largest = abs1(column[i]), jp = i;
+        ipiv[j] = j + jp + 1;
+        if (!(largest > 0.0)) return false;   // zero (or NaN)
+        ju = std::max(ju, std::min(j + ku + jp, n - 1));
+        if (jp != 0)
+            for (int c = j; c <= ju; ++c) std::swap(at(j, c), at(j + jp, c));
+        const cd inverse = 1.0 / column[0];
+        for (int i = 1; i <= km; ++i) column[i] *= inverse;
+        for (int c = j + 1; c <= ju; ++c) {
+            cd* row_j = &at(j, c);   // row_j[i] = A(j + i, c)
+            if (row_j[0] != 0.0) subtract_multiple(row_j + 1, column + 1, row_j[0], km);
+        }
+    }
+    return true;
 }
 
 }  // namespace
@@ -47,20 +117,21 @@ bool PencilLU::compute(const SparsePencil& p, cd lambda) {
     }
     const int ldab = 2 * kl_ + ku_ + 1;
     if (ab_.capacity() < spare_band.capacity()) ab_.swap(spare_band);
-    ab_.assign(static_cast<size_t>(ldab) * static_cast<size_t>(n_), cd(0.0));
-    const auto add = [&](const SparseMatrix& A, cd f) {
-        for (Eigen::Index k = 0; k < A.outerSize(); ++k)
-            for (SparseMatrix::InnerIterator it(A, k); it; ++it)
-                ab_[static_cast<size_t>(it.col()) * ldab + static_cast<size_t>(kl_ + ku_ + it.row() - it.col())] +=
-                    f * it.value();
+    ab_.resize(static_cast<size_t>(ldab) * static_cast<size_t>(n_));
+    ipiv_.resize(static_cast<size_t>(n_));
+    // Column c of P(lambda): zero, then M's, C's and K's entries (rows c - ku ... c + kl
+    // at kl + ku + row - c; the first kl rows are the pivoting's fill).
+    const auto fill = [&](int c) {
+        cd* column = ab_.data() + static_cast<size_t>(c) * static_cast<size_t>(ldab);
+        std::fill(column, column + ldab, cd(0.0));
+        const auto add = [&](const SparseMatrix& A, cd f) {
+            for (SparseMatrix::InnerIterator it(A, c); it; ++it) column[kl_ + ku_ + it.row() - c] += f * it.value();
+        };
+        add(p.M, l2);
+        add(p.C, lambda);
+        add(p.K, cd(1.0));
     };
-    add(p.M, l2);
-    add(p.C, lambda);
-    add(p.K, cd(1.0));
-    ipiv_.assign(static_cast<size_t>(n_), 0);
-    const lapack_int info = LAPACKE_zgbtrf_work(LAPACK_COL_MAJOR, n_, n_, kl_, ku_,
-                                           reinterpret_cast<lapack_complex_double*>(ab_.data()), ldab, ipiv_.data());
-    if (info != 0) return false;   // info > 0: an exactly zero pivot
+    if (!band_factor(n_, kl_, ku_, ab_.data(), ipiv_.data(), fill)) return false;
     // The pivots' reciprocals once: the substitutions then multiply.
     inverse_pivot_.resize(static_cast<size_t>(n_));
     for (int j = 0; j < n_; ++j)
@@ -73,51 +144,70 @@ namespace {
 // Solves with zgbtrf's factors (P L U, U with kl + ku superdiagonals at row kv of
 // the band storage, L's multipliers below it), as zgbtrs does, without its
 // per-column BLAS calls (a narrow band makes them mostly call overhead).
-Eigen::VectorXcd band_solve(bool adjoint, int n, int kl, int ku, const std::vector<cd>& ab, const std::vector<int>& ipiv,
-                            const std::vector<cd>& inverse_pivot, Eigen::VectorXcd x) {
+// Solves with zgbtrf's factors (P L U, U with kl + ku superdiagonals at row kv of
+// the band storage, L's multipliers below it), as zgbtrs does, without its
+// per-column BLAS calls (a narrow band makes them mostly call overhead): P x = b
+// where x is given, P^H y = c where y is given, both in one pass over the factors
+// each way (the substitutions read the factors from memory: at 10^5 DOFs they do
+// not fit in cache).
+void band_solve(int n, int kl, int ku, const std::vector<cd>& ab, const std::vector<int>& ipiv,
+                const std::vector<cd>& inverse_pivot, Eigen::VectorXcd* x, Eigen::VectorXcd* y) {
     const int kv = kl + ku, ldab = 2 * kl + ku + 1;
-    const auto at = [&](int row, int col) -> const cd& {
-        return ab[static_cast<size_t>(col) * static_cast<size_t>(ldab) + static_cast<size_t>(row)];
+    const auto at = [&](int row, int col) -> const cd* {
+        return &ab[static_cast<size_t>(col) * static_cast<size_t>(ldab) + static_cast<size_t>(row)];
     };
-    if (!adjoint) {
-        for (int j = 0; j + 1 < n; ++j) {   // L, with the row interchanges
-            const int l = ipiv[static_cast<size_t>(j)] - 1;
-            if (l != j) std::swap(x[l], x[j]);
-            const cd xj = x[j];
-            for (int k = 1, lm = std::min(kl, n - 1 - j); k <= lm; ++k) x[j + k] -= xj * at(kv + k, j);
+    const auto pivot = [&](int j) { return ipiv[static_cast<size_t>(j)] - 1; };
+    for (int j = 0; j < n; ++j) {
+        const int i0 = std::max(0, j - kv), below = std::min(kl, n - 1 - j);
+        if (y) {   // U^H
+            cd& yj = (*y)[j];
+            yj = (yj - conjugate_dot(at(kv + i0 - j, j), &(*y)[i0], j - i0)) *
+                 std::conj(inverse_pivot[static_cast<size_t>(j)]);
         }
-        for (int j = n - 1; j >= 0; --j) {   // U
-            x[j] *= inverse_pivot[static_cast<size_t>(j)];
-            const cd xj = x[j];
-            for (int i = std::max(0, j - kv); i < j; ++i) x[i] -= xj * at(kv + i - j, j);
-        }
-    } else {
-        for (int j = 0; j < n; ++j) {   // U^H
-            cd s = x[j];
-            for (int i = std::max(0, j - kv); i < j; ++i) s -= std::conj(at(kv + i - j, j)) * x[i];
-            x[j] = s * std::conj(inverse_pivot[static_cast<size_t>(j)]);
-        }
-        for (int j = n - 2; j >= 0; --j) {   // L^H, interchanges in reverse
-            cd s = x[j];
-            for (int k = 1, lm = std::min(kl, n - 1 - j); k <= lm; ++k) s -= std::conj(at(kv + k, j)) * x[j + k];
-            x[j] = s;
-            const int l = ipiv[static_cast<size_t>(j)] - 1;
-            if (l != j) std::swap(x[l], x[j]);
+        if (x && j + 1 < n) {   // L, with the row interchanges
+            if (pivot(j) != j) std::swap((*x)[pivot(j)], (*x)[j]);
+            subtract_multiple(&(*x)[j + 1], at(kv + 1, j), (*x)[j], below);
         }
     }
-    return x;
+    for (int j = n - 1; j >= 0; --j) {
+        const int i0 = std::max(0, j - kv), below = std::min(kl, n - 1 - j);
+        if (x) {   // U
+            (*x)[j] *= inverse_pivot[static_cast<size_t>(j)];
+            subtract_multiple(&(*x)[i0], at(kv + i0 - j, j), (*x)[j], j - i0);
+        }
+        if (y && j + 1 < n) {   // L^H, interchanges in reverse
+            (*y)[j] -= conjugate_dot(at(kv + 1, j), &(*y)[j + 1], below);
+            if (pivot(j) != j) std::swap((*y)[pivot(j)], (*y)[j]);
+        }
+    }
 }
 
 }  // namespace
 
 Eigen::VectorXcd PencilLU::solve(const Eigen::VectorXcd& b) const {
     if (!band_) return sparse_.solve(b);
-    return band_solve(false, n_, kl_, ku_, ab_, ipiv_, inverse_pivot_, b);
+    Eigen::VectorXcd x = b;
+    band_solve(n_, kl_, ku_, ab_, ipiv_, inverse_pivot_, &x, nullptr);
+    return x;
 }
 
-Eigen::VectorXcd PencilLU::adjoint_solve(const Eigen::VectorXcd& b) const {
-    if (!band_) return sparse_.adjoint().solve(b);
-    return band_solve(true, n_, kl_, ku_, ab_, ipiv_, inverse_pivot_, b);
+Eigen::VectorXcd PencilLU::adjoint_solve(const Eigen::VectorXcd& c) const {
+    if (!band_) return sparse_.adjoint().solve(c);
+    Eigen::VectorXcd y = c;
+    band_solve(n_, kl_, ku_, ab_, ipiv_, inverse_pivot_, nullptr, &y);
+    return y;
+}
+
+void PencilLU::solve_both(const Eigen::VectorXcd& b, const Eigen::VectorXcd& c, Eigen::VectorXcd& x,
+                          Eigen::VectorXcd& y) const {
+    if (!band_) {
+        x = sparse_.solve(b);
+        y = sparse_.adjoint().solve(c);
+        return;
+    }
+    x = b;
+    y = c;
+    band_solve(n_, kl_, ku_, ab_, ipiv_, inverse_pivot_, &x, &y);
 }
 
 }  // namespace gyrokit::detail

@@ -98,9 +98,10 @@ void finish(QuadraticSpectrum& s, const QuadraticPencil& p, const std::vector<st
     const PencilAction action = action_of(p);
     // Bounds on the DOF-scaled pencil (as QZ solves it): stiff supports do not inflate them.
     const Eigen::VectorXd t = dof_scaling(p);
-    const QuadraticPencil scaled{t.asDiagonal() * p.M * t.asDiagonal(), t.asDiagonal() * p.C * t.asDiagonal(),
-                                 t.asDiagonal() * p.K * t.asDiagonal()};
-    set_error_bounds(kept, action, action_of(scaled), t);
+    const Eigen::ArrayXXd tt = t * t.transpose();
+    const PencilNorms scaled{(p.M.array() * tt).matrix().norm(), (p.C.array() * tt).matrix().norm(),
+                             (p.K.array() * tt).matrix().norm()};
+    set_error_bounds(kept, action, scaled, t);
     if (!keep_left)
         for (auto& m : kept) m.left.resize(0);
     split_rigid_body(kept, s.rigid_body, action, s.scale);

@@ -59,6 +59,9 @@ PencilAction sparse_pencil_action(const SparsePencil& p);
 // natural frequency scale (1 where that is zero or not finite).
 Eigen::VectorXd sparse_dof_scaling(const SparsePencil& p, double scale);
 
+// The Frobenius norms of T M T, T C T and T K T (T = diag(t)), without forming them.
+PencilNorms scaled_norms(const SparsePencil& p, const Eigen::VectorXd& t);
+
 // A fixed pseudo-random vector of length n with entries in [-1, 1], the same on
 // every call, in every process and on every machine: ARPACK's own start (LAPACK's
 // dlarnv with a seed it carries from call to call) and std::rand would make a

@@ -1,6 +1,7 @@
 // The LU factorization of P(lambda) = lambda^2 M + lambda C + K for inverse
-// iteration: LAPACK's band LU (zgbtrf) where the pencil's band is narrow (an FE
-// rotor in node order: 7 to 11 off-diagonals), else Eigen's SparseLU.
+// iteration: a band LU with partial pivoting (LAPACK's zgbtf2 algorithm and band
+// storage) where the pencil's band is narrow (an FE rotor in node order: 7 to 11
+// off-diagonals), else Eigen's SparseLU.
 #pragma once
 
 #include <gyrokit/core/gyroscopic_system.hpp>
@@ -24,7 +25,9 @@ public:
     // Factors P(lambda); false if it is singular (or the factorization fails).
     bool compute(const SparsePencil& p, std::complex<double> lambda);
     Eigen::VectorXcd solve(const Eigen::VectorXcd& b) const;           // P x = b
-    Eigen::VectorXcd adjoint_solve(const Eigen::VectorXcd& b) const;   // P^H y = b
+    Eigen::VectorXcd adjoint_solve(const Eigen::VectorXcd& c) const;   // P^H y = c
+    // Both at once (one pass over a band factorization each way).
+    void solve_both(const Eigen::VectorXcd& b, const Eigen::VectorXcd& c, Eigen::VectorXcd& x, Eigen::VectorXcd& y) const;
     bool banded() const { return band_; }
 
 private:
