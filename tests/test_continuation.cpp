@@ -281,6 +281,35 @@ TEST_CASE("the K lowest modes on the continuation: the same branches as a full s
     CHECK(compared >= 500);
 }
 
+TEST_CASE("a step that fails whole is taken in halves: every speed between the anchors stepped along the "
+          "branches, equal to the full solve within the bounds",
+          "[continuation]") {
+    // ROSS's rotor_example, 0 to 1000 rad/s in 10 rad/s steps, the 6 lowest modes: the
+    // whole step to 10 rad/s fails (a near-double pair at 2605 rad/s splits faster than
+    // its slopes tell) and so does the one to 140 rad/s (two predictions 0.05 rad/s
+    // apart at a crossing); their halves pass.
+    const Scene sc = load_scene(data + "/ross_rotor_example/scene.toml");
+    const std::vector<double> grid = SpeedRange{0.0, 1000.0, 101}.points();
+    ContinuationOptions o;
+    o.lowest = 6;
+    ContinuationReport rep;
+    const SolverFactory cont = continuation_solver(std::make_shared<const GyroscopicSystem>(sc.system), grid, o, &rep);
+    const std::vector<QuadraticSpectrum> stepped = solve_speeds(cont, grid, 1);
+    const SpectrumSolver full = dense_solver(sc.system).make();
+    for (size_t k = 0; k < grid.size(); ++k) {
+        const bool anchor = std::find(rep.anchors.begin(), rep.anchors.end(), grid[k]) != rep.anchors.end();
+        INFO("at " << grid[k] << " rad/s: " << stepped[k].method);
+        CHECK((anchor || stepped[k].method == "continuation (along the branches, verified)"));
+        QuadraticSpectrum f = full(grid[k]);
+        std::vector<Mode> kept;
+        for (Mode& m : f.modes)
+            if (within_band(m, rep.band, f.real_tol)) kept.push_back(std::move(m));
+        f.modes = std::move(kept);
+        for (const Mode& m : stepped[k].modes) CHECK(m.backward_error <= 1e-10);
+        same_modes(stepped[k], f, rep.band, "rotor_example");
+    }
+}
+
 TEST_CASE("the band of the K lowest modes: 1.25 times the largest of the K + 2 lowest at the anchors",
           "[continuation]") {
     const Scene sc = load_scene(data + "/ross_rotor_example/scene.toml");

@@ -244,6 +244,19 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
     return out;
 }
 
+// Step 1 with the step halved where it fails, up to `halvings` times: near a
+// crossing the predictions come too close for the step's length, and a double
+// eigenvalue splits faster than its first-order slopes tell; a shorter step costs a
+// few corrections instead of a full solve. The speeds between are not reported.
+std::optional<QuadraticSpectrum> branch_steps(const Frame& fr, const Solved& from, double w, Solved& next,
+                                              int halvings = 2) {
+    if (std::optional<QuadraticSpectrum> s = branch_solve(fr, from, w, next)) return s;
+    if (halvings == 0 || from.track.empty() || w == from.w) return std::nullopt;
+    Solved mid;
+    if (!branch_steps(fr, from, 0.5 * (from.w + w), mid, halvings - 1)) return std::nullopt;
+    return branch_steps(fr, mid, w, next, halvings - 1);
+}
+
 // The reduced solve at w, or nothing where a pair fails verification.
 std::optional<QuadraticSpectrum> reduced_solve(const Shared& sh, double w) {
     const GyroscopicSystem& sys = *sh.model;
@@ -310,7 +323,7 @@ QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w) {
     if (a != sh.anchor_tracks.begin()) consider(std::prev(a)->second);
     Solved next;
     if (from && sh.opt.along_branches)
-        if (std::optional<QuadraticSpectrum> s = branch_solve(frame_of(sh), *from, w, next)) {
+        if (std::optional<QuadraticSpectrum> s = branch_steps(frame_of(sh), *from, w, next)) {
             state.last = std::move(next);
             return std::move(*s);
         }
@@ -455,7 +468,7 @@ std::optional<QuadraticSpectrum> continue_window(const std::function<SparsePenci
     for (const Mode& m : start.track)
         if (m.left.size() != m.right.size()) return std::nullopt;
     Solved next;
-    std::optional<QuadraticSpectrum> out = branch_solve(fr, start, w, next);
+    std::optional<QuadraticSpectrum> out = branch_steps(fr, start, w, next);
     if (!out) return std::nullopt;
     out->partial = from.partial;   // the window's modes, as the solve it continues
     out->speed = w;

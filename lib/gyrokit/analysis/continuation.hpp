@@ -49,7 +49,8 @@ struct ContinuationReport {
 //    corrected by inverse iteration on the full P(lambda); the step is taken if
 //    every pair verifies (backward errors of the right and left vectors <=
 //    opt.tolerance), stays within 0.3 of its distance to the nearest other
-//    prediction, and no two pairs land on one mode.
+//    prediction, and no two pairs land on one mode. A step that fails is taken
+//    as two half steps (each halved again where it fails: a quarter at most).
 // 2. The projected pencil Q^T P(w) Q, Q an orthonormal real basis of the right
 //    and left vectors (real and imaginary parts) of every mode within twice the
 //    band at the anchor speeds; each eigenpair within the band lifted to the full
@@ -81,7 +82,8 @@ std::optional<Mode> follow_mode(const std::function<SparsePencil(double)>& penci
 // along their slopes and corrected at w, each kept if it verifies, stays within
 // 0.3 of its distance to the nearest other prediction and keeps MAC >= 0.9 with
 // its shape at from.speed (a mode outside the window cannot be seen, so the shape
-// tells a jump onto it). With left vectors and slopes; nothing if any mode fails.
+// tells a jump onto it), in half or quarter steps where the whole step fails
+// (as step 1 above). With left vectors and slopes; nothing if any mode fails.
 // The modes are corrected on `threads` threads (the same result on any number).
 std::optional<QuadraticSpectrum> continue_window(const std::function<SparsePencil(double)>& pencil,
                                                  const std::vector<std::pair<int, int>>& whirl_pairs,
