@@ -231,3 +231,27 @@ TEST_CASE("double eigenvalue: the plane is turned into backward and forward circ
     CHECK(three[0].right == Eigen::VectorXcd(Eigen::Vector2cd(1.0, 0.0)));
     CHECK(three[1].right == Eigen::VectorXcd(Eigen::Vector2cd(0.0, 1.0)));
 }
+
+TEST_CASE("a vector's phase and whirl do not depend on its scale, down to vectors whose squares underflow",
+          "[eig][extremes]") {
+    // A forward circular motion of pair (0, 1) with an axial DOF 2: the phase is taken from
+    // the largest entry, the whirl from the pair; scaled by 1e-160 the squared moduli
+    // underflow to zero, and the moduli are compared instead.
+    Eigen::VectorXcd x(3);
+    x << std::complex<double>(0.3, 0.4), std::complex<double>(-0.4, 0.3), std::complex<double>(0.1, 0.0);
+    const std::vector<std::pair<int, int>> pairs{{0, 1}};
+    const std::complex<double> l(-0.1, 10.0);
+    const Eigen::VectorXcd u = unit_vector(x);
+    CHECK(std::abs(u(0).imag()) <= 1e-15);   // the first of the two largest entries made real
+    CHECK(u(0).real() > 0.0);
+    for (double s : {1.0, 1e-160, 1e-300, 1e150}) {
+        CAPTURE(s);
+        const Eigen::VectorXcd xs = x * s;
+        CHECK((unit_vector(xs) - u).norm() <= 1e-14);
+        CHECK(classify_whirl(l, xs, pairs, 1e-9) == classify_whirl(l, x, pairs, 1e-9));
+    }
+    // A vector that moves only the axial DOF: no whirl at any scale.
+    Eigen::VectorXcd axial = Eigen::VectorXcd::Zero(3);
+    axial(2) = 1.0;
+    for (double s : {1.0, 1e-160}) CHECK(classify_whirl(l, axial * s, pairs, 1e-9) == Whirl::None);
+}

@@ -248,13 +248,33 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
 // crossing the predictions come too close for the step's length, and a double
 // eigenvalue splits faster than its first-order slopes tell; a shorter step costs a
 // few corrections instead of a full solve. The speeds between are not reported.
+// A step taken in parts keeps each shape over the whole step (Frame::min_mac): every
+// mode at its end has at least that MAC with a distinct mode of its start. Each part
+// checks the shapes against its own start only, and small turns would add up.
+bool keeps_shapes(const Solved& from, const Solved& to, double min_mac) {
+    if (to.track.size() != from.track.size()) return false;
+    std::vector<char> taken(from.track.size(), 0);
+    for (const Mode& m : to.track) {
+        size_t best = from.track.size();
+        double best_mac = -1.0;
+        for (size_t j = 0; j < from.track.size(); ++j)
+            if (!taken[j])
+                if (const double v = mac(m.right, from.track[j].right); v > best_mac) best_mac = v, best = j;
+        if (best == from.track.size() || !(best_mac >= min_mac)) return false;
+        taken[best] = 1;
+    }
+    return true;
+}
+
 std::optional<QuadraticSpectrum> branch_steps(const Frame& fr, const Solved& from, double w, Solved& next,
                                               int halvings = 2) {
     if (std::optional<QuadraticSpectrum> s = branch_solve(fr, from, w, next)) return s;
     if (halvings == 0 || from.track.empty() || w == from.w) return std::nullopt;
     Solved mid;
     if (!branch_steps(fr, from, 0.5 * (from.w + w), mid, halvings - 1)) return std::nullopt;
-    return branch_steps(fr, mid, w, next, halvings - 1);
+    std::optional<QuadraticSpectrum> s = branch_steps(fr, mid, w, next, halvings - 1);
+    if (s && fr.min_mac > 0.0 && !keeps_shapes(from, next, fr.min_mac)) return std::nullopt;
+    return s;
 }
 
 // The reduced solve at w, or nothing where a pair fails verification.

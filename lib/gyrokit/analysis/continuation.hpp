@@ -83,7 +83,8 @@ std::optional<Mode> follow_mode(const std::function<SparsePencil(double)>& penci
 // 0.3 of its distance to the nearest other prediction and keeps MAC >= 0.9 with
 // its shape at from.speed (a mode outside the window cannot be seen, so the shape
 // tells a jump onto it), in half or quarter steps where the whole step fails
-// (as step 1 above). With left vectors and slopes; nothing if any mode fails.
+// (as step 1 above; the modes at w then keep MAC >= 0.9 with distinct modes of
+// `from`). With left vectors and slopes; nothing if any mode fails.
 // The modes are corrected on `threads` threads (the same result on any number).
 std::optional<QuadraticSpectrum> continue_window(const std::function<SparsePencil(double)>& pencil,
                                                  const std::vector<std::pair<int, int>>& whirl_pairs,

@@ -108,10 +108,20 @@ double Mode::log_decrement() const {
     return re < 0.0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
 }
 
-Whirl classify_whirl(std::complex<double> lambda, const Eigen::VectorXcd& x,
+Whirl classify_whirl(std::complex<double> lambda, const Eigen::VectorXcd& vector,
                      const std::vector<std::pair<int, int>>& pairs, double real_tol) {
     if (std::abs(lambda.imag()) <= real_tol) return Whirl::Real;
     if (pairs.empty()) return Whirl::Undefined;
+    // Squared moduli below (no square root per entry); a vector whose squares would
+    // underflow or overflow (entries beyond 1e+-154) is scaled to its largest entry first.
+    const double top = vector.cwiseAbs2().maxCoeff();
+    Eigen::VectorXcd rescaled;
+    if (!(top >= std::numeric_limits<double>::min() && top <= std::numeric_limits<double>::max())) {
+        const double largest = vector.cwiseAbs().maxCoeff();
+        if (!(largest > 0.0) || !std::isfinite(largest)) return Whirl::None;
+        rescaled = vector / largest;
+    }
+    const Eigen::VectorXcd& x = rescaled.size() > 0 ? rescaled : vector;
     double turn = 0.0, largest_turn = 0.0, largest_pair = 0.0, largest_pair_dof = 0.0;
     for (const auto& [u, v] : pairs) {
         const double t = (x(u) * std::conj(x(v))).imag();
@@ -120,8 +130,9 @@ Whirl classify_whirl(std::complex<double> lambda, const Eigen::VectorXcd& x,
         largest_pair = std::max(largest_pair, 0.5 * (std::norm(x(u)) + std::norm(x(v))));
         largest_pair_dof = std::max({largest_pair_dof, std::norm(x(u)), std::norm(x(v))});
     }
-    // Squared moduli (no square root per entry): the largest pair DOF against the largest DOF.
-    if (largest_pair_dof <= kWhirlTolerance * kWhirlTolerance * x.cwiseAbs2().maxCoeff()) return Whirl::None;
+    // The largest pair DOF against the largest DOF.
+    const double all = rescaled.size() > 0 ? x.cwiseAbs2().maxCoeff() : top;
+    if (largest_pair_dof <= kWhirlTolerance * kWhirlTolerance * all) return Whirl::None;
     if (largest_turn <= kWhirlTolerance * largest_pair) return Whirl::Planar;
     if (lambda.imag() < 0.0) turn = -turn;  // the conjugate pair turns the other way
     return turn >= 0.0 ? Whirl::Forward : Whirl::Backward;
@@ -205,13 +216,21 @@ double backward_error(const PencilAction& p, std::complex<double> lambda, const 
 Eigen::VectorXcd unit_vector(const Eigen::VectorXcd& v) {
     if (v.size() == 0) return v;
     // The first entry within kTieTolerance of the largest: a tie is not left to rounding.
-    // Squared moduli (no square root per entry).
-    const double top = v.cwiseAbs2().maxCoeff(), tie = (1.0 - kTieTolerance) * (1.0 - kTieTolerance);
+    // Squared moduli (no square root per entry), moduli where the squares would underflow.
     Eigen::Index k = 0;
-    while (k + 1 < v.size() && std::norm(v(k)) < tie * top) ++k;
-    if (std::abs(v(k)) == 0.0) return v;
-    const std::complex<double> phase = std::conj(v(k)) / std::abs(v(k));
-    return v * phase / v.norm();
+    if (const double top = v.cwiseAbs2().maxCoeff(); top >= std::numeric_limits<double>::min()) {
+        const double tie = (1.0 - kTieTolerance) * (1.0 - kTieTolerance);
+        while (k + 1 < v.size() && std::norm(v(k)) < tie * top) ++k;
+    } else {
+        const double largest = v.cwiseAbs().maxCoeff();
+        while (k + 1 < v.size() && std::abs(v(k)) < (1.0 - kTieTolerance) * largest) ++k;
+    }
+    const double size = std::abs(v(k));
+    if (!(size > 0.0) || !std::isfinite(size)) return v;
+    // Entry k made real and positive and of modulus 1 first, so that the norm neither
+    // underflows nor overflows.
+    const Eigen::VectorXcd w = (v * (std::conj(v(k)) / size)) / size;
+    return w / w.norm();
 }
 
 void separate_double_whirl(std::vector<Mode>& modes, const std::vector<std::pair<int, int>>& pairs,

@@ -11,22 +11,18 @@ using cd = std::complex<double>;
 
 namespace {
 
-// Lower and upper bandwidths of the pencil's pattern: a column's first and last
-// stored rows (a compressed Eigen matrix keeps each column's rows sorted).
+// Lower and upper bandwidths of the pencil's pattern, from every stored entry (the
+// fill below writes each entry at its distance from the diagonal, so no column's
+// rows may be assumed sorted).
 void bandwidths(const SparsePencil& p, int& kl, int& ku) {
     kl = ku = 0;
-    for (const SparseMatrix* A : {&p.M, &p.C, &p.K}) {
-        const auto* start = A->outerIndexPtr();
-        const auto* rows = A->innerIndexPtr();
-        for (Eigen::Index c = 0; c < A->outerSize(); ++c) {
-            const auto b = start[c], e = A->isCompressed() ? start[c + 1] : start[c] + A->innerNonZeroPtr()[c];
-            if (b == e) continue;
-            ku = std::max(ku, static_cast<int>(c - rows[b]));
-            kl = std::max(kl, static_cast<int>(rows[e - 1] - c));
-        }
-    }
+    for (const SparseMatrix* A : {&p.M, &p.C, &p.K})
+        for (Eigen::Index k = 0; k < A->outerSize(); ++k)
+            for (SparseMatrix::InnerIterator it(*A, k); it; ++it) {
+                kl = std::max(kl, static_cast<int>(it.row() - it.col()));
+                ku = std::max(ku, static_cast<int>(it.col() - it.row()));
+            }
 }
-
 
 // |re| + |im|, the modulus LAPACK's pivot search (izamax) compares.
 double abs1(cd z) { return std::abs(z.real()) + std::abs(z.imag()); }
@@ -141,9 +137,6 @@ bool PencilLU::compute(const SparsePencil& p, cd lambda) {
 
 namespace {
 
-// Solves with zgbtrf's factors (P L U, U with kl + ku superdiagonals at row kv of
-// the band storage, L's multipliers below it), as zgbtrs does, without its
-// per-column BLAS calls (a narrow band makes them mostly call overhead).
 // Solves with zgbtrf's factors (P L U, U with kl + ku superdiagonals at row kv of
 // the band storage, L's multipliers below it), as zgbtrs does, without its
 // per-column BLAS calls (a narrow band makes them mostly call overhead): P x = b

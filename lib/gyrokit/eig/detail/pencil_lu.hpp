@@ -26,7 +26,8 @@ public:
     bool compute(const SparsePencil& p, std::complex<double> lambda);
     Eigen::VectorXcd solve(const Eigen::VectorXcd& b) const;           // P x = b
     Eigen::VectorXcd adjoint_solve(const Eigen::VectorXcd& c) const;   // P^H y = c
-    // Both at once (one pass over a band factorization each way).
+    // Both at once (one pass over a band factorization each way); x and y must not
+    // be b or c.
     void solve_both(const Eigen::VectorXcd& b, const Eigen::VectorXcd& c, Eigen::VectorXcd& x, Eigen::VectorXcd& y) const;
     bool banded() const { return band_; }
 
