@@ -53,12 +53,12 @@ cd conjugate_dot(const cd* a, const cd* x, int count) {
 }
 
 // LU with partial pivoting of a band matrix in LAPACK's band storage (zgbtrf's
-// unblocked algorithm, zgbtf2, which zgbtrf itself runs for bands this narrow): by
+// unblocked algorithm, zgbtf2, which zgbtrf itself runs below 32 subdiagonals): by
 // columns, the pivot the first of the largest |re| + |im| below the diagonal, rows
 // interchanged over the columns U reaches. Own code because zgbtf2 makes four BLAS
 // calls per column, which at 7 subdiagonals cost several times the arithmetic.
 // Column c is stored by fill(c) just before the elimination first reaches it (while
-// it is in cache). False at an exactly zero pivot.
+// it is in cache). False at a zero (or NaN) pivot.
 template <class Fill>
 bool band_factor(int n, int kl, int ku, cd* ab, int* ipiv, const Fill& fill) {
     const int kv = kl + ku;
