@@ -52,6 +52,15 @@ void same_modes(const QuadraticSpectrum& a, const QuadraticSpectrum& b, double b
         }
 }
 
+// The full solve's modes within the band (the continuation reports no others).
+QuadraticSpectrum within(QuadraticSpectrum f, double band) {
+    std::vector<Mode> kept;
+    for (Mode& m : f.modes)
+        if (within_band(m, band, f.real_tol)) kept.push_back(std::move(m));
+    f.modes = std::move(kept);
+    return f;
+}
+
 // The rotor scenes of data/ with a speed grid and min_dofs to 400 DOFs (the dense
 // solver's), by file name; the balancer, Sommerfeld and fluid scenes have their own tools.
 std::vector<std::pair<std::string, Scene>> dense_rotor_scenes(int min_dofs) {
@@ -92,11 +101,7 @@ TEST_CASE("continuation: the modes in range equal the full solve's within their 
             ++used;
             const SpectrumSolver reduced = cont.make(), full = dense_solver(sc.system).make();
             for (double w : grid) {
-                QuadraticSpectrum f = full(w);
-                std::vector<Mode> kept;
-                for (Mode& m : f.modes)
-                    if (within_band(m, band, f.real_tol)) kept.push_back(std::move(m));
-                f.modes = std::move(kept);
+                const QuadraticSpectrum f = within(full(w), band);
                 const QuadraticSpectrum r = reduced(w);
                 for (const Mode& m : r.modes) CHECK(m.backward_error <= 1e-10);
                 same_modes(r, f, band, name + " at " + std::to_string(w) + " rad/s");
@@ -104,12 +109,7 @@ TEST_CASE("continuation: the modes in range equal the full solve's within their 
             // Between the grid speeds too (a root search's speeds).
             for (size_t k = 0; k + 1 < grid.size(); k += 7) {
                 const double w = 0.5 * (grid[k] + grid[k + 1]);
-                QuadraticSpectrum f = full(w);
-                std::vector<Mode> kept;
-                for (Mode& m : f.modes)
-                    if (within_band(m, band, f.real_tol)) kept.push_back(std::move(m));
-                f.modes = std::move(kept);
-                same_modes(reduced(w), f, band, name + " at " + std::to_string(w) + " rad/s");
+                same_modes(reduced(w), within(full(w), band), band, name + " at " + std::to_string(w) + " rad/s");
             }
         }
     }
@@ -300,13 +300,8 @@ TEST_CASE("a step that fails whole is taken in halves: every speed between the a
         const bool anchor = std::find(rep.anchors.begin(), rep.anchors.end(), grid[k]) != rep.anchors.end();
         INFO("at " << grid[k] << " rad/s: " << stepped[k].method);
         CHECK((anchor || stepped[k].method == "continuation (along the branches, verified)"));
-        QuadraticSpectrum f = full(grid[k]);
-        std::vector<Mode> kept;
-        for (Mode& m : f.modes)
-            if (within_band(m, rep.band, f.real_tol)) kept.push_back(std::move(m));
-        f.modes = std::move(kept);
         for (const Mode& m : stepped[k].modes) CHECK(m.backward_error <= 1e-10);
-        same_modes(stepped[k], f, rep.band, "rotor_example");
+        same_modes(stepped[k], within(full(grid[k]), rep.band), rep.band, "rotor_example");
     }
 }
 
