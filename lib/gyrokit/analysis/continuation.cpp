@@ -52,9 +52,10 @@ struct Shared {
     Eigen::MatrixXd Q;                              // n x r, orthonormal columns (empty: not used)
     std::map<double, QuadraticSpectrum> anchors;   // the full solves, kept to the band
     std::map<double, Solved> anchor_tracks;
+    std::map<double, QuadraticSpectrum> checks;    // eigenvalues alone (modes without vectors)
 };
 
-// What a full solve leaves to continue from.
+// What a full solve (with the slopes of its modes) leaves to continue from.
 Solved track_of(const QuadraticSpectrum& s, const Shared& sh, double w) {
     Solved t;
     t.w = w;
@@ -63,13 +64,12 @@ Solved track_of(const QuadraticSpectrum& s, const Shared& sh, double w) {
             t.track.push_back(m);
         else
             t.beyond = std::min(t.beyond, std::abs(m.lambda));
-    set_slopes(t.track, [&](double v) { return sh.model->sparse_at_speed(v); }, w, s.scale);
     t.rigid = s.rigid_body;
     return t;
 }
 
-// The modes of a full solve within the band, with slopes.
-QuadraticSpectrum keep_band(QuadraticSpectrum s, const Shared& sh, double w) {
+// The modes of a full solve (with their slopes) within the band.
+QuadraticSpectrum keep_band(QuadraticSpectrum s, const Shared& sh) {
     std::vector<Mode> kept;
     for (Mode& m : s.modes)
         if (within_band(m, sh.opt.band, s.real_tol)) kept.push_back(std::move(m));
@@ -77,7 +77,6 @@ QuadraticSpectrum keep_band(QuadraticSpectrum s, const Shared& sh, double w) {
     // Every mode within the band, as a full solve cut at the band: not a sparse
     // window whose edge moves (the tracker's stricter window rules do not apply).
     s.partial = false;
-    set_slopes(s.modes, [&](double v) { return sh.model->sparse_at_speed(v); }, w, s.scale);
     if (!sh.opt.eig.left_vectors)
         for (Mode& m : s.modes) m.left.resize(0);
     return s;
@@ -87,8 +86,9 @@ QuadraticSpectrum full_solve(const Shared& sh, double w, Solved* track = nullptr
     EigenOptions o = sh.opt.eig;
     o.left_vectors = true;
     QuadraticSpectrum s = solve_at_speed(*sh.model, w, o);
+    set_slopes(s.modes, [&](double v) { return sh.model->sparse_at_speed(v); }, w, s.scale);
     if (track) *track = track_of(s, sh, w);
-    return keep_band(std::move(s), sh, w);
+    return keep_band(std::move(s), sh);
 }
 
 // What a continued solve needs of the model and the options: the continuation's
@@ -309,6 +309,53 @@ std::optional<QuadraticSpectrum> reduced_solve(const Shared& sh, double w) {
     return out;
 }
 
+// The eigenvalues at speed w alone, as a spectrum of modes without vectors (a
+// check of the continuation): real within real_tol made real (whirl Real), those
+// within the rigid-body tolerance of zero listed as rigid-body.
+QuadraticSpectrum eigenvalues_only(const GyroscopicSystem& sys, double w) {
+    const EigenvalueSet e = quadratic_eigenvalues(sys.at_speed(w));
+    QuadraticSpectrum s;
+    s.scale = e.scale;
+    s.real_tol = e.real_tol;
+    s.speed = w;
+    s.method = "eigenvalues (QZ without vectors)";
+    for (const cd l : e.values) {
+        Mode m;
+        m.lambda = l;
+        m.whirl = Whirl::Undefined;
+        if (std::abs(l.imag()) <= e.real_tol) m.lambda = cd(l.real(), 0.0), m.whirl = Whirl::Real;
+        (std::abs(l) <= kRigidBodyTolerance * e.scale ? s.rigid_body : s.modes).push_back(std::move(m));
+    }
+    return s;
+}
+
+// Whether the modes continued to a check speed account for its eigenvalues within
+// twice the band: each has a distinct continued mode within 1e-6 of its modulus
+// (QZ's eigenvalues are good to about cond * 1e-16), nearest first. A mode that
+// came from beyond twice the band since the last full solve or check would not.
+// The unmatched eigenvalues' smallest modulus becomes `at.beyond`.
+bool accounts(Solved& at, const QuadraticSpectrum& check, double band) {
+    std::vector<char> used(at.track.size(), 0);
+    double beyond = std::numeric_limits<double>::infinity();
+    for (const Mode& e : check.modes) {
+        size_t best = at.track.size();
+        double distance = std::numeric_limits<double>::infinity();
+        for (size_t j = 0; j < at.track.size(); ++j)
+            if (const double d = std::min(std::abs(at.track[j].lambda - e.lambda),
+                                          std::abs(at.track[j].lambda - std::conj(e.lambda)));
+                !used[j] && d < distance)
+                distance = d, best = j;
+        if (best < at.track.size() && distance <= 1e-6 * std::max(std::abs(e.lambda), check.real_tol)) {
+            used[best] = 1;
+            continue;
+        }
+        if (within_band(e, 2.0 * band, check.real_tol)) return false;
+        beyond = std::min(beyond, std::abs(e.lambda));
+    }
+    at.beyond = beyond;
+    return true;
+}
+
 // One solver's position: its last step along the branches, and the speed it was
 // last asked for.
 struct Walk {
@@ -342,12 +389,16 @@ QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w) {
     if (a != sh.anchor_tracks.end()) consider(a->second);
     if (a != sh.anchor_tracks.begin()) consider(std::prev(a)->second);
     Solved next;
+    // At a check speed the continued modes must account for every eigenvalue near the
+    // band; where they do not (or the step fails), the speed is solved in full.
+    const auto check = sh.checks.find(w);
     if (from && sh.opt.along_branches)
-        if (std::optional<QuadraticSpectrum> s = branch_steps(frame_of(sh), *from, w, next)) {
-            state.last = std::move(next);
-            return std::move(*s);
-        }
-    if (sh.Q.cols() > 0)
+        if (std::optional<QuadraticSpectrum> s = branch_steps(frame_of(sh), *from, w, next))
+            if (check == sh.checks.end() || accounts(next, check->second, sh.opt.band)) {
+                state.last = std::move(next);
+                return std::move(*s);
+            }
+    if (sh.Q.cols() > 0 && check == sh.checks.end())
         if (std::optional<QuadraticSpectrum> s = reduced_solve(sh, w)) return std::move(*s);
     // Verified by the full solve itself (a step near a crossing, a double eigenvalue splitting).
     QuadraticSpectrum s = full_solve(sh, w, &next);
@@ -365,8 +416,10 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
         throw InputError(fmt::format("continuation band {} (margin {}): allowed: a finite frequency > 0 (rad/s), a "
                                      "margin >= 1",
                                      opt.band, opt.band_margin));
-    if (opt.anchor_stride < 1)
-        throw InputError(fmt::format("anchor_stride {}: allowed: 1 or more", opt.anchor_stride));
+    if (opt.anchor_stride < 0)
+        throw InputError(fmt::format("anchor_stride {}: allowed: 0 (the first speed only) or more", opt.anchor_stride));
+    if (opt.check_stride < 1)
+        throw InputError(fmt::format("check_stride {}: allowed: 1 or more", opt.check_stride));
     if (speeds.empty()) throw InputError("continuation: no speeds; allowed: one or more speeds >= 0");
     for (size_t k = 1; k < speeds.size(); ++k)
         if (!(speeds[k] > speeds[k - 1]))
@@ -378,24 +431,41 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     const int n = model->size();
     ContinuationReport rep;
     rep.dofs = n;
-    const auto stride = static_cast<size_t>(opt.anchor_stride);
-    std::vector<double> anchors;
-    for (size_t k = 0; k < speeds.size(); k += stride) anchors.push_back(speeds[k]);
-    if (anchors.back() != speeds.back()) anchors.push_back(speeds.back());
+    // Full solves at the first speed (and every anchor_stride-th and the last, if set);
+    // the eigenvalues alone at every check_stride-th and the last where there is none.
+    std::vector<double> anchors{speeds.front()}, checks;
+    if (opt.anchor_stride > 0) {
+        for (size_t k = static_cast<size_t>(opt.anchor_stride); k < speeds.size(); k += static_cast<size_t>(opt.anchor_stride))
+            anchors.push_back(speeds[k]);
+        if (anchors.back() != speeds.back()) anchors.push_back(speeds.back());
+    }
+    const auto is_anchor = [&](double w) { return std::find(anchors.begin(), anchors.end(), w) != anchors.end(); };
+    for (size_t k = static_cast<size_t>(opt.check_stride); k < speeds.size(); k += static_cast<size_t>(opt.check_stride))
+        if (!is_anchor(speeds[k])) checks.push_back(speeds[k]);
+    if (!is_anchor(speeds.back()) && (checks.empty() || checks.back() != speeds.back())) checks.push_back(speeds.back());
     rep.anchors = anchors;
+    rep.checks = checks;
     EigenOptions full = opt.eig;
     full.left_vectors = true;
     const SolverFactory dense = dense_solver(*model, full);
     std::vector<QuadraticSpectrum> solved = solve_speeds(dense, anchors, opt.workers);
+    SolverFactory values;
+    values.dofs = n;
+    values.make = [model]() -> SpectrumSolver {
+        return [model](double w) { return eigenvalues_only(*model, w); };
+    };
+    std::vector<QuadraticSpectrum> checked =
+        checks.empty() ? std::vector<QuadraticSpectrum>{} : solve_speeds(values, checks, opt.workers);
 
-    if (opt.lowest > 0) {   // the band of the lowest modes, from the anchors
+    if (opt.lowest > 0) {   // the band of the lowest modes, from the anchors and checks
         double top = 0.0;
-        for (const QuadraticSpectrum& s : solved) {
-            std::vector<Mode> m = s.modes;
-            sort_by_frequency(m);
-            for (size_t i = 0; i < std::min(m.size(), static_cast<size_t>(opt.lowest) + 2); ++i)
-                top = std::max(top, frequency_rank(m[i]).second);
-        }
+        for (const auto* list : {&solved, &checked})
+            for (const QuadraticSpectrum& s : *list) {
+                std::vector<Mode> m = s.modes;
+                sort_by_frequency(m);
+                for (size_t i = 0; i < std::min(m.size(), static_cast<size_t>(opt.lowest) + 2); ++i)
+                    top = std::max(top, frequency_rank(m[i]).second);
+            }
         if (!(top > 0.0) || !std::isfinite(top))
             throw SolverError(fmt::format("continuation: no band holds the {} lowest modes (largest frequency {})",
                                           opt.lowest, top));
@@ -434,8 +504,9 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     if (report) *report = rep;
     for (size_t k = 0; k < anchors.size(); ++k) {
         sh->anchor_tracks[anchors[k]] = track_of(solved[k], *sh, anchors[k]);
-        sh->anchors[anchors[k]] = keep_band(std::move(solved[k]), *sh, anchors[k]);
+        sh->anchors[anchors[k]] = keep_band(std::move(solved[k]), *sh);
     }
+    for (size_t k = 0; k < checks.size(); ++k) sh->checks[checks[k]] = std::move(checked[k]);
 
     SolverFactory f;
     f.dofs = n;

@@ -22,7 +22,13 @@ struct ContinuationOptions {
     // frequency_rank at the anchors (ContinuationReport::band); `band` is then unused.
     int lowest = 0;
     double band_margin = 1.25;
-    int anchor_stride = 25;     // a full solve every this many speeds of the grid, and at both ends
+    // Full solves (anchors) at the first speed and, if > 0, at every this many speeds
+    // of the grid and the last.
+    int anchor_stride = 0;
+    // The eigenvalues alone (QZ without vectors) at every this many speeds and the
+    // last, where there is no anchor: the modes continued there must account for every
+    // eigenvalue within twice the band, else the speed is solved in full.
+    int check_stride = 25;
     double tolerance = 1e-10;   // a pair is kept if the backward errors of its right and left vectors are below
     // The basis is used only if its dimension is at most this fraction of the DOFs:
     // the projected QZ costs about (r/n)^3 of the full one, and the refinement and
@@ -40,6 +46,7 @@ struct ContinuationReport {
     int dofs = 0;
     double band = 0;            // the band used (rad/s)
     std::vector<double> anchors;   // speeds solved in full to build the basis
+    std::vector<double> checks;    // speeds whose eigenvalues check the continued modes
 };
 
 // A solver (SolverFactory) for any speed in or near `speeds` that returns the

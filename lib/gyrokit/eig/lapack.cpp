@@ -18,26 +18,58 @@ namespace gyrokit {
 // writing them (valgrind: "depends on uninitialised value"), which made the result
 // differ in its last digits with whatever the memory held: from call to call in one
 // process and from worker to worker. Zeroed, the same pencil gives the same bits.
-lapack_int dggev3_zeroed(char jobvl, lapack_int n, Eigen::MatrixXd& A, Eigen::MatrixXd& B, Eigen::VectorXd& ar,
-                         Eigen::VectorXd& ai, Eigen::VectorXd& be, Eigen::MatrixXd& vl, lapack_int ldvl,
-                         Eigen::MatrixXd& vr) {
+lapack_int dggev3_zeroed(char jobvl, char jobvr, lapack_int n, Eigen::MatrixXd& A, Eigen::MatrixXd& B,
+                         Eigen::VectorXd& ar, Eigen::VectorXd& ai, Eigen::VectorXd& be, Eigen::MatrixXd& vl,
+                         lapack_int ldvl, Eigen::MatrixXd& vr, lapack_int ldvr) {
     double query = 0.0;
-    lapack_int info = LAPACKE_dggev3_work(LAPACK_COL_MAJOR, jobvl, 'V', n, A.data(), n, B.data(), n, ar.data(),
-                                          ai.data(), be.data(), vl.data(), ldvl, vr.data(), n, &query, -1);
+    lapack_int info = LAPACKE_dggev3_work(LAPACK_COL_MAJOR, jobvl, jobvr, n, A.data(), n, B.data(), n, ar.data(),
+                                          ai.data(), be.data(), vl.data(), ldvl, vr.data(), ldvr, &query, -1);
     if (info != 0) return info;
     std::vector<double> work(static_cast<std::size_t>(std::max(1.0, query)), 0.0);
-    return LAPACKE_dggev3_work(LAPACK_COL_MAJOR, jobvl, 'V', n, A.data(), n, B.data(), n, ar.data(), ai.data(),
-                               be.data(), vl.data(), ldvl, vr.data(), n, work.data(),
+    return LAPACKE_dggev3_work(LAPACK_COL_MAJOR, jobvl, jobvr, n, A.data(), n, B.data(), n, ar.data(), ai.data(),
+                               be.data(), vl.data(), ldvl, vr.data(), ldvr, work.data(),
                                static_cast<lapack_int>(work.size()));
 }
 
-GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_left, bool classic) {
-    const lapack_int n = static_cast<lapack_int>(A.rows());
+namespace {
+
+void check_finite(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
     // The _work form skips LAPACKE's NaN check, and the QZ routines index out of
     // bounds on NaN input (memory corruption, not an error code): check here.
     if (!A.allFinite() || !B.allFinite())
         throw SolverError("the pencil for LAPACK's QZ holds NaN or infinite entries: the model's matrices "
                           "are zero where they may not be (a zero mass matrix) or too badly scaled");
+}
+
+void check_info(lapack_int info, bool classic) {
+    if (info != 0)
+        throw SolverError(fmt::format("LAPACK {} (QZ) failed with info = {}; the pencil may contain "
+                                      "NaN or be too badly scaled",
+                                      classic ? "dggev" : "dggev3", info));
+}
+
+}  // namespace
+
+GeneralizedEigen lapack_dggev_values(Eigen::MatrixXd A, Eigen::MatrixXd B, bool classic) {
+    const lapack_int n = static_cast<lapack_int>(A.rows());
+    check_finite(A, B);
+    Eigen::VectorXd ar = Eigen::VectorXd::Zero(n), ai = Eigen::VectorXd::Zero(n), be = Eigen::VectorXd::Zero(n);
+    Eigen::MatrixXd none = Eigen::MatrixXd::Zero(1, 1);
+    const lapack_int info =
+        classic ? LAPACKE_dggev(LAPACK_COL_MAJOR, 'N', 'N', n, A.data(), n, B.data(), n, ar.data(), ai.data(),
+                                be.data(), none.data(), 1, none.data(), 1)
+                : dggev3_zeroed('N', 'N', n, A, B, ar, ai, be, none, 1, none, 1);
+    check_info(info, classic);
+    GeneralizedEigen g;
+    g.alpha.resize(n);
+    for (lapack_int j = 0; j < n; ++j) g.alpha(j) = {ar(j), ai(j)};
+    g.beta = be;
+    return g;
+}
+
+GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_left, bool classic) {
+    const lapack_int n = static_cast<lapack_int>(A.rows());
+    check_finite(A, B);
     Eigen::VectorXd ar = Eigen::VectorXd::Zero(n), ai = Eigen::VectorXd::Zero(n), be = Eigen::VectorXd::Zero(n);
     Eigen::MatrixXd vl = Eigen::MatrixXd::Zero(want_left ? n : 1, want_left ? n : 1);
     Eigen::MatrixXd vr = Eigen::MatrixXd::Zero(n, n);
@@ -46,11 +78,8 @@ GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_le
     const lapack_int info =
         classic ? LAPACKE_dggev(LAPACK_COL_MAJOR, jobvl, 'V', n, A.data(), n, B.data(), n, ar.data(), ai.data(),
                                 be.data(), vl.data(), ldvl, vr.data(), n)
-                : dggev3_zeroed(jobvl, n, A, B, ar, ai, be, vl, ldvl, vr);
-    if (info != 0)
-        throw SolverError(fmt::format("LAPACK {} (QZ) failed with info = {}; the pencil may contain "
-                                      "NaN or be too badly scaled",
-                                      classic ? "dggev" : "dggev3", info));
+                : dggev3_zeroed(jobvl, 'V', n, A, B, ar, ai, be, vl, ldvl, vr, n);
+    check_info(info, classic);
     GeneralizedEigen g;
     g.alpha.resize(n);
     g.beta = be;

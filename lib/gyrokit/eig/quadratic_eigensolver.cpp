@@ -123,10 +123,19 @@ Eigen::VectorXd dof_scaling(const QuadraticPencil& p) {
     return t / t.maxCoeff();
 }
 
-QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left, bool classic) {
-    const int n = static_cast<int>(original.M.rows());
-    const Eigen::VectorXd t = dof_scaling(original);
-    const PencilAction action = action_of(original);   // backward errors refer to the original problem
+// The scaled first companion form of a pencil: A - mu B with lambda = gamma mu, in
+// the coordinates x = T^-1 x_original (t = dof_scaling), eigenvector [mu x; x].
+struct Companion {
+    Eigen::VectorXd t;
+    double gamma = 1.0;
+    Eigen::MatrixXd A, B;
+};
+
+Companion companion(const QuadraticPencil& original) {
+    const Eigen::Index n = original.M.rows();
+    Companion c;
+    c.t = dof_scaling(original);
+    const Eigen::VectorXd& t = c.t;
     const QuadraticPencil p{t.asDiagonal() * original.M * t.asDiagonal(), t.asDiagonal() * original.C * t.asDiagonal(),
                             t.asDiagonal() * original.K * t.asDiagonal()};
     // Fan-Lin-Van Dooren: lambda = gamma mu, coefficients of norm about one.
@@ -136,24 +145,37 @@ QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left, bool
                           "allowed: M with at least one nonzero entry");
     const double gamma = (nk > 0.0) ? std::sqrt(nk / nm) : (nc > 0.0 ? nc / nm : 1.0);
     const double delta = 2.0 / (nk + nc * gamma + nm * gamma * gamma * (nk > 0.0 ? 0.0 : 1.0));
-    // First companion form A - mu B, eigenvector [mu x; x].
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n), B = Eigen::MatrixXd::Zero(2 * n, 2 * n);
-    A.topLeftCorner(n, n) = -(gamma * delta) * p.C;
-    A.topRightCorner(n, n) = -delta * p.K;
-    A.bottomLeftCorner(n, n).setIdentity();
-    B.topLeftCorner(n, n) = (gamma * gamma * delta) * p.M;
-    B.bottomRightCorner(n, n).setIdentity();
+    c.gamma = gamma;
+    c.A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+    c.B = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+    c.A.topLeftCorner(n, n) = -(gamma * delta) * p.C;
+    c.A.topRightCorner(n, n) = -delta * p.K;
+    c.A.bottomLeftCorner(n, n).setIdentity();
+    c.B.topLeftCorner(n, n) = (gamma * gamma * delta) * p.M;
+    c.B.bottomRightCorner(n, n).setIdentity();
+    return c;
+}
 
-    GeneralizedEigen ge = lapack_dggev(A, B, want_left, classic);
+// Whether QZ's alpha / beta is an infinite eigenvalue (singular M).
+bool infinite(std::complex<double> alpha, double beta) {
+    return std::abs(beta) <= 100.0 * std::numeric_limits<double>::epsilon() * std::abs(alpha) || beta == 0.0;
+}
+
+QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left, bool classic) {
+    const int n = static_cast<int>(original.M.rows());
+    const PencilAction action = action_of(original);   // backward errors refer to the original problem
+    Companion c = companion(original);
+    const Eigen::VectorXd& t = c.t;
+    const double gamma = c.gamma;
+    GeneralizedEigen ge = lapack_dggev(std::move(c.A), std::move(c.B), want_left, classic);
 
     QuadraticSpectrum s;
     s.scale = natural_scale(original);
     s.real_tol = 1e-7 * s.scale;   // about sqrt(eps) times the scale: rigid-body pairs land here
-    const double eps = std::numeric_limits<double>::epsilon();
     for (int j = 0; j < 2 * n; ++j) {
         const cd alpha = ge.alpha(j);
         const double beta = ge.beta(j);
-        if (std::abs(beta) <= 100.0 * eps * std::abs(alpha) || beta == 0.0) {
+        if (infinite(alpha, beta)) {
             ++s.infinite_count;
             continue;
         }
@@ -372,6 +394,26 @@ QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& 
                                       opt.method == EigenMethod::StateMatrix ? "; use the QZ method (" + option_field("method") + " qz)"
                                                                              : " (see the error_bound column)"));
     return s;
+}
+
+EigenvalueSet quadratic_eigenvalues(const QuadraticPencil& p) {
+    if (!p.M.allFinite() || !p.C.allFinite() || !p.K.allFinite())
+        throw InputError("the pencil has a NaN or infinite coefficient");
+    Companion c = companion(p);
+    // Without vectors the classic QZ is the faster up to about 400 DOFs (ROSS's 42:
+    // 2.4 against 4.1 ms; 100: 21 against 32 ms; 336: 0.77 against 0.81 s).
+    const bool classic = p.M.rows() <= kClassicValuesLimit;
+    const GeneralizedEigen ge = lapack_dggev_values(std::move(c.A), std::move(c.B), classic);
+    EigenvalueSet e;
+    e.scale = natural_scale(p);
+    e.real_tol = 1e-7 * e.scale;   // as solve_qz
+    for (Eigen::Index j = 0; j < ge.alpha.size(); ++j) {
+        if (infinite(ge.alpha(j), ge.beta(j))) continue;
+        const cd l = c.gamma * ge.alpha(j) / ge.beta(j);
+        if (l.imag() < -1e-7 * std::max(std::abs(l), e.scale)) continue;   // conjugate
+        e.values.push_back(l);
+    }
+    return e;
 }
 
 QuadraticSpectrum solve_at_speed(const GyroscopicSystem& sys, double w, const EigenOptions& opt) {

@@ -64,6 +64,18 @@ void split_rigid_body(std::vector<Mode>& modes, std::vector<Mode>& rigid_body, c
 QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& opt,
                                   const std::vector<std::pair<int, int>>& whirl_pairs = {});
 
+// The finite eigenvalues alone, by the QZ of solve_quadratic (its scaling and
+// linearization) without vectors: dggev up to kClassicValuesLimit DOFs, dggev3
+// above (measured: docs/benchmarks.md), about half the cost of the solve with
+// vectors. Conjugates dropped as there; unverified (no vectors to verify with).
+constexpr int kClassicValuesLimit = 400;
+struct EigenvalueSet {
+    std::vector<std::complex<double>> values;
+    double scale = 1.0;      // as QuadraticSpectrum
+    double real_tol = 0.0;
+};
+EigenvalueSet quadratic_eigenvalues(const QuadraticPencil& p);
+
 // Convenience: the spectrum of a system at spin speed w.
 QuadraticSpectrum solve_at_speed(const GyroscopicSystem& sys, double w, const EigenOptions& opt = {});
 

@@ -18,6 +18,9 @@ struct GeneralizedEigen {
 // Hessenberg-triangular reduction) by default, dggev (the classic single-shift
 // QZ) with `classic`. Throws SolverError if QZ fails.
 GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_left, bool classic = false);
+// The eigenvalues alone (no vectors: QZ without accumulating its transformations),
+// as lapack_dggev; right and left stay empty.
+GeneralizedEigen lapack_dggev_values(Eigen::MatrixXd A, Eigen::MatrixXd B, bool classic = false);
 // Standard eigenproblem A v = lambda v (dgeev: balancing, Hessenberg QR): alpha holds
 // the eigenvalues (beta is empty), right and optionally left (u^H A = lambda u^H)
 // eigenvectors. Throws SolverError if QR fails.
