@@ -305,6 +305,65 @@ TEST_CASE("a step that fails whole is taken in halves: every speed between the a
     }
 }
 
+TEST_CASE("a mode that comes from beyond twice the band is caught by the eigenvalues at the next check speed",
+          "[continuation]") {
+    // Bearings that soften with speed (kxx from 1e9 down to 1e5 N/m, kyy 1.5 times): the
+    // bearing modes at 3357 and 3383 rad/s at standstill fall to 366 and 480 rad/s at 750
+    // rad/s. With the band at 400 rad/s only the modes near 651 rad/s are continued from
+    // the first speed; the falling ones are beyond twice the band there, so the continued
+    // modes cannot account for them at the check speed 750 rad/s, which is solved in
+    // full. Every other speed is stepped along the branches, and none misses a mode (the
+    // lower one enters the band between 700 and 750 rad/s).
+    const std::string text = R"(
+[model]
+type = "fe_rotor"
+material = "steel"
+[[model.shaft]]
+length = 1.0
+elements = 6
+outer_diameter = 0.08
+[[model.disk]]
+z = 0.5
+outer_diameter = 0.3
+width = 0.05
+[[model.bearing]]
+z = 0.0
+speeds = [0, 125, 250, 375, 500, 625, 750, 875, 1000]
+kxx = [1e9, 3.16e8, 1e8, 3.16e7, 1e7, 3.16e6, 1e6, 3.16e5, 1e5]
+kyy = [1.5e9, 4.74e8, 1.5e8, 4.74e7, 1.5e7, 4.74e6, 1.5e6, 4.74e5, 1.5e5]
+cxx = [1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2]
+cyy = [1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2]
+[[model.bearing]]
+z = 1.0
+speeds = [0, 125, 250, 375, 500, 625, 750, 875, 1000]
+kxx = [1e9, 3.16e8, 1e8, 3.16e7, 1e7, 3.16e6, 1e6, 3.16e5, 1e5]
+kyy = [1.5e9, 4.74e8, 1.5e8, 4.74e7, 1.5e7, 4.74e6, 1.5e6, 4.74e5, 1.5e5]
+cxx = [1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2]
+cyy = [1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2]
+)";
+    const Scene sc = parse_scene(text, "softening.toml");
+    const std::vector<double> grid = SpeedRange{0.0, 1000.0, 21}.points();
+    ContinuationOptions o;
+    o.band = 400.0;
+    o.check_stride = 5;
+    ContinuationReport rep;
+    const SolverFactory cont = continuation_solver(std::make_shared<const GyroscopicSystem>(sc.system), grid, o, &rep);
+    CHECK(rep.anchors == std::vector<double>{0.0});
+    CHECK(rep.checks == std::vector<double>{250.0, 500.0, 750.0, 1000.0});
+    const std::vector<QuadraticSpectrum> got = solve_speeds(cont, grid, 1);
+    const SpectrumSolver full = dense_solver(sc.system).make();
+    const QuadraticSpectrum at0 = full(0.0);
+    REQUIRE(at0.modes.size() >= 4);
+    CHECK(at0.modes[2].lambda.imag() > 2.0 * o.band);   // the pair that falls, beyond twice the band
+    for (size_t k = 0; k < grid.size(); ++k) {
+        INFO("at " << grid[k] << " rad/s: " << got[k].method);
+        CHECK(got[k].method == (k == 0 || k == 15 ? "scaled QZ" : "continuation (along the branches, verified)"));
+        same_modes(got[k], within(full(grid[k]), o.band), o.band, "softening bearings");
+    }
+    CHECK(got[14].modes.size() == 2);
+    CHECK(got[15].modes.size() == 3);   // 750 rad/s: the lower falling mode is in the band
+}
+
 TEST_CASE("the band of the K lowest modes: 1.25 times the largest of the K + 2 lowest at the anchors",
           "[continuation]") {
     const Scene sc = load_scene(data + "/ross_rotor_example/scene.toml");

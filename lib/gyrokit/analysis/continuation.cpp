@@ -155,8 +155,7 @@ bool verified(const SparsePencil& p, const PencilAction& action, Mode& m, double
 bool corrected(const SparsePencil& p, const PencilAction& action, Mode& m, cd predicted, double tolerance,
                double scale, double real_tol) {
     m.lambda = predicted;
-    m.backward_error = std::numeric_limits<double>::infinity();
-    m.left.resize(0);
+    m.backward_error = std::numeric_limits<double>::infinity();   // the left vector: a start (refine_eigenpair)
     for (int k = 0; k < 3 && !(m.backward_error <= 1e-3 * tolerance); ++k)
         refine_eigenpair(p, action, m, 1e-3 * tolerance, scale);
     return verified(p, action, m, tolerance, real_tol);
@@ -398,7 +397,10 @@ QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w) {
                 state.last = std::move(next);
                 return std::move(*s);
             }
-    if (sh.Q.cols() > 0 && check == sh.checks.end())
+    // The projected pencil only finds modes its basis holds: one that came into the band
+    // since the anchor would be missed, so after a failed step the speed is solved in
+    // full (which the next steps continue from); the projection serves on its own.
+    if (sh.Q.cols() > 0 && !sh.opt.along_branches && check == sh.checks.end())
         if (std::optional<QuadraticSpectrum> s = reduced_solve(sh, w)) return std::move(*s);
     // Verified by the full solve itself (a step near a crossing, a double eigenvalue splitting).
     QuadraticSpectrum s = full_solve(sh, w, &next);

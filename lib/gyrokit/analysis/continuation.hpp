@@ -58,12 +58,16 @@ struct ContinuationReport {
 //    opt.tolerance), stays within 0.3 of its distance to the nearest other
 //    prediction, and no two pairs land on one mode. A step that fails is taken
 //    as two half steps (each halved again where it fails: a quarter at most).
-// 2. The projected pencil Q^T P(w) Q, Q an orthonormal real basis of the right
-//    and left vectors (real and imaginary parts) of every mode within twice the
-//    band at the anchor speeds; each eigenpair within the band lifted to the full
-//    model, refined and verified as above. Skipped if the basis would exceed
-//    max_basis_fraction of the DOFs (report->used = false).
-// 3. A full solve.
+//    At a check speed (every check_stride-th and the last) the continued modes
+//    must also account for every eigenvalue within twice the band there (QZ
+//    without vectors, computed at construction).
+// 2. Only with along_branches false: the projected pencil Q^T P(w) Q, Q an
+//    orthonormal real basis of the right and left vectors (real and imaginary
+//    parts) of every mode within twice the band at the anchors; each eigenpair
+//    within the band lifted to the full model, refined and verified as above.
+//    Skipped if the basis would exceed max_basis_fraction of the DOFs
+//    (report->used = false) and at check speeds.
+// 3. A full solve (the next steps continue from it).
 // Every mode gets its error bound, whirl and slope as from the dense solver;
 // spectra hold every mode within the band (not marked partial: the band is not a
 // moving window), `method` names the path. At an anchor speed

@@ -27,6 +27,16 @@ void bandwidths(const SparsePencil& p, int& kl, int& ku) {
 // |re| + |im|, the modulus LAPACK's pivot search (izamax) compares.
 double abs1(cd z) { return std::abs(z.real()) + std::abs(z.imag()); }
 
+// 1 / z for a finite nonzero z, scaled by its largest part so that |z|^2 neither
+// overflows nor underflows (std::complex's division goes through a library call
+// that checks for infinities and NaN at every pivot).
+cd reciprocal(cd z) {
+    const double s = std::max(std::abs(z.real()), std::abs(z.imag()));
+    const double a = z.real() / s, b = z.imag() / s;
+    const double d = s * (a * a + b * b);
+    return {a / d, -b / d};
+}
+
 // a[i] -= l[i] * t for i < count, in real arithmetic: std::complex's product checks
 // every result for NaN and keeps the loop from vectorizing.
 void subtract_multiple(cd* a, const cd* l, cd t, int count) {
@@ -60,7 +70,7 @@ cd conjugate_dot(const cd* a, const cd* x, int count) {
 // Column c is stored by fill(c) just before the elimination first reaches it (while
 // it is in cache). False at a zero (or NaN) pivot.
 template <class Fill>
-bool band_factor(int n, int kl, int ku, cd* ab, int* ipiv, const Fill& fill) {
+bool band_factor(int n, int kl, int ku, cd* ab, int* ipiv, cd* inverse_pivot, const Fill& fill) {
     const int kv = kl + ku;
     const size_t ldab = static_cast<size_t>(2 * kl + ku + 1);
     // A(r, c) is ab[c * ldab + kv + r - c].
@@ -80,7 +90,8 @@ bool band_factor(int n, int kl, int ku, cd* ab, int* ipiv, const Fill& fill) {
         ju = std::max(ju, std::min(j + ku + jp, n - 1));
         if (jp != 0)
             for (int c = j; c <= ju; ++c) std::swap(at(j, c), at(j + jp, c));
-        const cd inverse = 1.0 / column[0];
+        const cd inverse = reciprocal(column[0]);
+        inverse_pivot[j] = inverse;
         for (int i = 1; i <= km; ++i) column[i] *= inverse;
         for (int c = j + 1; c <= ju; ++c) {
             cd* row_j = &at(j, c);   // row_j[i] = A(j + i, c)
@@ -127,12 +138,9 @@ bool PencilLU::compute(const SparsePencil& p, cd lambda) {
         add(p.C, lambda);
         add(p.K, cd(1.0));
     };
-    if (!band_factor(n_, kl_, ku_, ab_.data(), ipiv_.data(), fill)) return false;
-    // The pivots' reciprocals once: the substitutions then multiply.
+    // The pivots' reciprocals (kept by the factorization): the substitutions multiply.
     inverse_pivot_.resize(static_cast<size_t>(n_));
-    for (int j = 0; j < n_; ++j)
-        inverse_pivot_[static_cast<size_t>(j)] = 1.0 / ab_[static_cast<size_t>(j) * ldab + static_cast<size_t>(kl_ + ku_)];
-    return true;
+    return band_factor(n_, kl_, ku_, ab_.data(), ipiv_.data(), inverse_pivot_.data(), fill);
 }
 
 namespace {

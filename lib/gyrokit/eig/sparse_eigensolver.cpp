@@ -101,7 +101,10 @@ double refine_eigenpair(const SparsePencil& p, const PencilAction& action, Mode&
     const cd off = 1e-12 * std::max(std::abs(m.lambda), kRigidBodyTolerance * scale) * std::polar(1.0, M_PI / 4);
     detail::PencilLU lu;
     if (!lu.compute(p, m.lambda + off)) return raw;   // no left vector: an infinite error bound
-    Eigen::VectorXcd x = m.right, y = m.right;
+    // The left iteration starts from the mode's left vector where it has one (a
+    // continued mode's, of the last speed), else from the right vector.
+    const bool has_left = m.left.size() == m.right.size() && m.left.allFinite() && m.left.norm() > 0.0;
+    Eigen::VectorXcd x = m.right, y = has_left ? m.left : m.right;
     Eigen::VectorXcd Mxn, Cxn, Kxn;
     cd lambda = m.lambda;
     double eta = raw;

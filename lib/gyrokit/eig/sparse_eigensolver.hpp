@@ -74,7 +74,8 @@ Eigen::VectorXd fixed_random_vector(Eigen::Index n);
 // always finds the left vector; refines the right vector and the eigenvalue
 // (two-sided Rayleigh quotient) only if the pair's backward error exceeds
 // `accurate`, since inverse iteration from two vectors of a double eigenvalue's
-// plane may turn both to one direction. Sets m.lambda, right, left and
+// plane may turn both to one direction. The left iteration starts from m.left
+// where it is a nonzero finite vector, else from m.right. Sets m.lambda, right, left and
 // backward_error; returns the backward error before refinement. `scale` is the
 // pencil's natural frequency scale.
 double refine_eigenpair(const SparsePencil& p, const PencilAction& action, Mode& m, double accurate, double scale);
