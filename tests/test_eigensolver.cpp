@@ -6,6 +6,8 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 using namespace gyrokit;
 
@@ -254,4 +256,48 @@ TEST_CASE("a vector's phase and whirl do not depend on its scale, down to vector
     Eigen::VectorXcd axial = Eigen::VectorXcd::Zero(3);
     axial(2) = 1.0;
     for (double s : {1.0, 1e-160}) CHECK(classify_whirl(l, axial * s, pairs, 1e-9) == Whirl::None);
+}
+
+TEST_CASE("the eigenvalues alone equal the full solve's: from the state matrix where M is well conditioned, "
+          "from QZ where it is singular or nearly so",
+          "[eig]") {
+    std::mt19937 g(11);
+    // Each eigenvalue of the full solve (modes and rigid-body) has its own among the values
+    // alone, within its error bound or 1e-10 of the natural scale (both paths are backward
+    // stable on well-scaled pencils; a cond(M) of 1e12 is taken by QZ, not the state matrix).
+    const auto same = [](const QuadraticPencil& P) {
+        EigenOptions o;
+        o.left_vectors = true;
+        const QuadraticSpectrum s = solve_quadratic(P, o);
+        const EigenvalueSet e = quadratic_eigenvalues(P);
+        CHECK(e.values.size() == s.modes.size() + s.rigid_body.size());
+        std::vector<char> used(e.values.size(), 0);
+        for (const auto* list : {&s.modes, &s.rigid_body})
+            for (const Mode& m : *list) {
+                size_t best = e.values.size();
+                double d = std::numeric_limits<double>::infinity();
+                for (size_t j = 0; j < e.values.size(); ++j)
+                    if (const double dj = std::min(std::abs(e.values[j] - m.lambda), std::abs(std::conj(e.values[j]) - m.lambda));
+                        !used[j] && dj < d)
+                        d = dj, best = j;
+                CAPTURE(m.lambda, d, m.error_bound);
+                REQUIRE(best < e.values.size());
+                used[best] = 1;
+                CHECK(d <= std::max(m.error_bound, 1e-10 * std::max(std::abs(m.lambda), e.scale)));
+            }
+    };
+    for (int n : {3, 12, 40}) {
+        QuadraticPencil P = random_gyroscopic(g, n, true).at_speed(3.0);
+        const Eigen::MatrixXd D = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return test::uniform(g, 0, 0.1); });
+        P.C += D * D.transpose();   // damped
+        same(P);                    // state matrix
+        QuadraticPencil singular = P;   // a massless DOF: QZ, its infinite eigenvalues dropped
+        singular.M.row(0).setZero();
+        singular.M.col(0).setZero();
+        same(singular);
+        QuadraticPencil light = P;   // cond(M) about 1e12: QZ
+        light.M.row(0) *= 1e-6;
+        light.M.col(0) *= 1e-6;
+        same(light);
+    }
 }

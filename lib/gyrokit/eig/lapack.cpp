@@ -106,6 +106,21 @@ GeneralizedEigen lapack_dggev(Eigen::MatrixXd A, Eigen::MatrixXd B, bool want_le
     return g;
 }
 
+Eigen::VectorXcd lapack_dgeev_values(Eigen::MatrixXd A) {
+    const lapack_int n = static_cast<lapack_int>(A.rows());
+    if (!A.allFinite())
+        throw SolverError("the state matrix holds NaN or infinite entries: the model is too badly scaled");
+    Eigen::VectorXd wr(n), wi(n);
+    double none = 0.0;
+    const lapack_int info = LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', n, A.data(), n, wr.data(), wi.data(), &none, 1,
+                                          &none, 1);
+    if (info != 0)
+        throw SolverError(fmt::format("LAPACK dgeev (the state matrix's QR) failed with info = {}", info));
+    Eigen::VectorXcd l(n);
+    for (lapack_int j = 0; j < n; ++j) l(j) = {wr(j), wi(j)};
+    return l;
+}
+
 GeneralizedEigen lapack_dgeev(Eigen::MatrixXd A, bool want_left) {
     const lapack_int n = static_cast<lapack_int>(A.rows());
     Eigen::VectorXd wr(n), wi(n);

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <limits>
 #include <memory>
+#include <optional>
 
 namespace gyrokit {
 
@@ -396,23 +397,55 @@ QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& 
     return s;
 }
 
+namespace {
+
+// The eigenvalues from the state matrix where M is positive definite and well
+// conditioned: with T M T = L L^T (t = dof_scaling) and z = L^T x / t, the matrix
+// [0, I; -L^-1 K L^-T / g^2, -L^-1 C L^-T / g] in mu = lambda / g (g the natural scale),
+// whose QR without vectors costs about 60 % of the QZ's (ROSS's 42 DOFs: 1.4 against
+// 2.4 ms). Empty where M is not (then QZ): a singular or badly conditioned M would
+// cost the small eigenvalues their accuracy.
+std::optional<Eigen::VectorXcd> state_matrix_values(const QuadraticPencil& original, double g) {
+    const Eigen::Index n = original.M.rows();
+    const Eigen::VectorXd t = dof_scaling(original);
+    const Eigen::MatrixXd M = t.asDiagonal() * original.M * t.asDiagonal();
+    const Eigen::LLT<Eigen::MatrixXd> llt(M);
+    if (llt.info() != Eigen::Success) return std::nullopt;
+    const Eigen::VectorXd d = llt.matrixL().toDenseMatrix().diagonal();
+    if (!(d.minCoeff() > 1e-4 * d.maxCoeff())) return std::nullopt;   // cond(M) above about 1e8
+    const auto congruent = [&](const Eigen::MatrixXd& X) {   // L^-1 T X T L^-T
+        Eigen::MatrixXd Y = llt.matrixL().solve(t.asDiagonal() * X * t.asDiagonal());
+        return Eigen::MatrixXd(llt.matrixL().solve(Y.transpose()).transpose());
+    };
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+    A.topRightCorner(n, n).setIdentity();
+    A.bottomLeftCorner(n, n) = -congruent(original.K) / (g * g);
+    A.bottomRightCorner(n, n) = -congruent(original.C) / g;
+    return Eigen::VectorXcd(g * lapack_dgeev_values(std::move(A)));
+}
+
+}  // namespace
+
 EigenvalueSet quadratic_eigenvalues(const QuadraticPencil& p) {
     if (!p.M.allFinite() || !p.C.allFinite() || !p.K.allFinite())
         throw InputError("the pencil has a NaN or infinite coefficient");
+    EigenvalueSet e;
+    e.scale = natural_scale(p);
+    e.real_tol = 1e-7 * e.scale;   // as solve_qz
+    const auto keep = [&](cd l) {
+        if (l.imag() >= -1e-7 * std::max(std::abs(l), e.scale)) e.values.push_back(l);   // else a conjugate
+    };
+    if (const std::optional<Eigen::VectorXcd> values = state_matrix_values(p, e.scale)) {
+        for (const cd l : *values) keep(l);
+        return e;
+    }
     Companion c = companion(p);
     // Without vectors the classic QZ is the faster up to about 400 DOFs (ROSS's 42:
     // 2.4 against 4.1 ms; 100: 21 against 32 ms; 336: 0.77 against 0.81 s).
     const bool classic = p.M.rows() <= kClassicValuesLimit;
     const GeneralizedEigen ge = lapack_dggev_values(std::move(c.A), std::move(c.B), classic);
-    EigenvalueSet e;
-    e.scale = natural_scale(p);
-    e.real_tol = 1e-7 * e.scale;   // as solve_qz
-    for (Eigen::Index j = 0; j < ge.alpha.size(); ++j) {
-        if (infinite(ge.alpha(j), ge.beta(j))) continue;
-        const cd l = c.gamma * ge.alpha(j) / ge.beta(j);
-        if (l.imag() < -1e-7 * std::max(std::abs(l), e.scale)) continue;   // conjugate
-        e.values.push_back(l);
-    }
+    for (Eigen::Index j = 0; j < ge.alpha.size(); ++j)
+        if (!infinite(ge.alpha(j), ge.beta(j))) keep(c.gamma * ge.alpha(j) / ge.beta(j));
     return e;
 }
 

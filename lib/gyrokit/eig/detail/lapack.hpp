@@ -25,6 +25,8 @@ GeneralizedEigen lapack_dggev_values(Eigen::MatrixXd A, Eigen::MatrixXd B, bool 
 // the eigenvalues (beta is empty), right and optionally left (u^H A = lambda u^H)
 // eigenvectors. Throws SolverError if QR fails.
 GeneralizedEigen lapack_dgeev(Eigen::MatrixXd A, bool want_left = false);
+// The eigenvalues alone of A v = lambda v (dgeev without vectors).
+Eigen::VectorXcd lapack_dgeev_values(Eigen::MatrixXd A);
 // Complex pencil (zggev), right eigenvectors only.
 GeneralizedEigen lapack_zggev(Eigen::MatrixXcd A, Eigen::MatrixXcd B);
 
