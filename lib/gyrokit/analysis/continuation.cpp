@@ -103,8 +103,9 @@ struct Frame {
     int threads = 1;        // the modes of a step are corrected in parallel
 };
 
-Frame frame_of(const Shared& sh) {
+Frame frame_of(const Shared& sh, int threads = 1) {
     Frame f;
+    f.threads = threads;
     const GyroscopicSystem* sys = sh.model.get();
     f.pencil = [sys](double v) { return sys->sparse_at_speed(v); };
     f.whirl_pairs = &sys->whirl_pairs;
@@ -157,7 +158,7 @@ bool corrected(const SparsePencil& p, const PencilAction& action, Mode& m, cd pr
     m.lambda = predicted;
     m.backward_error = std::numeric_limits<double>::infinity();   // the left vector: a start (refine_eigenpair)
     for (int k = 0; k < 3 && !(m.backward_error <= 1e-3 * tolerance); ++k)
-        refine_eigenpair(p, action, m, 1e-3 * tolerance, scale);
+        refine_eigenpair(p, action, m, 1e-3 * tolerance, scale, k == 0);
     return verified(p, action, m, tolerance, real_tol);
 }
 
@@ -360,6 +361,7 @@ bool accounts(Solved& at, const QuadraticSpectrum& check, double band) {
 struct Walk {
     std::optional<Solved> last;
     double at = std::numeric_limits<double>::quiet_NaN();
+    int threads = 1;   // the modes of a step corrected in parallel
 };
 
 QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w) {
@@ -392,7 +394,7 @@ QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w) {
     // band; where they do not (or the step fails), the speed is solved in full.
     const auto check = sh.checks.find(w);
     if (from && sh.opt.along_branches)
-        if (std::optional<QuadraticSpectrum> s = branch_steps(frame_of(sh), *from, w, next))
+        if (std::optional<QuadraticSpectrum> s = branch_steps(frame_of(sh, state.threads), *from, w, next))
             if (check == sh.checks.end() || accounts(next, check->second, sh.opt.band)) {
                 state.last = std::move(next);
                 return std::move(*s);
@@ -520,6 +522,14 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     };
     f.make = [sh]() -> SpectrumSolver {
         auto state = std::make_shared<Walk>();
+        return [sh, state](double w) { return solve_one(*sh, *state, w); };
+    };
+    // A grid solved in order by one solver whose steps correct their modes on
+    // `threads` threads: every grid speed is reached from the first anchor anyway,
+    // so workers sharing the grid would each walk from there (the same bits).
+    f.walk = [sh](int threads) -> SpectrumSolver {
+        auto state = std::make_shared<Walk>();
+        state->threads = threads;
         return [sh, state](double w) { return solve_one(*sh, *state, w); };
     };
     return f;

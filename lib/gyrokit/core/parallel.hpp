@@ -1,44 +1,27 @@
 // f(0) ... f(n - 1) on up to `threads` threads: each index once, in no fixed
 // order, so f must write only its own index's results. The first exception
-// thrown is rethrown after every thread has finished.
+// thrown is rethrown after every index has finished. The calling thread takes
+// part; the others come from threads kept for such loops (starting threads for
+// every loop would cost as much as a small model's whole step along the
+// branches), and a loop inside one of theirs runs on its caller alone.
 #pragma once
 
-#include <algorithm>
-#include <atomic>
 #include <cstddef>
-#include <exception>
-#include <mutex>
-#include <thread>
-#include <vector>
+#include <functional>
 
 namespace gyrokit {
 
+namespace detail {
+void run_parallel(std::size_t n, int threads, const std::function<void(std::size_t)>& f);
+}
+
 template <class F>
 void for_each_index(std::size_t n, int threads, const F& f) {
-    const std::size_t t = std::min(n, static_cast<std::size_t>(std::max(1, threads)));
-    if (t <= 1) {
+    if (threads <= 1 || n <= 1) {
         for (std::size_t i = 0; i < n; ++i) f(i);
         return;
     }
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex lock;
-    const auto work = [&]() {
-        try {
-            for (std::size_t i = next++; i < n; i = next++) f(i);
-        } catch (...) {
-            const std::lock_guard<std::mutex> g(lock);
-            if (!failure) failure = std::current_exception();
-        }
-    };
-    std::vector<std::thread> pool;
-    try {
-        for (std::size_t k = 1; k < t; ++k) pool.emplace_back(work);
-    } catch (...) {   // no more threads: the ones started and this one do the work
-    }
-    work();
-    for (std::thread& th : pool) th.join();
-    if (failure) std::rethrow_exception(failure);
+    detail::run_parallel(n, threads, std::function<void(std::size_t)>(std::cref(f)));
 }
 
 }  // namespace gyrokit

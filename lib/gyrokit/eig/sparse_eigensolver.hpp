@@ -77,8 +77,11 @@ Eigen::VectorXd fixed_random_vector(Eigen::Index n);
 // plane may turn both to one direction. The left iteration starts from m.left
 // where it is a nonzero finite vector, else from m.right. Sets m.lambda, right, left and
 // backward_error; returns the backward error before refinement. `scale` is the
-// pencil's natural frequency scale.
-double refine_eigenpair(const SparsePencil& p, const PencilAction& action, Mode& m, double accurate, double scale);
+// pencil's natural frequency scale. `predicted`: the pair is a prediction (a mode
+// of a nearby speed), known not to be accurate: it is refined without its backward
+// error first (returned as infinity), its first round of plain inverse iteration.
+double refine_eigenpair(const SparsePencil& p, const PencilAction& action, Mode& m, double accurate, double scale,
+                        bool predicted = false);
 
 // Eigenvalues near the shift sigma = opt.shift. If P(sigma) is singular or
 // nearly so (rigid-body modes at sigma = 0 with a singular K), the shift is
