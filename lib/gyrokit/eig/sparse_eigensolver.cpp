@@ -94,6 +94,47 @@ double backward_error(const SparsePencil& p, cd lambda, const Eigen::VectorXcd& 
     return backward_error(action_of(p), lambda, x);
 }
 
+namespace {
+
+// One round's end for x (unit norm), whose products M x, C x, K x are given, and
+// the left vector y at l: the two-sided Rayleigh quotient (Newton) update
+// l - y^H P(l) x / y^H P'(l) x and the backward error of x there, in two passes of
+// real arithmetic (complex arithmetic checks every product for NaN, and the
+// expressions would each make a pass and a vector).
+std::pair<cd, double> newton_update(cd l, const Eigen::VectorXcd& y, const Eigen::VectorXcd& Mx,
+                                    const Eigen::VectorXcd& Cx, const Eigen::VectorXcd& Kx, const PencilAction& action) {
+    const Eigen::Index n = y.size();
+    const double* yv = reinterpret_cast<const double*>(y.data());
+    const double* mv = reinterpret_cast<const double*>(Mx.data());
+    const double* cv = reinterpret_cast<const double*>(Cx.data());
+    const double* kv = reinterpret_cast<const double*>(Kx.data());
+    const auto pass = [&](cd at, const auto& use) {
+        const double ar = at.real(), ai = at.imag(), sr = ar * ar - ai * ai, si = 2.0 * ar * ai;
+        for (Eigen::Index i = 0; i < n; ++i) {
+            const double mr = mv[2 * i], mi = mv[2 * i + 1], cr = cv[2 * i], ci = cv[2 * i + 1];
+            const double rr = sr * mr - si * mi + ar * cr - ai * ci + kv[2 * i];        // P(at) x
+            const double ri = sr * mi + si * mr + ar * ci + ai * cr + kv[2 * i + 1];
+            use(i, rr, ri, 2.0 * (ar * mr - ai * mi) + cr, 2.0 * (ar * mi + ai * mr) + ci);   // and P'(at) x
+        }
+    };
+    double nr = 0.0, ni = 0.0, dr = 0.0, di = 0.0;
+    pass(l, [&](Eigen::Index i, double rr, double ri, double pr, double pi) {
+        const double yr = yv[2 * i], yi = yv[2 * i + 1];
+        nr += yr * rr + yi * ri;
+        ni += yr * ri - yi * rr;
+        dr += yr * pr + yi * pi;
+        di += yr * pi - yi * pr;
+    });
+    const cd den(dr, di);
+    const cd next = std::abs(den) > 0.0 ? l - cd(nr, ni) / den : l;
+    double sum = 0.0;
+    pass(next, [&](Eigen::Index, double rr, double ri, double, double) { sum += rr * rr + ri * ri; });
+    const double a = std::abs(next), whole = a * a * action.norm_M + a * action.norm_C + action.norm_K;
+    return {next, whole > 0.0 ? std::sqrt(sum) / whole : 0.0};
+}
+
+}  // namespace
+
 double refine_eigenpair(const SparsePencil& p, const PencilAction& action, Mode& m, double accurate, double scale,
                         bool predicted) {
     // The backward error of (l, x) from x's products M x, C x, K x (backward_error's
@@ -146,10 +187,7 @@ double refine_eigenpair(const SparsePencil& p, const PencilAction& action, Mode&
         if (!xn.allFinite() || xn.norm() == 0.0) break;
         xn.normalize();
         action.apply(xn, Mxn, Cxn, Kxn);
-        const Eigen::VectorXcd r = (lambda * lambda) * Mxn + lambda * Cxn + Kxn;
-        const cd slope = y.dot((2.0 * lambda) * Mxn + Cxn);
-        const cd next = std::abs(slope) > 0.0 ? lambda - y.dot(r) / slope : lambda;
-        const double e = error_of(next, Mxn, Cxn, Kxn, xn.norm());
+        const auto [next, e] = newton_update(lambda, y, Mxn, Cxn, Kxn, action);
         if (!(e < eta)) break;
         x = xn;
         Mx.swap(Mxn);
