@@ -97,8 +97,10 @@ TEST_CASE("continuation: the modes in range equal the full solve's within their 
             o.along_branches = along;     // each path on its own: along the branches, the projected pencil
             ContinuationReport rep;
             const SolverFactory cont = continuation_solver(model, grid, o, &rep);
-            REQUIRE(rep.used);
-            ++used;
+            if (!along) {
+                REQUIRE(rep.used);
+                ++used;
+            }
             const SpectrumSolver reduced = cont.make(), full = dense_solver(sc.system).make();
             for (double w : grid) {
                 const QuadraticSpectrum f = within(full(w), band);
@@ -113,7 +115,7 @@ TEST_CASE("continuation: the modes in range equal the full solve's within their 
             }
         }
     }
-    CHECK(used >= 10);
+    CHECK(used >= 5);
 }
 
 TEST_CASE("three-disk rotor: default Campbell tracks the modes in range without an ambiguous step, and its "
@@ -129,8 +131,8 @@ TEST_CASE("three-disk rotor: default Campbell tracks the modes in range without 
     const SolverFactory solver = tracking_solver(plan.make, co, grid);
     const CampbellDiagram cd = campbell(solver, grid, co);
     CHECK(cd.ambiguous_steps == 0);
-    // Most speeds are stepped along the branches (the anchors and a few steps next to
-    // crossings are full or projected solves).
+    // Most speeds are stepped along the branches (the anchor, and a few steps next to
+    // crossings or at checks, are full solves).
     size_t stepped = 0;
     for (const QuadraticSpectrum& s : solve_speeds(solver, grid, 1))
         stepped += s.method == "continuation (along the branches, verified)";

@@ -318,7 +318,7 @@ QuadraticSpectrum eigenvalues_only(const GyroscopicSystem& sys, double w) {
     s.scale = e.scale;
     s.real_tol = e.real_tol;
     s.speed = w;
-    s.method = "eigenvalues (QZ without vectors)";
+    s.method = "eigenvalues alone (no vectors)";
     for (const cd l : e.values) {
         Mode m;
         m.lambda = l;
@@ -330,9 +330,10 @@ QuadraticSpectrum eigenvalues_only(const GyroscopicSystem& sys, double w) {
 }
 
 // Whether the modes continued to a check speed account for its eigenvalues within
-// twice the band: each has a distinct continued mode within 1e-6 of its modulus
-// (QZ's eigenvalues are good to about cond * 1e-16), nearest first. A mode that
-// came from beyond twice the band since the last full solve or check would not.
+// twice the band: each in turn takes the nearest continued mode not yet taken, which
+// must lie within 1e-6 of its modulus (the eigenvalues alone are good to about
+// cond * 1e-16; a near miss costs only a full solve). A mode that came from beyond
+// twice the band since the last full solve or check would not be there.
 // The unmatched eigenvalues' smallest modulus becomes `at.beyond`.
 bool accounts(Solved& at, const QuadraticSpectrum& check, double band) {
     std::vector<char> used(at.track.size(), 0);
@@ -356,57 +357,70 @@ bool accounts(Solved& at, const QuadraticSpectrum& check, double band) {
     return true;
 }
 
-// One solver's position: its last step along the branches, and the speed it was
-// last asked for.
+// One solver's position on the grid: its walk's state at the grid speed `at`.
+// Speeds off the grid are stepped to from there and do not move it.
 struct Walk {
     std::optional<Solved> last;
     double at = std::numeric_limits<double>::quiet_NaN();
     int threads = 1;   // the modes of a step corrected in parallel
 };
 
-QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w) {
-    throw_if_interrupted();
-    // A grid speed is reached from the anchor at or below it over the grid speeds
-    // between: a solver that starts mid-grid (a worker's block) walks there first.
-    const auto g = std::lower_bound(sh.grid.begin(), sh.grid.end(), w);
-    if (g != sh.grid.end() && *g == w && !sh.anchors.count(w) && !(state.at == *std::prev(g))) {
-        const auto a = std::prev(sh.anchor_tracks.upper_bound(w));   // the first speed is an anchor
+QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w);
+
+// Brings the walk to grid speed `base`: on from where it is if that is at or after
+// the anchor at or below `base`, else from that anchor, over every grid speed between.
+void walk_to(const Shared& sh, Walk& state, double base) {
+    const auto a = std::prev(sh.anchor_tracks.upper_bound(base));   // the first speed is an anchor
+    if (!(state.last && state.at >= a->first && state.at <= base)) {
         state.last = a->second;
         state.at = a->first;
-        for (auto k = std::upper_bound(sh.grid.begin(), sh.grid.end(), a->first); k != g; ++k)
-            (void)solve_one(sh, state, *k);
     }
-    state.at = w;
-    if (const auto it = sh.anchors.find(w); it != sh.anchors.end()) {
-        state.last = sh.anchor_tracks.at(w);
-        return it->second;
-    }
-    // Continue from the nearest speed solved along the branches or in full.
-    const Solved* from = state.last ? &*state.last : nullptr;
-    const auto consider = [&](const Solved& s) {
-        if (!from || std::abs(s.w - w) < std::abs(from->w - w)) from = &s;
+    for (auto k = std::upper_bound(sh.grid.begin(), sh.grid.end(), state.at); k != sh.grid.end() && *k <= base; ++k)
+        (void)solve_one(sh, state, *k);
+}
+
+QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w) {
+    throw_if_interrupted();
+    // Every speed is reached from the grid speed below it (a speed below the grid from
+    // the first), and each grid speed from the anchor at or below it over the grid
+    // speeds between: the answers do not depend on what the solver was asked before
+    // or on how the grid is shared among workers.
+    const auto g = std::lower_bound(sh.grid.begin(), sh.grid.end(), w);
+    const bool on_grid = g != sh.grid.end() && *g == w;
+    if (on_grid)
+        if (const auto it = sh.anchors.find(w); it != sh.anchors.end()) {
+            state.last = sh.anchor_tracks.at(w);
+            state.at = w;
+            return it->second;
+        }
+    const double base = g == sh.grid.begin() ? sh.grid.front() : *std::prev(g);
+    if (!(state.at == base)) walk_to(sh, state, base);
+    const auto keep = [&](Solved& next) {
+        if (!on_grid) return;
+        state.last = std::move(next);
+        state.at = w;
     };
-    const auto a = sh.anchor_tracks.lower_bound(w);
-    if (a != sh.anchor_tracks.end()) consider(a->second);
-    if (a != sh.anchor_tracks.begin()) consider(std::prev(a)->second);
     Solved next;
     // At a check speed the continued modes must account for every eigenvalue near the
     // band; where they do not (or the step fails), the speed is solved in full.
-    const auto check = sh.checks.find(w);
-    if (from && sh.opt.along_branches)
-        if (std::optional<QuadraticSpectrum> s = branch_steps(frame_of(sh, state.threads), *from, w, next))
+    const auto check = on_grid ? sh.checks.find(w) : sh.checks.end();
+    if (state.last && sh.opt.along_branches)
+        if (std::optional<QuadraticSpectrum> s = branch_steps(frame_of(sh, state.threads), *state.last, w, next))
             if (check == sh.checks.end() || accounts(next, check->second, sh.opt.band)) {
-                state.last = std::move(next);
+                keep(next);
                 return std::move(*s);
             }
     // The projected pencil only finds modes its basis holds: one that came into the band
     // since the anchor would be missed, so after a failed step the speed is solved in
     // full (which the next steps continue from); the projection serves on its own.
     if (sh.Q.cols() > 0 && !sh.opt.along_branches && check == sh.checks.end())
-        if (std::optional<QuadraticSpectrum> s = reduced_solve(sh, w)) return std::move(*s);
+        if (std::optional<QuadraticSpectrum> s = reduced_solve(sh, w)) {
+            if (on_grid) state.at = w;   // no steps along the branches to continue
+            return std::move(*s);
+        }
     // Verified by the full solve itself (a step near a crossing, a double eigenvalue splitting).
     QuadraticSpectrum s = full_solve(sh, w, &next);
-    state.last = std::move(next);
+    keep(next);
     return s;
 }
 
@@ -481,8 +495,9 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     // The basis: real and imaginary parts of the right and left vectors of every
     // mode within twice the band (modes that enter the band between anchors are
     // near it at an anchor), and of the rigid-body eigenvalues.
-    std::vector<Eigen::VectorXd> columns;
+    std::vector<Eigen::VectorXd> columns;   // only for the projected pencil, which the steps precede
     const auto add = [&](const Eigen::VectorXcd& v) {
+        if (opt.along_branches) return;
         if (v.size() != n) return;
         for (const Eigen::VectorXd& c : {Eigen::VectorXd(v.real()), Eigen::VectorXd(v.imag())})
             if (c.norm() > 1e-8 * v.norm()) columns.push_back(c / c.norm());

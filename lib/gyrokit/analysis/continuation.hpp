@@ -1,7 +1,8 @@
-// Continuation of the modes in a frequency band over a speed range on a reduced
-// basis: full dense solves at a few anchor speeds, the projected pencil at every
-// other speed, every reported pair refined and verified on the full model.
-// docs/numerics.md ("Continuation") gives the rules.
+// Continuation of the modes in a frequency band over a speed range: a full dense
+// solve at the first speed, steps along the branches at the others, the eigenvalues
+// alone at check speeds to see that no mode came into the band unseen, every
+// reported pair refined and verified on the full model. docs/numerics.md
+// ("Continuation") gives the rules.
 #pragma once
 
 #include <gyrokit/analysis/spectrum_solver.hpp>
@@ -19,7 +20,7 @@ struct ContinuationOptions {
     double band = 0;            // rad/s: the modes kept (frequency <= band; a real eigenvalue |lambda| <= band)
     // > 0: the band is chosen to hold this many lowest modes: band_margin times the
     // largest frequency (|lambda| of a real eigenvalue) among the lowest + 2 by
-    // frequency_rank at the anchors (ContinuationReport::band); `band` is then unused.
+    // frequency_rank at the anchors and checks (ContinuationReport::band); `band` is then unused.
     int lowest = 0;
     double band_margin = 1.25;
     // Full solves (anchors) at the first speed and, if > 0, at every this many speeds
@@ -36,16 +37,18 @@ struct ContinuationOptions {
     double max_basis_fraction = 0.75;
     bool along_branches = true;  // step 1 below (false: the projected pencil first, for tests and benchmarks)
     EigenOptions eig;           // the full solves' method; left_vectors: keep them in the modes
-    Workers workers = 1;        // the anchors' full solves
+    Workers workers = 1;        // the anchors' and checks' solves; a sweep's steps correct their modes on these threads
 };
 
 // What the continuation did, for the notes and the benchmark.
 struct ContinuationReport {
-    bool used = false;          // false: the basis would not pay (the projected solve is skipped)
-    int basis = 0;              // dimension of the reduced basis
+    // The projected pencil (only with along_branches false): false where the basis
+    // would not pay or is not built (the steps along the branches come first).
+    bool used = false;
+    int basis = 0;              // dimension of the reduced basis (0: not built)
     int dofs = 0;
     double band = 0;            // the band used (rad/s)
-    std::vector<double> anchors;   // speeds solved in full to build the basis
+    std::vector<double> anchors;   // speeds solved in full (continued from, and the basis)
     std::vector<double> checks;    // speeds whose eigenvalues check the continued modes
 };
 

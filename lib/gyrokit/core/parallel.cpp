@@ -45,6 +45,16 @@ struct Loop {
 
 thread_local bool in_pool = false;
 
+// What a kept thread releases when it goes to sleep (its thread-local caches).
+std::vector<void (*)()>& idle_hooks() {
+    static std::vector<void (*)()> hooks;
+    return hooks;
+}
+std::mutex& hooks_lock() {
+    static std::mutex m;
+    return m;
+}
+
 // Threads that wait for loops to help with; never destroyed (detached, they end
 // with the process). Owned by the process that made them: a forked worker process
 // has none of them and starts its own threads per loop.
@@ -60,9 +70,12 @@ public:
     void offer(const std::shared_ptr<Loop>& loop, std::size_t helpers) {
         {
             const std::lock_guard<std::mutex> g(lock_);
-            while (started_ < helpers && started_ < kMaxThreads) {
-                std::thread(&Pool::serve, this).detach();
-                ++started_;
+            try {
+                while (started_ < helpers && started_ < kMaxThreads) {
+                    std::thread(&Pool::serve, this).detach();
+                    ++started_;
+                }
+            } catch (...) {   // no more threads: those there and the caller do the work
             }
             for (std::size_t k = 0; k < helpers; ++k) queue_.push_back(loop);
             waiting_ += helpers;
@@ -80,6 +93,10 @@ private:
             // look for one for a while before sleeping, since waking a thread costs
             // about as long as a small loop.
             for (int k = 0; k < kSpins && waiting_.load(std::memory_order_relaxed) == 0; ++k) std::this_thread::yield();
+            if (waiting_.load() == 0) {   // going to sleep: nothing kept for the next loop
+                const std::lock_guard<std::mutex> g(hooks_lock());
+                for (void (*release)() : idle_hooks()) release();
+            }
             std::shared_ptr<Loop> loop;
             {
                 std::unique_lock<std::mutex> g(lock_);
@@ -102,6 +119,11 @@ private:
 };
 
 }  // namespace
+
+void on_idle(void (*release)()) {
+    const std::lock_guard<std::mutex> g(hooks_lock());
+    idle_hooks().push_back(release);
+}
 
 void run_parallel(std::size_t n, int threads, const std::function<void(std::size_t)>& f) {
     const std::size_t t = std::min(n, static_cast<std::size_t>(std::max(1, threads)));

@@ -13,6 +13,9 @@ namespace gyrokit {
 
 namespace detail {
 void run_parallel(std::size_t n, int threads, const std::function<void(std::size_t)>& f);
+// `release` runs on each kept thread that goes to sleep (no loop for a while):
+// for thread-local caches, which a thread that ends would free.
+void on_idle(void (*release)());
 }
 
 template <class F>

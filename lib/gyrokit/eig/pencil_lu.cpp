@@ -1,5 +1,7 @@
 #include <gyrokit/eig/detail/pencil_lu.hpp>
 
+#include <gyrokit/core/parallel.hpp>
+
 #include <lapacke.h>
 
 #include <algorithm>
@@ -107,6 +109,8 @@ bool band_factor(int n, int kl, int ku, cd* ab, int* ipiv, cd* inverse_pivot, co
 // one: at 10^5 DOFs it is 35 MB, which a fresh allocation would map and zero
 // again for every mode at every speed.
 static thread_local std::vector<cd> spare_band;
+// A kept thread of the parallel loops that goes to sleep frees its spare.
+[[maybe_unused]] static const bool spare_released = (on_idle([] { std::vector<cd>().swap(spare_band); }), true);
 
 PencilLU::~PencilLU() {
     if (ab_.capacity() > spare_band.capacity()) spare_band.swap(ab_);

@@ -64,10 +64,13 @@ void split_rigid_body(std::vector<Mode>& modes, std::vector<Mode>& rigid_body, c
 QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& opt,
                                   const std::vector<std::pair<int, int>>& whirl_pairs = {});
 
-// The finite eigenvalues alone, by the QZ of solve_quadratic (its scaling and
-// linearization) without vectors: dggev up to kClassicValuesLimit DOFs, dggev3
-// above (measured: docs/benchmarks.md), about half the cost of the solve with
-// vectors. Conjugates dropped as there; unverified (no vectors to verify with).
+// The finite eigenvalues alone (no vectors to verify them with): where M is
+// symmetric positive definite and well conditioned, LAPACK dgeev on the state
+// matrix of the Cholesky congruence of the DOF-scaled pencil; else the QZ of
+// solve_quadratic (its scaling and linearization) without vectors, dggev up to
+// kClassicValuesLimit DOFs and dggev3 above (the faster of the two without
+// vectors). A quarter to a half of the full solve's cost (docs/numerics.md,
+// "Continuation"). The upper half plane and the real axis (|Im| <= real_tol) kept.
 constexpr int kClassicValuesLimit = 400;
 struct EigenvalueSet {
     std::vector<std::complex<double>> values;

@@ -165,8 +165,8 @@ double refine_eigenpair(const SparsePencil& p, const PencilAction& action, Mode&
     for (int step = 0; step < 4; ++step) {
         // Left: y <- P^{-H} P'(l)^H y, with P'(l)^H = 2 conj(l) M^T + C^T for real M, C;
         // right: x <- P^{-1} P'(l) x (both solves in one pass).
-        // A predicted pair's first round solves with the vectors themselves (plain inverse
-        // iteration): their products with the pencil would serve only that round.
+        // A predicted pair's first left solve takes the left vector itself (plain inverse
+        // iteration): its products with the pencil would serve only that round.
         const bool plain = predicted && step == 0;
         const Eigen::VectorXcd left_rhs =
             plain ? y : Eigen::VectorXcd((2.0 * std::conj(lambda)) * real_transpose_times(p.M, y) +

@@ -79,7 +79,7 @@ Eigen::VectorXd fixed_random_vector(Eigen::Index n);
 // backward_error; returns the backward error before refinement. `scale` is the
 // pencil's natural frequency scale. `predicted`: the pair is a prediction (a mode
 // of a nearby speed), known not to be accurate: it is refined without its backward
-// error first (returned as infinity), its first round of plain inverse iteration.
+// error first (returned as infinity), its first left solve plain inverse iteration.
 double refine_eigenpair(const SparsePencil& p, const PencilAction& action, Mode& m, double accurate, double scale,
                         bool predicted = false);
 
