@@ -154,11 +154,11 @@ bool verified(const SparsePencil& p, const PencilAction& action, Mode& m, double
 // of the tolerance where three factorizations get there (the error bounds then
 // stay near the full solve's), then verified.
 bool corrected(const SparsePencil& p, const PencilAction& action, Mode& m, cd predicted, double tolerance,
-               double scale, double real_tol) {
+               double scale, double real_tol, bool stepped = true) {
     m.lambda = predicted;
     m.backward_error = std::numeric_limits<double>::infinity();   // the left vector: a start (refine_eigenpair)
     for (int k = 0; k < 3 && !(m.backward_error <= 1e-3 * tolerance); ++k)
-        refine_eigenpair(p, action, m, 1e-3 * tolerance, scale, k == 0);
+        refine_eigenpair(p, action, m, 1e-3 * tolerance, scale, stepped && k == 0);
     return verified(p, action, m, tolerance, real_tol);
 }
 
@@ -558,7 +558,11 @@ std::optional<Mode> follow_mode(const std::function<SparsePencil(double)>& penci
     const PencilAction action = action_of(p);
     const QuadraticSpectrum frame = empty_spectrum(p, action, w);
     Mode m = from;
-    if (!corrected(p, action, m, predicted, tolerance, frame.scale, frame.real_tol)) return std::nullopt;
+    // Not as a prediction known to be off: a root search also asks for the speed of
+    // `from` itself, where the pair is already accurate and must stay as it is (a
+    // double pair's vectors would turn in its plane and its eigenvalue move by more
+    // than the reach).
+    if (!corrected(p, action, m, predicted, tolerance, frame.scale, frame.real_tol, false)) return std::nullopt;
     // The same mode: near its prediction, with (nearly) the same shape.
     if (!(std::abs(m.lambda - predicted) <= reach) || !(mac(m.right, from.right) >= 0.9)) return std::nullopt;
     std::vector<Mode> one{std::move(m)};
