@@ -46,13 +46,14 @@ struct Loop {
 thread_local bool in_pool = false;
 
 // What a kept thread releases when it goes to sleep (its thread-local caches).
+// Never destroyed, as the pool: its threads outlive the static destructors at exit.
 std::vector<void (*)()>& idle_hooks() {
-    static std::vector<void (*)()> hooks;
-    return hooks;
+    static auto* hooks = new std::vector<void (*)()>;
+    return *hooks;
 }
 std::mutex& hooks_lock() {
-    static std::mutex m;
-    return m;
+    static auto* m = new std::mutex;
+    return *m;
 }
 
 // Threads that wait for loops to help with; never destroyed (detached, they end
