@@ -390,6 +390,14 @@ TEST_CASE("the band of the K lowest modes: 1.25 times the largest of the K + 2 l
     o.band_margin = 0.5;   // a band below the modes it should hold
     CHECK_THROWS_WITH(continuation_solver(std::make_shared<const GyroscopicSystem>(sc.system), grid, o),
                       Catch::Contains("a margin >= 1"));
+    o.band_margin = 1.25;
+    o.anchor_stride = -1;
+    CHECK_THROWS_WITH(continuation_solver(std::make_shared<const GyroscopicSystem>(sc.system), grid, o),
+                      Catch::Contains("anchor_stride -1: allowed: 0"));
+    o.anchor_stride = 0;
+    o.check_stride = 0;
+    CHECK_THROWS_WITH(continuation_solver(std::make_shared<const GyroscopicSystem>(sc.system), grid, o),
+                      Catch::Contains("check_stride 0: allowed: 1 or more"));
 }
 
 TEST_CASE("a double eigenvalue at standstill gets the slopes of its split, equal to a difference quotient",
