@@ -121,6 +121,30 @@ TEST_CASE("ROSS example: the sparse solver moves its shift off the rigid-body mo
     }
 }
 
+TEST_CASE("ROSS example: the pencils carry a band order of 7 off-diagonals, found once per system", "[ross][pencil_lu]") {
+    // 6 DOFs per node (x, y, z, alpha, beta, theta): a lateral DOF couples with the
+    // next node's, 10 places on. The axial and torsional DOFs couple with no lateral
+    // one, so the lateral DOFs alone, node by node (4 each), need 7 off-diagonals.
+    const Scene sc = ross();
+    const GyroscopicSystem& sys = sc.system;
+    const SparsePencil p = sys.sparse_at_speed(500.0);
+    int kl = 0, ku = 0;
+    pattern_bandwidths({&p.M, &p.C, &p.K}, nullptr, kl, ku);
+    CHECK(kl == 10);
+    CHECK(ku == 10);
+    REQUIRE(p.band_order);
+    pattern_bandwidths({&p.M, &p.C, &p.K}, p.band_order.get(), kl, ku);
+    CHECK(kl <= 7);
+    CHECK(ku <= 7);
+    // Every speed's pencil shares the order; a copy of the system finds its own.
+    CHECK(sys.sparse_at_speed(0.0).band_order == p.band_order);
+    const GyroscopicSystem copy = sys;
+    const SparsePencil q = copy.sparse_at_speed(500.0);
+    REQUIRE(q.band_order);
+    CHECK(q.band_order != p.band_order);
+    CHECK(q.band_order->old_of == p.band_order->old_of);
+}
+
 TEST_CASE("ROSS example: six lowest branches over 0-1000 rad/s without ambiguity, critical speeds equal the "
           "direct method to 1e-9, nothing unstable",
           "[ross][campbell]") {

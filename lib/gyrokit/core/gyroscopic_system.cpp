@@ -124,6 +124,7 @@ SparsePencil GyroscopicSystem::sparse_at_speed(double w) const {
     p.M.makeCompressed();
     p.C.makeCompressed();
     p.K.makeCompressed();
+    p.band_order = band_order_cache.get({&p.M, &p.C, &p.K});
     return p;
 }
 

@@ -5,6 +5,7 @@
 // dense (at_speed, for the dense solvers) or sparse (sparse_at_speed).
 #pragma once
 
+#include <gyrokit/core/band_order.hpp>
 #include <gyrokit/core/bearing_table.hpp>
 #include <gyrokit/core/length_unit.hpp>
 
@@ -78,9 +79,11 @@ struct QuadraticPencil {
     Eigen::MatrixXcd evaluate(std::complex<double> lambda) const;
 };
 
-// The same pencil in sparse form.
+// The same pencil in sparse form; `band_order` (null: as given) the DOF order in
+// which the band LU of inverse iteration factors it (BandOrder).
 struct SparsePencil {
     SparseMatrix M, C, K;
+    std::shared_ptr<const BandOrder> band_order = nullptr;
 };
 SparsePencil to_sparse(const QuadraticPencil& p);
 
@@ -143,6 +146,9 @@ public:
     // and not zero, G skew), the unbalance, DOF names, bearing tables, whirl
     // pairs and the optional DOF units and nodes. Throws InputError naming `origin` on violation.
     void validate(const std::string& origin) const;
+
+    // The band order of the pencils sparse_at_speed gives (found at the first).
+    mutable BandOrderCache band_order_cache;
 };
 
 }  // namespace gyrokit

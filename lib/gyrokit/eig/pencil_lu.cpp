@@ -13,19 +13,6 @@ using cd = std::complex<double>;
 
 namespace {
 
-// Lower and upper bandwidths of the pencil's pattern, from every stored entry (the
-// fill below writes each entry at its distance from the diagonal, so no column's
-// rows may be assumed sorted).
-void bandwidths(const SparsePencil& p, int& kl, int& ku) {
-    kl = ku = 0;
-    for (const SparseMatrix* A : {&p.M, &p.C, &p.K})
-        for (Eigen::Index k = 0; k < A->outerSize(); ++k)
-            for (SparseMatrix::InnerIterator it(*A, k); it; ++it) {
-                kl = std::max(kl, static_cast<int>(it.row() - it.col()));
-                ku = std::max(ku, static_cast<int>(it.col() - it.row()));
-            }
-}
-
 // |re| + |im|, the modulus LAPACK's pivot search (izamax) compares.
 double abs1(cd z) { return std::abs(z.real()) + std::abs(z.imag()); }
 
@@ -118,10 +105,15 @@ PencilLU::~PencilLU() {
 
 bool PencilLU::compute(const SparsePencil& p, cd lambda) {
     n_ = static_cast<int>(p.M.rows());
-    bandwidths(p, kl_, ku_);
+    // The bandwidths from every stored entry in the order factored (the fill below
+    // writes each entry at its distance from the diagonal, so no column's rows may be
+    // assumed sorted, nor the order to fit a pattern it was not found for).
+    order_ = p.band_order && p.band_order->old_of.size() == static_cast<size_t>(n_) ? p.band_order : nullptr;
+    pattern_bandwidths({&p.M, &p.C, &p.K}, order_.get(), kl_, ku_);
     band_ = kl_ + ku_ + 1 <= kMaxBandLU;
     const cd l2 = lambda * lambda;
     if (!band_) {
+        order_.reset();
         const Eigen::SparseMatrix<cd> P = l2 * p.M.cast<cd>() + lambda * p.C.cast<cd>() + p.K.cast<cd>();
         sparse_.compute(P);
         return sparse_.info() == Eigen::Success;
@@ -130,13 +122,18 @@ bool PencilLU::compute(const SparsePencil& p, cd lambda) {
     if (ab_.capacity() < spare_band.capacity()) ab_.swap(spare_band);
     ab_.resize(static_cast<size_t>(ldab) * static_cast<size_t>(n_));
     ipiv_.resize(static_cast<size_t>(n_));
-    // Column c of P(lambda): zero, then M's, C's and K's entries (rows c - ku ... c + kl
-    // at kl + ku + row - c; the first kl rows are the pivoting's fill).
+    // Column c of P(lambda) in the order factored: zero, then M's, C's and K's entries
+    // (rows c - ku ... c + kl at kl + ku + row - c; the first kl rows are the pivoting's fill).
+    const BandOrder* order = order_.get();
     const auto fill = [&](int c) {
         cd* column = ab_.data() + static_cast<size_t>(c) * static_cast<size_t>(ldab);
         std::fill(column, column + ldab, cd(0.0));
+        const int source = order ? order->old_of[static_cast<size_t>(c)] : c;
         const auto add = [&](const SparseMatrix& A, cd f) {
-            for (SparseMatrix::InnerIterator it(A, c); it; ++it) column[kl_ + ku_ + it.row() - c] += f * it.value();
+            for (SparseMatrix::InnerIterator it(A, source); it; ++it) {
+                const int row = order ? order->new_of[static_cast<size_t>(it.row())] : static_cast<int>(it.row());
+                column[kl_ + ku_ + row - c] += f * it.value();
+            }
         };
         add(p.M, l2);
         add(p.C, lambda);
@@ -189,17 +186,33 @@ void band_solve(int n, int kl, int ku, const std::vector<cd>& ab, const std::vec
 
 }  // namespace
 
+// v in the order factored (to: true) or back in the given order.
+void PencilLU::reorder(Eigen::VectorXcd& v, bool to) const {
+    if (!order_) return;
+    Eigen::VectorXcd w(v.size());
+    const std::vector<int>& old_of = order_->old_of;
+    if (to)
+        for (Eigen::Index i = 0; i < v.size(); ++i) w[i] = v[old_of[static_cast<size_t>(i)]];
+    else
+        for (Eigen::Index i = 0; i < v.size(); ++i) w[old_of[static_cast<size_t>(i)]] = v[i];
+    v.swap(w);
+}
+
 Eigen::VectorXcd PencilLU::solve(const Eigen::VectorXcd& b) const {
     if (!band_) return sparse_.solve(b);
     Eigen::VectorXcd x = b;
+    reorder(x, true);
     band_solve(n_, kl_, ku_, ab_, ipiv_, inverse_pivot_, &x, nullptr);
+    reorder(x, false);
     return x;
 }
 
 Eigen::VectorXcd PencilLU::adjoint_solve(const Eigen::VectorXcd& c) const {
     if (!band_) return sparse_.adjoint().solve(c);
     Eigen::VectorXcd y = c;
+    reorder(y, true);
     band_solve(n_, kl_, ku_, ab_, ipiv_, inverse_pivot_, nullptr, &y);
+    reorder(y, false);
     return y;
 }
 
@@ -212,7 +225,11 @@ void PencilLU::solve_both(const Eigen::VectorXcd& b, const Eigen::VectorXcd& c, 
     }
     x = b;
     y = c;
+    reorder(x, true);
+    reorder(y, true);
     band_solve(n_, kl_, ku_, ab_, ipiv_, inverse_pivot_, &x, &y);
+    reorder(x, false);
+    reorder(y, false);
 }
 
 }  // namespace gyrokit::detail

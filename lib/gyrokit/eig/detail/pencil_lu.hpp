@@ -1,7 +1,8 @@
 // The LU factorization of P(lambda) = lambda^2 M + lambda C + K for inverse
 // iteration: a band LU with partial pivoting (LAPACK's zgbtf2 algorithm and band
 // storage) where the pencil's band is narrow (an FE rotor in node order: 7 to 11
-// off-diagonals), else Eigen's SparseLU.
+// off-diagonals), else Eigen's SparseLU. The band LU factors in the pencil's
+// band_order where it has one.
 #pragma once
 
 #include <gyrokit/core/gyroscopic_system.hpp>
@@ -32,7 +33,9 @@ public:
     bool banded() const { return band_; }
 
 private:
+    void reorder(Eigen::VectorXcd& v, bool to) const;
     bool band_ = false;
+    std::shared_ptr<const BandOrder> order_;   // the pencil's band order (null: as given)
     int n_ = 0, kl_ = 0, ku_ = 0;
     std::vector<std::complex<double>> ab_;   // LAPACK band storage, 2 kl + ku + 1 rows
     std::vector<int> ipiv_;
