@@ -466,14 +466,28 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     EigenOptions full = opt.eig;
     full.left_vectors = true;
     const SolverFactory dense = dense_solver(*model, full);
-    std::vector<QuadraticSpectrum> solved = solve_speeds(dense, anchors, opt.workers);
-    SolverFactory values;
-    values.dofs = n;
-    values.make = [model]() -> SpectrumSolver {
-        return [model](double w) { return eigenvalues_only(*model, w); };
-    };
-    std::vector<QuadraticSpectrum> checked =
-        checks.empty() ? std::vector<QuadraticSpectrum>{} : solve_speeds(values, checks, opt.workers);
+    std::vector<QuadraticSpectrum> solved, checked;
+    if (opt.workers.count > 1 && opt.workers.kind != WorkerKind::Processes && dense.thread_safe) {
+        // One loop on threads, the anchors (the longest) first: a thread done with
+        // its anchor takes the checks.
+        solved.resize(anchors.size());
+        checked.resize(checks.size());
+        for_each_index(anchors.size() + checks.size(), opt.workers.count, [&](size_t i) {
+            throw_if_interrupted();
+            if (i < anchors.size())
+                solved[i] = dense.make()(anchors[i]);
+            else
+                checked[i - anchors.size()] = eigenvalues_only(*model, checks[i - anchors.size()]);
+        });
+    } else {
+        solved = solve_speeds(dense, anchors, opt.workers);
+        SolverFactory values;
+        values.dofs = n;
+        values.make = [model]() -> SpectrumSolver {
+            return [model](double w) { return eigenvalues_only(*model, w); };
+        };
+        if (!checks.empty()) checked = solve_speeds(values, checks, opt.workers);
+    }
 
     if (opt.lowest > 0) {   // the band of the lowest modes, from the anchors and checks
         double top = 0.0;
