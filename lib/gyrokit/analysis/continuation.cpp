@@ -43,6 +43,10 @@ struct Solved {
     // The smallest modulus of the modes beyond the tracked ones at the last full
     // solve: a corrected mode must not slide onto one of them either.
     double beyond = std::numeric_limits<double>::infinity();
+    // Where w was reached by a step: the speed before and each tracked mode's slope
+    // there (NaN: unknown), whose change gives its branch's curvature.
+    double before = std::numeric_limits<double>::quiet_NaN();
+    std::vector<cd> slope_before;
 };
 
 struct Shared {
@@ -162,6 +166,8 @@ bool corrected(const SparsePencil& p, const PencilAction& action, Mode& m, cd pr
     return verified(p, action, m, tolerance, real_tol);
 }
 
+bool finite(cd z) { return std::isfinite(z.real()) && std::isfinite(z.imag()); }
+
 // Two refined pairs on one mode: a mode is missing.
 bool lands_on_another(const std::vector<Mode>& modes, const Mode& m) {
     for (const Mode& o : modes)
@@ -176,10 +182,18 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
     const PencilAction action = action_of(p);
     QuadraticSpectrum out = empty_spectrum(p, action, w);
     const double h = w - from.w;
+    // Second order where the slope at the speed before is known: the branch's
+    // curvature from the change of slope (the correction's first round then lands
+    // closer, often close enough to stop there).
+    const bool curved = std::isfinite(from.before) && from.slope_before.size() == from.track.size();
     std::vector<cd> pred;
-    for (const Mode& m : from.track) {
-        if (!std::isfinite(m.slope.real()) || !std::isfinite(m.slope.imag())) return std::nullopt;
-        pred.push_back(m.lambda + h * m.slope);
+    for (size_t i = 0; i < from.track.size(); ++i) {
+        const Mode& m = from.track[i];
+        if (!finite(m.slope)) return std::nullopt;
+        cd p = m.lambda + h * m.slope;
+        if (curved && finite(from.slope_before[i]))
+            p += (0.5 * h * h / (from.w - from.before)) * (m.slope - from.slope_before[i]);
+        pred.push_back(p);
     }
     // The rigid-body pairs stay where they are if they still verify and the damping
     // and gyroscopic terms do not act on them (C x = 0): then the zero eigenvalue keeps
@@ -216,6 +230,9 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
     next.w = w;
     next.rigid = rigid;
     next.beyond = from.beyond;
+    next.before = from.w;
+    std::vector<cd> corrected_at(track.size());   // track[i] is from.track[i] corrected
+    for (size_t i = 0; i < track.size(); ++i) corrected_at[i] = track[i].lambda;
     std::vector<Mode> modes;
     for (const Mode& m : track)
         if (within_band(m, fr.band, out.real_tol)) modes.push_back(m);
@@ -237,6 +254,13 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
         set_slopes(out.modes, fr.pencil, w, out.scale, fr.threads, &p);
         next.track = std::move(track);
         set_slopes(next.track, fr.pencil, w, out.scale, fr.threads, &p);
+    }
+    // Each tracked mode's slope at the speed before: that of the mode it was corrected
+    // from (the same eigenvalue, bit for bit: finish() sorts and may take some away).
+    for (const Mode& m : next.track) {
+        const auto k = std::find(corrected_at.begin(), corrected_at.end(), m.lambda);
+        next.slope_before.push_back(k == corrected_at.end() ? cd(std::numeric_limits<double>::quiet_NaN(), 0.0)
+                                                            : from.track[static_cast<size_t>(k - corrected_at.begin())].slope);
     }
     if (!fr.keep_left)
         for (Mode& m : out.modes) m.left.resize(0);
