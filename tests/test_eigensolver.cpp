@@ -301,3 +301,78 @@ TEST_CASE("the eigenvalues alone equal the full solve's: from the state matrix w
         same(light);
     }
 }
+
+TEST_CASE("a pencil of uncoupled groups is solved group by group: the eigenvalues of each group, vectors zero "
+          "outside it",
+          "[eig]") {
+    // Two damped gyroscopic pencils of 9 and 5 DOFs and a free DOF (mass only: a double
+    // zero eigenvalue), their DOFs interleaved as a 6-DOF-per-node export interleaves
+    // lateral, axial and torsional ones. Reference: each group's pencil alone.
+    std::mt19937 g(23);
+    const auto damped = [&](int n) {
+        QuadraticPencil P = random_gyroscopic(g, n, true).at_speed(2.0);
+        const Eigen::MatrixXd D = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return test::uniform(g, 0, 0.1); });
+        P.C += D * D.transpose();
+        return P;
+    };
+    const QuadraticPencil A = damped(9), B = damped(5);
+    const int n = 15;
+    std::vector<int> where(n);   // where[k]: the whole pencil's DOF of the k-th DOF of A, then B, then the free one
+    for (int k = 0; k < n; ++k) where[static_cast<size_t>(k)] = (k * 4) % n;   // 4 and 15 coprime
+    QuadraticPencil P{Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, n)};
+    const auto place = [&](const QuadraticPencil& Q, int first) {
+        for (int i = 0; i < Q.M.rows(); ++i)
+            for (int j = 0; j < Q.M.rows(); ++j) {
+                const int r = where[static_cast<size_t>(first + i)], c = where[static_cast<size_t>(first + j)];
+                P.M(r, c) = Q.M(i, j), P.C(r, c) = Q.C(i, j), P.K(r, c) = Q.K(i, j);
+            }
+    };
+    place(A, 0);
+    place(B, 9);
+    P.M(where[14], where[14]) = 2.0;
+    EigenOptions o;
+    o.left_vectors = true;
+    const QuadraticSpectrum s = solve_quadratic(P, o);
+    std::vector<std::complex<double>> reference;
+    for (const QuadraticPencil* Q : {&A, &B})
+        for (const Mode& m : solve_quadratic(*Q, o).modes) reference.push_back(m.lambda);
+    REQUIRE(s.modes.size() == reference.size());
+    REQUIRE(s.rigid_body.size() == 2);   // the free DOF's double zero (a Jordan chain: q = a + b t)
+    std::vector<char> used(reference.size(), 0);
+    for (const Mode& m : s.modes) {
+        CAPTURE(m.lambda, m.error_bound);
+        CHECK(m.backward_error <= 1e-13);
+        size_t best = reference.size();
+        double d = std::numeric_limits<double>::infinity();
+        for (size_t j = 0; j < reference.size(); ++j)
+            if (!used[j] && std::abs(reference[j] - m.lambda) < d) d = std::abs(reference[j] - m.lambda), best = j;
+        REQUIRE(best < reference.size());
+        used[best] = 1;
+        CHECK(d <= 1e-12 * std::abs(m.lambda));
+        // The vector lives on one group: A's DOFs or B's.
+        double on_a = 0.0, on_b = 0.0;
+        for (int k = 0; k < 9; ++k) on_a += std::norm(m.right[where[static_cast<size_t>(k)]]);
+        for (int k = 9; k < 14; ++k) on_b += std::norm(m.right[where[static_cast<size_t>(k)]]);
+        CHECK(std::min(on_a, on_b) == 0.0);
+        CHECK(std::norm(m.right[where[14]]) == 0.0);
+    }
+    // The eigenvalues alone: the same, group by group.
+    const EigenvalueSet e = quadratic_eigenvalues(P);
+    CHECK(e.values.size() == s.modes.size() + 2);   // the free DOF's double zero, both on the real axis
+    for (const Mode& m : s.modes) {
+        double d = std::numeric_limits<double>::infinity();
+        for (const std::complex<double> v : e.values) d = std::min(d, std::abs(v - m.lambda));
+        CHECK(d <= 1e-10 * std::abs(m.lambda));
+    }
+    // A group without mass (a massless DOF coupled to nothing): the pencil is solved whole,
+    // the DOF's eigenvalue -K/C kept, its infinite one dropped.
+    QuadraticPencil massless = P;
+    massless.M(where[14], where[14]) = 0.0;
+    massless.C(where[14], where[14]) = 1.0;
+    massless.K(where[14], where[14]) = 3.0;
+    const QuadraticSpectrum t = solve_quadratic(massless, o);
+    CHECK(t.infinite_count == 1);
+    bool found = false;
+    for (const Mode& m : t.modes) found = found || std::abs(m.lambda - std::complex<double>(-3.0, 0.0)) <= 1e-12 * 3.0;
+    CHECK(found);
+}

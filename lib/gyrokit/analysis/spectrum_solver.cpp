@@ -110,9 +110,12 @@ void set_slopes(std::vector<Mode>& modes, const std::function<SparsePencil(doubl
             return (2.0 * l) * real_times(pw.M, x) + real_times(pw.C, x);
         };
         if (partners.empty()) {
-            const cd den = m.left.dot(dlP(m.right));   // y^H P'(lambda) x
+            // y^H P'(lambda) x and y^H (dP/dw) x as sums over the matrices' entries.
+            const Eigen::VectorXcd &x = m.right, &y = m.left;
+            const cd den = (2.0 * l) * real_bilinear(pw.M, y, x) + real_bilinear(pw.C, y, x);
             if (std::abs(den) == 0.0) return;
-            m.slope = -m.left.dot(dP(m.right)) / den;
+            const cd num = ((l * l) * real_bilinear(dM, y, x) + l * real_bilinear(dC, y, x) + real_bilinear(dK, y, x)) / span;
+            m.slope = -num / den;
         } else {
             // The pair splits as the eigenvalues of S = -(Y^H P' X)^-1 (Y^H dP/dw X) (first
             // order for a semisimple double eigenvalue). If S is diagonal to 1e-2 of the

@@ -332,6 +332,43 @@ Cluster cluster_of(const std::vector<Mode>& modes, size_t i, const PencilAction&
     return c;
 }
 
+// Whether mode i's cluster (cluster_of) is itself alone.
+bool alone(const std::vector<Mode>& modes, size_t i) {
+    const std::complex<double> l = modes[i].lambda;
+    for (size_t j = 0; j < modes.size(); ++j)
+        if (j != i && modes[j].left.size() == modes[i].right.size() && std::abs(modes[j].lambda - l) <= 1e-6 * std::abs(l))
+            return false;
+    return true;
+}
+
+// error_bound_in for a cluster of one, both pencils at once, as sums (the bounds of
+// every mode at every step of a continuation come this way).
+double lone_bound(const Mode& m, const PencilAction& pencil, const PencilNorms& original, const PencilNorms& scaled,
+                  const Eigen::VectorXd& t) {
+    const std::complex<double> l = m.lambda;
+    Eigen::VectorXcd Mx, Cx, Kx;
+    pencil.apply(m.right, Mx, Cx, Kx);
+    const Eigen::VectorXcd r = (l * l) * Mx + l * Cx + Kx;
+    const std::complex<double> D = m.left.dot((2.0 * l) * Mx + Cx);   // y^H P'(l) x
+    double xx = 0.0, yy = 0.0, rr = 0.0, xw = 0.0, yw = 0.0, rt = 0.0;   // plain and weighted squares
+    for (Eigen::Index j = 0; j < r.size(); ++j) {
+        const double w = 1.0 / (t[j] * t[j]);
+        const double ax = std::norm(m.right[j]), ay = std::norm(m.left[j]), ar = std::norm(r[j]);
+        xx += ax, yy += ay, rr += ar;
+        xw += ax * w, yw += ay * w, rt += ar * t[j] * t[j];
+    }
+    const double a = std::abs(l), eps = std::numeric_limits<double>::epsilon();
+    const auto bound = [&](const PencilNorms& n, double x2, double y2, double r2) {
+        const double whole = a * a * n.M + a * n.C + n.K;
+        const double sx = 1.0 / std::sqrt(x2), sy = 1.0 / std::sqrt(y2);
+        const double eta = whole > 0.0 ? sx * std::sqrt(r2) / whole : 0.0;
+        const double smin = std::abs(sy * D * sx);
+        return smin > 0.0 && std::isfinite(eta) ? 10.0 * std::max(eta, eps) * whole / smin
+                                                : std::numeric_limits<double>::infinity();
+    };
+    return std::min(bound(original, xx, yy, rr), bound(scaled, xw, yw, rt));
+}
+
 }  // namespace
 
 void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil, const PencilNorms& scaled,
@@ -343,8 +380,12 @@ void set_error_bounds(std::vector<Mode>& modes, const PencilAction& pencil, cons
     for_each_index(modes.size(), threads, [&](size_t i) {
         const Mode& m = modes[i];
         if (m.left.size() != m.right.size() || !std::isfinite(std::abs(m.lambda))) return;
-        const Cluster c = cluster_of(modes, i, pencil);
         // Both are bounds on the same eigenvalue: the tighter one is kept.
+        if (alone(modes, i)) {
+            bound[i] = lone_bound(m, pencil, original, scaled, t);
+            return;
+        }
+        const Cluster c = cluster_of(modes, i, pencil);
         bound[i] = std::min(error_bound_in(c, m.lambda, original, one), error_bound_in(c, m.lambda, scaled, t));
     });
     for (size_t i = 0; i < modes.size(); ++i) modes[i].error_bound = bound[i];

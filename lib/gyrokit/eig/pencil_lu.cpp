@@ -186,16 +186,20 @@ void band_solve(int n, int kl, int ku, const std::vector<cd>& ab, const std::vec
 
 }  // namespace
 
-// v in the order factored (to: true) or back in the given order.
+// v in the order factored (to: true) or back in the given order, through a copy
+// kept by the thread (these solves run at every step of every mode).
+static thread_local std::vector<cd> reorder_copy;
+[[maybe_unused]] static const bool reorder_copy_released =
+    (on_idle([] { std::vector<cd>().swap(reorder_copy); }), true);
+
 void PencilLU::reorder(Eigen::VectorXcd& v, bool to) const {
     if (!order_) return;
-    Eigen::VectorXcd w(v.size());
+    reorder_copy.assign(v.data(), v.data() + v.size());
     const std::vector<int>& old_of = order_->old_of;
     if (to)
-        for (Eigen::Index i = 0; i < v.size(); ++i) w[i] = v[old_of[static_cast<size_t>(i)]];
+        for (Eigen::Index i = 0; i < v.size(); ++i) v[i] = reorder_copy[static_cast<size_t>(old_of[static_cast<size_t>(i)])];
     else
-        for (Eigen::Index i = 0; i < v.size(); ++i) w[old_of[static_cast<size_t>(i)]] = v[i];
-    v.swap(w);
+        for (Eigen::Index i = 0; i < v.size(); ++i) v[old_of[static_cast<size_t>(i)]] = reorder_copy[static_cast<size_t>(i)];
 }
 
 Eigen::VectorXcd PencilLU::solve(const Eigen::VectorXcd& b) const {

@@ -31,6 +31,25 @@ Eigen::VectorXcd real_times(const Eigen::SparseMatrix<double>& A, const Eigen::V
     return y;
 }
 
+std::complex<double> real_bilinear(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& y,
+                                   const Eigen::VectorXcd& x) {
+    // Column by column: x_j times (y^H A)_j, in real arithmetic.
+    const double* yr = reinterpret_cast<const double*>(y.data());
+    const double* xr = reinterpret_cast<const double*>(x.data());
+    double re = 0.0, im = 0.0;
+    for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
+        double cr = 0.0, ci = 0.0;   // (y^H A)_j = sum conj(y_i) A_ij
+        for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it) {
+            const Eigen::Index i = it.index();
+            cr += it.value() * yr[2 * i];
+            ci -= it.value() * yr[2 * i + 1];
+        }
+        re += cr * xr[2 * j] - ci * xr[2 * j + 1];
+        im += cr * xr[2 * j + 1] + ci * xr[2 * j];
+    }
+    return {re, im};
+}
+
 Eigen::VectorXcd real_transpose_times(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x) {
     Eigen::VectorXcd y(A.cols());
     for (Eigen::Index j = 0; j < A.outerSize(); ++j) {

@@ -51,6 +51,9 @@ struct SparseSpectrum {
 Eigen::VectorXcd real_times(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x);
 // A^T x, without a transposed copy of A.
 Eigen::VectorXcd real_transpose_times(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& x);
+// y^H A x for real sparse A, without forming A x.
+std::complex<double> real_bilinear(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXcd& y,
+                                   const Eigen::VectorXcd& x);
 
 // The action of a sparse pencil (its matrices referenced: they must outlive it).
 PencilAction sparse_pencil_action(const SparsePencil& p);
