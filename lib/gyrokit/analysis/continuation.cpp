@@ -105,6 +105,12 @@ struct Frame {
     bool keep_left = true;
     double min_mac = 0.0;   // > 0: each corrected mode keeps at least this MAC with its shape before the step
     int threads = 1;        // the modes of a step are corrected in parallel
+    // Second-order predictions (Solved::slope_before): the continuation's own steps. A
+    // window's (continue_window) stay first order: their modes feed the Hautus test,
+    // which measures the left vectors against the right ones' backward error, and a
+    // first round that already reaches the right's target leaves the left vector one
+    // plain round from its start.
+    bool second_order = false;
 };
 
 Frame frame_of(const Shared& sh, int threads = 1) {
@@ -116,6 +122,7 @@ Frame frame_of(const Shared& sh, int threads = 1) {
     f.tolerance = sh.opt.tolerance;
     f.band = sh.opt.band;
     f.keep_left = sh.opt.eig.left_vectors;
+    f.second_order = true;
     return f;
 }
 
@@ -185,7 +192,7 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
     // Second order where the slope at the speed before is known: the branch's
     // curvature from the change of slope (the correction's first round then lands
     // closer, often close enough to stop there).
-    const bool curved = std::isfinite(from.before) && from.slope_before.size() == from.track.size();
+    const bool curved = fr.second_order && std::isfinite(from.before) && from.slope_before.size() == from.track.size();
     std::vector<cd> pred;
     for (size_t i = 0; i < from.track.size(); ++i) {
         const Mode& m = from.track[i];
