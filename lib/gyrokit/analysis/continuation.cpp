@@ -5,6 +5,7 @@
 #include <gyrokit/core/parallel.hpp>
 
 #include <Eigen/SVD>
+#include <atomic>
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -238,6 +239,7 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
     next.rigid = rigid;
     next.beyond = from.beyond;
     next.before = from.w;
+    next.slope_before.clear();
     std::vector<cd> corrected_at(track.size());   // track[i] is from.track[i] corrected
     for (size_t i = 0; i < track.size(); ++i) corrected_at[i] = track[i].lambda;
     std::vector<Mode> modes;
@@ -503,12 +505,21 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
         // its anchor takes the checks.
         solved.resize(anchors.size());
         checked.resize(checks.size());
+        std::atomic<bool> failed{false};   // the first failure ends the loop (rethrown after it)
         for_each_index(anchors.size() + checks.size(), opt.workers.count, [&](size_t i) {
-            throw_if_interrupted();
-            if (i < anchors.size())
-                solved[i] = dense.make()(anchors[i]);
-            else
-                checked[i - anchors.size()] = eigenvalues_only(*model, checks[i - anchors.size()]);
+            if (failed) return;
+            try {
+                throw_if_interrupted();
+                if (i < anchors.size()) {
+                    solved[i] = dense.make()(anchors[i]);
+                    solved[i].speed = anchors[i];   // as solve_speeds sets it
+                } else {
+                    checked[i - anchors.size()] = eigenvalues_only(*model, checks[i - anchors.size()]);
+                }
+            } catch (...) {
+                failed = true;
+                throw;
+            }
         });
     } else {
         solved = solve_speeds(dense, anchors, opt.workers);

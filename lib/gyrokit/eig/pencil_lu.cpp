@@ -108,8 +108,18 @@ bool PencilLU::compute(const SparsePencil& p, cd lambda) {
     // The bandwidths from every stored entry in the order factored (the fill below
     // writes each entry at its distance from the diagonal, so no column's rows may be
     // assumed sorted, nor the order to fit a pattern it was not found for).
-    order_ = p.band_order && p.band_order->old_of.size() == static_cast<size_t>(n_) ? p.band_order : nullptr;
+    order_ = p.band_order && p.band_order->old_of.size() == static_cast<size_t>(n_) &&
+                     p.band_order->new_of.size() == static_cast<size_t>(n_)
+                 ? p.band_order
+                 : nullptr;
     pattern_bandwidths({&p.M, &p.C, &p.K}, order_.get(), kl_, ku_);
+    // An order found for another pattern (a system edited since) may not fit this one:
+    // the given order then, where its band is the narrower.
+    if (order_ && kl_ + ku_ + 1 > kMaxBandLU) {
+        int kl = 0, ku = 0;
+        pattern_bandwidths({&p.M, &p.C, &p.K}, nullptr, kl, ku);
+        if (kl + ku < kl_ + ku_) order_.reset(), kl_ = kl, ku_ = ku;
+    }
     band_ = kl_ + ku_ + 1 <= kMaxBandLU;
     const cd l2 = lambda * lambda;
     if (!band_) {

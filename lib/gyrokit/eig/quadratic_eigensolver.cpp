@@ -132,20 +132,39 @@ struct Companion {
     Eigen::MatrixXd A, B;
 };
 
-Companion companion(const QuadraticPencil& original) {
-    const Eigen::Index n = original.M.rows();
-    Companion c;
+// The scaling of the companion form: DOF scaling t, then lambda = gamma mu and the
+// coefficients times delta (Fan-Lin-Van Dooren: norms about one).
+struct CompanionScaling {
+    Eigen::VectorXd t;
+    double gamma = 1.0, delta = 1.0;
+};
+
+CompanionScaling companion_scaling(const QuadraticPencil& original) {
+    CompanionScaling c;
     c.t = dof_scaling(original);
     const Eigen::VectorXd& t = c.t;
-    const QuadraticPencil p{t.asDiagonal() * original.M * t.asDiagonal(), t.asDiagonal() * original.C * t.asDiagonal(),
-                            t.asDiagonal() * original.K * t.asDiagonal()};
-    // Fan-Lin-Van Dooren: lambda = gamma mu, coefficients of norm about one.
-    const double nm = p.M.norm(), nc = p.C.norm(), nk = p.K.norm();
+    const double nm = (t.asDiagonal() * original.M * t.asDiagonal()).norm(),
+                 nc = (t.asDiagonal() * original.C * t.asDiagonal()).norm(),
+                 nk = (t.asDiagonal() * original.K * t.asDiagonal()).norm();
     if (!(nm > 0.0))
         throw SolverError("the mass matrix M is zero (or not finite): a vibration problem needs mass; "
                           "allowed: M with at least one nonzero entry");
-    const double gamma = (nk > 0.0) ? std::sqrt(nk / nm) : (nc > 0.0 ? nc / nm : 1.0);
-    const double delta = 2.0 / (nk + nc * gamma + nm * gamma * gamma * (nk > 0.0 ? 0.0 : 1.0));
+    c.gamma = (nk > 0.0) ? std::sqrt(nk / nm) : (nc > 0.0 ? nc / nm : 1.0);
+    c.delta = 2.0 / (nk + nc * c.gamma + nm * c.gamma * c.gamma * (nk > 0.0 ? 0.0 : 1.0));
+    return c;
+}
+
+// The companion form in a given scaling (a group of a pencil takes the whole's: the
+// blocks of the whole's companion form, so that its rounding, down to the split of a
+// rigid-body zero, is the whole's).
+Companion companion(const QuadraticPencil& original, const CompanionScaling& scaling) {
+    const Eigen::Index n = original.M.rows();
+    Companion c;
+    c.t = scaling.t;
+    const Eigen::VectorXd& t = c.t;
+    const QuadraticPencil p{t.asDiagonal() * original.M * t.asDiagonal(), t.asDiagonal() * original.C * t.asDiagonal(),
+                            t.asDiagonal() * original.K * t.asDiagonal()};
+    const double gamma = scaling.gamma, delta = scaling.delta;
     c.gamma = gamma;
     c.A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
     c.B = Eigen::MatrixXd::Zero(2 * n, 2 * n);
@@ -157,21 +176,25 @@ Companion companion(const QuadraticPencil& original) {
     return c;
 }
 
+Companion companion(const QuadraticPencil& original) { return companion(original, companion_scaling(original)); }
+
 // Whether QZ's alpha / beta is an infinite eigenvalue (singular M).
 bool infinite(std::complex<double> alpha, double beta) {
     return std::abs(beta) <= 100.0 * std::numeric_limits<double>::epsilon() * std::abs(alpha) || beta == 0.0;
 }
 
-QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left, bool classic) {
+// `scaling` and `scale`: a group's, the whole pencil's (solve_qz_by_groups).
+QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left, bool classic,
+                           const CompanionScaling* scaling = nullptr, double scale = 0.0) {
     const int n = static_cast<int>(original.M.rows());
     const PencilAction action = action_of(original);   // backward errors refer to the original problem
-    Companion c = companion(original);
+    Companion c = scaling ? companion(original, *scaling) : companion(original);
     const Eigen::VectorXd& t = c.t;
     const double gamma = c.gamma;
     GeneralizedEigen ge = lapack_dggev(std::move(c.A), std::move(c.B), want_left, classic);
 
     QuadraticSpectrum s;
-    s.scale = natural_scale(original);
+    s.scale = scale > 0.0 ? scale : natural_scale(original);
     s.real_tol = 1e-7 * s.scale;   // about sqrt(eps) times the scale: rigid-body pairs land here
     for (int j = 0; j < 2 * n; ++j) {
         const cd alpha = ge.alpha(j);
@@ -249,8 +272,11 @@ QuadraticSpectrum solve_qz_by_groups(const QuadraticPencil& p, bool want_left, b
     QuadraticSpectrum s;
     s.scale = natural_scale(p);
     s.real_tol = 1e-7 * s.scale;
+    const CompanionScaling whole = companion_scaling(p);
     for (const std::vector<Eigen::Index>& g : groups) {
-        QuadraticSpectrum part = solve_qz(restricted(p, g), want_left, classic);
+        CompanionScaling own = whole;
+        own.t = Eigen::VectorXd(whole.t(g));
+        QuadraticSpectrum part = solve_qz(restricted(p, g), want_left, classic, &own, s.scale);
         s.infinite_count += part.infinite_count;
         for (Mode& m : part.modes) {
             Eigen::VectorXcd x = Eigen::VectorXcd::Zero(n), y = Eigen::VectorXcd::Zero(want_left ? n : 0);
@@ -476,9 +502,10 @@ namespace {
 // 2.4 ms). Empty where M is not symmetric positive definite with an estimated
 // reciprocal condition above 1e-8 (then QZ): a badly conditioned M would cost the
 // small eigenvalues their accuracy.
-std::optional<Eigen::VectorXcd> state_matrix_values(const QuadraticPencil& original, double g) {
+std::optional<Eigen::VectorXcd> state_matrix_values(const QuadraticPencil& original, double g,
+                                                    const Eigen::VectorXd* scaling = nullptr) {
     const Eigen::Index n = original.M.rows();
-    const Eigen::VectorXd t = dof_scaling(original);
+    const Eigen::VectorXd t = scaling ? *scaling : dof_scaling(original);
     const Eigen::MatrixXd M = t.asDiagonal() * original.M * t.asDiagonal();
     if (!(original.M == original.M.transpose())) return std::nullopt;   // LLT reads one triangle
     const Eigen::LLT<Eigen::MatrixXd> llt(M);
@@ -495,13 +522,14 @@ std::optional<Eigen::VectorXcd> state_matrix_values(const QuadraticPencil& origi
 }
 
 // Every finite eigenvalue of p to `keep`: the state matrix where M allows, else QZ.
+// `scaling`: a group's, the whole pencil's (as solve_qz_by_groups).
 template <class Keep>
-void all_eigenvalues(const QuadraticPencil& p, double g, const Keep& keep) {
-    if (const std::optional<Eigen::VectorXcd> values = state_matrix_values(p, g)) {
+void all_eigenvalues(const QuadraticPencil& p, double g, const Keep& keep, const CompanionScaling* scaling = nullptr) {
+    if (const std::optional<Eigen::VectorXcd> values = state_matrix_values(p, g, scaling ? &scaling->t : nullptr)) {
         for (const cd l : *values) keep(l);
         return;
     }
-    Companion c = companion(p);
+    Companion c = scaling ? companion(p, *scaling) : companion(p);
     // Without vectors the classic QZ is the faster up to about 400 DOFs (ROSS's 42:
     // 2.4 against 4.1 ms; 100: 21 against 32 ms; 336: 0.77 against 0.81 s).
     const bool classic = p.M.rows() <= kClassicValuesLimit;
@@ -524,7 +552,12 @@ EigenvalueSet quadratic_eigenvalues(const QuadraticPencil& p) {
     // Each uncoupled group on its own (as solve_qz_by_groups), scaled by the whole's scale.
     const std::vector<std::vector<Eigen::Index>> groups = uncoupled_groups(p);
     if (groups.size() > 1) {
-        for (const std::vector<Eigen::Index>& g : groups) all_eigenvalues(restricted(p, g), e.scale, keep);
+        const CompanionScaling whole = companion_scaling(p);
+        for (const std::vector<Eigen::Index>& g : groups) {
+            CompanionScaling own = whole;
+            own.t = Eigen::VectorXd(whole.t(g));
+            all_eigenvalues(restricted(p, g), e.scale, keep, &own);
+        }
         return e;
     }
     all_eigenvalues(p, e.scale, keep);
