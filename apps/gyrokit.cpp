@@ -2,6 +2,7 @@
 // Exit status: 0 success, 2 bad input, 3 solver failure, 1 anything else.
 #include "cli/common.hpp"
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/run_files.hpp>
 #include <gyrokit/io/table.hpp>
 
 #include <algorithm>
@@ -111,12 +112,19 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
+        // One run: every input read once, every output file claimed before any work.
+        RunFiles files;
+        RunScope scope(files);
         for (const auto& c : commands)
-            if (c.app->parsed()) c.run(std::cout);
+            if (c.app->parsed()) {
+                cli::claim_outputs(*c.app);
+                c.run(std::cout);
+            }
         // Nothing counts as written until it is flushed: a full disk or a closed
         // pipe shows only here for output that fits the stream's buffer.
         std::cout.flush();
         if (!std::cout) throw Error("cannot write the output (disk full, or the reading end was closed)");
+        files.check_inputs_unchanged();
     } catch (const InputError& e) {
         std::cerr << "error: " << e.message(cli::flag_words) << "\n";
         return 2;

@@ -1,4 +1,5 @@
 // The undamped critical speed map of an FE rotor scene (critical_speed_map) as NumPy arrays.
+#include "common.hpp"
 #include "critical_map.hpp"
 
 #include <gyrokit/analysis/critical_speed_map.hpp>
@@ -27,7 +28,7 @@ void bind_critical_map(py::module_& m) {
         o.modes = modes;
         CriticalSpeedMap map;
         {
-            py::gil_scoped_release free;
+            Released free;
             map = critical_speed_map(*scene.rotor_model, o);
         }
         const auto rows = [](const std::vector<MapPoint>& ps) {

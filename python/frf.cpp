@@ -1,5 +1,6 @@
 // Frequency response functions (frequency_response) as NumPy arrays, with the CLI's table
 // and Bode and polar figures in the call's unit.
+#include "common.hpp"
 #include "frf.hpp"
 
 #include "reports.hpp"
@@ -53,7 +54,7 @@ void bind_frf(py::module_& m) {
         if (!probes.empty()) outputs = probe_dofs(probes);
         FrequencyResponse r;
         {
-            py::gil_scoped_release free;
+            Released free;   // Ctrl-C stops it at the next frequency
             r = frequency_response(s, spin, frequencies, input, outputs, kind);
         }
         // Probes: their readings are the outputs, named "NODE@ANGLE".

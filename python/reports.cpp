@@ -4,6 +4,7 @@
 #include "common.hpp"
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/run_files.hpp>
 #include <gyrokit/io/output_file.hpp>
 
 #include <pybind11/stl.h>
@@ -156,14 +157,24 @@ void bind_reports(py::module_& m) {
         write_tables(out, tables_of(tables), parse_table_format(format));
         return out.str();
     }, py::arg("tables"), py::arg("format"));
-    m.def("write_tables", [](const py::list& tables, const std::string& path, const std::string& format) {
+    // A result's files go through the library's output layer, with the files its
+    // scene was read from as the run's inputs: never saved over one of them.
+    m.def("write_tables", [](const py::list& tables, const std::string& path, const std::string& format,
+                             const std::vector<std::string>& inputs) {
         std::ostringstream out;
         write_tables(out, tables_of(tables), parse_table_format(format));
+        RunFiles files;
+        for (const auto& in : inputs) files.note_input(in, "input");
+        RunScope run(files);
         replace_file(path, out.str(), "result");
-    }, py::arg("tables"), py::arg("path"), py::arg("format"));
-    m.def("render_figure", [](const py::dict& figure, const std::string& path) {
+    }, py::arg("tables"), py::arg("path"), py::arg("format"), py::arg("inputs") = std::vector<std::string>{});
+    m.def("render_figure", [](const py::dict& figure, const std::string& path, const std::vector<std::string>& inputs) {
         const Figure f = figure_of(figure);
+        RunFiles files;
+        for (const auto& in : inputs) files.note_input(in, "input");
+        files.claim_output(path, "path");   // before gnuplot runs
         py::gil_scoped_release free;
+        RunScope run(files);
         render_figure(f, path);
-    }, py::arg("figure"), py::arg("path"));
+    }, py::arg("figure"), py::arg("path"), py::arg("inputs") = std::vector<std::string>{});
 }

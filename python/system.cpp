@@ -15,6 +15,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <fmt/format.h>
+
 #include <map>
 #include <string>
 
@@ -90,7 +92,13 @@ GyroscopicSystem make_from_arrays(const py::object& M, const py::object& K, cons
         for (int i = 0; i < n; ++i) s.dof_names.push_back("q" + std::to_string(i));
     }
     if (!whirl_pairs.is_none()) {
-        s.whirl_pairs = whirl_pairs.cast<std::vector<std::pair<int, int>>>();
+        try {
+            s.whirl_pairs = whirl_pairs.cast<std::vector<std::pair<int, int>>>();
+        } catch (const py::cast_error&) {
+            throw InputError(fmt::format("whirl_pairs = {}: allowed: pairs of whole-number DOF indices (x, y), e.g. "
+                                         "[[0, 1], [2, 3]]",
+                                         std::string(py::repr(whirl_pairs)).substr(0, 80)));
+        }
     } else if (n % 2 == 0) {
         for (int i = 0; i < n; i += 2) s.whirl_pairs.emplace_back(i, i + 1);   // (x, y) pairs, as a scene's default
     }
@@ -123,6 +131,7 @@ py::class_<Scene> bind_system(py::module_& m) {
     py::class_<Scene> scene(m, "Scene", "A scene file: a model with its analysis settings");
     scene.def_readonly("path", &Scene::path)
         .def_readonly("title", &Scene::title)
+        .def_readonly("inputs", &Scene::inputs, "the files read to build it: what no result of it may be saved over")
         .def_property_readonly("length_unit", [](const Scene& s) { return s.length_unit().name; })
         .def_readonly("model_type", &Scene::model_type)
         .def_readonly("system", &Scene::system)

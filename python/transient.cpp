@@ -1,5 +1,6 @@
 // Transient response by time integration (transient_response, transient_envelope,
 // envelope_steady, transient_waterfall) as NumPy arrays.
+#include "common.hpp"
 #include "transient.hpp"
 
 #include "reports.hpp"
@@ -61,7 +62,7 @@ py::dict run(const GyroscopicSystem& s, const SpeedProfile& profile, double dura
     TransientEnvelope e;
     Eigen::MatrixXd at_peaks;
     {
-        py::gil_scoped_release free;
+        Released free;   // Ctrl-C stops it within a batch of steps
         r = transient_response(s, o);
         e = transient_envelope(r, windows);
         at_peaks = envelope_steady(s, e, o.kind);

@@ -178,7 +178,7 @@ expect "--frequencies '5:1:3': FROM = 5 is greater than TO = 1" frf "$three_disk
 expect "--speed '-3': allowed: a finite number >= 0" frf "$three_disk" --input y12 --speed -3
 expect "--load '12:x:1': allowed: NODE:FX:FY or NODE:FX:FY:MX:MY" static "$three_disk" --load 12:x:1
 expect "load 0 at node 99; allowed: 0 to 24" static "$three_disk" --load 99:0:1
-expect "--gravity: Value -1 not in range" static "$three_disk" --gravity -1
+expect "static analysis: --gravity -1; allowed: 0 (no weight)" static "$three_disk" --gravity -1
 expect "--modes: Value 0 not in range 1 to 1000" critical-map "$three_disk" --modes 0
 expect "--stiffness '1e9:1e6:5': allowed: FROM:TO:N with 0 < FROM < TO" critical-map "$three_disk" --stiffness 1e9:1e6:5
 expect "--units 'furlong' is unknown" critical-map "$three_disk" --units furlong

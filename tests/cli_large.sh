@@ -67,7 +67,7 @@ expect "--motion 'all' does not apply to" eig "$data/centrifuge.toml" --speed 0 
     { echo "FAIL: campbell --jobs 100000 without the note on the cap"; fail=1; }
 "$cli" screen "$data/screen_centrifuge.toml" --jobs 100000 --limit 1 --out "$dir/capped.csv" 2>&1 >/dev/null | grep -q "^note: --jobs 100000 capped to the" ||
     { echo "FAIL: screen --jobs 100000 without the note on the cap"; fail=1; }
-expect "--dofs: 'x99' is not a DOF" response "$data/fe_rotor.toml" --dofs x99 --speeds 1:2:2
+expect "--dofs 'x99': 'x99' is not a DOF" response "$data/fe_rotor.toml" --dofs x99 --speeds 1:2:2
 
 # Bearing tables: one speed, unsorted speeds, a DOF index out of range.
 mkdir -p "$dir/b"

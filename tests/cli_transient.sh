@@ -27,18 +27,18 @@ expect "no speed: allowed: --speed W" transient "$rotor"
 expect "--speed 0 rad/s: allowed: a finite speed > 0" transient "$rotor" --speed 0
 expect "--acceleration: only together with --run-up" transient "$rotor" --speed 600 --acceleration 5
 expect "--node 99: node 99 does not exist; allowed: 0 to 24" transient "$rotor" --speed 600 --node 99
-expect "--dofs: 'x99' is not a DOF of the model" transient "$rotor" --speed 600 --dofs x99
+expect "--dofs 'x99': 'x99' is not a DOF of the model" transient "$rotor" --speed 600 --dofs x99
 expect "--start 'hot': allowed: rest, steady" transient "$rotor" --speed 600 --start hot
 expect "--plot at a constant speed draws an orbit: allowed: two DOFs" \
     transient "$rotor" --speed 600 --dofs x12 --plot "$dir/o.png"
 expect "--waterfall '$dir/w.pdf': unsupported extension '.pdf'; allowed: .svg, .png" \
     transient "$rotor" --speed 600 --waterfall "$dir/w.pdf"
 # Picture paths are checked before the run, not after it.
-expect "--waterfall '$dir/none/w.png': the folder '$dir/none' does not exist" \
+expect "--waterfall $dir/none/w.png: the folder '$dir/none' does not exist" \
     transient "$rotor" --speed 600 --waterfall "$dir/none/w.png"
-expect "--plot '$dir/none/o.png': the folder '$dir/none' does not exist" \
+expect "--plot $dir/none/o.png: the folder '$dir/none' does not exist" \
     transient "$rotor" --speed 600 --node 12 --plot "$dir/none/o.png"
-expect "--out $dir/none/h.csv: cannot write the file" transient "$rotor" --speed 600 --out "$dir/none/h.csv"
+expect "--out $dir/none/h.csv: the folder '$dir/none' does not exist" transient "$rotor" --speed 600 --out "$dir/none/h.csv"
 printf '[model]\ntype = "matrices"\nM = "M.mtx"\nK = "K.mtx"\n' > "$dir/nounb.toml"
 printf '%%%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1.0\n2 2 1.0\n' > "$dir/M.mtx"
 cp "$dir/M.mtx" "$dir/K.mtx"

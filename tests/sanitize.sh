@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer, in a
-# second build folder (default build-sanitize). Python is off (the interpreter is
-# not instrumented); fuzz_smoke and install_examples are left to the main build.
-# A sanitizer report makes the test that hit it fail. Usage: sanitize.sh [BUILD_DIR]
+# second build folder (default build-sanitize), built with clang so that the fuzz
+# targets (libFuzzer needs clang) are built from the same tree and run as the test
+# fuzz_smoke. Python is off (the interpreter is not instrumented); install_examples
+# is left to the main build. A sanitizer report makes the test that hit it fail.
+# Usage: sanitize.sh [BUILD_DIR]
 set -euo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$src/build-sanitize}
-cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGYROKIT_SANITIZE=ON -DGYROKIT_BUILD_PYTHON=OFF
+cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang \
+    -DGYROKIT_SANITIZE=ON -DGYROKIT_FUZZ=ON -DGYROKIT_BUILD_PYTHON=OFF
 cmake --build "$build" -j2
 export ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1

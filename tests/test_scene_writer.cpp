@@ -209,7 +209,7 @@ TEST_CASE("scene writer: what a scene cannot say is refused with the item named"
     CHECK_THROWS_WITH(rotor_scene(m), Catch::Contains("support 0 z = 0.3 m is not a node of the mesh") &&
                                           Catch::Contains("the nearest is 0.25"));
     CHECK_THROWS_WITH(write_scene(load_scene(data("fe_rotor.toml")), "/nonexistent-dir/x.toml"),
-                      Catch::Contains("/nonexistent-dir/x.toml: cannot write the scene"));
+                      Catch::Contains("/nonexistent-dir/x.toml: the folder '/nonexistent-dir' does not exist"));
 }
 
 TEST_CASE("scenes of other models are written as read: overrides applied, file names absolute", "[scene]") {

@@ -101,7 +101,7 @@ std::vector<Command> add_balancer_commands(CLI::App& app) {
                                          "rk4imp, bsimp, msbdf)");
     o->abs_opt = c->add_option("--abs-tol", o->abs_tol, "with --simulate: absolute tolerance");
     o->rel_opt = c->add_option("--rel-tol", o->rel_tol, "with --simulate: relative tolerance");
-    c->add_option("--plot", o->plot, "with --simulate: draw the phase histories into FILE.svg or FILE.png");
+    add_output_option(c, "--plot", o->plot, "with --simulate: draw the phase histories into FILE.svg or FILE.png");
     return {{c, [o](std::ostream& out) {
         const TableFormat fmt = parse_table_format(o->format);
         check_plot_path(o->plot);

@@ -92,7 +92,7 @@ std::string flag_words(const std::string& field) {
         {"target_order", "--target-order"}, {"units", "--units"}, {"rows", "--rows, or --format csv|json"},
         {"plot", "--plot FILE.svg"},        {"dt", "--dt"},         {"duration", "--duration"},
         {"max_steps", "--max-steps"},       {"speed", "--speed"},   {"run_up", "--run-up"},
-        {"acceleration", "--acceleration"}};
+        {"acceleration", "--acceleration"}, {"gravity", "--gravity"}};
     for (const auto& [name, flag] : flags)
         if (field == name) return flag;
     return "";

@@ -90,9 +90,18 @@ double parse_order(const std::string& text, const std::string& option);
 // Whole numbers in [1, 1000] separated by commas (harmonics, mode numbers); empty: `fallback`.
 std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>& fallback,
                                  const std::string& option = "--harmonics");
+// An option naming a file the command writes (a folder of files: `folder`): in the
+// help's "Output files" group, which the run claims before any work (claim_outputs).
+constexpr const char* kOutputGroup = "Output files";
+CLI::Option* add_output_option(CLI::App* c, const std::string& name, std::string& value, const std::string& help,
+                               bool folder = false);
+// Every file option of the chosen command given a value, claimed in the current run:
+// none may be an input of the run or another output of it (core/run_files.hpp).
+void claim_outputs(const CLI::App& command);
 // Throws InputError unless the extension is .svg or .png (empty: no plot).
 void check_plot_path(const std::string& path, const std::string& option = "--plot");
-void plot_if(const std::string& path, const Figure& f);
+// The figure into `path` (empty: nothing), named `option` in errors.
+void plot_if(const std::string& path, const Figure& f, const std::string& option = "--plot");
 // write_result, and a note on stderr naming the tables a CSV left out.
 void write_result(std::ostream& out, const std::vector<Table>& ts, TableFormat f, const std::string& table);
 // A progress bar on stderr when stderr is a terminal; otherwise nothing.

@@ -1,11 +1,13 @@
 // critical-map: undamped critical speeds of an FE rotor against bearing stiffness.
 #include "cli/common.hpp"
+#include <gyrokit/core/number_text.hpp>
 #include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/reports/critical_map_reports.hpp>
 
 #include <cmath>
 #include <fmt/format.h>
+#include <optional>
 #include <memory>
 
 namespace gyrokit::cli {
@@ -21,12 +23,20 @@ struct Options {
 // --stiffness FROM:TO:N, N values log spaced from FROM to TO (N/m).
 std::vector<double> parse_stiffness(const std::string& text) {
     const std::string allowed = "allowed: FROM:TO:N with 0 < FROM < TO (N/m), N in [2, 10000] (log spaced)";
-    double a = 0, b = 0;
+    const std::size_t c1 = text.find(':'), c2 = c1 == std::string::npos ? c1 : text.find(':', c1 + 1);
+    std::optional<double> fa, fb;
     int n = 0;
-    char tail = 0;
-    if (std::sscanf(text.c_str(), "%lf:%lf:%d%c", &a, &b, &n, &tail) != 3 || !(a > 0 && b > a && std::isfinite(b)) ||
-        n < 2 || n > 10000)
-        throw InputError(fmt::format("--stiffness '{}': {}", text, allowed));
+    if (c2 != std::string::npos) {
+        fa = decimal_number(text.substr(0, c1));
+        fb = decimal_number(text.substr(c1 + 1, c2 - c1 - 1));
+        const std::string count = text.substr(c2 + 1);
+        if (!count.empty() && count.size() <= 5 && count.find_first_not_of("0123456789") == std::string::npos)
+            n = std::stoi(count);
+    }
+    if (!fa || !fb || !(*fa > 0 && *fb > *fa) || n < 2 || n > 10000)
+        throw InputError(fmt::format("--stiffness '{}': {} (normal numbers: at least 2.2250738585072014e-308)", text,
+                                     allowed));
+    const double a = *fa, b = *fb;
     std::vector<double> k;
     for (int i = 0; i < n; ++i) k.push_back(a * std::pow(b / a, static_cast<double>(i) / (n - 1)));
     k.back() = b;
@@ -48,7 +58,7 @@ std::vector<Command> add_critical_map_commands(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));
     cmd->add_option("--table", o->table, "one table: critical_map or bearing_curves");
-    cmd->add_option("--plot", o->common.plot, "draw the map into FILE.svg|.png");
+    add_output_option(cmd, "--plot", o->common.plot, "draw the map into FILE.svg|.png");
     return {{cmd, [o](std::ostream& out) {
                  const TableFormat format = parse_format(o->common);
                  const SpeedUnit unit = SpeedUnit::parse(o->common.units);

@@ -38,7 +38,7 @@ std::vector<Command> add_fluid_commands(CLI::App& app) {
     fl->add_option("--fill", o->fill, "sweep the free-surface radius R0 over FROM:TO:N (m)");
     fl->add_option("--table", o->table,
                    "only this table: critical_speeds, sloshing_modes or liquid (default: all; CSV holds the first)");
-    fl->add_option("--plot", o->common.plot, "with --fill: critical speeds against R0 into FILE.svg or FILE.png");
+    add_output_option(fl, "--plot", o->common.plot, "with --fill: critical speeds against R0 into FILE.svg or FILE.png");
     cmds.push_back({fl, [o](std::ostream& out) {
         if (!o->common.plot.empty() && o->fill.empty()) throw InputError("--plot: only together with --fill");
         const Context c = open_scene(o->common, false);

@@ -42,7 +42,7 @@ std::vector<Command> add_frf_commands(CLI::App& app) {
                                            "degrees from +x towards +y)");
     cmd->add_option("--frequencies", o->frequencies, "excitation frequencies FROM:TO:N (in --units); default: the "
                                                      "scene's [speeds] range");
-    cmd->add_option("--plot", o->common.plot, "Bode plot (amplitude and phase) into FILE.svg|.png");
+    add_output_option(cmd, "--plot", o->common.plot, "Bode plot (amplitude and phase) into FILE.svg|.png");
     cmd->add_flag("--polar", o->polar, "with --plot: a polar plot (Im H against Re H)");
     return {{cmd, [o](std::ostream& out) {
                  if (o->polar && o->common.plot.empty()) throw InputError("--polar: only together with --plot FILE");
@@ -59,13 +59,8 @@ std::vector<Command> add_frf_commands(CLI::App& app) {
                  if (!o->dofs.empty() && !o->probes.empty())
                      throw InputError("--dofs and --probes: allowed: one of them");
                  const std::vector<Probe> probes = parse_probes(o->probes, sys);
-                 std::vector<int> outputs = probe_dofs(probes);
-                 std::size_t start = 0;
-                 while (!o->dofs.empty() && start <= o->dofs.size()) {
-                     const std::size_t end = std::min(o->dofs.find(',', start), o->dofs.size());
-                     outputs.push_back(dof_index(sys.dof_names, o->dofs.substr(start, end - start), "--dofs"));
-                     start = end + 1;
-                 }
+                 std::vector<int> outputs = probes.empty() ? dofs_by_name(o->dofs, sys.dof_names, "--dofs")
+                                                           : probe_dofs(probes);
                  if (outputs.empty()) outputs.push_back(input);
                  note_extrapolation(c, spin);
                  FrequencyResponse r = frequency_response(sys, spin, frequencies, input, outputs,

@@ -1,8 +1,10 @@
 // What the commands print besides their tables: plots, the CSV note, progress bars.
 #include "cli/common.hpp"
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/run_files.hpp>
 
 #include <algorithm>
+#include <filesystem>
 #include <cmath>
 #include <fmt/format.h>
 #include <iostream>
@@ -10,24 +12,30 @@
 
 namespace gyrokit::cli {
 
-void check_plot_path(const std::string& path, const std::string& option) {
-    if (path.empty()) return;
-    const std::filesystem::path p(path);
-    const std::string ext = p.extension().string();
-    if (ext != ".svg" && ext != ".png")
-        throw InputError(fmt::format("{} '{}': unsupported extension '{}'; allowed: .svg, .png", option, path, ext));
-    // Before the analysis runs, not after it: a long run must not end in a picture it cannot write.
-    const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
-    std::error_code ec;
-    if (!std::filesystem::is_directory(dir, ec) || ::access(dir.c_str(), W_OK) != 0)
-        throw InputError(fmt::format("{} '{}': the folder '{}' does not exist or is not writable; allowed: a file in "
-                                     "a writable folder",
-                                     option, path, dir.string()));
+CLI::Option* add_output_option(CLI::App* c, const std::string& name, std::string& value, const std::string& help,
+                               bool folder) {
+    return c->add_option(name, value, help)->group(kOutputGroup)->type_name(folder ? "DIR" : "FILE");
 }
 
-void plot_if(const std::string& path, const Figure& f) {
+void claim_outputs(const CLI::App& command) {
+    RunFiles* run = current_run();
+    if (!run) return;
+    for (const CLI::Option* opt : command.get_options()) {
+        if (opt->get_group() != kOutputGroup || opt->count() == 0 || opt->get_type_name() == "DIR") continue;
+        for (const auto& value : opt->results()) run->claim_output(value, opt->get_name());
+    }
+}
+
+void check_plot_path(const std::string& path, const std::string& option) {
     if (path.empty()) return;
-    render_figure(f, path);
+    const std::string ext = std::filesystem::path(path).extension().string();
+    if (ext != ".svg" && ext != ".png")
+        throw InputError(fmt::format("{} '{}': unsupported extension '{}'; allowed: .svg, .png", option, path, ext));
+}
+
+void plot_if(const std::string& path, const Figure& f, const std::string& option) {
+    if (path.empty()) return;
+    render_figure(f, path, option);
     std::cerr << "wrote " << path << "\n";
 }
 

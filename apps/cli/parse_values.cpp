@@ -1,5 +1,6 @@
 // The CLI's own value syntax: speeds and orders, harmonic lists, probes.
 #include "cli/common.hpp"
+#include <gyrokit/core/number_text.hpp>
 
 #include <gyrokit/core/error.hpp>
 
@@ -21,12 +22,12 @@ std::vector<Probe> parse_probes(const std::string& text, const GyroscopicSystem&
         int node = 0;
         double angle = 0.0;
         try {
-            std::size_t a = 0, b = 0;
+            std::size_t a = 0;
             if (at == std::string::npos) throw std::invalid_argument(item);
             node = std::stoi(item.substr(0, at), &a);
-            angle = std::stod(item.substr(at + 1), &b);
-            if (a != at || b != item.size() - at - 1 || !std::isfinite(angle) || std::abs(angle) > 360.0)
-                throw std::invalid_argument(item);
+            const std::optional<double> x = decimal_number(item.substr(at + 1));
+            if (a != at || !x || std::abs(*x) > 360.0) throw std::invalid_argument(item);
+            angle = *x;
         } catch (const std::exception&) {
             throw InputError(fmt::format("--probes '{}': allowed: NODE@ANGLE items separated by commas, e.g. "
                                          "12@45,12@-45 (angle in degrees from +x towards +y, -360 to 360)",
@@ -47,12 +48,8 @@ namespace {
 
 // A finite number >= 0 spelled out completely, or nothing.
 std::optional<double> nonnegative(const std::string& text) {
-    try {
-        size_t pos = 0;
-        const double v = std::stod(text, &pos);
-        if (pos == text.size() && std::isfinite(v) && v >= 0.0) return v;
-    } catch (const std::exception&) {
-    }
+    const std::optional<double> v = decimal_number(text);
+    if (v && *v >= 0.0) return v;
     return std::nullopt;
 }
 

@@ -1,6 +1,7 @@
 // response: the unbalance response over speed.
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include "cli/common.hpp"
+#include <gyrokit/core/number_text.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/reports/reports.hpp>
 
@@ -36,27 +37,8 @@ std::vector<std::string> split_list(const std::string& text) {
 // (--nodes) and of the nodes nearest axial positions (--at, m); empty: all.
 std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys, const LengthUnit& length);
 
-// DOF indices from a list of names (empty: all).
-std::vector<int> parse_dofs(const std::string& text, const std::vector<std::string>& names) {
-    std::vector<int> out;
-    size_t start = 0;
-    while (!text.empty() && start <= text.size()) {
-        const size_t end = std::min(text.find(',', start), text.size());
-        const std::string name = text.substr(start, end - start);
-        const auto it = std::find(names.begin(), names.end(), name);
-        if (it == names.end())
-            throw InputError(fmt::format("--dofs: '{}' is not a DOF of the model; allowed: names such as {}", name,
-                                         names.empty() ? std::string("-") : names.front()));
-        if (std::find(out.begin(), out.end(), static_cast<int>(it - names.begin())) != out.end())
-            throw InputError(fmt::format("--dofs '{}': '{}' is listed twice; allowed: each DOF once", text, name));
-        out.push_back(static_cast<int>(it - names.begin()));
-        start = end + 1;
-    }
-    return out;
-}
-
 std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys, const LengthUnit& length) {
-    std::vector<int> out = parse_dofs(o.dofs, sys.dof_names);
+    std::vector<int> out = dofs_by_name(o.dofs, sys.dof_names, "--dofs");
     const auto add_node = [&](int node) {
         const std::vector<int> dofs = sys.node_translations(node);
         // Nothing would mean every DOF: a node held by a support is an error, not "all".
@@ -82,9 +64,9 @@ std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys,
     for (const std::string& item : split_list(o.at)) {
         double z = 0.0;
         try {
-            size_t pos = 0;
-            z = std::stod(item, &pos);
-            if (pos != item.size()) throw std::invalid_argument(item);
+            const std::optional<double> x = decimal_number(item);
+            if (!x) throw std::invalid_argument(item);
+            z = *x;
         } catch (const std::exception&) {
             throw InputError("--at '" + o.at + "': allowed: axial positions in " + length.name +
                              " (the scene's length_unit) separated by commas");
@@ -108,7 +90,7 @@ std::vector<Command> add_response_commands(CLI::App& app) {
     add_common(resp, o->common, true);
     add_motion_option(resp, o->common);
     add_solver_options(resp, o->common);
-    resp->add_option("--plot", o->common.plot, "draw amplitude (one panel per unit) and phase into FILE.svg or FILE.png");
+    add_output_option(resp, "--plot", o->common.plot, "draw amplitude (one panel per unit) and phase into FILE.svg or FILE.png");
     resp->add_flag("--polar", o->polar, "with --plot: a polar plot (Im Z against Re Z) instead of amplitude and phase");
     resp->add_option("--dofs", o->dofs, "DOFs reported, by name, e.g. x3,y3 (default: all)");
     resp->add_option("--nodes", o->nodes, "DOFs reported: the lateral translations x, y of these nodes, e.g. 12,20");

@@ -48,10 +48,10 @@ std::vector<Command> add_screen_commands(CLI::App& app) {
     c->add_option("--jobs", o->jobs, "worker threads (default: all hardware threads)");
     c->add_option("--shard", o->shard, "process shard K of N (0 <= K < N): the designs i with i mod N = K")
         ->capture_default_str();
-    c->add_option("--out", o->out, "write the rows (CSV) into FILE as they are done (overwrites FILE)");
-    c->add_option("--resume", o->resume, "continue the CSV result file OUT (created if missing)");
+    add_output_option(c, "--out", o->out, "write the rows (CSV) into FILE as they are done (overwrites FILE)");
+    add_output_option(c, "--resume", o->resume, "continue the CSV result file OUT (created if missing)");
     c->add_option("--format", o->format, "format of the rows on stdout: csv, json or table")->capture_default_str();
-    c->add_option("--plot", o->plot, "draw the safe region over two parameters into FILE.svg or FILE.png");
+    add_output_option(c, "--plot", o->plot, "draw the safe region over two parameters into FILE.svg or FILE.png");
     c->add_option("--axes", o->axes, "the two parameters of the plot, P1,P2 (default: [plot] axes, else the first two)");
     c->add_option("--merge", o->merge, "instead of running: merge result files (e.g. of all shards) in design order")
         ->expected(1, -1);
@@ -85,21 +85,8 @@ std::vector<Command> add_screen_commands(CLI::App& app) {
 
         std::vector<ResultRow> rows;
         if (!o->merge.empty()) {
-            std::vector<std::string> inputs = o->merge;
-            inputs.push_back(s.path);
-            inputs.push_back(s.scene);
-            check_output_path(ro.out, inputs, o->resume.empty() ? "--out" : "--resume");
-            rows = merge_results(s, o->merge, true);
-            if (!ro.out.empty()) {
-                std::ostringstream text;
-                write_results(text, s, rows, TableFormat::Csv);
-                ResultFile f(ro.out);   // locked: no other run writes it meanwhile
-                f.truncate(0);
-                f.write(study_identity_line(s) + '\n' + text.str());
-                f.close();   // synced: a full disk shows here
-            } else {
-                write_results(os, s, rows, fmt_out);
-            }
+            rows = merge_results(s, o->merge, true, ro.out, o->resume.empty() ? "--out" : "--resume");
+            if (ro.out.empty()) write_results(os, s, rows, fmt_out);
         } else {
             if (isatty(2)) ro.progress = draw_progress;
             const RunResult r = run_screening(s, ro);

@@ -82,7 +82,7 @@ std::vector<Command> add_sommerfeld_commands(CLI::App& app) {
     o->abs_opt = c->add_option("--abs-tol", o->abs_tol, "with --runup: absolute tolerance");
     o->rel_opt = c->add_option("--rel-tol", o->rel_tol, "with --runup: relative tolerance");
     o->max_opt = c->add_option("--max-speed", o->max_speed, "with --runup: maximal nominal speed, rad/s (overrides the scene)");
-    c->add_option("--plot", o->plot, "draw the curves or the run-up into FILE.svg or FILE.png");
+    add_output_option(c, "--plot", o->plot, "draw the curves or the run-up into FILE.svg or FILE.png");
     return {{c, [o](std::ostream& out) {
         const TableFormat fmt = parse_table_format(o->format);
         check_plot_path(o->plot);

@@ -49,7 +49,7 @@ Command model_command(CLI::App& app, const std::shared_ptr<Options>& o) {
                                               "--plot draws an FE rotor");
     model->add_option("scene", o->common.scene, "scene file (TOML)")->required();
     model->add_option("--format", o->common.format, "output format: table, csv or json")->capture_default_str();
-    model->add_option("--plot", o->common.plot, "FE rotors: draw the shaft, disks and bearings into FILE.svg|.png");
+    add_output_option(model, "--plot", o->common.plot, "FE rotors: draw the shaft, disks and bearings into FILE.svg|.png");
     add_motion_option(model, o->common);
     return {model, [o](std::ostream& out) {
         const TableFormat format = parse_format(o->common);
@@ -75,7 +75,7 @@ Command modes_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     modes->add_option("--mode", o->select, "only these modes, by number from 1: K or K,L,...");
     modes->add_option("--per", o->per, "node: one row per whirl pair (orbit); dof: one row per DOF")
         ->capture_default_str();
-    modes->add_option("--plot", o->common.plot, "draw the shapes along the axis (or the orbits) into FILE.svg|.png");
+    add_output_option(modes, "--plot", o->common.plot, "draw the shapes along the axis (or the orbits) into FILE.svg|.png");
     return {modes, [o](std::ostream& out) {
         const Context c = open_scene(o->common, false);
         if (o->per != "node" && o->per != "dof")
@@ -118,7 +118,7 @@ Command export_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     add_common(exp, o->common, false);
     add_motion_option(exp, o->common);
     exp->add_option("--speed", o->speed, "spin speed for the assembled matrices (in --units)")->required();
-    exp->add_option("--dir", o->dir, "output directory (created if missing)")->required();
+    add_output_option(exp, "--dir", o->dir, "output directory (created if missing)", true)->required();
     return {exp, [o](std::ostream&) {
         const Context c = open_scene(o->common, false);
         const double w = parse_speed(o->speed, "--speed", c.unit);

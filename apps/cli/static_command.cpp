@@ -1,5 +1,6 @@
 // static: deflection, internal forces and reactions of an FE rotor at standstill.
 #include "cli/common.hpp"
+#include <gyrokit/core/number_text.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/reports/static_reports.hpp>
 #include <gyrokit/study/static_study.hpp>
@@ -13,7 +14,7 @@ namespace {
 
 struct Options {
     Common common;
-    double gravity = 9.80665;
+    std::string gravity = "9.80665";
     std::vector<std::string> loads;
     std::string table;
 };
@@ -28,11 +29,14 @@ StaticLoad parse_load(const std::string& text) {
             const std::size_t end = std::min(text.find(':', start), text.size());
             const std::string item = text.substr(start, end - start);
             std::size_t pos = 0;
-            if (k == 0)
+            if (k == 0) {
                 node = std::stoi(item, &pos);
-            else
-                v.push_back(std::stod(item, &pos));
-            if (pos != item.size()) throw std::invalid_argument(item);
+                if (pos != item.size()) throw std::invalid_argument(item);
+            } else {
+                const std::optional<double> x = decimal_number(item);
+                if (!x) throw std::invalid_argument(item);
+                v.push_back(*x);
+            }
             start = end + 1;
         }
     } catch (const std::exception&) {
@@ -52,19 +56,17 @@ std::vector<Command> add_static_commands(CLI::App& app) {
                                              "reactions under gravity and point loads");
     cmd->add_option("scene", o->common.scene, "scene file (TOML)")->required();
     cmd->add_option("--format", o->common.format, "output format: table, csv or json")->capture_default_str();
-    cmd->add_option("--gravity", o->gravity, "gravity along -y (m/s^2; 0: no weight)")
-        ->capture_default_str()
-        ->check(CLI::Range(0.0, 1e6));
+    cmd->add_option("--gravity", o->gravity, "gravity along -y (m/s^2; 0: no weight)")->capture_default_str();
     cmd->add_option("--load", o->loads, "a point load NODE:FX:FY[:MX:MY] (N, N m); repeat for more");
     cmd->add_option("--table", o->table, "one table: static, deflection, internal_forces or reactions (a CSV holds one; "
                                          "default: the deflection)");
-    cmd->add_option("--plot", o->common.plot, "draw deflection, slope, shear force and bending moment along the shaft into FILE.svg|.png");
+    add_output_option(cmd, "--plot", o->common.plot, "draw deflection, slope, shear force and bending moment along the shaft into FILE.svg|.png");
     add_motion_option(cmd, o->common);
     return {{cmd, [o](std::ostream& out) {
                  const TableFormat format = parse_format(o->common);
                  check_plot_path(o->common.plot);
                  StaticOptions opt;
-                 opt.gravity = o->gravity;
+                 opt.gravity = parse_decimal(o->gravity, "--gravity", "a number from 0 to 1e6 (m/s^2)");
                  for (const std::string& l : o->loads) opt.loads.push_back(parse_load(l));
                  const Scene sc = load_motion_scene(o->common);
                  const StaticResult s = static_study(sc, opt);

@@ -30,7 +30,7 @@ Command campbell_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     camp->add_option("--modes", o->modes, "number of modes to track: the K lowest by frequency (0 = all; sparse: "
                                           "the K nearest --target, default 6); default: the scene's, else the "
                                           "modes in range");
-    camp->add_option("--plot", o->common.plot, "draw the diagram into FILE.svg or FILE.png");
+    add_output_option(camp, "--plot", o->common.plot, "draw the diagram into FILE.svg or FILE.png");
     camp->add_option("--harmonics", o->harmonics, "harmonic lines drawn, e.g. 1,2 (default: the scene's, else 1)");
     camp->add_flag("--rows", o->rows, "table format: every row of the diagram instead of the summary");
     return {camp, [o](std::ostream& out) {

@@ -4,12 +4,15 @@
 #include <gyrokit/analysis/transient_signals.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/number_text.hpp>
+#include <gyrokit/io/output_file.hpp>
 #include <gyrokit/reports/transient_reports.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
-#include <fstream>
+#include <optional>
+#include <sstream>
 #include <iostream>
 #include <memory>
 
@@ -24,13 +27,7 @@ struct Options {
 };
 
 double number(const std::string& text, const std::string& option, const std::string& allowed) {
-    try {
-        std::size_t pos = 0;
-        const double v = std::stod(text, &pos);
-        if (pos == text.size() && std::isfinite(v)) return v;
-    } catch (const std::exception&) {
-    }
-    throw InputError(fmt::format("{} '{}': allowed: {}", option, text, allowed));
+    return parse_decimal(text, option, allowed);
 }
 
 // The speed history from --speed, or --run-up FROM:TO with --acceleration, in rad/s.
@@ -79,24 +76,14 @@ std::vector<int> outputs_of(const Options& o, const GyroscopicSystem& sys) {
                                          "has no lateral DOFs); allowed: a node with free x or y",
                                          node));
     }
-    std::size_t start = 0;
-    while (!o.dofs.empty() && start <= o.dofs.size()) {
-        const std::size_t end = std::min(o.dofs.find(',', start), o.dofs.size());
-        const std::string name = o.dofs.substr(start, end - start);
-        const auto it = std::find(sys.dof_names.begin(), sys.dof_names.end(), name);
-        if (it == sys.dof_names.end())
-            throw InputError(fmt::format("--dofs: '{}' is not a DOF of the model; allowed: names such as {}", name,
-                                         sys.dof_names.empty() ? std::string("-") : sys.dof_names.front()));
-        out.push_back(static_cast<int>(it - sys.dof_names.begin()));
-        start = end + 1;
-    }
+    if (!o.dofs.empty()) out = dofs_by_name(o.dofs, sys.dof_names, "--dofs");
     return out.empty() ? transient_outputs(sys) : out;
 }
 
 void draw(const Options& o, const Context& c, const TransientResult& r, SolverKind kind) {
     const bool steady = o.start == "steady";
     if (!o.common.plot.empty()) plot_if(o.common.plot, transient_figure(c.scene.system, r, c.unit, steady, kind, c.scene.length_unit()));
-    if (!o.waterfall.empty()) plot_if(o.waterfall, transient_waterfall_figure(c.scene.system, r, c.unit, steady, c.scene.length_unit()));
+    if (!o.waterfall.empty()) plot_if(o.waterfall, transient_waterfall_figure(c.scene.system, r, c.unit, steady, c.scene.length_unit()), "--waterfall");
 }
 
 void run(const Options& o, std::ostream& out) {
@@ -118,19 +105,17 @@ void run(const Options& o, std::ostream& out) {
     opt.kind = use_sparse(c) ? SolverKind::Sparse : SolverKind::Dense;
     if (!o.common.plot.empty() && opt.profile.acceleration == 0.0 && opt.outputs.size() < 2)
         throw InputError("--plot at a constant speed draws an orbit: allowed: two DOFs (--node N, or --dofs X,Y)");
-    std::ofstream history;
-    if (!o.out.empty()) {
-        history.open(o.out);
-        if (!history) throw InputError("--out " + o.out + ": cannot write the file");
-    }
+    std::optional<OutputFile> history;
+    if (!o.out.empty()) history.emplace(o.out, "--out", "history");   // claimed and opened before the run
     const TransientResult r = transient_response(sys, opt);
     for (const std::string& n : r.notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
     const Table t = transient_run_table(sys, r, c.unit, opt.start_steady, opt.kind, c.scene.length_unit());
     write_table(out, t, c.format);
-    if (history.is_open()) {
-        write_table(history, transient_history_table(sys.dof_names, r, c.unit), TableFormat::Csv);
-        history.close();
-        if (!history) throw Error("--out " + o.out + ": cannot write the file (disk full?)");
+    if (history) {
+        std::ostringstream text;
+        write_table(text, transient_history_table(sys.dof_names, r, c.unit), TableFormat::Csv);
+        history->write(text.str());
+        history->commit();
     }
     draw(o, c, r, opt.kind);
 }
@@ -155,10 +140,10 @@ std::vector<Command> add_transient_commands(CLI::App& app) {
     cmd->add_option("--node", o->node, "record the lateral translations x, y of this node");
     cmd->add_option("--start", o->start, "initial state: rest, or steady (the steady response at the first speed)")
         ->capture_default_str();
-    cmd->add_option("--out", o->out, "the full history (every step) as CSV into FILE");
-    cmd->add_option("--plot", o->common.plot, "FILE.svg|.png: the orbit (constant speed) or the run-up envelope "
+    add_output_option(cmd, "--out", o->out, "the full history (every step) as CSV into FILE");
+    add_output_option(cmd, "--plot", o->common.plot, "FILE.svg|.png: the orbit (constant speed) or the run-up envelope "
                                               "against the steady response");
-    cmd->add_option("--waterfall", o->waterfall, "FILE.svg|.png: spectra of windows of the signal against speed");
+    add_output_option(cmd, "--waterfall", o->waterfall, "FILE.svg|.png: spectra of windows of the signal against speed");
     return {{cmd, [o](std::ostream& out) { run(*o, out); }}};
 }
 

@@ -8,6 +8,8 @@ when no verified answer was found). See docs/python.md.
 """
 from __future__ import annotations
 
+import functools as _functools
+import os as _os
 import warnings as _warnings
 
 import numpy as _np
@@ -851,3 +853,31 @@ def balancer(scene) -> BalancerStates:
 def sommerfeld(scene) -> Sommerfeld:
     """The Sommerfeld analysis of an auto-balancer scene with a motor (as `gyrokit sommerfeld`)."""
     return Sommerfeld(_core.sommerfeld(str(scene)))
+
+
+def _inputs_of(model):
+    """The files an analysis of `model` read: a Scene's inputs, or a scene or sweep file's path."""
+    if isinstance(model, Scene):
+        return tuple(model.inputs)
+    if isinstance(model, (str, _os.PathLike)):
+        return (_os.path.abspath(str(model)),)
+    return ()
+
+
+def _keeping_inputs(analysis):
+    """`analysis` whose result remembers the files it was computed from (Result._inputs)."""
+    @_functools.wraps(analysis)
+    def run(model, *args, **kwargs):
+        result = analysis(model, *args, **kwargs)
+        if isinstance(result, _Result):
+            inputs = _inputs_of(model) + _inputs_of(kwargs.get("scene"))
+            result._inputs = inputs
+        return result
+    return run
+
+
+# Every analysis of the module, so that no result is saved over what it was computed from.
+for _name in ("eig", "modes", "campbell", "critical_speeds", "stability", "screen", "frf", "critical_speed_map",
+              "static", "summary", "pervasive", "response", "balancer", "sommerfeld", "transient"):
+    globals()[_name] = _keeping_inputs(globals()[_name])
+del _name

@@ -157,6 +157,7 @@ class Result:
 
     tables = ()
     _figure = None
+    _inputs = ()   # the files the result was computed from: save() and plot(path) never write onto one
 
     def _take_reports(self, d):
         self.tables = _tables(d)
@@ -195,14 +196,14 @@ class Result:
         chosen = [self.table(table)] if table is not None else list(self.tables)
         if ext == ".csv":
             chosen = chosen[:1]
-        _core.write_tables([t._dict() for t in chosen], str(path), _FORMATS[ext])
+        _core.write_tables([t._dict() for t in chosen], str(path), _FORMATS[ext], list(self._inputs))
         return path
 
     def _draw_figure(self, figure, path, axes):
         if figure is None:
             raise InputError(f"{type(self).__name__} has no figure")
         if path is not None:
-            _core.render_figure(figure, str(path))   # gnuplot: the CLI's --plot picture
+            _core.render_figure(figure, str(path), list(self._inputs))   # gnuplot: the CLI's --plot picture
             return path
         return draw(figure, axes)
 

@@ -31,8 +31,7 @@ FrequencyResponse frequency_response(const GyroscopicSystem& sys, double spin, c
         r.outputs.resize(static_cast<std::size_t>(n));
         std::iota(r.outputs.begin(), r.outputs.end(), 0);
     }
-    for (const int o : r.outputs)
-        if (o < 0 || o >= n) throw InputError(fmt::format("frequency response: output DOF {}; allowed: 0 to {}", o, n - 1));
+    check_dof_list(sys, r.outputs, "frequency response");
     const Eigen::VectorXcd f = Eigen::VectorXcd::Unit(n, input);
     r.H.resize(static_cast<Eigen::Index>(frequencies.size()), static_cast<Eigen::Index>(r.outputs.size()));
     for (std::size_t i = 0; i < frequencies.size(); ++i) {

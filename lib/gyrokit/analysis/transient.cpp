@@ -294,9 +294,11 @@ Plan plan_run(const TransientOptions& o) {
                                      option_field("dt"), dt, option_field("duration"), plan.duration, plan.duration));
     const double steps = std::ceil(plan.duration / dt * (1.0 - 1e-12));
     if (steps > static_cast<double>(o.max_steps))
-        throw InputError(fmt::format("{} {:.6g} s at {} {:.6g} s takes {:.0f} steps; allowed: at most {} {} (up to "
+        throw InputError(fmt::format("{} {:.6g} s at {} {:.6g} s takes {} steps; allowed: at most {} {} (up to "
                                      "{}): shorten the run, lengthen the step or raise the limit",
-                                     option_field("duration"), plan.duration, option_field("dt"), dt, steps,
+                                     option_field("duration"), plan.duration, option_field("dt"), dt,
+                                     // a count beyond 1e15 in its leading digits, not 300 of them
+                                     steps < 1e15 ? fmt::format("{:.0f}", steps) : fmt::format("{:.3g}", steps),
                                      option_field("max_steps"), o.max_steps, kTransientStepLimit));
     plan.steps = static_cast<long long>(steps);
     plan.dt = plan.duration / steps;   // lands on the end of the run; never above the step asked for
@@ -329,9 +331,7 @@ TransientResult transient_response(const GyroscopicSystem& sys, const TransientO
     TransientResult r;
     r.dofs = o.outputs.empty() ? transient_outputs(sys) : o.outputs;
     if (sys.unbalance.size() == 0) throw InputError("the model defines no unbalance load; the response is zero");
-    for (const int k : r.dofs)
-        if (k < 0 || k >= sys.size())
-            throw InputError(fmt::format("transient: output DOF {}; allowed: 0 to {}", k, sys.size() - 1));
+    check_dof_list(sys, r.dofs, "transient");
     const Plan plan = plan_run(o);
     const SpeedProfile& p = o.profile;
     r.profile = p;

@@ -16,12 +16,24 @@ namespace gyrokit {
 namespace {
 
 // An exactly singular dynamic stiffness gives a huge or non-finite solution
-// with a large residual: an undamped resonance on the grid.
-void check_solution(double norm_S, double residual, const Eigen::VectorXcd& Z, const Eigen::VectorXcd& f, double w) {
-    if (!Z.allFinite() || residual > 1e-8 * (norm_S * Z.norm() + f.norm()))
-        throw SolverError(fmt::format("the dynamic stiffness is singular at {} rad/s (an undamped resonance): "
-                                      "the response is unbounded; add damping or move the grid",
-                                      w));
+// with a large residual: an undamped resonance on the grid, or (with damping) a
+// frequency so high that w C is below the rounding of K - w^2 M; a dynamic
+// stiffness with entries beyond double precision is a frequency out of range.
+void check_solution(double norm_S, double norm_wC, double residual, const Eigen::VectorXcd& Z, const Eigen::VectorXcd& f,
+                    double w) {
+    if (!std::isfinite(norm_S))
+        throw InputError(fmt::format("frequency {:.6g} rad/s: the dynamic stiffness K - w^2 M leaves double "
+                                     "precision's range there; allowed: frequencies at which it is finite",
+                                     w));
+    if (Z.allFinite() && residual <= 1e-8 * (norm_S * Z.norm() + f.norm())) return;
+    if (norm_wC > 0.0 && norm_wC < 1e-8 * norm_S)
+        throw SolverError(fmt::format("the dynamic stiffness is numerically singular at {:.6g} rad/s: the damping "
+                                      "term w C is {:.1e} of K - w^2 M there, below what double precision resolves, "
+                                      "so the response cannot be vouched for; move the grid below that frequency",
+                                      w, norm_wC / norm_S));
+    throw SolverError(fmt::format("the dynamic stiffness is singular at {} rad/s (an undamped resonance): "
+                                  "the response is unbounded; add damping or move the grid",
+                                  w));
 }
 
 }  // namespace
@@ -31,11 +43,13 @@ Eigen::VectorXcd dynamic_response(const GyroscopicSystem& sys, double spin, doub
     using cd = std::complex<double>;
     const cd l(0.0, w);
     Eigen::VectorXcd Z;
-    double norm_S = 0.0, residual = 0.0;
+    double norm_S = 0.0, norm_wC = 0.0, residual = 0.0;
     if (resolve_solver_kind(sys.size(), kind) == SolverKind::Dense) {
-        const Eigen::MatrixXcd S = sys.at_speed(spin).evaluate(l);
+        const QuadraticPencil q = sys.at_speed(spin);
+        const Eigen::MatrixXcd S = q.evaluate(l);
         Z = Eigen::PartialPivLU<Eigen::MatrixXcd>(S).solve(f);
         norm_S = S.norm();
+        norm_wC = std::abs(w) * q.C.norm();
         residual = (S * Z - f).norm();
     } else {
         const SparsePencil p = sys.sparse_at_speed(spin);
@@ -45,9 +59,10 @@ Eigen::VectorXcd dynamic_response(const GyroscopicSystem& sys, double spin, doub
         Z = lu.info() == Eigen::Success ? Eigen::VectorXcd(lu.solve(f))
                                         : Eigen::VectorXcd::Constant(sys.size(), cd(NAN, NAN));
         norm_S = S.norm();
+        norm_wC = std::abs(w) * p.C.norm();
         residual = (S * Z - f).norm();
     }
-    check_solution(norm_S, residual, Z, f, w);
+    check_solution(norm_S, norm_wC, residual, Z, f, w);
     return Z;
 }
 

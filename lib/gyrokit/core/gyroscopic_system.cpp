@@ -232,6 +232,16 @@ void GyroscopicSystem::validate(const std::string& origin) const {
     for (const auto& c : damping) check_matrix(c.D, n, origin, "damping " + c.name, c.of_speed != nullptr);
     constexpr double tol = 1e-12;  // structural checks are exact up to rounding of the input
     if (M.norm() == 0.0) throw InputError(fmt::format("{}: M is zero", origin));
+    // A mass matrix is positive semidefinite: a negative diagonal entry says it is not (a sign slip).
+    for (int i = 0; i < M.outerSize(); ++i)
+        for (SparseMatrix::InnerIterator it(M, i); it; ++it)
+            if (it.row() == it.col() && it.value() < 0.0)
+                throw InputError(fmt::format("{}: M has the diagonal entry {} at DOF {}{}; a mass matrix is positive "
+                                             "semidefinite; allowed: diagonal entries >= 0",
+                                             origin, it.value(), it.row(),
+                                             static_cast<std::size_t>(it.row()) < dof_names.size()
+                                                 ? " (" + dof_names[static_cast<std::size_t>(it.row())] + ")"
+                                                 : std::string()));
     if (asymmetry(M, 1.0) > tol)
         throw InputError(fmt::format("{}: M is not symmetric (relative asymmetry {:.3g})", origin, asymmetry(M, 1.0)));
     if (G.size() > 0 && asymmetry(G, -1.0) > tol)
@@ -297,6 +307,38 @@ void GyroscopicSystem::validate(const std::string& origin) const {
                                          origin, k, static_cast<int>(node_z.size()) - 1));
     for (const double z : node_z)
         if (!std::isfinite(z)) throw InputError(fmt::format("{}: a node position is NaN or infinite", origin));
+}
+
+std::vector<int> dofs_by_name(const std::string& list, const std::vector<std::string>& names, const std::string& option) {
+    std::vector<int> out;
+    std::size_t start = 0;
+    while (!list.empty() && start <= list.size()) {
+        const std::size_t end = std::min(list.find(',', start), list.size());
+        const std::string name = list.substr(start, end - start);
+        const auto it = std::find(names.begin(), names.end(), name);
+        if (it == names.end())
+            throw InputError(fmt::format("{} '{}': '{}' is not a DOF of the model; allowed: names such as {}", option,
+                                         list, name, names.empty() ? std::string("-") : names.front()));
+        const int k = static_cast<int>(it - names.begin());
+        if (std::find(out.begin(), out.end(), k) != out.end())
+            throw InputError(fmt::format("{} '{}': '{}' is listed twice; allowed: each DOF once", option, list, name));
+        out.push_back(k);
+        start = end + 1;
+    }
+    return out;
+}
+
+void check_dof_list(const GyroscopicSystem& sys, const std::vector<int>& dofs, const std::string& what) {
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+        if (dofs[i] < 0 || dofs[i] >= sys.size())
+            throw InputError(fmt::format("{}: output DOF {}; allowed: 0 to {}", what, dofs[i], sys.size() - 1));
+        for (std::size_t j = 0; j < i; ++j)
+            if (dofs[j] == dofs[i])
+                throw InputError(fmt::format("{}: output DOF {} ({}) is listed twice; allowed: each DOF once", what,
+                                             dofs[i], static_cast<std::size_t>(dofs[i]) < sys.dof_names.size()
+                                                          ? sys.dof_names[static_cast<std::size_t>(dofs[i])]
+                                                          : std::string("?")));
+    }
 }
 
 }  // namespace gyrokit

@@ -1,6 +1,7 @@
 #include <gyrokit/core/input_file.hpp>
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/run_files.hpp>
 
 #include <cctype>
 #include <filesystem>
@@ -85,13 +86,7 @@ void check_toml_depth(const std::string& text, const std::string& origin) {
 }
 
 std::string read_toml_text(const std::string& path, const std::string& what) {
-    check_input_file(path, what, kMaxTextInputBytes);
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(fmt::format("{}: cannot open the {} for reading", path, what));
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) throw InputError(fmt::format("{}: read error in the {}", path, what));
-    std::string text = ss.str();
+    std::string text = *read_input(path, what, kMaxTextInputBytes);
     check_toml_depth(text, path);
     return text;
 }

@@ -1,6 +1,7 @@
 #include <gyrokit/core/speed_range.hpp>
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/number_text.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -18,11 +19,13 @@ SpeedRange SpeedRange::parse(const std::string& text, const std::string& option,
         throw InputError(fmt::format("{} '{}': expected FROM:TO:N, e.g. 0:60:601", option, text));
     SpeedRange r;
     try {
-        size_t pa = 0, pb = 0, pc = 0;
-        r.from = std::stod(a, &pa) / unit_factor;
-        r.to = std::stod(b, &pb) / unit_factor;
+        size_t pc = 0;
+        const std::optional<double> fa = decimal_number(a), fb = decimal_number(b);
+        if (!fa || !fb) throw std::invalid_argument("not a decimal number");
+        r.from = *fa / unit_factor;
+        r.to = *fb / unit_factor;
         const long n = std::stol(c, &pc);
-        if (pa != a.size() || pb != b.size() || pc != c.size()) throw std::invalid_argument("trailing");
+        if (pc != c.size()) throw std::invalid_argument("trailing");
         if (n < 1 || n > 10000000) throw std::out_of_range("count");
         r.count = static_cast<int>(n);
     } catch (const std::exception&) {

@@ -1,6 +1,7 @@
 #include <gyrokit/io/bearing_csv.hpp>
 
 #include <gyrokit/core/input_file.hpp>
+#include <gyrokit/core/run_files.hpp>
 
 #include <gyrokit/core/error.hpp>
 
@@ -33,9 +34,8 @@ std::vector<std::string> split(const std::string& line) {
 
 BearingTable read_bearing_csv(const std::string& path, int dofs, int dof_x, int dof_y) {
     const bool dofs_given = dof_x >= 0 && dof_y >= 0;
-    check_input_file(path, "bearing table", kMaxDataInputBytes);
-    std::ifstream in(path);
-    if (!in) throw InputError(fmt::format("{}: bearing table not readable", path));
+    const auto bytes = read_input(path, "bearing table", kMaxDataInputBytes);
+    std::istringstream in(*bytes);
     static const std::array<const char*, 11> required = {"speed", "dof_x", "dof_y", "kxx", "kxy", "kyx",
                                                          "kyy",   "cxx",   "cxy",   "cyx", "cyy"};
     std::array<int, 11> column{};

@@ -1,6 +1,7 @@
 #include <gyrokit/io/export.hpp>
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/run_files.hpp>
 #include <gyrokit/io/matrix_market.hpp>
 
 #include <filesystem>
@@ -33,15 +34,28 @@ SparseMatrix blocks(const SparseMatrix& A, const SparseMatrix& B, const SparseMa
 ExportReport export_matrices(const GyroscopicSystem& sys, double w, const std::string& dir) {
     namespace fs = std::filesystem;
     sys.validate("export");
+    const int n = sys.size();
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec) throw InputError(fmt::format("{} {}: cannot create it: {}", option_field("directory"), dir, ec.message()));
+    // Every file claimed before the first is written: a folder holding the scene's own
+    // matrices is refused whole, not after half of them were replaced.
+    const std::string option = option_field("directory");
+    std::vector<std::string> names = {"M", "K", "G", "D", "C", "Kw", "pencil_A", "pencil_B", "state"};
+    if (sys.has_circulatory()) names.push_back("N");
+    if (sys.has_speed_squared_stiffness()) names.push_back("K2");
+    for (const auto& c : sys.damping) names.push_back("D_" + c.name);
+    for (size_t i = 0; i < sys.bearings.size(); ++i) {
+        names.push_back(fmt::format("K_bearing{}", i + 1));
+        names.push_back(fmt::format("D_bearing{}", i + 1));
+    }
+    RunScope run;
+    for (const auto& name : names) run.files().claim_output((fs::path(dir) / (name + ".mtx")).string(), option);
     ExportReport report;
     const auto put = [&](const std::string& name, const auto& A, const std::string& what) {
-        write_matrix_market((fs::path(dir) / (name + ".mtx")).string(), A, what);
+        write_matrix_market((fs::path(dir) / (name + ".mtx")).string(), A, what, option);
         report.files.push_back(name + ".mtx");
     };
-    const int n = sys.size();
     const SparsePencil p = sys.sparse_at_speed(w);
     put("M", sys.M, "mass matrix");
     put("K", sys.K, "stiffness matrix");

@@ -1,6 +1,8 @@
 #include <gyrokit/io/matrix_market.hpp>
 
 #include <gyrokit/core/input_file.hpp>
+#include <gyrokit/core/run_files.hpp>
+#include <gyrokit/io/output_file.hpp>
 
 #include <gyrokit/core/error.hpp>
 
@@ -73,20 +75,18 @@ std::errc parse(std::string_view s, T& out) {
 // Reads a file line by line, keeps the line number and formats errors with it.
 class LineReader {
 public:
-    explicit LineReader(const std::string& path) : path_(path) {
-        // An ifstream "opens" a directory and reads nothing, /dev/zero never ends: say what it is instead.
-        check_input_file(path, "Matrix Market file", kMaxDataInputBytes);
-        in_.open(path, std::ios::binary);
-        if (!in_)
-            throw InputError(fmt::format("{}: cannot open file for reading ({})", path, std::strerror(errno)));
-    }
+    // Read once per run (read_input checks it is a regular file of bounded size: an
+    // ifstream "opens" a directory and reads nothing, /dev/zero never ends).
+    explicit LineReader(const std::string& path)
+        : path_(path), bytes_(read_input(path, "Matrix Market file", kMaxDataInputBytes)) {}
 
     // Advances to the next line and splits it at whitespace; false at end of file.
     bool next() {
-        if (!std::getline(in_, text_)) {
-            if (in_.bad()) fail("read error after this line");
-            return false;
-        }
+        const std::string& all = *bytes_;
+        if (pos_ >= all.size()) return false;
+        const std::size_t end = std::min(all.find('\n', pos_), all.size());
+        text_.assign(all, pos_, end - pos_);
+        pos_ = end + 1;
         ++number_;
         if (!text_.empty() && text_.back() == '\r') text_.pop_back();  // CRLF files
         tokens_.clear();
@@ -150,7 +150,8 @@ public:
 
 private:
     std::string path_;
-    std::ifstream in_;
+    std::shared_ptr<const std::string> bytes_;
+    std::size_t pos_ = 0;
     std::string text_;
     std::vector<std::string_view> tokens_;
     std::size_t number_ = 0;
@@ -338,7 +339,7 @@ struct Entry {
     double value;
 };
 void write_entries(const std::string& path, Eigen::Index rows, Eigen::Index cols, const std::vector<Entry>& entries,
-                   const std::string& comment) {
+                   const std::string& comment, const std::string& option) {
     // Refuse what read_matrix_market would reject, so every written file reads back.
     if (rows == 0 || cols == 0)
         throw InputError(fmt::format("{}: cannot write a {}x{} matrix; allowed at least 1 row and 1 column", path,
@@ -359,10 +360,9 @@ void write_entries(const std::string& path, Eigen::Index rows, Eigen::Index cols
     fmt::format_to(put, "{} {} {}\n", rows, cols, entries.size());
     for (const Entry& e : entries) fmt::format_to(put, "{} {} {:.17g}\n", e.row, e.col, e.value);
 
-    std::ofstream file(path, std::ios::binary);
-    file.write(out.data(), static_cast<std::streamsize>(out.size()));
-    file.close();
-    if (!file) throw Error(fmt::format("{}: cannot write file ({})", path, std::strerror(errno)));
+    OutputFile file(path, option, "Matrix Market file");
+    file.write(std::string_view(out.data(), out.size()));
+    file.commit();
 }
 
 // -0.0 is kept so the round trip is bitwise exact.
@@ -370,15 +370,17 @@ bool stored(double v) { return v != 0.0 || std::signbit(v); }
 
 }  // namespace
 
-void write_matrix_market(const std::string& path, const Eigen::MatrixXd& A, const std::string& comment) {
+void write_matrix_market(const std::string& path, const Eigen::MatrixXd& A, const std::string& comment,
+                         const std::string& option) {
     std::vector<Entry> entries;
     for (Eigen::Index j = 0; j < A.cols(); ++j)
         for (Eigen::Index i = 0; i < A.rows(); ++i)
             if (stored(A(i, j)) || !std::isfinite(A(i, j))) entries.push_back({i + 1, j + 1, A(i, j)});
-    write_entries(path, A.rows(), A.cols(), entries, comment);
+    write_entries(path, A.rows(), A.cols(), entries, comment, option);
 }
 
-void write_matrix_market(const std::string& path, const Eigen::SparseMatrix<double>& A, const std::string& comment) {
+void write_matrix_market(const std::string& path, const Eigen::SparseMatrix<double>& A, const std::string& comment,
+                         const std::string& option) {
     Eigen::SparseMatrix<double> S = A;   // column order with sorted rows
     S.makeCompressed();
     std::vector<Entry> entries;
@@ -386,7 +388,7 @@ void write_matrix_market(const std::string& path, const Eigen::SparseMatrix<doub
     for (Eigen::Index j = 0; j < S.outerSize(); ++j)
         for (Eigen::SparseMatrix<double>::InnerIterator it(S, j); it; ++it)
             if (stored(it.value()) || !std::isfinite(it.value())) entries.push_back({it.row() + 1, j + 1, it.value()});
-    write_entries(path, S.rows(), S.cols(), entries, comment);
+    write_entries(path, S.rows(), S.cols(), entries, comment, option);
 }
 
 }  // namespace gyrokit

@@ -22,10 +22,13 @@ Eigen::SparseMatrix<double> read_matrix_market_sparse(const std::string& path);
 Eigen::VectorXcd read_matrix_market_vector(const std::string& path);
 
 // Writes a dense real matrix in "coordinate real general" form with all nonzeros,
-// 17 significant digits. Throws gyrokit::Error if the file cannot be written
-// (InputError if A is empty or holds NaN/Inf, which the reader would reject).
-void write_matrix_market(const std::string& path, const Eigen::MatrixXd& A, const std::string& comment = "");
+// 17 significant digits, through an OutputFile (`option` names the path in errors).
+// Throws gyrokit::Error if the file cannot be written (InputError if the path is an
+// input of the run, or A is empty or holds NaN/Inf, which the reader would reject).
+void write_matrix_market(const std::string& path, const Eigen::MatrixXd& A, const std::string& comment = "",
+                         const std::string& option = "path");
 // The same for a sparse matrix: its stored nonzeros, in O(nonzeros).
-void write_matrix_market(const std::string& path, const Eigen::SparseMatrix<double>& A, const std::string& comment = "");
+void write_matrix_market(const std::string& path, const Eigen::SparseMatrix<double>& A, const std::string& comment = "",
+                         const std::string& option = "path");
 
 }  // namespace gyrokit

@@ -1,13 +1,41 @@
-// A result file written whole or not at all: a reader (or a crash) never sees half
-// of it, and an old file stays until the new one is complete.
+// Every file gyrokit writes passes here. A file is claimed in the current run
+// first (never an input of the run, a link to one, or another output of it: see
+// core/run_files.hpp), then written whole or not at all: into a temporary file in
+// the target's folder, synced, and renamed over the target, so that a reader, a
+// crash or a full disk never leaves half a file and the old file stays until the
+// new one is complete. A symbolic link is written through to its target (the
+// link kept); a path that is not a regular file (-, /dev/stdout, /dev/null, a
+// FIFO) is written in place.
 #pragma once
 
 #include <string>
+#include <string_view>
 
 namespace gyrokit {
 
-// `text` written to `path`: to a temporary file beside it, then renamed over it.
-// InputError naming the path, `what` is written and why, if it cannot be.
-void replace_file(const std::string& path, const std::string& text, const std::string& what);
+class OutputFile {
+public:
+    // Claims `path` for `option` (the run's word for it: "--out", "path") and opens
+    // the temporary file. InputError naming the path and the cause where it cannot.
+    OutputFile(const std::string& path, const std::string& option, const std::string& what);
+    ~OutputFile();   // not committed: the temporary file is removed, the target untouched
+    OutputFile(const OutputFile&) = delete;
+    OutputFile& operator=(const OutputFile&) = delete;
+
+    void write(std::string_view bytes);
+    // Synced and renamed over the target. Error naming the file and the cause (disk full, ...).
+    void commit();
+    const std::string& path() const { return path_; }
+
+private:
+    void fail(const std::string& doing, int err);
+    std::string path_, option_, what_, target_, temp_;
+    int fd_ = -1;
+    bool in_place_ = false, committed_ = false;
+};
+
+// `text` written to `path` through an OutputFile.
+void replace_file(const std::string& path, const std::string& text, const std::string& what,
+                  const std::string& option = "path");
 
 }  // namespace gyrokit

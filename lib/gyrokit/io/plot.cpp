@@ -1,4 +1,5 @@
 #include <gyrokit/io/plot.hpp>
+#include <gyrokit/io/output_file.hpp>
 
 #include <sys/wait.h>
 
@@ -10,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -181,7 +183,7 @@ std::string last_error_line(const fs::path& file) {
 
 }  // namespace
 
-void render_figure(const Figure& fig, const std::string& path) {
+void render_figure(const Figure& fig, const std::string& path, const std::string& option) {
     std::string ext = fs::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     const std::string terminal = ext == ".svg" ? "svg" : ext == ".png" ? "pngcairo" : "";
@@ -214,9 +216,12 @@ void render_figure(const Figure& fig, const std::string& path) {
     std::error_code ec;
     if (!fs::exists(image, ec) || fs::file_size(image, ec) == 0 || ec)
         throw Error(fmt::format("gnuplot exited normally but wrote no image for '{}'", path));
-    // Rendered in the temp dir and copied, so a failure never leaves a half-written file at `path`.
-    fs::copy_file(image, path, fs::copy_options::overwrite_existing, ec);
-    if (ec) throw Error(fmt::format("cannot write figure '{}': {}", path, ec.message()));
+    // Rendered in the temp dir, then written through the output layer (claimed, replaced whole).
+    std::ifstream in(image, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    if (!in && !in.eof()) throw Error(fmt::format("cannot read the image gnuplot wrote for '{}'", path));
+    replace_file(path, bytes.str(), "figure", option);
 }
 
 }  // namespace gyrokit

@@ -34,10 +34,12 @@ struct Figure {
 // .svg -> svg, .png -> pngcairo. Text is drawn literally (no enhanced-text
 // markup). Series with empty x are skipped; NaN/inf points, and y <= 0 on a
 // log axis, are dropped and break the line there. Panels without data are
-// drawn as empty frames. The file at `path` is only replaced on success.
+// drawn as empty frames. The file at `path` is written through an OutputFile
+// (`option` names it in errors): claimed in the run, replaced only on success.
 // Throws InputError for an unsupported extension, an unknown style, x/y of
-// different lengths, no panels, a bad size or bad axis limits; Error if gnuplot
-// is missing, fails (its error message is included) or writes no file.
-void render_figure(const Figure& fig, const std::string& path);
+// different lengths, no panels, a bad size or bad axis limits, or a path the run
+// reads; Error if gnuplot is missing, fails (its error message is included) or
+// writes no file.
+void render_figure(const Figure& fig, const std::string& path, const std::string& option = "path");
 
 }  // namespace gyrokit

@@ -2,6 +2,7 @@
 #include <gyrokit/io/scene.hpp>
 
 #include <gyrokit/core/input_file.hpp>
+#include <gyrokit/core/run_files.hpp>
 
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/bearing_csv.hpp>
@@ -351,7 +352,12 @@ Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
 
 Scene load_scene(const std::string& path, const std::map<std::string, double>& overrides,
                  const std::string& fe_motion) {
-    return scene_from(parse_scene_file(path), path, fs::path(path).parent_path(), overrides, fe_motion);
+    InputCollector read;
+    // A bare file name lives in the working folder: its relative file names resolve from ".".
+    const fs::path dir = fs::path(path).has_parent_path() ? fs::path(path).parent_path() : fs::path(".");
+    Scene sc = scene_from(parse_scene_file(path), path, dir, overrides, fe_motion);
+    sc.inputs = read.paths();
+    return sc;
 }
 
 Scene parse_scene(const std::string& text, const std::string& origin, const std::string& dir,
@@ -364,7 +370,10 @@ Scene parse_scene(const std::string& text, const std::string& origin, const std:
         const auto& b = e.source().begin;
         throw InputError(fmt::format("{}: line {}, column {}: {}", origin, b.line, b.column, e.description()));
     }
-    return scene_from(std::move(root), origin, dir, overrides);
+    InputCollector read;
+    Scene sc = scene_from(std::move(root), origin, dir.empty() ? "." : dir, overrides);
+    sc.inputs = read.paths();
+    return sc;
 }
 
 void validate_settings(const Scene& sc) {

@@ -33,6 +33,9 @@ struct Scene {
     // The document of any other model as read, overrides applied and relative file names
     // made absolute, so that scene_text can write it back from anywhere.
     std::string document;
+    // Every file read to build it (absolute paths: the scene file, the matrices and
+    // tables it names): what no output of a run on it may overwrite.
+    std::vector<std::string> inputs;
 
     int dofs() const { return system.size(); }
     // The unit the scene states lengths in (an FE rotor's length_unit; else metres).

@@ -148,7 +148,7 @@ std::string render(const Table& t, TableFormat f) {
 
 // Output is built in full first: an error leaves the stream untouched.
 void put(std::ostream& os, const std::string& s) {
-    if (!(os << s)) throw Error("writing the table output failed");
+    if (!(os << s)) throw Error("writing the table failed: its stream refused the bytes (a full disk, or a closed reader)");
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 #include <map>
 
 namespace gyrokit {
@@ -88,9 +89,12 @@ Eigen::VectorXd loads_of(const FeRotor& r, const StaticOptions& o, const FreeBod
         if (l.node < 0 || l.node >= r.node_count())
             throw InputError(fmt::format("static analysis: load {} at node {}; allowed: 0 to {}", k, l.node,
                                          r.node_count() - 1));
+        // Beyond 1e15 N the deflections' squares leave double precision's range (and no machine bears it).
         for (const double v : {l.fx, l.fy, l.mx, l.my})
-            if (!std::isfinite(v))
-                throw InputError(fmt::format("static analysis: load {} = {}; allowed: finite numbers (N, N m)", k, v));
+            if (!(std::abs(v) <= kMaxStaticLoad) || (v != 0.0 && std::abs(v) < std::numeric_limits<double>::min()))
+                throw InputError(fmt::format("static analysis: load {} at node {} has the component {}; allowed: "
+                                             "finite magnitudes up to {:g} (N, N m), 0 or at least 2.2e-308",
+                                             k, l.node, v, kMaxStaticLoad));
         f(b.at("x", l.node)) += l.fx;
         f(b.at("y", l.node)) += l.fy;
         f(b.at("tx", l.node)) += l.mx;
@@ -222,8 +226,11 @@ StaticResult fe_static(const FeRotor& rotor, const StaticOptions& o) {
         throw InputError(fmt::format("static analysis: the model's motion is {}; allowed: lateral or all (the "
                                      "weight bends the shaft)",
                                      to_string(rotor.motion)));
-    if (!(std::isfinite(o.gravity) && o.gravity >= 0))
-        throw InputError(fmt::format("static analysis: gravity = {}; allowed: a finite number >= 0 (m/s^2)", o.gravity));
+    if (!(o.gravity >= 0 && o.gravity <= kMaxGravity) ||
+        (o.gravity != 0.0 && o.gravity < std::numeric_limits<double>::min()))
+        throw InputError(fmt::format("static analysis: {} {}; allowed: 0 (no weight) or 2.2250738585072014e-308 to "
+                                     "{:g} (m/s^2)",
+                                     option_field("gravity"), o.gravity, kMaxGravity));
     FeRotor q = rotor;
     q.motion = FeMotion::lateral;   // the weight moves no axial or torsional DOF
     q.supports.clear();

@@ -15,6 +15,10 @@
 
 namespace gyrokit {
 
+// The largest gravity (m/s^2) and point load component (N, N m) a static analysis takes.
+constexpr double kMaxGravity = 1e6;
+constexpr double kMaxStaticLoad = 1e15;
+
 // A point load at a node: forces (N) along x and y, moments (N m) about x and y.
 struct StaticLoad {
     int node = 0;

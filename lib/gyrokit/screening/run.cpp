@@ -3,6 +3,7 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/core/input_file.hpp>
+#include <gyrokit/core/run_files.hpp>
 #include <gyrokit/screening/screening.hpp>
 
 #include <algorithm>
@@ -33,24 +34,6 @@
 #include <unistd.h>
 
 namespace gyrokit {
-
-void check_output_path(const std::string& out, const std::vector<std::string>& inputs, const std::string& option) {
-    if (out.empty()) return;
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::path o = fs::weakly_canonical(fs::absolute(out, ec), ec);
-    for (const auto& in : inputs) {
-        if (in.empty()) continue;
-        std::error_code e1, e2;
-        const bool same = fs::exists(out, e1) && fs::exists(in, e2) ? fs::equivalent(out, in, e1)
-                                                                    : fs::weakly_canonical(fs::absolute(in, e2), e2) == o;
-        if (same)
-            throw InputError(fmt::format("{} {}: that file is an input of this run ({}); writing it would destroy "
-                                         "what the run reads; allowed: a file that is not the sweep, its base scene "
-                                         "or a merged result file",
-                                         option, out, in));
-    }
-}
 
 ResultFile::ResultFile(const std::string& path) : path_(path) {
     const bool existed = std::filesystem::exists(path);
@@ -132,26 +115,16 @@ std::string header_line(const Sweep& s) {
     return h;
 }
 
-// FNV-1a, 64 bits: a fingerprint of the study's files, not a cryptographic hash.
 std::uint64_t fnv1a(const std::string& bytes, std::uint64_t h = 1469598103934665603ull) {
-    for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
-    return h;
+    return fingerprint_bytes(bytes.data(), bytes.size(), h);
 }
 
-std::string file_bytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-// A file's bytes folded into the hash in pieces (a named matrix may be gigabytes).
-std::uint64_t fnv1a_file(const std::string& path, std::uint64_t h) {
-    std::ifstream in(path, std::ios::binary);
-    std::vector<char> buf(1 << 16);
-    while (in.read(buf.data(), static_cast<std::streamsize>(buf.size())) || in.gcount() > 0)
-        h = fnv1a(std::string(buf.data(), static_cast<size_t>(in.gcount())), h);
-    return h;
+// A study file's bytes as this run reads them (once: the rows are computed from the
+// same copy); "" where the path names no file (a sweep built in code).
+std::string file_bytes(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return "";
+    return *read_input(path, what, max_bytes);
 }
 
 // Every string value of the scene file that names a regular file (relative to the
@@ -215,6 +188,11 @@ ParsedFile parse_result_file(const Sweep& s, const std::string& path, const Shar
         std::string line = text.substr(pos, nl - pos);
         if (!line.empty() && line.back() == '\r') line.pop_back();
         ++line_no;
+        if (line.rfind(kInputsChangedTrailer, 0) == 0)
+            throw InputError(fmt::format("{}: line {}: the run that wrote it saw an input change while it ran ({}); its "
+                                         "rows may not belong to the files as they are now; allowed: a new run "
+                                         "(a new --out file)",
+                                         path, line_no, line.substr(std::string(kInputsChangedTrailer).size() + 1, 200)));
         if (line_no == 1) {
             // The study's identity: rows of another scene, sweep, criteria or version are not this study's answers.
             if (line.rfind("# study ", 0) != 0)
@@ -279,7 +257,10 @@ ParsedFile parse_result_file(const Sweep& s, const std::string& path, const Shar
 // identity and header lines where it has none, into `out` (left empty without --out).
 void open_results(const Sweep& s, const RunOptions& opt, RunResult& res, std::set<std::size_t>& done,
                   std::optional<ResultFile>& out) {
-    check_output_path(opt.out, {s.path, s.scene}, opt.resume ? "--resume" : "--out");
+    RunFiles& files = *current_run();   // run_screening's scope
+    files.note_input(s.path, "sweep file");
+    if (s.scene_text.empty()) files.note_input(s.scene, "base scene");
+    files.claim_output(opt.out, opt.resume ? "--resume" : "--out");
     // Held from before the file is read back (resume) or cut (a fresh run): a second
     // writer of the same file is refused instead of interleaving with this one.
     if (opt.out.empty()) return;
@@ -305,6 +286,9 @@ void open_results(const Sweep& s, const RunOptions& opt, RunResult& res, std::se
 }  // namespace
 
 RunResult run_screening(const Sweep& s, const RunOptions& opt) {
+    // One run: every design reads the base scene and the files it names from the
+    // same copy, and the result file is never one of them.
+    RunScope run;
     RunResult res;
     res.columns = result_columns(s);
     const std::size_t n = s.design_count();
@@ -391,13 +375,27 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
         throw;
     }
     for (auto& t : threads) t.join();
+    // An input edited while the run read it: the file says so, and --resume and --merge refuse it.
+    if (const std::string changed = run.files().changed_inputs(); !changed.empty()) {
+        if (out) {
+            out->write(std::string(kInputsChangedTrailer) + " " + changed + "\n");
+            out->close();
+        }
+        run.files().check_inputs_unchanged();
+    }
     if (out) out->close();   // synced: every row of the run survives a power loss from here
     res.rows.insert(res.rows.end(), std::make_move_iterator(fresh.begin()), std::make_move_iterator(fresh.end()));
     std::stable_sort(res.rows.begin(), res.rows.end(), [](const auto& a, const auto& b) { return a.index < b.index; });
     return res;
 }
 
-std::vector<ResultRow> merge_results(const Sweep& s, const std::vector<std::string>& files, bool complete) {
+std::vector<ResultRow> merge_results(const Sweep& s, const std::vector<std::string>& files, bool complete,
+                                     const std::string& out, const std::string& option) {
+    RunScope run;
+    for (const auto& f : files) run.files().note_input(f, "merged result file");
+    run.files().note_input(s.path, "sweep file");
+    if (s.scene_text.empty()) run.files().note_input(s.scene, "base scene");
+    run.files().claim_output(out, option);
     std::vector<ResultRow> rows;
     for (const auto& f : files) {
         if (!fs::exists(f)) throw InputError(fmt::format("{}: result file not found", f));
@@ -416,15 +414,24 @@ std::vector<ResultRow> merge_results(const Sweep& s, const std::vector<std::stri
             if (k >= rows.size() || rows[k].index != k)
                 throw InputError(fmt::format("the result files miss design {} (of {})", k, n));
     }
+    if (!out.empty()) {
+        std::ostringstream text;
+        write_results(text, s, rows, TableFormat::Csv);
+        ResultFile f(out);   // locked: no other run writes it meanwhile
+        f.truncate(0);
+        f.write(study_identity_line(s) + '\n' + text.str());
+        f.close();   // synced: a full disk shows here
+    }
     return rows;
 }
 
 std::string study_identity_line(const Sweep& s) {
-    std::uint64_t h = fnv1a(file_bytes(s.path));
-    h = fnv1a("\x1f" + (s.scene_text.empty() ? file_bytes(s.scene) : s.scene_text), h);
+    std::uint64_t h = fnv1a(file_bytes(s.path, "sweep file", kMaxTextInputBytes));
+    h = fnv1a("\x1f" + (s.scene_text.empty() ? file_bytes(s.scene, "scene file", kMaxTextInputBytes) : s.scene_text), h);
     // The files the scene names (bearing tables, Matrix Market matrices): a
     // bearing table edited between runs is another study too.
-    for (const auto& [written, path] : named_files(s)) h = fnv1a_file(path, fnv1a("\x1f" + written + "\x1f", h));
+    for (const auto& [written, path] : named_files(s))
+        h = fnv1a(file_bytes(path, "file the scene names", kMaxDataInputBytes), fnv1a("\x1f" + written + "\x1f", h));
     h = fnv1a("\x1f" GYROKIT_VERSION, h);
     return fmt::format("# study {:016x} (sweep, base scene and criteria; gyrokit {})", h, GYROKIT_VERSION);
 }

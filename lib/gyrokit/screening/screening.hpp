@@ -71,9 +71,9 @@ struct RunResult {
     std::size_t shard_designs = 0;  // designs owned by the shard
 };
 
-// An output path that is one of the run's inputs (the same file, or the same path
-// where it does not exist yet) is refused with an InputError naming `option`.
-void check_output_path(const std::string& out, const std::vector<std::string>& inputs, const std::string& option);
+// The last line of a result file whose run saw an input change while it ran:
+// --resume and --merge refuse such a file.
+constexpr const char* kInputsChangedTrailer = "# inputs changed during the run:";
 
 // The first line of a result file: "# study <16 hex digits> (…; gyrokit VERSION)",
 // a 64-bit FNV-1a fingerprint of the sweep file (parameters and criteria), its
@@ -116,8 +116,11 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt);
 
 // Reads result files (shards or one run) of `s` and returns all rows sorted
 // by design index; throws InputError on a foreign header, duplicates, or
-// (with `complete`) missing designs.
-std::vector<ResultRow> merge_results(const Sweep& s, const std::vector<std::string>& files, bool complete);
+// (with `complete`) missing designs. With `out`, the rows are also written there as
+// one result file (locked, synced; `option` names it in errors), which may be none
+// of the files merged, the sweep or its base scene.
+std::vector<ResultRow> merge_results(const Sweep& s, const std::vector<std::string>& files, bool complete,
+                                     const std::string& out = "", const std::string& option = "--out");
 
 // Rows to a table: numbers as numbers; undefined cells as "" (CSV/text) or
 // null (JSON, written by write_results).

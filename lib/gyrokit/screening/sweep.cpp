@@ -1,4 +1,5 @@
 #include <gyrokit/screening/sweep.hpp>
+#include <gyrokit/screening/screening.hpp>
 
 #include <gyrokit/screening/detail/probes.hpp>
 
@@ -38,22 +39,59 @@ double map_unit(const SweepParameter& p, double u) {
 // Every parameter must name a key the scene accepts: the scene is loaded with
 // the parameter at each candidate value, and the sweep is rejected only if no
 // candidate is accepted (single bad values are reported per design).
+// Whether two models are the same at the speeds of the study: matrices, bearing
+// tables, damping and unbalance (what every analysis reads).
+bool same_model(const GyroscopicSystem& a, const GyroscopicSystem& b, const std::vector<double>& speeds) {
+    const auto same = [](const SparseMatrix& x, const SparseMatrix& y) {
+        return x.rows() == y.rows() && x.cols() == y.cols() && SparseMatrix(x - y).norm() == 0.0;
+    };
+    if (a.size() != b.size()) return false;
+    for (double w : speeds) {
+        const SparsePencil pa = a.sparse_at_speed(w), pb = b.sparse_at_speed(w);
+        if (!same(pa.M, pb.M) || !same(pa.C, pb.C) || !same(pa.K, pb.K)) return false;
+        if (!(a.unbalance_force(w) - b.unbalance_force(w)).isZero(0.0)) return false;
+    }
+    return a.damping_names() == b.damping_names();
+}
+
 void check_parameter(const Sweep& s, const SweepParameter& p) {
     std::vector<double> candidates = p.values;
     if (candidates.empty()) candidates = {p.from, p.to, map_unit(p, 0.5)};
     std::string first_error;
+    std::vector<std::pair<double, Scene>> models;
     for (double v : candidates) {
         std::map<std::string, double> overrides;
         for (const std::string& path : p.paths.empty() ? std::vector<std::string>{p.name} : p.paths)
             overrides[path] = v;
         try {
-            s.loader(overrides);
-            return;
+            models.emplace_back(v, s.loader(overrides));
         } catch (const InputError& e) {
             if (first_error.empty()) first_error = e.what();
         }
     }
-    throw InputError(fmt::format("{}: parameter '{}' is not accepted by the scene: {}", s.path, p.name, first_error));
+    if (models.empty())
+        throw InputError(fmt::format("{}: parameter '{}' is not accepted by the scene: {}", s.path, p.name, first_error));
+    // A key the model reads but does not use (c_T of a rigid shaft): every design would be the same.
+    // (A fluid rotor's fill enters its own analysis, not the matrices: not judged here.)
+    if (models.size() >= 2 && !models.front().second.fluid) {
+        const std::vector<double> speeds = {s.op_from, s.op_to};
+        for (std::size_t i = 1; i < models.size(); ++i)
+            if (models[i].first != models.front().first &&
+                !same_model(models.front().second.system, models[i].second.system, speeds))
+                return;
+        if (std::any_of(models.begin(), models.end(), [&](const auto& m) { return m.first != models.front().first; }))
+            throw InputError(fmt::format("{}: parameter '{}' does not change the model of scene {} (the values {} and "
+                                         "{} give the same matrices, damping and unbalance): every design would be "
+                                         "the same; allowed: a key the model uses",
+                                         s.path, p.name, s.scene, models.front().first, models.back().first));
+    }
+}
+
+// A name as it can stand in one line of a message: control characters as '?'.
+std::string printable(std::string text) {
+    for (char& c : text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return text;
 }
 
 }  // namespace
@@ -115,7 +153,8 @@ Shard Shard::parse(const std::string& text) {
         s.index = static_cast<int>(k);
         s.count = static_cast<int>(n);
     } catch (const std::exception&) {
-        throw InputError(fmt::format("--shard '{}': allowed: K/N with whole numbers 0 <= K < N (e.g. 0/4)", text));
+        throw InputError(fmt::format("--shard '{}': allowed: K/N with whole numbers 0 <= K < N <= 1000000 (e.g. 0/4)",
+                                     text));
     }
     return s;
 }
@@ -172,9 +211,23 @@ void finalize_sweep(Sweep& s, bool check_parameters) {
         s.loader = [scene](const std::map<std::string, double>& o) { return load_scene(scene, o); };
     }
     std::set<std::string> names;
-    for (const auto& p : s.parameters)
+    for (const auto& p : s.parameters) {
         if (!names.insert(p.name).second)
             throw InputError(fmt::format("{}: parameter '{}' appears twice", s.path, p.name));
+        // A column name of the result file: one CSV cell on one line that --resume reads back.
+        for (const char c : p.name)
+            if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == ',' || c == '"')
+                throw InputError(fmt::format("{}: parameter name '{}' holds a line break, control character, comma or "
+                                             "quote; allowed: printable text without commas or quotes (a CSV column "
+                                             "name)",
+                                             s.path, printable(p.name.substr(0, 60))));
+        // A tie's name that reads as a scene path must be one of its paths, or the column names the wrong key.
+        if (!p.paths.empty() && p.name.rfind("model.", 0) == 0 &&
+            std::find(p.paths.begin(), p.paths.end(), p.name) == p.paths.end())
+            throw InputError(fmt::format("{}: parameter name '{}' reads as a scene path but the parameter sets {}; "
+                                         "allowed: one of its paths, or a label that is no path (e.g. 'kxx')",
+                                         s.path, p.name, fmt::join(p.paths, ", ")));
+    }
     design_overrides(s, std::vector<double>(s.parameters.size(), 0.0));   // no path set twice
     if (s.sampling == Sampling::LatinHypercube && s.parameters.empty())
         throw InputError(s.path + ": Latin hypercube sampling needs at least one [[parameter]]");
@@ -242,6 +295,14 @@ void finalize_sweep(Sweep& s, bool check_parameters) {
                                              s.path, d, s.scene));
         }
     }
+    // A parameter named as another column of the result (verdict, a quantity) would give two columns of one name.
+    const std::vector<std::string> columns = result_columns(s);
+    for (const auto& p : s.parameters)
+        if (std::count(columns.begin(), columns.end(), p.name) > 1)
+            throw InputError(fmt::format("{}: parameter name '{}' is also the name of a result column; allowed: a "
+                                         "name that is not one of: design, verdict, failed, reason or a criterion's "
+                                         "quantity",
+                                         s.path, p.name));
     if (check_parameters)
         for (const auto& p : s.parameters) check_parameter(s, p);
     if (!s.plot_axes.empty()) {

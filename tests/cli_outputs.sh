@@ -1,0 +1,128 @@
+#!/usr/bin/env bash
+# Every file a command writes goes through the library's one output guard. The
+# writing options are taken from the help of every command (the "Output files"
+# group), not from a list kept here: each is pointed at an input of the run, at a
+# symbolic link and a hard link to it, and at another output of the same run. Each
+# must be refused (exit 2, one line naming the option) with the input unchanged.
+# Then a failed write leaves the old file byte-identical, and a scene in a bare
+# file name resolves the files it names from the working folder.
+set -u
+cli=$(readlink -f "$1")
+data=$2
+source "$(dirname "$0")/cli_lib.sh"
+
+w=$dir/w
+mkdir -p "$w/ross"
+cp "$data/three_disk_rotor.toml" "$data/centrifuge.toml" "$data/screen_centrifuge.toml" "$data/fluid_N2.toml" \
+   "$data/balancer_bild7.toml" "$data/sommerfeld_rotor.toml" "$w/"
+cp "$data"/ross_rotor_example/*.mtx "$data/ross_rotor_example/scene.toml" "$w/ross/"
+
+# How to run each command that writes files, quickly: its input first.
+declare -A recipe=(
+    [campbell]="$w/three_disk_rotor.toml --speeds 0:1000:11"
+    [modes]="$w/three_disk_rotor.toml --speed 100"
+    [model]="$w/three_disk_rotor.toml"
+    [response]="$w/three_disk_rotor.toml --speeds 0:1000:11"
+    [frf]="$w/three_disk_rotor.toml --speed 100 --input y3 --frequencies 10:1000:5"
+    [static]="$w/three_disk_rotor.toml"
+    [critical-map]="$w/three_disk_rotor.toml --stiffness 1e6:1e8:3"
+    [transient]="$w/three_disk_rotor.toml --speed 100 --node 3 --duration 0.02"
+    [export]="$w/ross/scene.toml --speed 10"
+    [fluid]="$w/fluid_N2.toml --fill 0.1:0.5:3"
+    [balancer]="$w/balancer_bild7.toml --simulate --duration 0.05"
+    [sommerfeld]="$w/sommerfeld_rotor.toml"
+    [screen]="$w/screen_centrifuge.toml --limit 2"
+)
+
+# refused NEEDLE INPUT ARGS...: exit 2, the needle on stderr, INPUT byte-identical.
+refused() {
+    local needle=$1 input=$2; shift 2
+    cp "$input" "$dir/before"
+    "$cli" "$@" > "$dir/out" 2> "$dir/err"
+    local rc=$?
+    if [ "$rc" -ne 2 ] || ! grep -qF -- "$needle" "$dir/err" || ! cmp -s "$input" "$dir/before"; then
+        echo "FAIL: gyrokit $* -> exit $rc, expected exit 2, '$needle' and $input unchanged"
+        sed 's/^/    /' "$dir/err"
+        fail=1
+    fi
+}
+
+commands=$("$cli" --help | awk '/^Subcommands:/ {on = 1; next} on && !NF {on = 0} on && NF {print $1}')
+[ -n "$commands" ] || { echo "FAIL: no commands in gyrokit --help"; exit 1; }
+checked=0
+for cmd in $commands; do
+    opts=$("$cli" "$cmd" --help | awk '/^Output files:/ {on = 1; next} on && !NF {on = 0} on && $1 ~ /^--/ {print $1 ":" $2}')
+    [ -n "$opts" ] || continue
+    if [ -z "${recipe[$cmd]:-}" ]; then
+        echo "FAIL: gyrokit $cmd writes files ($opts) but this test has no recipe to run it"
+        fail=1
+        continue
+    fi
+    # shellcheck disable=SC2206
+    args=(${recipe[$cmd]})
+    input=${args[0]}
+    # The command writes its first file option to a new path: a recipe that fails is this test's fault.
+    o=${opts%%$'\n'*}
+    "$cli" "$cmd" "${args[@]}" "${o%%:*}" "$w/fresh_$cmd.svg" > /dev/null 2> "$dir/err" || {
+        echo "FAIL: recipe of $cmd does not run: ${args[*]} ${o%%:*} $w/fresh_$cmd.svg"; sed 's/^/    /' "$dir/err"
+        fail=1; continue; }
+    [ -e "$w/fresh_$cmd.svg" ] || { echo "FAIL: $cmd ${o%%:*} wrote nothing"; fail=1; }
+    first=""
+    for o in $opts; do
+        opt=${o%%:*} kind=${o#*:}
+        checked=$((checked + 1))
+        rm -f "$w/link.svg" "$w/hard.svg" "$w/linkdir"
+        if [ "$kind" = DIR ]; then
+            # A folder of outputs: the folder the scene's matrices are in, directly and through a link.
+            folder=$(dirname "$input")
+            ln -s "$folder" "$w/linkdir"
+            refused "input of this run" "$folder/M.mtx" "$cmd" "${args[@]}" "$opt" "$folder"
+            refused "input of this run" "$folder/M.mtx" "$cmd" "${args[@]}" "$opt" "$w/linkdir"
+            continue
+        fi
+        ln -s "$input" "$w/link.svg"
+        ln "$input" "$w/hard.svg"
+        refused "input of this run" "$input" "$cmd" "${args[@]}" "$opt" "$w/link.svg"
+        refused "input of this run" "$input" "$cmd" "${args[@]}" "$opt" "$w/hard.svg"
+        [ -L "$w/link.svg" ] || { echo "FAIL: $cmd $opt replaced the link"; fail=1; }
+        case "$opt" in --plot|--waterfall) ;; *)
+            refused "input of this run" "$input" "$cmd" "${args[@]}" "$opt" "$input" ;;
+        esac
+        # Another output of the same run: the first file option and this one on one file.
+        if [ -n "$first" ]; then
+            echo "keep" > "$w/other.svg"
+            refused "another output of this run" "$w/other.svg" "$cmd" "${args[@]}" "$first" "$w/other.svg" "$opt" "$w/other.svg"
+        fi
+        [ -z "$first" ] && [ "$opt" != --resume ] && first=$opt
+    done
+done
+[ "$checked" -ge 14 ] || { echo "FAIL: only $checked file options found in the help"; fail=1; }
+
+# A symbolic link to a file that is no input: written through, the link kept.
+echo old > "$w/target.svg"
+ln -sf "$w/target.svg" "$w/through.svg"
+"$cli" campbell "$w/three_disk_rotor.toml" --speeds 0:1000:11 --plot "$w/through.svg" > /dev/null 2>&1 || {
+    echo "FAIL: --plot through a link to a new file"; fail=1; }
+if [ ! -L "$w/through.svg" ] || ! grep -q "<svg" "$w/target.svg"; then
+    echo "FAIL: --plot through a link: the link was replaced or its target not written"; fail=1
+fi
+
+# A failed write leaves the old file byte-identical and no temporary file behind:
+# a file size limit (EFBIG with SIGXFSZ ignored) stands in for a full disk.
+printf 'old rows\n' > "$w/history.csv"
+cp "$w/history.csv" "$dir/before"
+(trap '' XFSZ; ulimit -f 4; exec "$cli" transient "$w/three_disk_rotor.toml" --speed 100 --node 3 --duration 0.2 \
+    --out "$w/history.csv") > /dev/null 2> "$dir/err"
+rc=$?
+if [ "$rc" -ne 1 ] || ! cmp -s "$w/history.csv" "$dir/before" || ! grep -qF -- "--out $w/history.csv" "$dir/err"; then
+    echo "FAIL: a failed write of --out: exit $rc (expected 1), the old file changed or the message names no file"
+    sed 's/^/    /' "$dir/err"; fail=1
+fi
+if ls -a "$w" | grep -q '^\.history\.csv\..*\.tmp$'; then echo "FAIL: a temporary file was left behind"; fail=1; fi
+
+# A scene named by a bare file name resolves its matrices from the working folder.
+(cd "$w/ross" && "$cli" eig scene.toml --speed 1 > /dev/null 2> "$dir/err") || {
+    echo "FAIL: eig scene.toml from the scene's own folder"; sed 's/^/    /' "$dir/err"; fail=1; }
+
+[ "$fail" -eq 0 ] && echo "cli_outputs: $checked file options refused onto inputs, links and each other"
+exit "$fail"
