@@ -124,5 +124,33 @@ if ls -a "$w" | grep -q '^\.history\.csv\..*\.tmp$'; then echo "FAIL: a temporar
 (cd "$w/ross" && "$cli" eig scene.toml --speed 1 > /dev/null 2> "$dir/err") || {
     echo "FAIL: eig scene.toml from the scene's own folder"; sed 's/^/    /' "$dir/err"; fail=1; }
 
+# The base scene edited while a study runs: the run exits 2, its result file ends in a
+# trailer that says so, and --resume and --merge refuse the file.
+mkdir -p "$w/edit"
+cp "$data/centrifuge.toml" "$w/edit/"
+sed 's/^count = 6$/count = 400/' "$data/screen_centrifuge.toml" > "$w/edit/sweep.toml"
+"$cli" screen "$w/edit/sweep.toml" --jobs 1 --limit 300 --out "$w/edit/rows.csv" > /dev/null 2> "$w/edit/err" &
+pid=$!
+for _ in $(seq 1 500); do
+    [ "$(wc -l < "$w/edit/rows.csv" 2> /dev/null || echo 0)" -ge 6 ] && break
+    sleep 0.02
+done
+if kill -0 "$pid" 2> /dev/null; then
+    echo "# edited while the study runs" >> "$w/edit/centrifuge.toml"
+    wait "$pid"
+    rc=$?
+    if [ "$rc" -ne 2 ] || ! grep -q "centrifuge.toml: the scene file changed during the run" "$w/edit/err" ||
+       ! tail -n 1 "$w/edit/rows.csv" | grep -q "^# inputs changed during the run:"; then
+        echo "FAIL: a scene edited during screen: exit $rc (expected 2), message or trailer missing"
+        sed 's/^/    /' "$w/edit/err"; tail -n 1 "$w/edit/rows.csv"; fail=1
+    fi
+    # The scene back as it was: the study's identity matches again, the trailer still refuses.
+    cp "$data/centrifuge.toml" "$w/edit/centrifuge.toml"
+    refused "saw an input change while it ran" "$w/edit/rows.csv" screen "$w/edit/sweep.toml" --resume "$w/edit/rows.csv"
+    refused "saw an input change while it ran" "$w/edit/rows.csv" screen "$w/edit/sweep.toml" --merge "$w/edit/rows.csv"
+else
+    echo "FAIL: the study ended before the edit (300 designs in under the poll time)"; fail=1
+fi
+
 [ "$fail" -eq 0 ] && echo "cli_outputs: $checked file options refused onto inputs, links and each other"
 exit "$fail"

@@ -82,7 +82,7 @@ std::vector<std::pair<std::string, Scene>> dense_rotor_scenes(int min_dofs) {
 }  // namespace
 
 TEST_CASE("continuation: the modes in range equal the full solve's within their bounds on every data/ scene",
-          "[continuation]") {
+          "[continuation][slow]") {
     int used = 0;
     for (const auto& [name, sc] : dense_rotor_scenes(2)) {
         const std::vector<double> grid = thinned(sc.speeds->points(), 26);

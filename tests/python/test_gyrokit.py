@@ -709,3 +709,98 @@ def test_response_takes_speeds_in_any_order():
     down = gk.response(f, [40.0, 30.0, 30.0, 20.0])
     up = gk.response(f, [20.0, 30.0, 40.0])
     np.testing.assert_allclose(down.amplitude[[3, 1, 0]], up.amplitude, rtol=1e-12)
+
+
+# --- Files a result writes: the library's one output guard --------------------------------
+
+def _copied_scene(tmp_path):
+    import shutil
+    src = os.path.join(DATA, "ross_rotor_example")
+    dst = tmp_path / "ross"
+    shutil.copytree(src, dst)
+    return dst
+
+
+def test_save_and_plot_refuse_the_inputs_of_the_result_through_links(tmp_path):
+    # save() and plot(path) go through the output layer with the scene's files as the run's
+    # inputs: the scene, a matrix it names, a symbolic and a hard link to one are refused,
+    # and nothing is written.
+    folder = _copied_scene(tmp_path)
+    sc = gk.load_scene(str(folder / "scene.toml"))
+    assert str(folder / "M.mtx") in sc.inputs and str(folder / "scene.toml") in sc.inputs
+    r = gk.critical_speeds(sc)
+    before = {p: open(p, "rb").read() for p in sc.inputs}
+    os.symlink(folder / "scene.toml", tmp_path / "link.csv")
+    os.link(folder / "M.mtx", tmp_path / "hard.svg")
+    os.symlink(folder / "K.mtx", tmp_path / "k.json")
+    for target in [tmp_path / "link.csv", tmp_path / "k.json"]:   # save() takes .csv, .json, .txt
+        with pytest.raises(gk.InputError, match="input of this run"):
+            r.save(str(target))
+    with pytest.raises(gk.InputError, match="input of this run"):
+        gk.campbell(sc, speeds=np.linspace(0, 100, 5)).plot(str(tmp_path / "hard.svg"))
+    assert {p: open(p, "rb").read() for p in sc.inputs} == before
+    assert os.path.islink(tmp_path / "link.csv")
+    # A new file is written, whole.
+    r.save(str(tmp_path / "speeds.csv"))
+    assert open(tmp_path / "speeds.csv").read().startswith("speed")
+
+
+def test_a_scene_named_by_a_bare_file_name_reads_its_matrices_from_the_working_folder(tmp_path):
+    folder = _copied_scene(tmp_path)
+    here = os.getcwd()
+    try:
+        os.chdir(folder)
+        sc = gk.load_scene("scene.toml")
+    finally:
+        os.chdir(here)
+    assert sc.system.size == 42
+
+
+def test_malformed_systems_are_refused_with_the_key_named():
+    M = np.diag([-1.0, -1.0])
+    K = np.eye(2)
+    with pytest.raises(gk.InputError, match="M has the diagonal entry -1 at DOF 0.*positive semidefinite"):
+        gk.System(M=M, K=K)
+    with pytest.raises(gk.InputError, match="whirl_pairs = .*allowed: pairs of whole-number DOF indices"):
+        gk.System(M=np.eye(2), K=K, whirl_pairs=[[0.0, 1.5]])
+
+
+_INTERRUPTED_FRF = r"""
+import os, signal, sys, threading, time
+import numpy as np
+import gyrokit as gk
+sc = gk.load_scene(sys.argv[1])
+threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+t = time.time()
+try:
+    gk.frf(sc, 100.0, "y3", np.linspace(1, 3000, 400000))   # minutes without Ctrl-C
+    print("finished")
+except KeyboardInterrupt:
+    print("interrupted after", time.time() - t)
+"""
+
+
+def test_ctrl_c_stops_a_frequency_response():
+    import sys
+    r = subprocess.run([sys.executable, "-c", _INTERRUPTED_FRF, scene("three_disk_rotor.toml")],
+                       capture_output=True, text=True, timeout=120, env=dict(os.environ))
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.startswith("interrupted after"), r.stdout
+    assert float(r.stdout.split()[2]) < 20.0
+
+
+def test_a_sweep_parameter_named_as_a_result_column_is_refused_before_the_study(tmp_path):
+    sweep = tmp_path / "sweep.toml"
+    sweep.write_text(f"""scene = "{os.path.abspath(scene("centrifuge.toml"))}"
+[[parameter]]
+name = "verdict"
+paths = ["model.c_G"]
+values = [150.0, 300.0]
+[operating]
+from = 24.0
+to = 50.0
+[criteria.separation]
+margin_percent = 15.0
+""")
+    with pytest.raises(gk.InputError, match="parameter name 'verdict' is also the name of a result column"):
+        gk.screen(str(sweep))
