@@ -252,4 +252,32 @@ if [ "$rc" -ne 2 ] || ! grep -q "has no mass, stiffness, damping or coupling" "$
 fi
 expect "has no mass, stiffness, damping or coupling" eig "$dir/one.toml" --speed 1 --solver dense
 
+# Numbers, lists and names that once gave a wrong or unreadable answer: one line naming the value and range.
+td=$data/three_disk_rotor.toml
+expect "frequency 5e+299 rad/s: the dynamic stiffness K - w^2 M leaves double precision's range" \
+    frf "$td" --speed 100 --input y3 --frequencies 0:1e300:3
+expect "--dofs 'y3,y3': 'y3' is listed twice" frf "$td" --speed 100 --input y3 --frequencies 1:1000:3 --dofs y3,y3
+expect "--dofs 'y3,y3': 'y3' is listed twice" transient "$td" --speed 100 --dofs y3,y3
+expect "--stiffness '1e-320:1:3': allowed:" critical-map "$td" --stiffness 1e-320:1:3
+expect "takes 6.28e+300 steps; allowed: at most --max-steps" transient "$td" --speed 100 --node 3 --dt 1e-300
+expect "0 <= K < N <= 1000000" screen "$data/screen_centrifuge.toml" --shard 0/10000000
+expect "--gravity '0x10': allowed: a number from 0 to 1e6" static "$td" --gravity 0x10
+expect "--gravity '1e-310': a subnormal number" static "$td" --gravity 1e-310
+expect "has the component 1e+200; allowed: finite magnitudes up to 1e+15" static "$td" --load 3:0:1e200
+expect "--speeds '0x10:20:3': expected FROM:TO:N" campbell "$td" --speeds 0x10:20:3
+cp "$data/centrifuge.toml" "$dir/"
+sed 's/^\[model\]/[model]\nshaft = "rigid"/' "$data/centrifuge.toml" > "$dir/rigid.toml"
+sweep() {   # sweep FILE NAME PATHS SCENE: a one-parameter sweep of two values
+    printf 'scene = "%s"\n[[parameter]]\nname = "%s"\n%s\nvalues = [1000.0, 3000.0]\n[operating]\nfrom = 24.0\nto = 50.0\n[criteria.separation]\nmargin_percent = 15.0\n' \
+        "$4" "$2" "$3" > "$1"
+}
+sweep "$dir/ignored.toml" model.c_T "" rigid.toml
+expect "parameter 'model.c_T' does not change the model of scene" screen "$dir/ignored.toml"
+sweep "$dir/verdict.toml" verdict 'paths = ["model.c_G"]' centrifuge.toml
+expect "parameter name 'verdict' is also the name of a result column" screen "$dir/verdict.toml"
+sweep "$dir/newline.toml" 'a\nb' 'paths = ["model.c_G"]' centrifuge.toml
+expect "parameter name 'a?b' holds a line break" screen "$dir/newline.toml"
+sweep "$dir/tie.toml" 'model.c_R' 'paths = ["model.c_G"]' centrifuge.toml
+expect "parameter name 'model.c_R' reads as a scene path but the parameter sets model.c_G" screen "$dir/tie.toml"
+
 exit $fail

@@ -32,6 +32,8 @@
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/core/input_file.hpp>
 #include <gyrokit/core/interrupt.hpp>
+#include <gyrokit/core/number_text.hpp>
+#include <gyrokit/core/run_files.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/eig/mode.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>

@@ -1,6 +1,7 @@
 #include <gyrokit/io/scene_writer.hpp>
 
 #include <gyrokit/io/output_file.hpp>
+#include <gyrokit/core/run_files.hpp>
 
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/core/error.hpp>
@@ -253,6 +254,14 @@ std::string scene_text(const Scene& sc) {
     return text.front() == '\n' ? text.substr(1) : text;
 }
 
-void write_scene(const Scene& scene, const std::string& path) { replace_file(path, scene_text(scene), "scene"); }
+void write_scene(const Scene& scene, const std::string& path) {
+    // A scene may be written back over its own file (an edit), never over a matrix or table it reads.
+    RunFiles files;
+    const FileIdentity own = identify_file(scene.path);
+    for (const auto& in : scene.inputs)
+        if (!identify_file(in).same_file(own)) files.note_input(in, "file the scene reads");
+    RunScope run(files);
+    replace_file(path, scene_text(scene), "scene");
+}
 
 }  // namespace gyrokit

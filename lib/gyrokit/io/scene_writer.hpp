@@ -26,8 +26,9 @@ Scene rotor_scene(const RotorModel& model, const std::string& title = "");
 // pinned or clamped.
 std::string scene_text(const Scene& scene);
 
-// scene_text written to `path` (replaced whole: written to a temporary file beside
-// it, then renamed). InputError if it cannot be written.
+// scene_text written to `path` through an OutputFile (replaced whole). InputError if
+// it cannot be written or `path` is a matrix or table the scene reads (its own file
+// may be written back: an edit).
 void write_scene(const Scene& scene, const std::string& path);
 
 }  // namespace gyrokit
