@@ -4,6 +4,7 @@ GYROKIT_CLI (the gyrokit binary) and GYROKIT_DATA (data/)."""
 import csv
 import io
 import os
+import re
 import subprocess
 import threading
 
@@ -804,3 +805,56 @@ margin_percent = 15.0
 """)
     with pytest.raises(gk.InputError, match="parameter name 'verdict' is also the name of a result column"):
         gk.screen(str(sweep))
+
+
+def _every_result(tmp_path):
+    """One result of each analysis of the module, with the scene (or scene file) it was computed from."""
+    import shutil
+    for name in ["three_disk_rotor.toml", "centrifuge.toml", "screen_centrifuge.toml", "balancer_bild7.toml",
+                 "sommerfeld_rotor.toml"]:
+        shutil.copy(os.path.join(DATA, name), tmp_path / name)
+    rotor = gk.load_scene(str(tmp_path / "three_disk_rotor.toml"))
+    speeds = np.linspace(0, 1000, 6)
+    return [
+        (rotor, gk.eig(rotor, 100.0)), (rotor, gk.modes(rotor, 100.0)), (rotor, gk.campbell(rotor, speeds)),
+        (rotor, gk.critical_speeds(rotor, speeds)), (rotor, gk.stability(rotor, speeds)),
+        (rotor, gk.pervasive(rotor, speeds)), (rotor, gk.response(rotor, speeds)),
+        (rotor, gk.frf(rotor, 100.0, "y3", np.linspace(10, 1000, 5))), (rotor, gk.static(rotor)),
+        (rotor, gk.critical_speed_map(rotor, stiffness=[1e6, 1e7, 1e8])), (rotor, gk.summary(rotor)),
+        (rotor, gk.transient(rotor, 100.0, node=3, duration=0.02)),
+        (str(tmp_path / "screen_centrifuge.toml"), gk.screen(str(tmp_path / "screen_centrifuge.toml"),
+                                                             [{"model.c_G": 150.0}])),
+        (str(tmp_path / "balancer_bild7.toml"), gk.balancer(str(tmp_path / "balancer_bild7.toml"))),
+        (str(tmp_path / "sommerfeld_rotor.toml"), gk.sommerfeld(str(tmp_path / "sommerfeld_rotor.toml"))),
+    ]
+
+
+def test_every_result_method_that_writes_a_file_refuses_its_inputs(tmp_path):
+    # Every method of every result class that takes a `path` (found by inspection, not listed
+    # here) is pointed at a symbolic link and a hard link to the file the result was computed
+    # from: InputError, and the file is unchanged. Every result class of the module is covered.
+    import inspect
+    results = _every_result(tmp_path)
+    covered = {type(r) for _, r in results}
+    classes = {getattr(gk, n) for n in gk.__all__ if inspect.isclass(getattr(gk, n)) and
+               issubclass(getattr(gk, n), gk._Result) and getattr(gk, n) is not gk._Result}
+    assert classes <= covered, f"results without a recipe here: {classes - covered}"
+    checked = 0
+    for source, result in results:
+        src = source.path if isinstance(source, gk.Scene) else source
+        before = open(src, "rb").read()
+        for name, method in inspect.getmembers(result, inspect.ismethod):
+            if name.startswith("_") or "path" not in inspect.signature(method).parameters:
+                continue
+            ext = ".csv" if name == "save" else ".svg"
+            for i, make in enumerate([os.symlink, os.link]):
+                target = tmp_path / f"{type(result).__name__}_{name}_{i}{ext}"
+                make(src, target)
+                with pytest.raises(gk.InputError) as refused:
+                    method(str(target))
+                if re.search(r"has no (figure|tables to save)", str(refused.value)):
+                    continue   # this result writes nothing by this method
+                assert "input of this run" in str(refused.value)
+                checked += 1
+        assert open(src, "rb").read() == before
+    assert checked >= 2 * len(results)
