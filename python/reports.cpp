@@ -163,15 +163,13 @@ void bind_reports(py::module_& m) {
                              const std::vector<std::string>& inputs) {
         std::ostringstream out;
         write_tables(out, tables_of(tables), parse_table_format(format));
-        RunFiles files;
-        for (const auto& in : inputs) files.note_input(in, "input");
+        RunFiles files(inputs);
         RunScope run(files);
         replace_file(path, out.str(), "result");
     }, py::arg("tables"), py::arg("path"), py::arg("format"), py::arg("inputs") = std::vector<std::string>{});
     m.def("render_figure", [](const py::dict& figure, const std::string& path, const std::vector<std::string>& inputs) {
         const Figure f = figure_of(figure);
-        RunFiles files;
-        for (const auto& in : inputs) files.note_input(in, "input");
+        RunFiles files(inputs);
         files.claim_output(path, "path");   // before gnuplot runs
         py::gil_scoped_release free;
         RunScope run(files);

@@ -10,6 +10,9 @@
 #include <pybind11/functional.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <gyrokit/core/run_files.hpp>
+
+#include <filesystem>
 
 #include <optional>
 #include <string>
@@ -54,6 +57,8 @@ Sweep sweep_with(const std::string& path, const py::object& scene, const py::obj
 // gk.screen: the whole study on threads, its rows as text cells.
 py::dict py_screen(const std::string& path, const py::object& scene, const py::object& names,
                    const py::object& designs, int jobs, const py::object& progress) {
+    RunFiles files;   // one run: the sweep, the base scene and its files read once
+    RunScope run(files);
     const Sweep s = sweep_with(path, scene, names, designs);
     RunOptions o;
     o.jobs = threads(jobs).count;
@@ -80,6 +85,9 @@ py::dict py_screen(const std::string& path, const py::object& scene, const py::o
     d["quantities"] = quantity_columns(s);
     d["labels"] = label_columns(s);
     d["unit"] = s.unit.name;
+    std::vector<std::string> inputs;
+    for (const auto& in : files.inputs()) inputs.push_back(std::filesystem::absolute(in.path).string());
+    d["inputs"] = inputs;   // what the result may not be saved over
     return d;
 }
 

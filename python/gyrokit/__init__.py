@@ -9,6 +9,7 @@ when no verified answer was found). See docs/python.md.
 from __future__ import annotations
 
 import functools as _functools
+import inspect as _inspect
 import os as _os
 import warnings as _warnings
 
@@ -338,6 +339,7 @@ class ScreenResult(_Result):
 
     def __init__(self, d):
         self.columns = list(d["columns"])
+        self._inputs = tuple(d.get("inputs", ()))   # the sweep, its base scene and the files it names
         rows = d["rows"]
         col = {name: [r[k] for r in rows] for k, name in enumerate(self.columns)}
         number = lambda cells: _np.array([float(c) if c != "" else _np.nan for c in cells], dtype=float)
@@ -865,13 +867,18 @@ def _inputs_of(model):
 
 
 def _keeping_inputs(analysis):
-    """`analysis` whose result remembers the files it was computed from (Result._inputs)."""
+    """`analysis` whose result remembers the files it was computed from (Result._inputs): its first
+    argument's (a Scene's inputs, or a scene or sweep file) and a `scene` keyword's."""
+    signature = _inspect.signature(analysis)
+    first = next(iter(signature.parameters))
+
     @_functools.wraps(analysis)
-    def run(model, *args, **kwargs):
-        result = analysis(model, *args, **kwargs)
+    def run(*args, **kwargs):
+        result = analysis(*args, **kwargs)
         if isinstance(result, _Result):
-            inputs = _inputs_of(model) + _inputs_of(kwargs.get("scene"))
-            result._inputs = inputs
+            given = signature.bind_partial(*args, **kwargs).arguments
+            inputs = _inputs_of(given.get(first)) + _inputs_of(given.get("scene") if first != "scene" else None)
+            result._inputs = tuple(dict.fromkeys(tuple(result._inputs) + inputs))
         return result
     return run
 

@@ -12,9 +12,9 @@
 
 namespace gyrokit {
 
-// What makes two paths the same file: device and inode where the file exists (a
-// hard link or a symbolic link to it has the same), else the absolute path with
-// the symbolic links of its existing part resolved.
+// What makes two paths the same file: the same device and inode (a hard link or a
+// symbolic link to it has them), or the same absolute path once every symbolic
+// link on it is followed (a file that does not exist yet, a dangling link).
 struct FileIdentity {
     bool exists = false;
     bool regular = false;       // a regular file (not a device, FIFO, socket or folder)
@@ -23,6 +23,12 @@ struct FileIdentity {
     bool same_file(const FileIdentity& other) const;
 };
 FileIdentity identify_file(const std::string& path);
+
+// The file a path names once its symbolic links are followed, link by link
+// (relative ones from their own folder); InputError for a loop.
+std::string link_target(const std::string& path);
+// The folder a file lies in ("." for a bare name).
+std::string folder_of(const std::string& path);
 
 // An input as it was when read: enough to tell later whether it changed.
 struct InputRecord {
@@ -39,20 +45,27 @@ std::uint64_t fingerprint_bytes(const char* data, std::size_t n, std::uint64_t h
 
 class RunFiles {
 public:
+    RunFiles() = default;
+    // A run whose inputs are these files (noted, not read: a result's scene files).
+    explicit RunFiles(const std::vector<std::string>& inputs);
     // The bytes of an input after check_input_file, read once: a later read of the
-    // same file (by any path, from any thread) gets the same copy. InputError if the
-    // file is an output this run claimed, or changed while it was read.
+    // same file (by any path, from any thread of the run) gets the same copy.
+    // InputError if the file is an output this run claimed, or changed while the
+    // run read it.
     std::shared_ptr<const std::string> read(const std::string& path, const std::string& what, std::uintmax_t max_bytes);
-    // An input read by other means (a result file merged): outputs may not be it.
+    // An input read by other means (a result file merged, a scene's files):
+    // outputs may not be it. A path that names no file is passed over.
     void note_input(const std::string& path, const std::string& what);
     // `path` becomes an output of this run, given by `option` ("--plot", "path"):
     // InputError (nothing written) if it is an input of the run or another output
-    // of it, or if its folder does not exist or is not writable. A path that is not
-    // a regular file (-, /dev/null, a FIFO) is never refused as the same file. The
-    // same option may claim the same path again.
+    // of it, if it is a folder or a write-protected file, or if the folder it would
+    // be written in does not exist or is not writable. A path that is not a regular
+    // file (-, /dev/null, a FIFO) is never refused as the same file. The same option
+    // may claim the same path again.
     void claim_output(const std::string& path, const std::string& option);
     // What changed since the inputs were read ("" where nothing did): the first input
-    // whose size, modification time or inode is no longer what it was, named.
+    // whose inode is another, or whose bytes differ (a size or time changed and the
+    // fingerprint with them), named.
     std::string changed_inputs() const;
     // InputError with that text where something changed.
     void check_inputs_unchanged() const;
@@ -70,13 +83,13 @@ private:
     std::vector<Output> outputs_;
 };
 
-// The run in progress in this process (a command of the CLI, a Python call), or
-// nullptr outside one.
+// The run in progress on this thread (a command of the CLI, a Python call, a
+// screening worker), or nullptr outside one.
 RunFiles* current_run();
 
-// Makes `files` the current run for its lifetime; inside a run already in
-// progress it joins that one (the outer run decides). Without an argument: a run
-// of its own unless one is in progress.
+// Without an argument: joins the run in progress on this thread, else starts one of
+// its own. With `files`: makes them this thread's run for its lifetime (the worker
+// threads of a run, a Python call with a result's inputs), then restores the run before.
 class RunScope {
 public:
     RunScope();
@@ -89,6 +102,7 @@ public:
 private:
     std::unique_ptr<RunFiles> own_;
     RunFiles* active_ = nullptr;
+    RunFiles* previous_ = nullptr;
     bool installed_ = false;
 };
 
@@ -98,7 +112,8 @@ private:
 std::shared_ptr<const std::string> read_input(const std::string& path, const std::string& what,
                                               std::uintmax_t max_bytes);
 
-// The paths read_input read on this thread while it lives (a scene's own inputs).
+// The paths read_input read on this thread while it lives (a scene's own inputs),
+// absolute.
 class InputCollector {
 public:
     InputCollector();

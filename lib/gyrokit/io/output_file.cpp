@@ -5,36 +5,58 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fcntl.h>
-#include <filesystem>
 #include <fmt/format.h>
+#include <iostream>
 #include <sys/stat.h>
 #include <unistd.h>
 
 namespace gyrokit {
 
-namespace fs = std::filesystem;
-
 namespace {
-
-// The file a symbolic link leads to (followed link by link, relative links from
-// their own folder); the path itself where it is no link.
-fs::path link_target(const fs::path& path) {
-    fs::path p = path;
-    for (int hops = 0; hops < 40; ++hops) {
-        std::error_code ec;
-        if (!fs::is_symlink(fs::symlink_status(p, ec))) return p;
-        const fs::path t = fs::read_symlink(p, ec);
-        if (ec) return p;
-        p = t.is_absolute() ? t : p.parent_path() / t;
-    }
-    throw InputError(fmt::format("{}: a symbolic link in a loop; allowed: a file or a link to one", path.string()));
-}
 
 std::atomic<unsigned> g_temp_counter{0};
 
+// The process's own descriptor a path names (-, /dev/stdout, /dev/fd/3, ...), or -1.
+// Opening /dev/stdout anew would start at the beginning of a file the shell opened
+// for appending, or fail for a pipe: the descriptor itself is written instead.
+int stream_of(const std::string& path) {
+    if (path == "-" || path == "/dev/stdout") return STDOUT_FILENO;
+    if (path == "/dev/stderr") return STDERR_FILENO;
+    for (const char* prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+        const std::string p(prefix);
+        if (path.rfind(p, 0) == 0 && path.size() > p.size() &&
+            path.find_first_not_of("0123456789", p.size()) == std::string::npos)
+            return std::stoi(path.substr(p.size()));
+    }
+    return -1;
+}
+
 }  // namespace
+
+int write_all(int fd, std::string_view bytes) {
+    const char* p = bytes.data();
+    std::size_t left = bytes.size();
+    while (left > 0) {
+        const ssize_t n = ::write(fd, p, left);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return errno;
+        if (n == 0) return EIO;
+        p += n;
+        left -= static_cast<std::size_t>(n);
+    }
+    return 0;
+}
+
+void sync_folder_of(const std::string& path) {
+    const int dfd = ::open(folder_of(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dfd >= 0) {
+        ::fsync(dfd);
+        ::close(dfd);
+    }
+}
 
 OutputFile::OutputFile(const std::string& path, const std::string& option, const std::string& what)
     : path_(path), option_(option), what_(what) {
@@ -44,42 +66,51 @@ OutputFile::OutputFile(const std::string& path, const std::string& option, const
         RunFiles alone;
         alone.claim_output(path, option);
     }
-    if (path == "-") {
-        fd_ = ::dup(STDOUT_FILENO);
+    stream_ = stream_of(path);
+    if (stream_ >= 0) {
         in_place_ = true;
-        if (fd_ < 0) fail("open standard output", errno);
         return;
     }
-    const fs::path target = link_target(path);
-    target_ = target.string();
+    target_ = link_target(path);
     struct stat st {};
-    if (::stat(target_.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
-        // A device or FIFO: no folder entry to replace; written as it is.
-        in_place_ = true;
+    in_place_ = ::stat(target_.c_str(), &st) == 0 && !S_ISREG(st.st_mode);   // a device or FIFO: no entry to replace
+}
+
+OutputFile::~OutputFile() {
+    if (fd_ >= 0) ::close(fd_);
+    if (!committed_ && !temp_.empty()) ::unlink(temp_.c_str());
+}
+
+void OutputFile::open() {
+    if (stream_ >= 0) {
+        // After what the process printed there: the streams' buffers first.
+        std::cout.flush();
+        std::cerr.flush();
+        std::fflush(nullptr);
+        fd_ = ::dup(stream_);
+        if (fd_ < 0) fail("open its descriptor", errno);
+        return;
+    }
+    if (in_place_) {
         fd_ = ::open(target_.c_str(), O_WRONLY | O_CLOEXEC);
         if (fd_ < 0) fail("open", errno);
         return;
     }
-    const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-    const std::string base = target.filename().string();
+    const std::string dir = folder_of(target_);
+    const std::string base = target_.substr(target_.find_last_of('/') + 1);
     for (int attempt = 0; attempt < 100 && fd_ < 0; ++attempt) {
-        temp_ = (dir / fmt::format(".{}.{}.{}.tmp", base, ::getpid(), g_temp_counter++)).string();
+        temp_ = fmt::format("{}/.{}.{}.{}.tmp", dir, base, ::getpid(), g_temp_counter++);
         fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd_ < 0 && errno != EEXIST) break;
     }
     if (fd_ < 0) {
         const int err = errno;
         temp_.clear();
-        fail("create a file in its folder", err);
+        fail("create a temporary file beside it for", err);
     }
-    // A replaced file keeps its permissions.
+    // A replaced file keeps its permission bits (not set-user-ID and the like).
     struct stat old {};
-    if (::stat(target_.c_str(), &old) == 0) ::fchmod(fd_, old.st_mode & 07777);
-}
-
-OutputFile::~OutputFile() {
-    if (fd_ >= 0) ::close(fd_);
-    if (!committed_ && !temp_.empty()) ::unlink(temp_.c_str());
+    if (::stat(target_.c_str(), &old) == 0) ::fchmod(fd_, old.st_mode & 0777);
 }
 
 void OutputFile::fail(const std::string& doing, int err) {
@@ -88,44 +119,33 @@ void OutputFile::fail(const std::string& doing, int err) {
     if (!temp_.empty()) ::unlink(temp_.c_str());
     temp_.clear();
     const std::string cause = err == ENOSPC ? "the disk is full" : std::strerror(err);
-    throw Error(fmt::format("{} {}: cannot {} the {} ({}); the file is as it was", option_, path_, doing, what_, cause));
+    throw Error(fmt::format("{} {}: cannot {} the {} ({}); the file is as it was", option_, path_, doing, what_,
+                            cause));
 }
 
 void OutputFile::write(std::string_view bytes) {
-    const char* p = bytes.data();
-    std::size_t left = bytes.size();
-    while (left > 0) {
-        const ssize_t n = ::write(fd_, p, left);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            fail("write", errno);
-        }
-        p += n;
-        left -= static_cast<std::size_t>(n);
-    }
+    if (fd_ < 0) open();
+    if (const int err = write_all(fd_, bytes)) fail("write", err);
 }
 
 void OutputFile::commit() {
+    if (fd_ < 0) open();   // an empty file is a file too
+    const int fd = fd_;
+    fd_ = -1;
     if (in_place_) {
-        const int fd = fd_;
-        fd_ = -1;
         committed_ = true;
         if (::close(fd) != 0 && errno != EINTR) fail("write", errno);
         return;
     }
-    if (::fsync(fd_) != 0) fail("write", errno);
-    const int fd = fd_;
-    fd_ = -1;
+    if (::fsync(fd) != 0) {
+        const int err = errno;
+        ::close(fd);
+        fail("write", err);
+    }
     if (::close(fd) != 0) fail("write", errno);
     if (::rename(temp_.c_str(), target_.c_str()) != 0) fail("replace", errno);
     committed_ = true;
-    // The new name must survive a power loss as well as the bytes.
-    const fs::path dir = fs::path(target_).has_parent_path() ? fs::path(target_).parent_path() : fs::path(".");
-    const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dfd >= 0) {
-        ::fsync(dfd);
-        ::close(dfd);
-    }
+    sync_folder_of(target_);
 }
 
 void replace_file(const std::string& path, const std::string& text, const std::string& what,

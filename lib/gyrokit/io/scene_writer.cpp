@@ -256,10 +256,11 @@ std::string scene_text(const Scene& sc) {
 
 void write_scene(const Scene& scene, const std::string& path) {
     // A scene may be written back over its own file (an edit), never over a matrix or table it reads.
-    RunFiles files;
     const FileIdentity own = identify_file(scene.path);
+    std::vector<std::string> reads;
     for (const auto& in : scene.inputs)
-        if (!identify_file(in).same_file(own)) files.note_input(in, "file the scene reads");
+        if (!identify_file(in).same_file(own)) reads.push_back(in);
+    RunFiles files(reads);
     RunScope run(files);
     replace_file(path, scene_text(scene), "scene");
 }

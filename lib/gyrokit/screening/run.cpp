@@ -4,6 +4,7 @@
 #include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/core/input_file.hpp>
 #include <gyrokit/core/run_files.hpp>
+#include <gyrokit/io/output_file.hpp>
 #include <gyrokit/screening/screening.hpp>
 
 #include <algorithm>
@@ -49,15 +50,7 @@ ResultFile::ResultFile(const std::string& path) : path_(path) {
                                          path));
         throw InputError(fmt::format("{}: cannot lock the result file ({})", path, std::strerror(err)));
     }
-    if (!existed) {
-        // The new file's name must survive a power loss as well as its lines.
-        const std::filesystem::path dir = std::filesystem::absolute(path).parent_path();
-        const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-        if (dfd >= 0) {
-            ::fsync(dfd);
-            ::close(dfd);
-        }
-    }
+    if (!existed) sync_folder_of(path);   // the new file's name must survive a power loss as well as its lines
     struct stat st {};
     regular_ = ::fstat(fd_, &st) == 0 && S_ISREG(st.st_mode);
     last_sync_ = std::chrono::steady_clock::now();
@@ -77,15 +70,7 @@ void ResultFile::truncate(std::size_t bytes) {
 }
 
 void ResultFile::write(const std::string& text) {
-    const char* p = text.data();
-    std::size_t left = text.size();
-    while (left > 0) {
-        const ssize_t n = ::write(fd_, p, left);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) throw Error(fmt::format("{}: write failed ({})", path_, n < 0 ? std::strerror(errno) : "no progress"));
-        p += n;
-        left -= static_cast<std::size_t>(n);
-    }
+    if (const int err = write_all(fd_, text)) throw Error(fmt::format("{}: write failed ({})", path_, std::strerror(err)));
     const auto now = std::chrono::steady_clock::now();
     if (now - last_sync_ >= std::chrono::duration<double>(kResultSyncSeconds)) sync();
 }
@@ -255,11 +240,15 @@ ParsedFile parse_result_file(const Sweep& s, const std::string& path, const Shar
 // The results file of a run, locked: read back and cut after its last whole line
 // (resume: its rows into `res`, their designs into `done`) or emptied, with the
 // identity and header lines where it has none, into `out` (left empty without --out).
-void open_results(const Sweep& s, const RunOptions& opt, RunResult& res, std::set<std::size_t>& done,
-                  std::optional<ResultFile>& out) {
-    RunFiles& files = *current_run();   // run_screening's scope
+// The sweep and its base scene as inputs of the run (a sweep built in code names no file).
+void note_study_files(RunFiles& files, const Sweep& s) {
     files.note_input(s.path, "sweep file");
     if (s.scene_text.empty()) files.note_input(s.scene, "base scene");
+}
+
+void open_results(const Sweep& s, const RunOptions& opt, RunFiles& files, RunResult& res, std::set<std::size_t>& done,
+                  std::optional<ResultFile>& out) {
+    note_study_files(files, s);
     files.claim_output(opt.out, opt.resume ? "--resume" : "--out");
     // Held from before the file is read back (resume) or cut (a fresh run): a second
     // writer of the same file is refused instead of interleaving with this one.
@@ -297,7 +286,7 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
 
     std::set<std::size_t> done;
     std::optional<ResultFile> out;
-    open_results(s, opt, res, done, out);
+    open_results(s, opt, run.files(), res, done, out);
     // The designs of this run are issued one at a time in index order (the k-th
     // issued is the k-th row written): nothing is allocated per design of the grid,
     // so a 1e8-design grid with --limit 2 costs two designs.
@@ -313,6 +302,7 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
     bool stop = false;
     std::exception_ptr failure;   // an interrupt (a design's own errors are its row)
     const auto worker = [&] {
+        RunScope in_run(run.files());   // the designs read the study's files from the run's copies
         for (;;) {
             std::size_t k = 0, design = 0;
             {
@@ -393,8 +383,7 @@ std::vector<ResultRow> merge_results(const Sweep& s, const std::vector<std::stri
                                      const std::string& out, const std::string& option) {
     RunScope run;
     for (const auto& f : files) run.files().note_input(f, "merged result file");
-    run.files().note_input(s.path, "sweep file");
-    if (s.scene_text.empty()) run.files().note_input(s.scene, "base scene");
+    note_study_files(run.files(), s);
     run.files().claim_output(out, option);
     std::vector<ResultRow> rows;
     for (const auto& f : files) {

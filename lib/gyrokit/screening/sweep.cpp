@@ -72,9 +72,19 @@ void check_parameter(const Sweep& s, const SweepParameter& p) {
     if (models.empty())
         throw InputError(fmt::format("{}: parameter '{}' is not accepted by the scene: {}", s.path, p.name, first_error));
     // A key the model reads but does not use (c_T of a rigid shaft): every design would be the same.
-    // (A fluid rotor's fill enters its own analysis, not the matrices: not judged here.)
+    // Compared at every operating speed and up to the stability criterion's reach, with the
+    // scene's settings. (A fluid rotor's fill enters its own analysis, not the matrices: not judged here.)
     if (models.size() >= 2 && !models.front().second.fluid) {
-        const std::vector<double> speeds = {s.op_from, s.op_to};
+        std::vector<double> speeds = s.operating_speeds();
+        if (s.criteria.stability) speeds.push_back(s.criteria.stability->up_to);
+        const Scene& a = models.front().second;
+        for (std::size_t i = 1; i < models.size(); ++i) {
+            const Scene& b = models[i].second;
+            if (a.speeds.has_value() != b.speeds.has_value() ||
+                (a.speeds && b.speeds && a.speeds->points() != b.speeds->points()) || a.modes != b.modes ||
+                a.harmonics != b.harmonics || a.target != b.target || a.target_order != b.target_order)
+                return;   // it changes the analysis settings
+        }
         for (std::size_t i = 1; i < models.size(); ++i)
             if (models[i].first != models.front().first &&
                 !same_model(models.front().second.system, models[i].second.system, speeds))
