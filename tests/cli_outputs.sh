@@ -120,6 +120,27 @@ if [ "$rc" -ne 1 ] || ! cmp -s "$w/history.csv" "$dir/before" || ! grep -qF -- "
 fi
 if ls -a "$w" | grep -q '^\.history\.csv\..*\.tmp$'; then echo "FAIL: a temporary file was left behind"; fail=1; fi
 
+# A read-only folder: refused before the run, the old file byte-identical. Root writes
+# anywhere, so the command runs as nobody where the test runs as root.
+ro=$(mktemp -d)
+cp "$data/three_disk_rotor.toml" "$ro/"
+printf 'old rows\n' > "$ro/history.csv"
+chmod 644 "$ro"/*
+chmod 555 "$ro"
+as_user=()
+[ "$(id -u)" -eq 0 ] && command -v setpriv > /dev/null && as_user=(setpriv --reuid=65534 --regid=65534 --clear-groups)
+if [ "$(id -u)" -ne 0 ] || [ ${#as_user[@]} -gt 0 ]; then
+    "${as_user[@]}" "$cli" transient "$ro/three_disk_rotor.toml" --speed 100 --node 3 --duration 0.02 \
+        --out "$ro/history.csv" > /dev/null 2> "$dir/err"
+    rc=$?
+    if [ "$rc" -ne 2 ] || [ "$(cat "$ro/history.csv")" != "old rows" ] || ! grep -q "is not writable" "$dir/err"; then
+        echo "FAIL: --out into a read-only folder: exit $rc (expected 2), or the old file changed"
+        sed 's/^/    /' "$dir/err"; fail=1
+    fi
+fi
+chmod 755 "$ro"
+rm -rf "$ro"
+
 # A scene named by a bare file name resolves its matrices from the working folder.
 (cd "$w/ross" && "$cli" eig scene.toml --speed 1 > /dev/null 2> "$dir/err") || {
     echo "FAIL: eig scene.toml from the scene's own folder"; sed 's/^/    /' "$dir/err"; fail=1; }
