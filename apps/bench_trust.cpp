@@ -28,8 +28,11 @@ int main(int argc, char** argv) {
         Table t({"case", "speeds", "modes", "campbell_s", "bare_solves_s", "ratio", "inserted", "ambiguous",
                  "rigid_body", "stability_s", "unstable"});
         t.title = "Campbell diagram of the exported rotor (0-1000 rad/s, one thread) against 101 bare dense QZ solves";
-        for (const auto& [name, sys] : {std::pair<std::string, const GyroscopicSystem*>{"ross undamped", &sc.system},
-                                        {"ross damped bearings", &damped}}) {
+        // Named, not a structured binding: lambdas below capture `sys` (clang 14 refuses bindings there).
+        for (const auto& entry : {std::pair<std::string, const GyroscopicSystem*>{"ross undamped", &sc.system},
+                                  {"ross damped bearings", &damped}}) {
+            const std::string& name = entry.first;
+            const GyroscopicSystem* sys = entry.second;
             for (int modes : {6, 0}) {
                 CampbellOptions co;
                 co.modes = modes;
@@ -52,8 +55,10 @@ int main(int argc, char** argv) {
         Table v({"case", "speed", "modes", "shift", "raw_max_backward_error", "refined_pairs",
                  "verified_max_backward_error", "max_rel_diff_to_qz", "seconds"});
         v.title = "sparse solver (target 0): backward errors before and after verification, against dense QZ";
-        for (const auto& [name, sys] : {std::pair<std::string, const GyroscopicSystem*>{"ross undamped", &sc.system},
-                                        {"ross damped bearings", &damped}}) {
+        for (const auto& entry : {std::pair<std::string, const GyroscopicSystem*>{"ross undamped", &sc.system},
+                                  {"ross damped bearings", &damped}}) {
+            const std::string& name = entry.first;
+            const GyroscopicSystem* sys = entry.second;
             for (double w : {0.0, 500.0, 1000.0}) {
                 SparseEigenOptions o;
                 o.modes = 10;
