@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The fuzz targets of a sanitized clang build (tests/sanitize.sh builds them in
 # its own tree, -DGYROKIT_FUZZ=ON): each run on 20,000 inputs from the seeded
-# corpus with a fixed seed. Usage: smoke.sh FUZZ_BUILD_DIR
+# corpus with a fixed seed. Usage: smoke.sh BUILD_DIR (the tree built with -DGYROKIT_FUZZ=ON)
 set -u
 build=$1
 work=$(mktemp -d)
