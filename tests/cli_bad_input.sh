@@ -261,7 +261,7 @@ expect "--dofs 'y3,y3': 'y3' is listed twice" transient "$td" --speed 100 --dofs
 expect "--stiffness '1e-320:1:3': allowed:" critical-map "$td" --stiffness 1e-320:1:3
 expect "takes 6.28e+300 steps; allowed: at most --max-steps" transient "$td" --speed 100 --node 3 --dt 1e-300
 expect "0 <= K < N <= 1000000" screen "$data/screen_centrifuge.toml" --shard 0/10000000
-expect "--gravity '0x10': allowed: a number from 0 to 1e6" static "$td" --gravity 0x10
+expect "--gravity '0x10': allowed: a number from 0 to 1e+06" static "$td" --gravity 0x10
 expect "--gravity '1e-310': a subnormal number" static "$td" --gravity 1e-310
 expect "has the component 1e+200; allowed: finite magnitudes up to 1e+15" static "$td" --load 3:0:1e200
 expect "--speeds '0x10:20:3': expected FROM:TO:N" campbell "$td" --speeds 0x10:20:3

@@ -66,7 +66,7 @@ std::vector<Command> add_static_commands(CLI::App& app) {
                  const TableFormat format = parse_format(o->common);
                  check_plot_path(o->common.plot);
                  StaticOptions opt;
-                 opt.gravity = parse_decimal(o->gravity, "--gravity", "a number from 0 to 1e6 (m/s^2)");
+                 opt.gravity = parse_decimal(o->gravity, "--gravity", fmt::format("a number from 0 to {:g} (m/s^2)", kMaxGravity));
                  for (const std::string& l : o->loads) opt.loads.push_back(parse_load(l));
                  const Scene sc = load_motion_scene(o->common);
                  const StaticResult s = static_study(sc, opt);
