@@ -39,6 +39,7 @@ class System:
 class Scene:
     path: str
     title: str
+    inputs: list[str]   # the files read to build it: no result of it is saved over one
     length_unit: str   # "m" or "mm": how the scene states lengths (tables print them so)
     model_type: str
     system: System
