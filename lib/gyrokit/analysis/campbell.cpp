@@ -286,6 +286,15 @@ Tracking track(const SolverFactory& make, CampbellOptions co, const std::vector<
     return t;
 }
 
+std::optional<LeastDamped> least_damped(const CampbellDiagram& cd) {
+    std::optional<LeastDamped> out;
+    for (const Branch& b : cd.branches)
+        for (const BranchPoint& p : b.points)
+            if (p.mode.frequency() > 0 && (!out || p.mode.damping_ratio() < out->point.mode.damping_ratio()))
+                out = LeastDamped{b.id, p};
+    return out;
+}
+
 CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>& speeds, const CampbellOptions& opt) {
     return campbell(dense_solver(sys), speeds, opt);
 }

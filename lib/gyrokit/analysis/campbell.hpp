@@ -11,6 +11,7 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace gyrokit {
@@ -110,6 +111,14 @@ CampbellDiagram campbell(const GyroscopicSystem& sys, const std::vector<double>&
 // decide whether a step is ambiguous.
 CampbellDiagram campbell(const SolverFactory& solver, const std::vector<double>& speeds,
                          const CampbellOptions& opt = {});
+
+// The least damped oscillating point among the branches the diagram shows
+// (CampbellDiagram::branches): its branch id and point.
+struct LeastDamped {
+    int branch = 0;
+    BranchPoint point;
+};
+std::optional<LeastDamped> least_damped(const CampbellDiagram& cd);
 
 // Matching cost between two modes (0 = identical shape and eigenvalue).
 double match_cost(const Mode& a, std::complex<double> predicted, const Mode& b);

@@ -58,6 +58,7 @@ struct Shared {
     std::map<double, QuadraticSpectrum> anchors;   // the full solves, kept to the band
     std::map<double, Solved> anchor_tracks;
     std::map<double, QuadraticSpectrum> checks;    // eigenvalues alone (modes without vectors)
+    std::shared_ptr<WorkCounter> work;              // the factory's
 };
 
 // What a full solve (with the slopes of its modes) leaves to continue from.
@@ -112,6 +113,7 @@ struct Frame {
     // first round that already reaches the right's target leaves the left vector one
     // plain round from its start.
     bool second_order = false;
+    WorkCounter* work = nullptr;   // counts the steps taken in parts (the continuation's)
 };
 
 Frame frame_of(const Shared& sh, int threads = 1) {
@@ -124,6 +126,7 @@ Frame frame_of(const Shared& sh, int threads = 1) {
     f.band = sh.opt.band;
     f.keep_left = sh.opt.eig.left_vectors;
     f.second_order = true;
+    f.work = sh.work.get();
     return f;
 }
 
@@ -307,6 +310,7 @@ std::optional<QuadraticSpectrum> branch_steps(const Frame& fr, const Solved& fro
     if (!branch_steps(fr, from, 0.5 * (from.w + w), mid, halvings - 1)) return std::nullopt;
     std::optional<QuadraticSpectrum> s = branch_steps(fr, mid, w, next, halvings - 1);
     if (s && fr.min_mac > 0.0 && !keeps_shapes(from, next, fr.min_mac)) return std::nullopt;
+    if (s && fr.work) ++fr.work->split_steps;
     return s;
 }
 
@@ -440,6 +444,7 @@ QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w) {
     if (state.last && sh.opt.along_branches)
         if (std::optional<QuadraticSpectrum> s = branch_steps(frame_of(sh, state.threads), *state.last, w, next))
             if (check == sh.checks.end() || accounts(next, check->second, sh.opt.band)) {
+                ++sh.work->steps;
                 keep(next);
                 return std::move(*s);
             }
@@ -452,6 +457,8 @@ QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w) {
             return std::move(*s);
         }
     // Verified by the full solve itself (a step near a crossing, a double eigenvalue splitting).
+    ++sh.work->full_solves;
+    ++sh.work->local_solves;
     QuadraticSpectrum s = full_solve(sh, w, &next);
     keep(next);
     return s;
@@ -479,6 +486,7 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     sh->model = model;
     sh->opt = opt;
     sh->grid = speeds;
+    sh->work = std::make_shared<WorkCounter>();
     const int n = model->size();
     ContinuationReport rep;
     rep.dofs = n;
@@ -496,6 +504,8 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     if (!is_anchor(speeds.back()) && (checks.empty() || checks.back() != speeds.back())) checks.push_back(speeds.back());
     rep.anchors = anchors;
     rep.checks = checks;
+    sh->work->full_solves += static_cast<long>(anchors.size());
+    sh->work->eigenvalue_checks += static_cast<long>(checks.size());
     EigenOptions full = opt.eig;
     full.left_vectors = true;
     const SolverFactory dense = dense_solver(*model, full);
@@ -585,9 +595,11 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
 
     SolverFactory f;
     f.dofs = n;
+    f.work = sh->work;
     // A root search follows its branch's mode alone (a few factorizations of the full
     // pencil) rather than stepping every mode of the band.
-    f.follow = [model, tol = opt.tolerance](const Mode& from, double w, cd predicted, double reach) {
+    f.follow = [model, tol = opt.tolerance, work = sh->work](const Mode& from, double w, cd predicted, double reach) {
+        ++work->followed;
         return follow_mode([&model](double v) { return model->sparse_at_speed(v); }, model->whirl_pairs, from, w,
                            predicted, reach, tol);
     };

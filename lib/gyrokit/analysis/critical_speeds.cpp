@@ -51,11 +51,19 @@ template <class Holds, class Refine, class Emit>
 void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const Holds& holds, const Refine& refine,
                    Workers workers, const Emit& emit) {
     std::vector<Interval> found;
-    for (const Branch& b : cd.branches) {
+    // The shown branches and the other modes up to the band (judged, with their vectors).
+    std::vector<const Branch*> judged;
+    for (const Branch& b : cd.branches) judged.push_back(&b);
+    for (const Branch& b : cd.untracked)
+        if (!b.points.empty() && b.points.front().mode.right.size() > 0) judged.push_back(&b);
+    for (const Branch* bp : judged) {
+        const Branch& b = *bp;
         for (size_t i = 0; i + 1 < b.points.size(); ++i) {
             const Mode& m0 = b.points[i].mode;
             const Mode& m1 = b.points[i + 1].mode;
-            if (m0.whirl == Whirl::Real || m1.whirl == Whirl::Real) continue;
+            // A pair that turns overdamped (or back) between two points still crosses a line
+            // it was above: Im lambda falls continuously to 0 at the exceptional point.
+            if (m0.whirl == Whirl::Real && m1.whirl == Whirl::Real) continue;
             Interval iv{&b, i, 0.0, 0.0};
             if (holds(m0, b.points[i].speed, m1, b.points[i + 1].speed, iv)) found.push_back(iv);
         }
@@ -141,6 +149,8 @@ std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const Ca
             // A mode that moves no whirl pair (axial, torsional) is not excited by the
             // rotor's unbalance or the spin harmonics: no critical speed.
             if (m0.whirl == Whirl::None && m1.whirl == Whirl::None) return false;
+            if ((m0.whirl == Whirl::None && m1.whirl == Whirl::Real) || (m0.whirl == Whirl::Real && m1.whirl == Whirl::None))
+                return false;
             iv.g0 = g(m0, w0);
             iv.g1 = g(m1, w1);
             if (iv.g0 == 0.0 && iv.i > 0) return false;   // counted as the end of the previous interval
@@ -151,7 +161,10 @@ std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const Ca
             return Root{find_root([&](double x) { return g(mode_at(x), x); }, p[iv.i].speed, p[iv.i + 1].speed), 0.0};
         };
         scan_branches(solver, cd, holds, refine, workers, [&](const Branch& b, double w, double, Mode m) {
-            out.push_back({w, k, b.id, std::move(m)});
+            // A root is a crossing only where the mode lies on the line: a branch that jumps
+            // between two points (a real eigenvalue matched to a pair far above it) changes
+            // the sign of Im lambda - k w without crossing, and the search ends at the jump.
+            if (std::abs(g(m, w)) <= 1e-6 * k * std::max(w, 1.0)) out.push_back({w, k, b.id, std::move(m)});
         });
     }
     std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });

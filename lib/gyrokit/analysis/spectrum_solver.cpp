@@ -15,6 +15,18 @@
 
 namespace gyrokit {
 
+SolverWork WorkCounter::snapshot() const {
+    SolverWork w;
+    w.full_solves = full_solves.load();
+    w.eigenvalue_checks = eigenvalue_checks.load();
+    w.window_solves = window_solves.load();
+    w.steps = steps.load();
+    w.split_steps = split_steps.load();
+    w.local_solves = local_solves.load();
+    w.followed = followed.load();
+    return w;
+}
+
 SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig) {
     sys.validate("dense solver: the system");
     if (sys.size() > kDenseLimit)
@@ -25,9 +37,10 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
     const auto model = std::make_shared<const GyroscopicSystem>(sys);
     SolverFactory f;
     f.dofs = model->size();
-    f.make = [model, eig]() -> SpectrumSolver {
-                return [model, eig](double w) {
+    f.make = [model, eig, work = f.work]() -> SpectrumSolver {
+                return [model, eig, work](double w) {
                     throw_if_interrupted();
+                    ++work->full_solves;
                     EigenOptions o = eig;
                     o.left_vectors = true;   // for the slopes
                     QuadraticSpectrum s = solve_at_speed(*model, w, o);
@@ -153,22 +166,28 @@ QuadraticSpectrum to_spectrum(SparseSpectrum s, const SparsePencil& p) {
     return q;
 }
 
-SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vector<std::pair<int, int>> whirl_pairs,
-                            const SparseEigenOptions& opt, bool reuse) {
+namespace {
+
+// The sparse factory whose solvers count their work in `work`.
+SolverFactory sparse_factory(std::function<SparsePencil(double)> pencil, std::vector<std::pair<int, int>> whirl_pairs,
+                             const SparseEigenOptions& opt, bool reuse, std::shared_ptr<WorkCounter> work) {
     SolverFactory f;
     f.thread_safe = false;
-    // A window centred on one mode's frequency, where a root search follows that mode.
-    f.centred = [pencil, whirl_pairs, opt](double nu) {
+    f.work = work;
+    // A window centred on one mode's frequency, where a root search follows that mode
+    // (counted with the sweep's work).
+    f.centred = [pencil, whirl_pairs, opt, work](double nu) {
         SparseEigenOptions o = opt;
         o.shift = {0.0, nu};
         o.shift_order = 0.0;
-        return sparse_solver(pencil, whirl_pairs, o, true).make();
+        return sparse_factory(pencil, whirl_pairs, o, true, work).make();
     };
-    f.follow = [pencil, whirl_pairs, tol = opt.verify_tolerance](const Mode& from, double w,
-                                                                  std::complex<double> predicted, double reach) {
+    f.follow = [pencil, whirl_pairs, tol = opt.verify_tolerance, work](const Mode& from, double w,
+                                                                        std::complex<double> predicted, double reach) {
+        ++work->followed;
         return follow_mode(pencil, whirl_pairs, from, w, predicted, reach, tol);
     };
-    f.walk = [pencil, whirl_pairs, opt, reuse](int threads) -> SpectrumSolver {
+    f.walk = [pencil, whirl_pairs, opt, reuse, work](int threads) -> SpectrumSolver {
         // The state vectors [lambda x; x] of the last speed's modes, summed: a
         // start vector rich in the wanted invariant subspace.
         auto start = std::make_shared<Eigen::VectorXcd>();
@@ -177,7 +196,7 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
         // The last speed's window with left vectors and slopes: the next speed continues its
         // modes along their branches (a few factorizations each) where every one verifies.
         auto last = std::make_shared<std::optional<QuadraticSpectrum>>();
-        return [pencil, whirl_pairs, opt, reuse, start, rigid, last, threads](double w) {
+        return [pencil, whirl_pairs, opt, reuse, start, rigid, last, threads, work](double w) {
             throw_if_interrupted();
             const auto keep = [&](QuadraticSpectrum q) {
                 *last = q;
@@ -188,8 +207,11 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
             // A moving window (shift_order != 0) takes other modes in at each speed: solved afresh.
             if (reuse && opt.shift_order == 0.0 && *last)
                 if (std::optional<QuadraticSpectrum> q =
-                        continue_window(pencil, whirl_pairs, **last, w, opt.verify_tolerance, threads))
+                        continue_window(pencil, whirl_pairs, **last, w, opt.verify_tolerance, threads)) {
+                    ++work->steps;
                     return keep(std::move(*q));
+                }
+            ++work->window_solves;
             const SparsePencil p = pencil(w);
             SparseEigenOptions o = opt;
             o.shift += std::complex<double>(0.0, opt.shift_order * w);   // continued along nu + k w
@@ -226,6 +248,13 @@ SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vec
     // speeds are independent: blocks of them go to the workers.
     if (!reuse || opt.shift_order != 0.0) f.walk = nullptr;
     return f;
+}
+
+}  // namespace
+
+SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vector<std::pair<int, int>> whirl_pairs,
+                            const SparseEigenOptions& opt, bool reuse) {
+    return sparse_factory(std::move(pencil), std::move(whirl_pairs), opt, reuse, std::make_shared<WorkCounter>());
 }
 
 SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse) {

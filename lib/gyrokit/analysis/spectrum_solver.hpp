@@ -12,7 +12,9 @@
 #include <gyrokit/eig/sparse_eigensolver.hpp>
 #include <gyrokit/analysis/workers.hpp>
 
+#include <atomic>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,8 +24,30 @@ namespace gyrokit {
 struct ContinuationOptions;   // analysis/continuation.hpp
 struct ContinuationReport;
 
+// What the solvers of one factory did, counted as they work: the cost of a
+// study in units a reader can check (a full solve of every mode costs about
+// one dense QZ; a step a few factorizations per mode; a check the eigenvalues
+// alone). Counted in this process: solves in worker processes are not.
+struct SolverWork {
+    long full_solves = 0;        // every mode at one speed (dense QZ with vectors)
+    long eigenvalue_checks = 0;  // the eigenvalues alone at one speed (continuation checks)
+    long window_solves = 0;      // a window of modes by ARPACK shift-invert
+    long steps = 0;              // speeds reached along the branches (verified corrections)
+    long split_steps = 0;        // of them, steps taken in parts (a half or a quarter)
+    long local_solves = 0;       // full solves where a step did not verify (counted in full_solves too)
+    long followed = 0;           // single modes followed to a speed (root searches)
+};
+
+struct WorkCounter {
+    std::atomic<long> full_solves{0}, eigenvalue_checks{0}, window_solves{0}, steps{0}, split_steps{0},
+        local_solves{0}, followed{0};
+    SolverWork snapshot() const;
+};
+
 struct SolverFactory {
     std::function<SpectrumSolver()> make;
+    // Shared by the solvers this factory makes (and the copies of the factory).
+    std::shared_ptr<WorkCounter> work = std::make_shared<WorkCounter>();
     // ARPACK keeps its iteration state in Fortran SAVE variables, so two
     // ARPACK runs must not share a process: such solvers run in parallel in
     // worker processes instead of threads.

@@ -1,0 +1,32 @@
+// The fast path on rotors as engineers write them: a seeded subset of the
+// random FE rotor family (apps/rotor_family.hpp; the whole family, with timed
+// costs, is gyrokit-bench-family). Each rotor on the default dense path: a few
+// full solves (the solver's own count), no ambiguous step, every 1x crossing
+// inside the range found in its bracket of an independent count on a grid of
+// full solves, whatever the mode count K, and the least-damped mode among the
+// shown branches.
+#include "rotor_family.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace gyrokit;
+
+TEST_CASE("rotor family: crossings, counts and the least-damped mode on seeded random FE rotors",
+          "[continuation][family]") {
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+        const family::RotorCase c = family::random_rotor(seed, false);
+        INFO(c.description);
+        // The cost is timed by the benchmark; here the solver's counts stand for it.
+        const family::CaseResult r = family::run_case(c, std::numeric_limits<double>::infinity(), 401);
+        INFO("dofs " << r.dofs << ", full solves " << r.work.full_solves << ", local " << r.work.local_solves
+                     << ", steps " << r.work.steps << ", crossings " << r.crossings << " of " << r.expected);
+        CHECK(r.solver == "dense");
+        CHECK(r.work.full_solves <= 10);
+        CHECK(r.work.steps >= static_cast<long>(c.speeds.size()) - 10);
+        CHECK(r.ambiguous == 0);
+        CHECK(r.expected > 0);
+        CHECK(r.brackets);
+        CHECK(r.least_shown);
+        if (c.modes > 0) CHECK(r.shown == c.modes);
+    }
+}
