@@ -40,8 +40,8 @@ header "speed_rpm,mode,re_1_s,im_rad_s,frequency_rpm" campbell "$scene" --units 
 header "speed_hz,mode,whirl,harmonic,frequency_hz" critical "$scene" --units hz
 "$cli" eig "$scene" --speed 3 --units Hz --format json | grep -q '"frequency_hz":' || { echo "FAIL: Hz JSON keys"; fail=1; }
 
-# The summary's stability verdict covers every mode, also those --modes leaves untracked.
-"$cli" campbell "$data/fe_rotor.toml" --modes 1 2> /dev/null | grep -q "^stability  *mode 2 unstable from 300 rad/s to 4000 rad/s (not tracked: --modes 0 tracks it)" ||
+# The summary's stability verdict covers every mode up to f_cut, also those --modes does not show.
+"$cli" campbell "$data/fe_rotor.toml" --modes 1 2> /dev/null | grep -q "^stability  *mode 2 unstable from 300 rad/s to 4000 rad/s (beyond the 1 shown)" ||
     { echo "FAIL: campbell verdict of untracked modes"; fail=1; }
 "$cli" campbell "$data/fe_rotor.toml" --modes 2 --solver sparse 2> /dev/null | grep -q "modes beyond the 2 tracked are not checked" ||
     { echo "FAIL: campbell verdict of a sparse window"; fail=1; }
@@ -56,15 +56,15 @@ grep -q "^ *803\.7[01][0-9]* .* 2  unstable" "$dir/c336" || { echo "FAIL: compre
 "$cli" stability "$data/compressor336.toml" --solver sparse 2> /dev/null | grep -q "^ *803\.7[01][0-9]* .* 2  unstable" ||
     { echo "FAIL: compressor336 sparse threshold"; fail=1; }
 
-# A dense diagram of fewer modes than DOFs still judges every mode: a divergent (real,
-# positive) eigenvalue ranks after the modes that vibrate but is not left out.
+# A dense diagram of fewer modes than DOFs still judges a divergent (real, positive)
+# eigenvalue, whatever its size: it ranks after the modes that vibrate but is not left out.
 mkdir -p "$dir/div"
 printf '%%%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 1\n2 2 1\n3 3 1\n' > "$dir/div/M.mtx"
 printf '%%%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 100\n2 2 -40000\n3 3 1\n' > "$dir/div/K.mtx"
 printf '%%%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 0.1\n2 2 0\n3 3 100\n' > "$dir/div/D.mtx"
 printf '[model]\ntype = "matrices"\nM = "M.mtx"\nK = "K.mtx"\nD = "D.mtx"\n[speeds]\nfrom = 0\nto = 10\ncount = 5\n' > "$dir/div/div.toml"
 for m in 1 3; do
-    "$cli" campbell "$dir/div/div.toml" --modes $m 2> /dev/null | grep -q "^stability  *mode 5 unstable from 0 rad/s to 10 rad/s" ||
+    "$cli" campbell "$dir/div/div.toml" --modes $m 2> /dev/null | grep -Eq "^stability  *mode [0-9]+ unstable from 0 rad/s to 10 rad/s" ||
         { echo "FAIL: campbell --modes $m misses the divergent mode"; fail=1; }
 done
 

@@ -233,55 +233,43 @@ double excitation_band(const std::vector<double>& speeds, const std::vector<int>
 }
 
 CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std::vector<double>& speeds,
-                                 const std::vector<int>& harmonics, Workers threads) {
+                                 const std::vector<int>& harmonics, Workers threads, std::optional<double> f_cut) {
     CampbellOptions co;
     co.modes = modes == kModesInRange ? (plan.kind == SolverKind::Sparse ? plan.modes : 0) : plan.modes;
-    if (modes == kModesInRange) co.band = excitation_band(speeds, harmonics);
+    // Every mode (modes = 0) is judged wherever it is; else the modes up to f_cut.
+    if (modes != 0) co.band = f_cut.value_or(excitation_band(speeds, harmonics));
     co.threads = threads;
     return co;
 }
 
-SolverFactory tracking_solver(const SolverFactory& make, const CampbellOptions& co, const std::vector<double>& speeds) {
-    // The K lowest modes: track() puts them on the continuation where it pays, else full solves.
-    if (!std::isfinite(co.band) || co.modes != 0 || !make.continued || speeds.empty()) return make;
-    ContinuationOptions o;
-    o.band = co.band;
-    o.workers = co.threads;
-    return make.continued(speeds, o, nullptr);
-}
-
 namespace {
 
-// Whether each reported branch runs through every speed and stays below 90 % of the band.
-bool branches_inside(const CampbellDiagram& cd) {
-    for (const Branch& b : cd.branches) {
-        if (b.points.size() != cd.speeds.size()) return false;
-        for (const BranchPoint& p : b.points)
-            if (!(frequency_rank(p.mode).second <= 0.9 * cd.band)) return false;
-    }
-    return true;
+// The continuation's options for a tracking with `co`: the band f_cut, widened to
+// hold the K shown modes where K is given.
+ContinuationOptions continuation_options(const CampbellOptions& co) {
+    ContinuationOptions o;
+    o.band = co.band;
+    o.lowest = std::max(0, co.modes);
+    o.workers = co.threads;
+    return o;
 }
 
 }  // namespace
 
+SolverFactory tracking_solver(const SolverFactory& make, const CampbellOptions& co, const std::vector<double>& speeds) {
+    if (!std::isfinite(co.band) || !make.continued || speeds.empty()) return make;
+    return make.continued(speeds, continuation_options(co), nullptr);
+}
+
 Tracking track(const SolverFactory& make, CampbellOptions co, const std::vector<double>& speeds) {
-    if (co.modes > 0 && !std::isfinite(co.band) && make.continued && speeds.size() >= 2 &&
-        make.dofs >= kLowestContinuationDofs) {
-        ContinuationOptions o;
-        o.lowest = co.modes;
-        o.workers = co.threads;
-        co.band_of_modes = true;
-        for (int widen = 0; widen <= 3; ++widen, o.band_margin *= 2.0) {
-            ContinuationReport rep;
-            Tracking t{make.continued(speeds, o, &rep), {}};
-            co.band = rep.band;
-            t.diagram = campbell(t.solver, speeds, co);
-            if (branches_inside(t.diagram)) return t;
-        }
-        co.band = std::numeric_limits<double>::infinity();   // every mode at every speed, as the dense solver gives
-        co.band_of_modes = false;
-    }
-    Tracking t{tracking_solver(make, co, speeds), {}};
+    if (!std::isfinite(co.band) || !make.continued || speeds.empty()) return {make, campbell(make, speeds, co)};
+    // The modes up to f_cut and, where K is given, up to the band that holds the K
+    // lowest: one continuation, whatever K is (a shown branch that rises out of the
+    // band ends there; it is then above f_cut, where no excitation line runs).
+    ContinuationReport rep;
+    Tracking t{make.continued(speeds, continuation_options(co), &rep), {}};
+    co.band_of_modes = rep.band > co.band;
+    co.band = rep.band;
     t.diagram = campbell(t.solver, speeds, co);
     return t;
 }
@@ -316,7 +304,7 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
     SpectrumSolver refine = make();
     Tracker t{refine, opt, out, {}, grid.front().partial, {}, 1};
     t.append(speeds.front(), std::move(grid.front()), {});
-    if (opt.modes > 0 && !t.window) {   // watch the K lowest at the first speed, two more for ties at the edge
+    if (opt.modes > 0 && !t.window && !std::isfinite(opt.band)) {   // watch the K lowest at the first speed, two more for ties at the edge
         std::vector<size_t> order(t.watched.size());
         for (size_t b = 0; b < order.size(); ++b) order[b] = b;
         std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
@@ -331,7 +319,7 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
     // Number the branches by frequency at their first point; keep the K lowest
     // among those present at the first speed.
     std::vector<Branch>& br = out.branches;
-    if (opt.modes == 0 || t.window || opt.band_of_modes) out.band = opt.band;
+    if (opt.modes == 0 || t.window || std::isfinite(opt.band)) out.band = opt.band;
     out.band_of_modes = opt.band_of_modes && std::isfinite(opt.band);
     out.partial = t.window;
     std::stable_sort(br.begin(), br.end(), [&](const Branch& a, const Branch& b) {
@@ -346,7 +334,34 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
         }
         return false;
     });
-    if (opt.modes > 0 && !t.window && static_cast<int>(br.size()) > opt.modes) {
+    if (std::isfinite(opt.band) && !t.window) {
+        // The modes up to the band are judged: the K lowest at the first speed shown
+        // (branches), the others kept with their vectors (untracked: their crossings and
+        // stability changes are found too); those above the band at every speed are out
+        // of range, named and not judged.
+        const auto in_range = [&](const Branch& b) {
+            return std::any_of(b.points.begin(), b.points.end(),
+                               [&](const BranchPoint& p) {
+                                   const auto [rank, f] = frequency_rank(p.mode);
+                                   return f <= opt.band || (rank == 1 && p.mode.lambda.real() > 0.0);   // divergent
+                               });
+        };
+        const auto split = std::stable_partition(br.begin(), br.end(), in_range);
+        for (auto it = split; it != br.end(); ++it) {
+            for (auto& p : it->points) p.mode.right.resize(0), p.mode.left.resize(0);
+            out.out_of_range.push_back(std::move(*it));
+        }
+        br.erase(split, br.end());
+        if (opt.modes > 0 && static_cast<int>(br.size()) > opt.modes) {
+            for (size_t i = static_cast<size_t>(opt.modes); i < br.size(); ++i) {
+                br[i].id = static_cast<int>(i + 1);
+                out.untracked.push_back(std::move(br[i]));
+            }
+            br.resize(static_cast<size_t>(opt.modes));
+        }
+        for (size_t i = 0; i < out.out_of_range.size(); ++i)
+            out.out_of_range[i].id = static_cast<int>(br.size() + out.untracked.size() + i + 1);
+    } else if (opt.modes > 0 && !t.window && static_cast<int>(br.size()) > opt.modes) {
         // The others were tracked too (a dense spectrum is complete): kept by eigenvalue for a
         // stability verdict over every mode, numbered on from K + 1.
         for (size_t i = static_cast<size_t>(opt.modes); i < br.size(); ++i) {

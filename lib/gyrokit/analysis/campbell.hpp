@@ -18,12 +18,12 @@ namespace gyrokit {
 
 // The solver (its method, sparse window) is the SolverFactory's; these are the tracking's.
 struct CampbellOptions {
-    int modes = 0;            // keep the K lowest branches by frequency at the first speed (oscillating
-                              // ones first, real eigenvalues after them); 0 = all.
-                              // Dense: only these (and the next two) decide whether a step is ambiguous
-    // rad/s: with modes = 0, the modes whose frequency stays above it over the whole
-    // range are out of range (CampbellDiagram::out_of_range: named, not judged);
-    // infinity: every mode. excitation_band gives the engineer's default.
+    int modes = 0;            // show the K lowest branches by frequency at the first speed (oscillating
+                              // ones first, real eigenvalues after them); 0 = all. With a band the
+                              // others up to it are judged too (CampbellDiagram::untracked)
+    // rad/s, f_cut: the modes whose frequency stays above it over the whole range are
+    // out of range (CampbellDiagram::out_of_range: named, not judged); infinity: every
+    // mode. excitation_band gives the engineer's default.
     double band = std::numeric_limits<double>::infinity();
     // The band holds the K lowest modes (track, ContinuationOptions::lowest), not the excitation range.
     bool band_of_modes = false;
@@ -56,9 +56,11 @@ struct CampbellDiagram {
     // verdicts cover the tracked modes only.
     bool partial = false;
     std::vector<std::string> notes; // the solvers' notes, each once
-    // Dense with opt.modes = K: the branches beyond the K reported, eigenvalues only
-    // (no vectors), ids K + 1 on; a dense spectrum is complete, so they cost nothing
-    // more and let a stability verdict cover every mode.
+    // With opt.modes = K: the branches beyond the K shown, ids K + 1 on. With a band
+    // (f_cut; the modes in range), those up to it, with their vectors: critical
+    // speeds, stability changes and verdicts cover them, whatever K is. Without one
+    // (every mode at every speed), all the others by eigenvalue alone (a stability
+    // verdict over every mode).
     std::vector<Branch> untracked;
     // With a band (CampbellOptions::band): the branches above it at every speed,
     // eigenvalues only, ids after the reported ones. Not judged by any verdict.
@@ -78,10 +80,12 @@ constexpr double kBandMargin = 1.5;
 double excitation_band(const std::vector<double>& speeds, const std::vector<int>& harmonics);
 
 // The tracking options every front end uses: `modes` as asked (kModesInRange:
-// every mode in the excitation band of the speeds and harmonics; 0: every mode;
-// K: the K lowest at the first speed) on the solver `plan`.
+// every mode up to f_cut shown; 0: every mode, shown and judged; K: the K lowest at
+// the first speed shown, every mode up to f_cut judged) on the solver `plan`;
+// f_cut by default excitation_band of the speeds and harmonics.
 CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std::vector<double>& speeds,
-                                 const std::vector<int>& harmonics, Workers threads = {});
+                                 const std::vector<int>& harmonics, Workers threads = {},
+                                 std::optional<double> f_cut = std::nullopt);
 
 // The solver a tracking over `speeds` with `co` stands on, and the critical
 // speeds and stability thresholds after it: with a band (the modes in range) and
@@ -95,10 +99,9 @@ struct Tracking {
     CampbellDiagram diagram;
 };
 
-// The Campbell diagram every front end draws: on tracking_solver; and for the K
-// lowest modes of a dense solver, on the continuation in a band that holds them
-// (ContinuationOptions::lowest), widened (x 2) while a reported branch leaves it or reaches
-// within 10 % of its edge, and after three widenings a full solve at every speed.
+// The Campbell diagram every front end draws: on tracking_solver, that is for a
+// dense solver with a band one continuation over the modes up to f_cut, widened
+// (ContinuationOptions::lowest) to hold the K shown where K is given.
 Tracking track(const SolverFactory& make, CampbellOptions co, const std::vector<double>& speeds);
 
 // Dense: every mode of the system, by the scaled QZ (another method:
@@ -113,7 +116,7 @@ CampbellDiagram campbell(const SolverFactory& solver, const std::vector<double>&
                          const CampbellOptions& opt = {});
 
 // The least damped oscillating point among the branches the diagram shows
-// (CampbellDiagram::branches): its branch id and point.
+// (CampbellDiagram::branches; the summary names it): its branch id and point.
 struct LeastDamped {
     int branch = 0;
     BranchPoint point;

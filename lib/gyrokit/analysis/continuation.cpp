@@ -19,7 +19,10 @@ namespace gyrokit {
 using cd = std::complex<double>;
 
 bool within_band(const Mode& m, double band, double real_tol) {
-    return std::abs(m.lambda.imag()) <= real_tol ? std::abs(m.lambda) <= band : m.lambda.imag() <= band;
+    // A divergent (real, positive) eigenvalue is kept whatever its size: it is an
+    // instability, and there is at most one per negative stiffness.
+    return std::abs(m.lambda.imag()) <= real_tol ? std::abs(m.lambda) <= band || m.lambda.real() > 0.0
+                                                 : m.lambda.imag() <= band;
 }
 
 namespace {
@@ -469,7 +472,8 @@ QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w) {
 SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model, const std::vector<double>& speeds,
                                   const ContinuationOptions& opt, ContinuationReport* report) {
     if (opt.lowest < 0) throw InputError(fmt::format("continuation lowest {}: allowed: 0 or more modes", opt.lowest));
-    if (opt.lowest > 0 ? !(opt.band_margin >= 1.0) || !std::isfinite(opt.band_margin)
+    if (opt.lowest > 0 ? !(opt.band_margin >= 1.0) || !std::isfinite(opt.band_margin) || !(opt.band >= 0.0) ||
+                             !std::isfinite(opt.band)
                        : !(opt.band > 0.0) || !std::isfinite(opt.band))
         throw InputError(fmt::format("continuation band {} (margin {}): allowed: a finite frequency > 0 (rad/s), a "
                                      "margin >= 1",
@@ -553,7 +557,7 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
         if (!(top > 0.0) || !std::isfinite(top))
             throw SolverError(fmt::format("continuation: no band holds the {} lowest modes (largest frequency {})",
                                           opt.lowest, top));
-        sh->opt.band = opt.band_margin * top;
+        sh->opt.band = std::max(opt.band, opt.band_margin * top);
     }
     const double band = sh->opt.band;
     rep.band = band;

@@ -18,9 +18,10 @@ namespace gyrokit {
 
 struct ContinuationOptions {
     double band = 0;            // rad/s: the modes kept (frequency <= band; a real eigenvalue |lambda| <= band)
-    // > 0: the band is chosen to hold this many lowest modes: band_margin times the
-    // largest frequency (|lambda| of a real eigenvalue) among the lowest + 2 by
-    // frequency_rank at the anchors and checks (ContinuationReport::band); `band` is then unused.
+    // > 0: the band is widened to hold this many lowest modes: at least band_margin
+    // times the largest frequency (|lambda| of a real eigenvalue) among the lowest + 2
+    // by frequency_rank at the anchors and checks (ContinuationReport::band); `band`
+    // (0 allowed then) is the least it is.
     int lowest = 0;
     double band_margin = 1.25;
     // Full solves (anchors) at the first speed and, if > 0, at every this many speeds
@@ -106,7 +107,7 @@ std::optional<QuadraticSpectrum> continue_window(const std::function<SparsePenci
                                                  int threads = 1);
 
 // Whether a mode lies within the band: an oscillating one by its frequency, a
-// real (overdamped) one by its modulus.
+// real (overdamped) one by its modulus, a divergent one (real, positive) always.
 bool within_band(const Mode& m, double band, double real_tol);
 
 }  // namespace gyrokit

@@ -23,10 +23,6 @@ constexpr int kAutoSparseDofs = 200;
 // (stability, 151 speeds, 2 threads: dense 5.7 s, every mode in range; a sparse
 // window 1.0 s) and on the same rotor in 168 elements (672 DOFs: 32 s and 2.4 s).
 constexpr int kAutoDenseInRangeDofs = 400;
-// The K lowest modes of a dense model of at least this many DOFs are tracked on the
-// continuation (track); below it a full solve at every speed costs about as much as
-// a step (measured by apps/bench_campbell_python.py) and judges every mode.
-constexpr int kLowestContinuationDofs = 24;
 // Modes the sparse solver computes when none are asked for.
 constexpr int kDefaultSparseModes = 6;
 

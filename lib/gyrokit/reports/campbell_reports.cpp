@@ -29,17 +29,17 @@ std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const S
 std::string out_of_range_note(const CampbellDiagram& cd, const SpeedUnit& u) {
     if (!std::isfinite(cd.band)) return "";
     if (cd.band_of_modes)
-        return fmt::format("modes above {:.6g} {} (beyond the {} asked for and their neighbours) are not computed, not "
-                           "judged; {} 0 judges every mode",
+        return fmt::format("modes above {:.6g} {} (the band holding the {} shown and their neighbours, beyond f_cut) "
+                           "are not computed, not judged; {} 0 judges every mode",
                            u.factor * cd.band, u.name, cd.branches.size(), option_field("modes"));
     if (cd.out_of_range.empty())   // a solver of the band alone (continuation, a sparse window) has not computed them
-        return fmt::format("modes above {:.6g} {} ({} times the highest excitation) are out of range, not judged; "
-                           "{} 0 judges every mode",
+        return fmt::format("modes above f_cut = {:.6g} {} ({} times the highest excitation unless set) are out of "
+                           "range, not computed, not judged; {} 0 judges every mode",
                            u.factor * cd.band, u.name, kBandMargin, option_field("modes"));
     double lowest = std::numeric_limits<double>::infinity();
     for (const Branch& b : cd.out_of_range)
         for (const auto& p : b.points) lowest = std::min(lowest, p.mode.frequency());
-    return fmt::format("{} modes stay above {:.6g} {} over the range ({} times the highest excitation; the lowest at "
+    return fmt::format("{} modes stay above f_cut = {:.6g} {} over the range ({} times the highest excitation unless set; the lowest at "
                        "{:.6g} {}): out of range, not judged; {} 0 judges every mode",
                        cd.out_of_range.size(), u.factor * cd.band, u.name, kBandMargin, u.factor * lowest, u.name,
                        option_field("modes"));
@@ -87,28 +87,23 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
                              critical.size() - damped, kApi684CriticalAmplification, forward,
                              damped ? fmt::format("; {} heavily damped crossings (not critical)", damped)
                                     : std::string())});
-    // The least damped oscillating mode over the range, untracked ones included.
-    const BranchPoint* least = nullptr;
-    int least_branch = 0;
-    std::vector<const Branch*> all;
-    for (const auto* list : {&cd.branches, &cd.untracked})
-        for (const auto& b : *list) all.push_back(&b);
-    for (const Branch* bp : all)
-        for (const auto& p : bp->points)
-            if (p.mode.frequency() > 0 && (!least || p.mode.damping_ratio() < least->mode.damping_ratio()))
-                least = &p, least_branch = bp->id;
-    if (least)
-        t.add_row({std::string("least damping"), fmt::format("damping ratio {:.4g}: mode {} ({}) at {}",
-                                                              least->mode.damping_ratio(), least_branch,
-                                                              to_string(least->mode.whirl), speed(least->speed))});
+    // The least damped oscillating mode the diagram shows (the verdict below covers the others).
+    if (const auto least = least_damped(cd))
+        t.add_row({std::string("least damping"),
+                   fmt::format("damping ratio {:.4g}: mode {} ({}) at {}, frequency {}",
+                               least->point.mode.damping_ratio(), least->branch, to_string(least->point.mode.whirl),
+                               speed(least->point.speed), speed(least->point.mode.frequency()))});
     // The verdict covers every mode: a dense diagram keeps the untracked ones by eigenvalue;
     // a sparse window covers its tracked modes only, and says so.
     const auto unstable = unstable_ranges(cd, true);
     window = window || (cd.partial && !std::isfinite(cd.band));   // the K lowest of a continuation
+    const std::string more =
+        cd.untracked.empty() ? std::string()
+                             : fmt::format(" ({} shown, {} more judged)", cd.branches.size(), cd.untracked.size());
     const std::string which =
         window ? fmt::format("the {} tracked modes (the others are not checked)", cd.branches.size())
-               : (cd.band_of_modes ? fmt::format("every mode up to {}", speed(cd.band))
-                                   : std::isfinite(cd.band) ? "every mode in range" : "every mode");
+               : (std::isfinite(cd.band) ? fmt::format("every mode up to {}{}", speed(cd.band), more)
+                                         : "every mode");
     std::string verdict = unstable.empty() ? fmt::format("{} stable over the range (no real part beyond its error "
                                                          "bound)",
                                                          which)
@@ -117,8 +112,9 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
     for (const auto& r : unstable)
         verdict += fmt::format("{}mode {} unstable from {} to {}{}", verdict.empty() ? "" : "; ", r.branch,
                                speed(r.from), speed(r.to),
-                               r.branch > static_cast<int>(cd.branches.size()) ? " (not tracked: " + option_field("modes") + " 0 tracks it)"
-                                                                                : "");
+                               r.branch > static_cast<int>(cd.branches.size())
+                                   ? fmt::format(" (beyond the {} shown)", cd.branches.size())
+                                   : "");
     if (!unstable.empty() && window)
         verdict += fmt::format("; modes beyond the {} tracked are not checked", cd.branches.size());
     t.add_row({std::string("stability"), verdict});

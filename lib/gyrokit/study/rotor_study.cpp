@@ -106,7 +106,7 @@ StabilityStudy stability_study(const GyroscopicSystem& sys, const StudyOptions& 
                                      "stiffness, damping that dissipates) gives Re lambda <= {:.2g} 1/s for every "
                                      "mode at every speed, a log decrement of at least {:.2g} up there",
                                      opt.unit.factor * s.tracked.diagram.band, opt.unit.name, b->rate,
-                                     -2.0 * M_PI * b->rate / s.tracked.diagram.band)});
+                                     0.0 - 2.0 * M_PI * b->rate / s.tracked.diagram.band)});   // 0, not -0
     return s;
 }
 
