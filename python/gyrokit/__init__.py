@@ -327,7 +327,8 @@ def critical_speeds(model, speeds=None, *, harmonics=None, solver=None, modes=No
 def stability(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
                method="qz", lanczos=0, jobs=1, unit="rad/s") -> StabilityChanges:
     """Speeds where a mode becomes unstable or stable again (Re lambda beyond its error bound), over the
-    modes in range (modes None) or the K lowest (modes = K; 0: every mode); speeds in `unit`."""
+    modes in range (modes None; with modes = K as well: K only says how many branches a diagram shows; 0:
+    every mode); speeds in `unit`."""
     system, o = _options(model, solver, modes, target, target_order)
     return StabilityChanges(_core.stability(system, _speeds(model, speeds, unit), _harmonics(model, harmonics),
                                             method=method, lanczos=int(lanczos), jobs=int(jobs), unit=unit, **o),

@@ -236,8 +236,10 @@ CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std:
                                  const std::vector<int>& harmonics, Workers threads, std::optional<double> f_cut) {
     CampbellOptions co;
     co.modes = modes == kModesInRange ? (plan.kind == SolverKind::Sparse ? plan.modes : 0) : plan.modes;
-    // Every mode (modes = 0) is judged wherever it is; else the modes up to f_cut.
-    if (modes != 0) co.band = f_cut.value_or(excitation_band(speeds, harmonics));
+    // Every mode (modes = 0) is judged wherever it is; else the modes up to f_cut. An
+    // explicit K on the sparse solver is its window of modes near the target (judged as such).
+    if (modes == kModesInRange || (modes > 0 && plan.kind == SolverKind::Dense))
+        co.band = f_cut.value_or(excitation_band(speeds, harmonics));
     co.threads = threads;
     return co;
 }

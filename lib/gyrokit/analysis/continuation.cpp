@@ -551,6 +551,12 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
             for (const QuadraticSpectrum& s : *list) {
                 std::vector<Mode> m = s.modes;
                 sort_by_frequency(m);
+                // A divergent eigenvalue is kept whatever its size (within_band): it does not widen the band.
+                m.erase(std::remove_if(m.begin(), m.end(),
+                                       [&](const Mode& x) {
+                                           return std::abs(x.lambda.imag()) <= s.real_tol && x.lambda.real() > 0.0;
+                                       }),
+                        m.end());
                 for (size_t i = 0; i < std::min(m.size(), static_cast<size_t>(opt.lowest) + 2); ++i)
                     top = std::max(top, frequency_rank(m[i]).second);
             }

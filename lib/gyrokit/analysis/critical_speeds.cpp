@@ -49,7 +49,7 @@ double gap_at(const CampbellDiagram& cd, const Branch& own, const BranchPoint& a
 // that the sweep's window cannot move the root.
 template <class Holds, class Refine, class Emit>
 void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const Holds& holds, const Refine& refine,
-                   Workers workers, const Emit& emit) {
+                   Workers workers, const Emit& emit, bool real_ends = false) {
     std::vector<Interval> found;
     // The shown branches and the other modes up to the band (judged, with their vectors).
     std::vector<const Branch*> judged;
@@ -62,8 +62,11 @@ void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const H
             const Mode& m0 = b.points[i].mode;
             const Mode& m1 = b.points[i + 1].mode;
             // A pair that turns overdamped (or back) between two points still crosses a line
-            // it was above: Im lambda falls continuously to 0 at the exceptional point.
-            if (m0.whirl == Whirl::Real && m1.whirl == Whirl::Real) continue;
+            // it was above: Im lambda falls continuously to 0 at the exceptional point
+            // (real_ends: the crossings; a stability change keeps to oscillating ends).
+            if (real_ends ? m0.whirl == Whirl::Real && m1.whirl == Whirl::Real
+                          : m0.whirl == Whirl::Real || m1.whirl == Whirl::Real)
+                continue;
             Interval iv{&b, i, 0.0, 0.0};
             if (holds(m0, b.points[i].speed, m1, b.points[i + 1].speed, iv)) found.push_back(iv);
         }
@@ -165,7 +168,7 @@ std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const Ca
             // between two points (a real eigenvalue matched to a pair far above it) changes
             // the sign of Im lambda - k w without crossing, and the search ends at the jump.
             if (std::abs(g(m, w)) <= 1e-6 * k * std::max(w, 1.0)) out.push_back({w, k, b.id, std::move(m)});
-        });
+        }, true);
     }
     std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
     return out;

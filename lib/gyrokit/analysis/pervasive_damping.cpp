@@ -70,6 +70,8 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
     const bool dense = solver.kind == SolverKind::Dense;
     SpectrumSolver solve = solver.make();
     CampbellOptions co = tracking_options(solver, opt.modes, speeds, {1}, opt.threads);
+    // K asked for: the K lowest are checked, wherever they lie (no cut-off).
+    if (opt.modes > 0) co.band = std::numeric_limits<double>::infinity();
     const CampbellDiagram cd = campbell(solver.make, speeds, co);
     // The residual over a mode's left plane, from the dense or the sparse pencil.
     const auto plane = [&](double w, const Mode& m, const Eigen::MatrixXcd& Y) {

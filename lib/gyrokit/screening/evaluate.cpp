@@ -113,7 +113,8 @@ struct LeastDamped {
 
 LeastDamped least_damped(const CampbellDiagram& cd, double band) {
     LeastDamped out;
-    for (const Branch& b : cd.branches)
+    for (const auto* list : {&cd.branches, &cd.untracked})   // the shown modes and the others judged
+        for (const Branch& b : *list)
         for (const BranchPoint& p : b.points) {
             if (p.mode.whirl == Whirl::Real || !(p.mode.lambda.imag() > 0.0) || p.mode.lambda.imag() > band) continue;
             const double d = p.mode.log_decrement();
@@ -204,7 +205,8 @@ void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& 
     const std::vector<StabilityChange>& changes = st.changes;
     double onset = inf;
     const Branch* which = nullptr;
-    for (const Branch& b : cd.branches) {
+    for (const auto* list : {&cd.branches, &cd.untracked})   // the shown modes and the others judged
+        for (const Branch& b : *list) {
         for (std::size_t k = 0; k < b.points.size(); ++k) {
             const Mode& m = b.points[k].mode;
             // The library's rule: Re lambda beyond its error bound (rounding is neutral).

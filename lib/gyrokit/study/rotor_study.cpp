@@ -94,7 +94,7 @@ StabilityStudy stability_study(const GyroscopicSystem& sys, const StudyOptions& 
         s.tracked.diagnostics.push_back(
             {Level::Note, Topic::Verdict,
              std::string("no mode changes stability in the range; ") +
-                 (unstable_ranges(s.tracked.diagram).empty()
+                 (unstable_ranges(s.tracked.diagram, true).empty()
                       ? "none is unstable (neutral modes: Re lambda within its error bound)"
                       : "some are unstable throughout")});
     // The modes above the band are not tracked; where the energy bound shows that none
