@@ -125,8 +125,9 @@ py::dict campbell_dict(const CampbellDiagram& cd) {
 
 // The study every front end runs, from the call's arguments.
 StudyOptions study(const SolverOptions& o, const std::vector<double>& w, const std::vector<int>& harmonics,
-                   Workers workers, const SpeedUnit& unit = {}) {
+                   Workers workers, const SpeedUnit& unit = {}, std::optional<double> f_cut = std::nullopt) {
     StudyOptions so;
+    so.f_cut = f_cut;
     so.unit = unit;
     so.solver = o;
     so.speeds = w;
@@ -245,7 +246,7 @@ py::dict py_mode_shapes(const GyroscopicSystem& s, double speed, const std::stri
 py::dict py_campbell(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
                      const std::string& solver, int modes, const py::object& target, double target_order,
                      const std::string& method, int lanczos, int jobs, const std::string& unit,
-                     const std::string& title) {
+                     const std::string& title, std::optional<double> f_cut) {
     const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
     const std::vector<double> w = checked_speeds(speeds);
     const Workers workers = threads(jobs);
@@ -254,7 +255,7 @@ py::dict py_campbell(const GyroscopicSystem& s, const std::vector<double>& speed
     std::vector<CriticalSpeed> cs;
     {
         Released free;
-        StudyOptions so = study(o, w, harmonics, workers, u);
+        StudyOptions so = study(o, w, harmonics, workers, u, f_cut);
         st = campbell_study(s, so);
         cs = critical_speeds_of(s, st, so);   // the summary's and the figure's
     }
@@ -271,7 +272,7 @@ py::dict py_campbell(const GyroscopicSystem& s, const std::vector<double>& speed
 py::dict py_critical_speeds(const GyroscopicSystem& s, const std::vector<double>& speeds,
                             const std::vector<int>& harmonics, const std::string& solver, int modes,
                             const py::object& target, double target_order, const std::string& method, int lanczos,
-                            int jobs, const std::string& unit) {
+                            int jobs, const std::string& unit, std::optional<double> f_cut) {
     const SpeedUnit u = SpeedUnit::parse(unit);
     const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
     const std::vector<double> w = checked_speeds(speeds);
@@ -281,7 +282,7 @@ py::dict py_critical_speeds(const GyroscopicSystem& s, const std::vector<double>
     CriticalSpeedStudy st;
     {
         Released free;
-        st = critical_speed_study(s, study(o, w, harmonics, workers, u));
+        st = critical_speed_study(s, study(o, w, harmonics, workers, u, f_cut));
     }
     const std::vector<CriticalSpeed>& cs = st.critical;
     const auto n = static_cast<py::ssize_t>(cs.size());
@@ -317,7 +318,8 @@ py::dict py_critical_speeds(const GyroscopicSystem& s, const std::vector<double>
 // gk.stability: the speeds where a mode becomes unstable or stable again.
 py::dict py_stability(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
                       const std::string& solver, int modes, const py::object& target, double target_order,
-                      const std::string& method, int lanczos, int jobs, const std::string& unit) {
+                      const std::string& method, int lanczos, int jobs, const std::string& unit,
+                      std::optional<double> f_cut) {
     const SpeedUnit u = SpeedUnit::parse(unit);
     const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
     const std::vector<double> w = checked_speeds(speeds);
@@ -325,7 +327,7 @@ py::dict py_stability(const GyroscopicSystem& s, const std::vector<double>& spee
     StabilityStudy st;
     {
         Released free;
-        st = stability_study(s, study(o, w, harmonics, workers, u));
+        st = stability_study(s, study(o, w, harmonics, workers, u, f_cut));
     }
     const std::vector<StabilityChange>& ch = st.changes;
     const auto n = static_cast<py::ssize_t>(ch.size());
@@ -393,7 +395,8 @@ py::dict py_pervasive(const GyroscopicSystem& s, const std::vector<double>& spee
 py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
                      const std::string& solver, int modes, const py::object& target, double target_order,
                      const std::vector<int>& outputs, const std::string& unit, const std::string& title,
-                     const std::vector<std::pair<int, double>>& probe_list, const std::string& length_unit) {
+                     const std::vector<std::pair<int, double>>& probe_list, const std::string& length_unit,
+                     std::optional<double> f_cut) {
     const SpeedUnit u = SpeedUnit::parse(unit);
     const LengthUnit length = LengthUnit::parse(length_unit);
     const std::vector<double> w = checked_speeds(speeds);
@@ -410,7 +413,7 @@ py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speed
             Z.row(static_cast<Eigen::Index>(i)) = unbalance_response(s, w[i], kind).transpose();
         }
         // The CLI's check: where a mode is unstable, the response is no steady state.
-        warnings = response_stability_warnings(s, study(o, w, harmonics, Workers{1, WorkerKind::Threads}, u));
+        warnings = response_stability_warnings(s, study(o, w, harmonics, Workers{1, WorkerKind::Threads}, u, f_cut));
     }
     py::dict d;
     d["Z"] = Z;
@@ -456,15 +459,15 @@ void bind_analyses(py::module_& m) {
 
     m.def("campbell", &py_campbell, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
           py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),
-          py::arg("jobs"), py::arg("unit") = "rad/s", py::arg("title") = "");
+          py::arg("jobs"), py::arg("unit") = "rad/s", py::arg("title") = "", py::arg("f_cut") = py::none());
 
     m.def("critical_speeds", &py_critical_speeds, py::arg("system"), py::arg("speeds"), py::arg("harmonics"),
           py::arg("solver"), py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"),
-          py::arg("lanczos"), py::arg("jobs"), py::arg("unit") = "rad/s");
+          py::arg("lanczos"), py::arg("jobs"), py::arg("unit") = "rad/s", py::arg("f_cut") = py::none());
 
     m.def("stability", &py_stability, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
           py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),
-          py::arg("jobs"), py::arg("unit") = "rad/s");
+          py::arg("jobs"), py::arg("unit") = "rad/s", py::arg("f_cut") = py::none());
 
     m.def("pervasive", &py_pervasive, py::arg("system"), py::arg("speeds"), py::arg("tolerance"), py::arg("solver"),
           py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),
@@ -473,5 +476,5 @@ void bind_analyses(py::module_& m) {
     m.def("response", &py_response, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
           py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("outputs") = std::vector<int>{},
           py::arg("unit") = "rad/s", py::arg("title") = "", py::arg("probes") = std::vector<std::pair<int, double>>{},
-          py::arg("length_unit") = "m");
+          py::arg("length_unit") = "m", py::arg("f_cut") = py::none());
 }

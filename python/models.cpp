@@ -193,7 +193,7 @@ std::vector<T> named(std::vector<T> items, const char* list) {
 
 Scene scene_of(const RotorModel& model, const std::string& title, const py::object& speeds, const py::object& modes,
                const py::object& harmonics, const std::string& solver, const py::object& target,
-               double target_order) {
+               double target_order, const py::object& f_cut) {
     Scene sc = rotor_scene(model, title);
     if (!speeds.is_none()) {
         const auto t = speeds.cast<std::tuple<double, double, int>>();
@@ -205,6 +205,7 @@ Scene scene_of(const RotorModel& model, const std::string& title, const py::obje
     sc.solver = parse_solver_kind(solver);
     if (!target.is_none()) sc.target = target.cast<double>();
     sc.target_order = target_order;
+    if (!f_cut.is_none()) sc.f_cut = f_cut.cast<double>();
     validate_settings(sc);
     return sc;
 }
@@ -299,7 +300,8 @@ void bind_models(py::module_& m, py::class_<Scene>& scene) {
         .def_property_readonly("motion", [](const RotorModel& r) { return to_string(r.motion); });
 
     m.def("rotor_scene", &scene_of, py::arg("rotor"), py::arg("title"), py::arg("speeds"), py::arg("modes"),
-          py::arg("harmonics"), py::arg("solver"), py::arg("target"), py::arg("target_order"));
+          py::arg("harmonics"), py::arg("solver"), py::arg("target"), py::arg("target_order"),
+          py::arg("f_cut") = py::none());
     scene.def_property_readonly("rotor", [](const Scene& s) { return s.rotor_model; })
         .def("to_toml", &scene_text, "The scene as TOML that load_scene reads back to the same model and settings")
         .def("write", &write_scene, py::arg("path"), "Writes the scene to `path` (to_toml)")

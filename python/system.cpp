@@ -139,6 +139,7 @@ py::class_<Scene> bind_system(py::module_& m) {
         .def_readonly("harmonics", &Scene::harmonics)
         .def_readonly("target_order", &Scene::target_order)
         .def_property_readonly("target", [](const Scene& s) { return s.target; })
+        .def_property_readonly("f_cut", [](const Scene& s) { return s.f_cut; })
         .def_property_readonly("solver", [](const Scene& s) { return to_string(s.solver); })
         .def_property_readonly("speeds", [](const Scene& s) -> py::object {
             if (!s.speeds) return py::none();

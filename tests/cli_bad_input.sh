@@ -84,6 +84,11 @@ expect "--target-order 'fast'" critical "$dir/ok.toml" --target-order fast
 scene badorder "$good_model" '[analysis]
 target_order = -0.5'
 expect "target_order" eig "$dir/badorder.toml" --speed 1
+scene badcut "$good_model" '[analysis]
+f_cut = 0'
+expect "f_cut" campbell "$dir/badcut.toml" --speeds 0:40:5
+expect "--f-cut 0: allowed: a finite frequency > 0" critical "$dir/ok.toml" --f-cut 0
+expect "--f-cut '-5'" stability "$dir/ok.toml" --f-cut -5
 scene damped "$good_model
 d_G = 1.0"
 expect "needs an undamped system" critical "$dir/damped.toml" --speeds 0:40:41 --critical-method direct

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -454,4 +455,52 @@ cyy = 2e3
         CHECK(std::abs(m.slope - quotient) <= 1e-3 * std::abs(quotient) + 1e-9);
     }
     CHECK(doubles == 6);   // three double pairs
+}
+
+TEST_CASE("f_cut sets the modes judged: the band as asked, every mode below it at some speed judged, those above "
+          "it named; from the scene key as from the option",
+          "[continuation]") {
+    Scene sc = load_scene(data + "/three_disk_rotor.toml");
+    const std::vector<double> grid = thinned(sc.speeds->points(), 31);
+    StudyOptions so = study_options(sc);
+    so.speeds = grid;
+    CHECK_FALSE(so.f_cut);
+    const double band = excitation_band(grid, sc.harmonics);
+    // The default and a cut-off a third of it, away from any mode's frequency.
+    const CampbellDiagram wide = campbell_study(sc.system, so).diagram;
+    CHECK(wide.band == band);
+    sc.f_cut = band / 3.0;
+    validate_settings(sc);
+    so = study_options(sc);
+    so.speeds = grid;
+    REQUIRE(so.f_cut);
+    const CampbellDiagram cut = campbell_study(sc.system, so).diagram;
+    CHECK(cut.band == band / 3.0);
+    const auto lowest = [](const Branch& b) {
+        double f = std::numeric_limits<double>::infinity();
+        for (const BranchPoint& p : b.points) f = std::min(f, std::abs(p.mode.lambda.imag()));
+        return f;
+    };
+    const auto judged = [&](const CampbellDiagram& cd, double f_cut) {
+        size_t n = 0;
+        for (const auto* list : {&cd.branches, &cd.untracked})
+            for (const Branch& b : *list) {
+                INFO("judged branch " << b.id << ", lowest frequency " << lowest(b) << ", f_cut " << f_cut);
+                CHECK(lowest(b) <= f_cut * (1 + 1e-9));
+                ++n;
+            }
+        for (const Branch& b : cd.out_of_range) {
+            INFO("out-of-range branch " << b.id << ", lowest frequency " << lowest(b) << ", f_cut " << f_cut);
+            CHECK(lowest(b) > f_cut * (1 - 1e-9));
+        }
+        return n;
+    };
+    const size_t n_wide = judged(wide, band), n_cut = judged(cut, band / 3.0);
+    CHECK(n_cut >= 2);
+    CHECK(n_cut < n_wide);
+    // The same through the option; an f_cut that is no frequency is refused by name.
+    so.f_cut = 0.0;
+    CHECK_THROWS_WITH(campbell_study(sc.system, so), Catch::Contains("f_cut") && Catch::Contains("> 0"));
+    sc.f_cut = -1.0;
+    CHECK_THROWS_WITH(validate_settings(sc), Catch::Contains("f_cut = -1"));
 }

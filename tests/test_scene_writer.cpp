@@ -60,6 +60,7 @@ void check_same(const Scene& a, const Scene& b) {
     CHECK(a.harmonics == b.harmonics);
     CHECK(a.target == b.target);
     CHECK(a.target_order == b.target_order);
+    CHECK(a.f_cut == b.f_cut);
     REQUIRE(a.speeds.has_value() == b.speeds.has_value());
     if (a.speeds) {
         CHECK(a.speeds->from == b.speeds->from);
@@ -132,6 +133,7 @@ units = "rad/s"
 [analysis]
 modes = 8
 harmonics = [1, 2]
+f_cut = 2500
 )";
     const Scene a = parse_scene(hand, "hand", ".");
 
@@ -176,6 +178,7 @@ harmonics = [1, 2]
     c.speeds = SpeedRange{0, 1500, 31};
     c.modes = 8;
     c.harmonics = {1, 2};
+    c.f_cut = 2500;
     check_same(a, c);
     check_same(a, parse_scene(scene_text(c), "written", "."));
 

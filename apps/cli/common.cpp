@@ -44,6 +44,14 @@ void add_solver_options(CLI::App* c, Common& o) {
     c->add_option("--jobs", o.jobs, "threads for the speeds of a sweep; 0 = all cores");
 }
 
+void add_cut_option(CLI::App* c, Common& o) {
+    c->add_option("--f-cut", o.f_cut,
+                  fmt::format("frequency (in --units) up to which every mode is tracked and judged (critical speeds, "
+                              "stability), whatever --modes shows; default: the scene's f_cut, else {} times the "
+                              "highest harmonic times the top speed",
+                              kBandMargin));
+}
+
 TableFormat parse_format(const Common& o) { return parse_table_format(o.format); }
 
 bool use_sparse(const Context& c) {
@@ -64,6 +72,7 @@ StudyOptions study_of(const Context& c, int modes, const std::vector<int>& harmo
     s.solver.modes = modes;
     s.speeds = c.speeds;
     s.harmonics = harmonics;
+    s.f_cut = c.f_cut;
     s.workers = c.jobs;
     s.unit = c.unit;
     if (!quiet) s.progress = progress_bar("speeds");
@@ -89,7 +98,7 @@ std::string flag_words(const std::string& field) {
         {"directory", "--dir"},       {"jobs", "--jobs"},     {"lanczos_vectors", "--lanczos"},
         {"method", "--method"},       {"modes", "--modes"},   {"motion", "--motion"},
         {"solver", "--solver"},       {"speeds", "--speeds"}, {"target", "--target"},
-        {"target_order", "--target-order"}, {"units", "--units"}, {"rows", "--rows, or --format csv|json"},
+        {"target_order", "--target-order"}, {"f_cut", "--f-cut"}, {"units", "--units"}, {"rows", "--rows, or --format csv|json"},
         {"plot", "--plot FILE.svg"},        {"dt", "--dt"},         {"duration", "--duration"},
         {"max_steps", "--max-steps"},       {"speed", "--speed"},   {"run_up", "--run-up"},
         {"acceleration", "--acceleration"}, {"gravity", "--gravity"}};
@@ -126,6 +135,8 @@ Context open_scene(const Common& o, bool need_speeds) {
     if (!o.solver.empty()) c.solver.kind = parse_solver_kind(o.solver);
     if (!o.target.empty()) c.solver.target = parse_speed(o.target, "--target", c.unit);
     if (!o.target_order.empty()) c.solver.target_order = parse_order(o.target_order, "--target-order");
+    c.f_cut = c.scene.f_cut;
+    if (!o.f_cut.empty()) c.f_cut = parse_speed(o.f_cut, "--f-cut", c.unit);
     if (!o.speeds.empty()) {
         c.speeds = SpeedRange::parse(o.speeds, "--speeds", c.unit.factor).points();
     } else if (c.scene.speeds) {

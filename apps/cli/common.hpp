@@ -39,6 +39,7 @@ struct Common {
     std::string scene, format = "table", units = "rad/s", speeds, method = "qz", plot;
     // Solver choice (eig, campbell, critical, stability, response).
     std::string solver, target, target_order;
+    std::string f_cut;    // campbell, critical, stability, response: the modes judged
     int lanczos = 0, jobs = 0;
     std::string motion;   // FE rotors: the DOF set in place of the scene's
 };
@@ -50,6 +51,8 @@ void add_motion_option(CLI::App* c, Common& o);
 Scene load_motion_scene(const Common& o);
 // --solver, --target, --target-order, --lanczos, --jobs.
 void add_solver_options(CLI::App* c, Common& o);
+// --f-cut: the frequency up to which the tracked modes are judged.
+void add_cut_option(CLI::App* c, Common& o);
 
 struct Context {
     Scene scene;
@@ -59,6 +62,7 @@ struct Context {
     // The scene's [analysis] solver options with --solver, --target,
     // --target-order, --lanczos and --method in their place.
     SolverOptions solver;
+    std::optional<double> f_cut;   // rad/s: the scene's f_cut or --f-cut
     int jobs = 1;
 };
 

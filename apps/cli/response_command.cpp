@@ -90,6 +90,7 @@ std::vector<Command> add_response_commands(CLI::App& app) {
     add_common(resp, o->common, true);
     add_motion_option(resp, o->common);
     add_solver_options(resp, o->common);
+    add_cut_option(resp, o->common);
     add_output_option(resp, "--plot", o->common.plot, "draw amplitude (one panel per unit) and phase into FILE.svg or FILE.png");
     resp->add_flag("--polar", o->polar, "with --plot: a polar plot (Im Z against Re Z) instead of amplitude and phase");
     resp->add_option("--dofs", o->dofs, "DOFs reported, by name, e.g. x3,y3 (default: all)");

@@ -27,6 +27,7 @@ Command campbell_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     add_common(camp, o->common, true);
     add_motion_option(camp, o->common);
     add_solver_options(camp, o->common);
+    add_cut_option(camp, o->common);
     camp->add_option("--modes", o->modes, "number of modes to track: the K lowest by frequency (0 = all; sparse: "
                                           "the K nearest --target, default 6); default: the scene's, else the "
                                           "modes in range");
@@ -67,6 +68,7 @@ Command critical_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     add_common(crit, o->common, true);
     add_motion_option(crit, o->common);
     add_solver_options(crit, o->common);
+    add_cut_option(crit, o->common);
     crit->add_option("--harmonics", o->harmonics, "harmonics k, e.g. 1,2 (default: the scene's, else 1)");
     crit->add_option("--modes", o->modes, "number of modes considered (0 = all); default: the scene's, else the modes in range");
     crit->add_option("--critical-method", o->critical_method,
@@ -105,6 +107,7 @@ Command stability_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     add_common(stab, o->common, true);
     add_motion_option(stab, o->common);
     add_solver_options(stab, o->common);
+    add_cut_option(stab, o->common);
     stab->add_option("--modes", o->modes, "number of modes considered (0 = all; sparse: default 6); default: the scene's, else the "
                                           "modes in range");
     return {stab, [o](std::ostream& out) {

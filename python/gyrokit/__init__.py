@@ -67,6 +67,14 @@ def _options(model, solver, modes, target, target_order):
                         target_order=float(target_order or 0.0))
 
 
+def _f_cut(model, f_cut, unit):
+    """The cut-off of the judged modes in rad/s: the given one (in `unit`), else the scene's f_cut, else None
+    (the library's default: 1.5 times the highest excitation)."""
+    if f_cut is None:
+        return model.f_cut if isinstance(model, Scene) else None
+    return float(f_cut) / _factor(unit)
+
+
 def _speeds(model, speeds, unit="rad/s"):
     """Speeds in rad/s: the given ones (in `unit`) or the scene's [speeds] (rad/s)."""
     if speeds is None:
@@ -305,33 +313,37 @@ def modes(model, speed, *, solver=None, modes=None, target=None, target_order=No
 
 
 def campbell(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
-             method="qz", lanczos=0, jobs=1, unit="rad/s") -> CampbellResult:
+             method="qz", lanczos=0, jobs=1, unit="rad/s", f_cut=None) -> CampbellResult:
     """Campbell diagram over `speeds` (in `unit`; default: the scene's [speeds]); jobs threads (0 = all cores).
-    modes None (and no scene value): the modes in the band the speeds and harmonics excite."""
+    modes None (and no scene value): the modes in the band the speeds and harmonics excite; modes K: the K
+    lowest branches shown, every mode up to f_cut (in `unit`; default: the scene's, else 1.5 times the
+    highest excitation) tracked and judged."""
     system, o = _options(model, solver, modes, target, target_order)
     return CampbellResult(_core.campbell(system, _speeds(model, speeds, unit), _harmonics(model, harmonics),
                                          method=method, lanczos=int(lanczos), jobs=int(jobs), unit=unit,
-                                         title=_title(model), **o), unit)
+                                         title=_title(model), f_cut=_f_cut(model, f_cut, unit), **o), unit)
 
 
 def critical_speeds(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
-                    method="qz", lanczos=0, jobs=1, unit="rad/s") -> CriticalSpeeds:
+                    method="qz", lanczos=0, jobs=1, unit="rad/s", f_cut=None) -> CriticalSpeeds:
     """Critical speeds (in `unit`) where tracked branches cross k * speed, k in `harmonics` (default: the scene's,
     or 1); `speeds` in `unit` too."""
     system, o = _options(model, solver, modes, target, target_order)
     return CriticalSpeeds(_core.critical_speeds(system, _speeds(model, speeds, unit), _harmonics(model, harmonics),
-                                                method=method, lanczos=int(lanczos), jobs=int(jobs), unit=unit, **o),
+                                                method=method, lanczos=int(lanczos), jobs=int(jobs), unit=unit,
+                                                f_cut=_f_cut(model, f_cut, unit), **o),
                           unit)
 
 
 def stability(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
-               method="qz", lanczos=0, jobs=1, unit="rad/s") -> StabilityChanges:
+               method="qz", lanczos=0, jobs=1, unit="rad/s", f_cut=None) -> StabilityChanges:
     """Speeds where a mode becomes unstable or stable again (Re lambda beyond its error bound), over the
     modes in range (modes None; with modes = K as well: K only says how many branches a diagram shows; 0:
     every mode); speeds in `unit`."""
     system, o = _options(model, solver, modes, target, target_order)
     return StabilityChanges(_core.stability(system, _speeds(model, speeds, unit), _harmonics(model, harmonics),
-                                            method=method, lanczos=int(lanczos), jobs=int(jobs), unit=unit, **o),
+                                            method=method, lanczos=int(lanczos), jobs=int(jobs), unit=unit,
+                                            f_cut=_f_cut(model, f_cut, unit), **o),
                             unit)
 
 
@@ -692,7 +704,7 @@ def pervasive(model, speeds=None, *, tolerance=1e-8, solver=None, modes=None, ta
 
 
 def response(model, speeds=None, *, dofs=None, probes=None, solver=None, harmonics=None, modes=None,
-             unit="rad/s") -> Response:
+             unit="rad/s", f_cut=None) -> Response:
     """Unbalance response at `speeds` (in `unit`) of the named DOFs (default: all), by a dense or (solver "sparse";
     "auto" above 200 DOFs) sparse LU of the dynamic stiffness. As the CLI, the modes (`modes`, default
     those in range) are tracked over the range: each unstable range is a RuntimeWarning and in `warnings`
@@ -708,7 +720,7 @@ def response(model, speeds=None, *, dofs=None, probes=None, solver=None, harmoni
     w = _speeds(model, speeds, unit)
     cols = [] if dofs is None else [names.index(x) for x in dofs]
     d = _core.response(system, w, _harmonics(model, harmonics), outputs=cols, unit=unit, title=_title(model),
-                       probes=_probes(probes), length_unit=_length(model), **o)
+                       probes=_probes(probes), length_unit=_length(model), f_cut=_f_cut(model, f_cut, unit), **o)
     for msg in d["warnings"]:
         _warnings.warn(msg, RuntimeWarning, stacklevel=2)
     if probes is not None:
@@ -778,12 +790,13 @@ def fe_rotor(*, speeds=None, analysis=None, directory=".", **keys) -> Scene:
 def rotor_scene(rotor, *, title="", speeds=None, analysis=None) -> Scene:
     """A scene of an FE rotor built in Python (Rotor(sections=[Section(...)], disks=[Disk(...)], ...)), with
     speeds {"from": .., "to": .., "count": ..} (rad/s) and analysis {"modes", "harmonics", "solver",
-    "target", "target_order"} as a scene's [speeds] and [analysis]. Scene.to_toml() and Scene.write(path)
+    "target", "target_order", "f_cut"} as a scene's [speeds] and [analysis]. Scene.to_toml() and Scene.write(path)
     give its scene file."""
     speeds = dict(speeds or {})
     analysis = dict(analysis or {})
     for given, allowed, name in ((speeds, {"from", "to", "count"}, "speeds"),
-                                 (analysis, {"modes", "harmonics", "solver", "target", "target_order"}, "analysis")):
+                                 (analysis, {"modes", "harmonics", "solver", "target", "target_order", "f_cut"},
+                                  "analysis")):
         unknown = sorted(set(given) - allowed)
         if unknown:
             raise InputError(f"{name}: unknown key {unknown[0]!r}; allowed: {', '.join(sorted(allowed))}")
@@ -797,7 +810,7 @@ def rotor_scene(rotor, *, title="", speeds=None, analysis=None) -> Scene:
     return _core.rotor_scene(rotor, str(title), span, analysis.get("modes"),
                              None if harmonics is None else [int(h) for h in harmonics],
                              str(analysis.get("solver", "auto")), analysis.get("target"),
-                             float(analysis.get("target_order", 0.0)))
+                             float(analysis.get("target_order", 0.0)), analysis.get("f_cut"))
 
 
 def fluid_rotor(*, speeds=None, analysis=None, **keys) -> Scene:

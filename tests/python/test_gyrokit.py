@@ -858,3 +858,25 @@ def test_every_result_method_that_writes_a_file_refuses_its_inputs(tmp_path):
                 checked += 1
         assert open(src, "rb").read() == before
     assert checked >= 2 * len(results)
+
+
+def test_f_cut_in_the_callers_unit_as_the_clis_and_from_the_scene(tmp_path):
+    path = scene("three_disk_rotor.toml")
+    s = gk.load_scene(path)
+    assert s.f_cut is None
+    wide = gk.critical_speeds(s, unit="Hz")
+    # A cut-off of 100 Hz leaves out the modes that stay above it; the same as --f-cut 100 --units Hz.
+    cut = gk.critical_speeds(s, unit="Hz", f_cut=100.0)
+    rows = cli("critical", path, "--units", "Hz", "--f-cut", "100")
+    assert len(rows) == len(cut.speeds) < len(wide.speeds)
+    for k, r in enumerate(rows):
+        assert cut.speeds[k] == pytest.approx(float(r["speed_hz"]), rel=RTOL)
+    # The scene key (rad/s) gives the same.
+    text = open(path).read().replace("\n[", "\n[analysis]\nf_cut = %r\n\n[" % (200.0 * np.pi), 1)
+    written = tmp_path / "cut.toml"
+    written.write_text(text)
+    keyed = gk.load_scene(str(written))
+    assert keyed.f_cut == pytest.approx(200.0 * np.pi)
+    assert list(gk.critical_speeds(keyed, unit="Hz").speeds) == pytest.approx(list(cut.speeds), rel=RTOL)
+    with pytest.raises(gk.InputError, match="f_cut"):
+        gk.stability(s, f_cut=0.0)

@@ -232,6 +232,15 @@ double excitation_band(const std::vector<double>& speeds, const std::vector<int>
     return top > 0.0 && std::isfinite(top) ? kBandMargin * h * top : std::numeric_limits<double>::infinity();
 }
 
+double judged_band(std::optional<double> f_cut, const std::vector<double>& speeds, const std::vector<int>& harmonics) {
+    if (!f_cut) return excitation_band(speeds, harmonics);
+    if (!(std::isfinite(*f_cut) && *f_cut > 0))
+        throw InputError(fmt::format("{} {}: allowed: a finite frequency > 0 (rad/s; default {} times the highest "
+                                     "excitation)",
+                                     option_field("f_cut"), *f_cut, kBandMargin));
+    return *f_cut;
+}
+
 CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std::vector<double>& speeds,
                                  const std::vector<int>& harmonics, Workers threads, std::optional<double> f_cut) {
     CampbellOptions co;
@@ -239,7 +248,7 @@ CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std:
     // Every mode (modes = 0) is judged wherever it is; else the modes up to f_cut. An
     // explicit K on the sparse solver is its window of modes near the target (judged as such).
     if (modes == kModesInRange || (modes > 0 && plan.kind == SolverKind::Dense))
-        co.band = f_cut.value_or(excitation_band(speeds, harmonics));
+        co.band = judged_band(f_cut, speeds, harmonics), co.band_asked = f_cut.has_value();
     co.threads = threads;
     return co;
 }
@@ -323,6 +332,7 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
     std::vector<Branch>& br = out.branches;
     if (opt.modes == 0 || t.window || std::isfinite(opt.band)) out.band = opt.band;
     out.band_of_modes = opt.band_of_modes && std::isfinite(opt.band);
+    out.band_asked = opt.band_asked && std::isfinite(opt.band);
     out.partial = t.window;
     std::stable_sort(br.begin(), br.end(), [&](const Branch& a, const Branch& b) {
         const bool a0 = a.points.front().speed == speeds.front(), b0 = b.points.front().speed == speeds.front();

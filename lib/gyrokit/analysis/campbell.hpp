@@ -27,6 +27,7 @@ struct CampbellOptions {
     double band = std::numeric_limits<double>::infinity();
     // The band holds the K lowest modes (track, ContinuationOptions::lowest), not the excitation range.
     bool band_of_modes = false;
+    bool band_asked = false;  // the band is an f_cut the caller gave, not excitation_band's default
     int max_refine = 8;       // bisection levels allowed between two grid speeds
     double mac_min = 0.9;     // a match with a lower MAC is ambiguous
     Workers threads = 1;      // grid speeds solved in parallel: this many threads or worker processes
@@ -66,6 +67,7 @@ struct CampbellDiagram {
     // eigenvalues only, ids after the reported ones. Not judged by any verdict.
     double band = std::numeric_limits<double>::infinity();
     bool band_of_modes = false;   // the band was chosen to hold the K lowest modes (CampbellOptions)
+    bool band_asked = false;      // f_cut as the caller gave it (CampbellOptions)
     std::vector<Branch> out_of_range;
 };
 
@@ -79,10 +81,14 @@ constexpr double kBandMargin = 1.5;
 // of 0 (no excitation to measure a range by: every mode).
 double excitation_band(const std::vector<double>& speeds, const std::vector<int>& harmonics);
 
+// The cut-off of the judged modes (rad/s): f_cut as asked (InputError naming f_cut
+// unless it is finite and > 0), else excitation_band of the speeds and harmonics.
+double judged_band(std::optional<double> f_cut, const std::vector<double>& speeds, const std::vector<int>& harmonics);
+
 // The tracking options every front end uses: `modes` as asked (kModesInRange:
 // every mode up to f_cut shown; 0: every mode, shown and judged; K: the K lowest at
 // the first speed shown, every mode up to f_cut judged) on the solver `plan`;
-// f_cut by default excitation_band of the speeds and harmonics.
+// f_cut as judged_band gives it.
 CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std::vector<double>& speeds,
                                  const std::vector<int>& harmonics, Workers threads = {},
                                  std::optional<double> f_cut = std::nullopt);

@@ -328,11 +328,12 @@ Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
     }
     if (const toml::table* an = root.get_as<toml::table>("analysis")) {
         TomlKeys k(path, "analysis", *an);
-        k.only({"modes", "harmonics", "solver", "target", "target_order"});
+        k.only({"modes", "harmonics", "solver", "target", "target_order", "f_cut"});
         if (k.has("modes")) sc.modes = static_cast<int>(k.integer("modes", 0, 0, 100000));
         sc.solver = parse_solver_kind(k.choice("solver", "auto", {"auto", "dense", "sparse"}));
         if (k.has("target")) sc.target = k.number("target", std::nullopt, 0, false, "rad/s");
         sc.target_order = k.number("target_order", 0.0, 0, false, "multiple of the speed");
+        if (k.has("f_cut")) sc.f_cut = k.number("f_cut", std::nullopt, 0, true, "rad/s");
         if (const toml::array* h = an->get_as<toml::array>("harmonics")) {
             sc.harmonics.clear();
             for (const auto& e : *h) {
@@ -390,6 +391,8 @@ void validate_settings(const Scene& sc) {
     if (!(std::isfinite(sc.target_order) && sc.target_order >= 0))
         throw InputError(fmt::format("{}: target_order = {}; allowed: a finite number >= 0 (multiple of the speed)",
                                      sc.path, sc.target_order));
+    if (sc.f_cut && !(std::isfinite(*sc.f_cut) && *sc.f_cut > 0))
+        throw InputError(fmt::format("{}: f_cut = {}; allowed: a finite frequency > 0 (rad/s)", sc.path, *sc.f_cut));
 }
 
 SolverOptions Scene::solver_options() const {

@@ -24,6 +24,7 @@ struct Scene {
     SolverKind solver = SolverKind::Auto;   // [analysis] solver: auto | dense | sparse
     std::optional<double> target;      // [analysis] target: frequency (rad/s) the sparse search centres on
     double target_order = 0.0;         // [analysis] target_order: the centre moves as target + order * speed
+    std::optional<double> f_cut;       // [analysis] f_cut (rad/s): the modes judged (default: excitation_band)
     std::optional<SpeedRange> speeds;  // [speeds] from, to, count
     int modes = kModesInRange;         // [analysis] modes (0 = all; absent: those in range)
     std::vector<int> harmonics{1};     // [analysis] harmonics
@@ -61,7 +62,7 @@ Scene parse_scene(const std::string& text, const std::string& origin, const std:
                   const std::map<std::string, double>& overrides = {});
 
 // Checks the analysis settings of a scene assembled in code (speeds, modes, harmonics,
-// target, target_order) as the reader checks [speeds] and [analysis]: InputError
+// target, target_order, f_cut) as the reader checks [speeds] and [analysis]: InputError
 // naming the field, the value and the allowed range.
 void validate_settings(const Scene& scene);
 

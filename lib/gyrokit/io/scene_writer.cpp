@@ -207,6 +207,7 @@ void write_settings(Writer& w, const Scene& sc) {
     if (sc.modes != kModesInRange) w.key("modes", sc.modes);
     if (sc.target) w.key("target", *sc.target);
     w.key("target_order", sc.target_order);
+    if (sc.f_cut) w.key("f_cut", *sc.f_cut);
     w.harmonics(sc.harmonics);
 }
 

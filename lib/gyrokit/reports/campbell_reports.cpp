@@ -32,16 +32,18 @@ std::string out_of_range_note(const CampbellDiagram& cd, const SpeedUnit& u) {
         return fmt::format("modes above {:.6g} {} (the band holding the {} shown and their neighbours, beyond f_cut) "
                            "are not computed, not judged; {} 0 judges every mode",
                            u.factor * cd.band, u.name, cd.branches.size(), option_field("modes"));
+    const std::string origin =
+        cd.band_asked ? std::string("as asked") : fmt::format("{} times the highest excitation", kBandMargin);
     if (cd.out_of_range.empty())   // a solver of the band alone (continuation, a sparse window) has not computed them
-        return fmt::format("modes above f_cut = {:.6g} {} ({} times the highest excitation) are out of "
-                           "range, not computed, not judged; {} 0 judges every mode",
-                           u.factor * cd.band, u.name, kBandMargin, option_field("modes"));
+        return fmt::format("modes above f_cut = {:.6g} {} ({}) are out of range, not computed, not judged; {} 0 "
+                           "judges every mode",
+                           u.factor * cd.band, u.name, origin, option_field("modes"));
     double lowest = std::numeric_limits<double>::infinity();
     for (const Branch& b : cd.out_of_range)
         for (const auto& p : b.points) lowest = std::min(lowest, p.mode.frequency());
-    return fmt::format("{} modes stay above f_cut = {:.6g} {} over the range ({} times the highest excitation; the lowest at "
-                       "{:.6g} {}): out of range, not judged; {} 0 judges every mode",
-                       cd.out_of_range.size(), u.factor * cd.band, u.name, kBandMargin, u.factor * lowest, u.name,
+    return fmt::format("{} modes stay above f_cut = {:.6g} {} over the range ({}; the lowest at {:.6g} {}): out of "
+                       "range, not judged; {} 0 judges every mode",
+                       cd.out_of_range.size(), u.factor * cd.band, u.name, origin, u.factor * lowest, u.name,
                        option_field("modes"));
 }
 

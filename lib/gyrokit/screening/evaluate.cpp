@@ -129,7 +129,7 @@ void check_log_dec(const Sweep& s, const CampbellDiagram& cd, const StudyOptions
                    bool unstable, std::size_t q, DesignResult& r) {
     // The modes in range: what the speeds and harmonics can excite (a mesh's highest
     // modes, barely damped by the bearings, are no stability margin to keep).
-    const LeastDamped ld = least_damped(cd, excitation_band(so.speeds, so.harmonics));
+    const LeastDamped ld = least_damped(cd, judged_band(so.f_cut, so.speeds, so.harmonics));
     if (!ld.branch) return;   // no oscillating mode in range: nothing rings
     r.quantities[q] = ld.log_dec;
     r.quantities[q + 1] = ld.speed * s.unit.factor;
@@ -192,7 +192,7 @@ void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& 
     // at each speed judges them (growing_above_band), a sparse model's window every mode.
     StudyOptions so = study_options(sc);
     so.speeds = SpeedRange{0.0, c.up_to, c.count}.points();
-    const double band = excitation_band(so.speeds, so.harmonics);
+    const double band = judged_band(so.f_cut, so.speeds, so.harmonics);
     bool scan_above = false;
     if (so.solver.modes == kModesInRange && !modes_above_band_decay(sc.system, so.speeds, band)) {
         if (resolve_solver_kind(sc.dofs(), so.solver.kind, so.solver.modes) == SolverKind::Dense)

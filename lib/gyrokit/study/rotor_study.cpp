@@ -39,6 +39,7 @@ StudyOptions study_options(const Scene& scene) {
     o.solver = scene.solver_options();
     o.solver.modes = scene.modes;
     o.harmonics = scene.harmonics;
+    o.f_cut = scene.f_cut;
     if (scene.speeds) o.speeds = scene.speeds->points();
     return o;
 }
@@ -56,7 +57,7 @@ CampbellStudy campbell_study(const GyroscopicSystem& sys, const StudyOptions& op
                                  "step falls back to a window solve (target_order moves the window with the speed)"});
     add_notes(s.diagnostics, Topic::Extrapolation,
               extrapolation_notes(sys.bearings, opt.speeds.front(), opt.speeds.back()));
-    CampbellOptions co = tracking_options(s.plan, opt.solver.modes, opt.speeds, opt.harmonics, opt.workers);
+    CampbellOptions co = tracking_options(s.plan, opt.solver.modes, opt.speeds, opt.harmonics, opt.workers, opt.f_cut);
     co.progress = opt.progress;
     Tracking t = track(s.plan.make, co, opt.speeds);
     s.solver = std::move(t.solver);

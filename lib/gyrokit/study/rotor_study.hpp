@@ -16,6 +16,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace gyrokit {
@@ -24,6 +25,7 @@ struct StudyOptions {
     SolverOptions solver;            // modes: kModesInRange unless asked
     std::vector<double> speeds;      // rad/s
     std::vector<int> harmonics{1};
+    std::optional<double> f_cut;     // rad/s: the modes judged (judged_band: default 1.5 x the highest excitation)
     Workers workers;
     SpeedUnit unit;                  // the unit the diagnostics name speeds in
     std::function<void(std::size_t, std::size_t)> progress;   // speeds solved, of all
