@@ -50,7 +50,7 @@ Run run(const SolverFactory& solver, const std::vector<double>& speeds, const Ca
 // continuation at the grid speeds, each against the nearest full-solve mode.
 double deviation_over_bounds(const SolverFactory& cont, const SolverFactory& full, const std::vector<double>& speeds,
                              double band) {
-    const SpectrumSolver a = cont.make(), b = full.make();
+    const SpectrumSolver a = cont(), b = full();
     double worst = 0.0;
     for (double w : speeds) {
         const QuadraticSpectrum sa = a(w), sb = b(w);

@@ -102,7 +102,7 @@ TEST_CASE("continuation: the modes in range equal the full solve's within their 
                 REQUIRE(rep.used);
                 ++used;
             }
-            const SpectrumSolver reduced = cont.make(), full = dense_solver(sc.system).make();
+            const SpectrumSolver reduced = cont(), full = dense_solver(sc.system)();
             for (double w : grid) {
                 const QuadraticSpectrum f = within(full(w), band);
                 const QuadraticSpectrum r = reduced(w);
@@ -299,7 +299,7 @@ TEST_CASE("a step that fails whole is taken in halves: every speed between the a
     ContinuationReport rep;
     const SolverFactory cont = continuation_solver(std::make_shared<const GyroscopicSystem>(sc.system), grid, o, &rep);
     const std::vector<QuadraticSpectrum> stepped = solve_speeds(cont, grid, 1);
-    const SpectrumSolver full = dense_solver(sc.system).make();
+    const SpectrumSolver full = dense_solver(sc.system)();
     for (size_t k = 0; k < grid.size(); ++k) {
         const bool anchor = std::find(rep.anchors.begin(), rep.anchors.end(), grid[k]) != rep.anchors.end();
         INFO("at " << grid[k] << " rad/s: " << stepped[k].method);
@@ -355,7 +355,7 @@ cyy = [1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2, 1e2]
     CHECK(rep.anchors == std::vector<double>{0.0});
     CHECK(rep.checks == std::vector<double>{250.0, 500.0, 750.0, 1000.0});
     const std::vector<QuadraticSpectrum> got = solve_speeds(cont, grid, 1);
-    const SpectrumSolver full = dense_solver(sc.system).make();
+    const SpectrumSolver full = dense_solver(sc.system)();
     const QuadraticSpectrum at0 = full(0.0);
     REQUIRE(at0.modes.size() >= 4);
     CHECK(at0.modes[2].lambda.imag() > 2.0 * o.band);   // the pair that falls, beyond twice the band
@@ -379,7 +379,7 @@ TEST_CASE("the band of the K lowest modes: 1.25 times the largest of the K + 2 l
     (void)continuation_solver(std::make_shared<const GyroscopicSystem>(sc.system), grid, o, &rep);
     REQUIRE(rep.anchors == std::vector<double>{0.0, 500.0, 1000.0});
     double top = 0.0;
-    const SpectrumSolver full = dense_solver(sc.system).make();
+    const SpectrumSolver full = dense_solver(sc.system)();
     for (double w : rep.anchors) {
         std::vector<Mode> m = full(w).modes;
         sort_by_frequency(m);

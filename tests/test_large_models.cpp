@@ -393,16 +393,15 @@ TEST_CASE("critical speeds refined on two workers equal the serial ones", "[crit
 }
 
 TEST_CASE("a worker process that dies is reaped and reported with the speed it was solving", "[workers][reliability]") {
-    SolverFactory f;
-    f.thread_safe = false;   // forces worker processes
-    f.make = [] {
+    SolverFactory f([] {
         return SpectrumSolver([](double w) {
             if (w == 3.0) std::raise(SIGKILL);
             QuadraticSpectrum s;
             s.speed = w;
             return s;
         });
-    };
+    });
+    f.not_thread_safe();   // forces worker processes
     const std::vector<double> speeds{1.0, 2.0, 3.0, 4.0};
     try {
         solve_speeds(f, speeds, 2);
@@ -411,6 +410,7 @@ TEST_CASE("a worker process that dies is reaped and reported with the speed it w
         CHECK(std::string(e.what()).find("died (signal 9) while solving speed 3 rad/s") != std::string::npos);
     }
     // Without the crash the same workers give every speed.
-    f.make = [] { return SpectrumSolver([](double w) { QuadraticSpectrum s; s.speed = w; return s; }); };
-    CHECK(solve_speeds(f, speeds, 2).size() == 4);
+    SolverFactory fine([] { return SpectrumSolver([](double w) { QuadraticSpectrum s; s.speed = w; return s; }); });
+    fine.not_thread_safe();
+    CHECK(solve_speeds(fine, speeds, 2).size() == 4);
 }

@@ -120,7 +120,7 @@ TEST_CASE("workers: threads, processes and one worker give the same sparse spect
     SparseEigenOptions so;
     so.modes = 4;
     const SolverFactory make = sparse_solver(sys, so, false);   // no reuse: each speed alone
-    REQUIRE(!make.thread_safe);
+    REQUIRE(!make.thread_safe());
     std::vector<double> speeds;
     for (int k = 0; k < 8; ++k) speeds.push_back(100.0 * k);
     const auto one = solve_speeds(make, speeds, 1);

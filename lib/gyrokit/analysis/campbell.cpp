@@ -83,6 +83,7 @@ struct Tracker {
         for (size_t j = 0; j < next.size(); ++j) (far(next[j]) ? far_cols : cols).push_back(j);
         std::vector<int> a(prev.size(), -1);
         ambiguous = false;
+        const int edge = opt.window > 0 ? opt.window : opt.modes;
         // The far modes in frequency order, pair by pair.
         const auto by_freq = [](const std::vector<Mode>& m, std::vector<size_t>& idx) {
             std::stable_sort(idx.begin(), idx.end(), [&](size_t x, size_t y) { return m[x].frequency() < m[y].frequency(); });
@@ -119,7 +120,7 @@ struct Tracker {
             const size_t i = rows[r];
             if (sub[r] < 0 || degenerate(prev, i)) continue;   // a double eigenvalue: either match is right
             if (!watched[static_cast<size_t>(active[i])]) continue;
-            if (window && opt.modes > 0 && static_cast<int>(i) >= opt.modes) continue;   // the window's edge
+            if (window && edge > 0 && static_cast<int>(i) >= edge) continue;   // the window's edge
             const size_t c = static_cast<size_t>(sub[r]);
             const Mode& p = prev[i];
             const Mode& q = next[cols[c]];
@@ -132,8 +133,10 @@ struct Tracker {
                 const double change = std::max({std::abs(q.lambda - p.lambda), std::abs(h * p.slope), std::abs(h * q.slope)});
                 // In a complete spectrum the continuation is among the candidates, so a clear best
                 // suffices (a bearing table's kink bends a branch by O(h) and no bisection straightens
-                // it); a window may have lost it, so there the step must also be consistent.
-                if (window && res(r, c) > 0.1 * change + noise) ambiguous = true;
+                // it); a window may have lost it, so there the step must also be consistent, or
+                // keep the mode's shape (at a kink the slope is the average of both sides, and
+                // the residual stays O(h) at any step size).
+                if (window && res(r, c) > 0.1 * change + noise && mac(p.right, q.right) < opt.mac_min) ambiguous = true;
                 for (size_t k = 0; k < nc; ++k)
                     if (k != c && std::abs(next[cols[k]].lambda - q.lambda) > 1e-8 * std::abs(q.lambda) &&
                         res(r, k) < std::max(4.0 * res(r, c), noise))
@@ -244,11 +247,12 @@ double judged_band(std::optional<double> f_cut, const std::vector<double>& speed
 CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std::vector<double>& speeds,
                                  const std::vector<int>& harmonics, Workers threads, std::optional<double> f_cut) {
     CampbellOptions co;
-    co.modes = modes == kModesInRange ? (plan.kind == SolverKind::Sparse ? plan.modes : 0) : plan.modes;
-    // Every mode (modes = 0) is judged wherever it is; else the modes up to f_cut. An
-    // explicit K on the sparse solver is its window of modes near the target (judged as such).
-    if (modes == kModesInRange || (modes > 0 && plan.kind == SolverKind::Dense))
-        co.band = judged_band(f_cut, speeds, harmonics), co.band_asked = f_cut.has_value();
+    // K shown (0: every mode in range, or every mode); a sparse window's size is its own.
+    co.modes = modes == kModesInRange ? 0 : plan.modes;
+    if (plan.kind == SolverKind::Sparse) co.window = plan.modes;
+    // Every mode (modes = 0) is judged wherever it is; else the modes up to f_cut (a
+    // sparse window is widened to hold them: track).
+    if (modes != 0) co.band = judged_band(f_cut, speeds, harmonics), co.band_asked = f_cut.has_value();
     co.threads = threads;
     return co;
 }
@@ -268,12 +272,81 @@ ContinuationOptions continuation_options(const CampbellOptions& co) {
 }  // namespace
 
 SolverFactory tracking_solver(const SolverFactory& make, const CampbellOptions& co, const std::vector<double>& speeds) {
-    if (!std::isfinite(co.band) || !make.continued || speeds.empty()) return make;
+    if (!std::isfinite(co.band) || !make.can_continue() || speeds.empty()) return make;
     return make.continued(speeds, continuation_options(co), nullptr);
 }
 
+namespace {
+
+// A window of modes (sparse) doubled until, at the first, middle and last speed, it
+// reaches beyond 1.5 times the band (by modulus: a heavily damped mode crossing a line
+// lies farther from the target than its frequency) or holds every mode there is. Its
+// cost grows with the window times the model's size: at most kWindowBudget / DOFs
+// modes (and at most 64, half the DOFs), never fewer than asked. On
+// data/fe_rotor_100k.toml (hundreds of nearly equal spans) a window of 8 in place of
+// 4 cuts a cluster of hundreds of modes, where ARPACK took minutes instead of
+// seconds: it stays at 4. `reach`: how far the window reaches where it stops short
+// (0: it holds the band); a window that may not grow is not solved here (NaN: the
+// diagram tells).
+constexpr double kWindowBudget = 5e5;
+constexpr int kMaxBandWindow = 64;
+SolverFactory window_for_band(const SolverFactory& make, double band, const std::vector<double>& speeds,
+                              double& reach) {
+    reach = 0.0;
+    if (!make.can_resize() || make.window() <= 0 || !std::isfinite(band) || speeds.empty() || make.dofs() <= 0)
+        return make;
+    const int budget = static_cast<int>(kWindowBudget / make.dofs());
+    const int cap = std::max(make.window(), std::min({kMaxBandWindow, make.dofs() / 2, budget}));
+    std::vector<double> at{speeds.front()};
+    if (speeds.size() > 2) at.push_back(speeds[speeds.size() / 2]);
+    if (speeds.size() > 1) at.push_back(speeds.back());
+    SolverFactory use = make;
+    if (2 * use.window() > cap) {
+        reach = std::numeric_limits<double>::quiet_NaN();
+        return use;
+    }
+    for (;;) {
+        bool holds = true;
+        reach = std::numeric_limits<double>::infinity();
+        for (const double w : at) {
+            const QuadraticSpectrum s = use()(w);
+            double r = 0.0;
+            for (const Mode& m : s.modes) r = std::max(r, std::abs(m.lambda));
+            if (static_cast<int>(s.modes.size()) >= use.window() && r < 1.5 * band) holds = false, reach = std::min(reach, r);
+        }
+        if (holds) reach = 0.0;
+        if (holds || 2 * use.window() > cap) return use;
+        use = make.resized(2 * use.window());
+    }
+}
+
+}  // namespace
+
 Tracking track(const SolverFactory& make, CampbellOptions co, const std::vector<double>& speeds) {
-    if (!std::isfinite(co.band) || !make.continued || speeds.empty()) return {make, campbell(make, speeds, co)};
+    if (!make.can_continue() && std::isfinite(co.band) && make.can_resize() && !speeds.empty()) {
+        // A window: widened to hold the modes up to f_cut, K of them shown.
+        double reach = 0.0;
+        const SolverFactory use = window_for_band(make, co.band, speeds, reach);
+        co.window = use.window();
+        Tracking t{use, campbell(use, speeds, co)};
+        if (std::isnan(reach)) {   // not checked: the first speed's window, as tracked, tells
+            reach = 0.0;
+            int held = 0;
+            double top = 0.0;
+            for (const auto* list : {&t.diagram.branches, &t.diagram.untracked, &t.diagram.out_of_range})
+                for (const Branch& b : *list)
+                    if (b.points.front().speed == speeds.front()) ++held, top = std::max(top, std::abs(b.points.front().mode.lambda));
+            if (held >= use.window() && top < 1.5 * co.band) reach = top;
+        }
+        t.diagram.window_holds_band = reach == 0.0;
+        if (reach > 0.0)
+            t.diagram.notes.push_back(fmt::format(
+                "the sparse window of {} modes (the most this model's size allows) reaches {:.6g} rad/s, short of 1.5 "
+                "times f_cut ({:.6g} rad/s): modes between may be missed; set {} for a wider window",
+                use.window(), reach, 1.5 * co.band, option_field("modes")));
+        return t;
+    }
+    if (!std::isfinite(co.band) || !make.can_continue() || speeds.empty()) return {make, campbell(make, speeds, co)};
     // The modes up to f_cut and, where K is given, up to the band that holds the K
     // lowest: one continuation, whatever K is (a shown branch that rises out of the
     // band ends there; it is then above f_cut, where no excitation line runs).
@@ -404,6 +477,16 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
         std::stable_sort(first, br.end(), [](const Branch& a, const Branch& b) {
             return a.points.front().speed < b.points.front().speed;
         });
+        // A window widened for the band: the K asked for shown, the others judged.
+        if (opt.modes > 0 && static_cast<int>(br.size()) > opt.modes) {
+            for (size_t i = static_cast<size_t>(opt.modes); i < br.size(); ++i) {
+                br[i].id = static_cast<int>(i + 1);
+                out.untracked.push_back(std::move(br[i]));
+            }
+            br.resize(static_cast<size_t>(opt.modes));
+            for (size_t i = 0; i < out.out_of_range.size(); ++i)
+                out.out_of_range[i].id = static_cast<int>(br.size() + out.untracked.size() + i + 1);
+        }
     }
     for (size_t i = 0; i < br.size(); ++i) br[i].id = static_cast<int>(i + 1);
     return out;

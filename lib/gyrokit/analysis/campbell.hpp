@@ -28,6 +28,7 @@ struct CampbellOptions {
     // The band holds the K lowest modes (track, ContinuationOptions::lowest), not the excitation range.
     bool band_of_modes = false;
     bool band_asked = false;  // the band is an f_cut the caller gave, not excitation_band's default
+    int window = 0;           // a window solver's size (modes beyond it are its edge); 0: `modes`
     int max_refine = 8;       // bisection levels allowed between two grid speeds
     double mac_min = 0.9;     // a match with a lower MAC is ambiguous
     Workers threads = 1;      // grid speeds solved in parallel: this many threads or worker processes
@@ -68,6 +69,10 @@ struct CampbellDiagram {
     double band = std::numeric_limits<double>::infinity();
     bool band_of_modes = false;   // the band was chosen to hold the K lowest modes (CampbellOptions)
     bool band_asked = false;      // f_cut as the caller gave it (CampbellOptions)
+    // A window solver (partial) widened to hold the band: at the first, middle and last
+    // speed its window reached beyond 1.5 times the band, so its verdicts cover every
+    // mode up to the band as a dense diagram's do.
+    bool window_holds_band = false;
     std::vector<Branch> out_of_range;
 };
 

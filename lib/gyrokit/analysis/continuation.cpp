@@ -514,7 +514,7 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     full.left_vectors = true;
     const SolverFactory dense = dense_solver(*model, full);
     std::vector<QuadraticSpectrum> solved, checked;
-    if (opt.workers.count > 1 && opt.workers.kind != WorkerKind::Processes && dense.thread_safe) {
+    if (opt.workers.count > 1 && opt.workers.kind != WorkerKind::Processes && dense.thread_safe()) {
         // One loop on threads, the anchors (the longest) first: a thread done with
         // its anchor takes the checks.
         solved.resize(anchors.size());
@@ -525,7 +525,7 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
             try {
                 throw_if_interrupted();
                 if (i < anchors.size()) {
-                    solved[i] = dense.make()(anchors[i]);
+                    solved[i] = dense()(anchors[i]);
                     solved[i].speed = anchors[i];   // as solve_speeds sets it
                 } else {
                     checked[i - anchors.size()] = eigenvalues_only(*model, checks[i - anchors.size()]);
@@ -537,11 +537,9 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
         });
     } else {
         solved = solve_speeds(dense, anchors, opt.workers);
-        SolverFactory values;
-        values.dofs = n;
-        values.make = [model]() -> SpectrumSolver {
+        const SolverFactory values([model]() -> SpectrumSolver {
             return [model](double w) { return eigenvalues_only(*model, w); };
-        };
+        }, n);
         if (!checks.empty()) checked = solve_speeds(values, checks, opt.workers);
     }
 
@@ -603,28 +601,25 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
     }
     for (size_t k = 0; k < checks.size(); ++k) sh->checks[checks[k]] = std::move(checked[k]);
 
-    SolverFactory f;
-    f.dofs = n;
-    f.work = sh->work;
+    SolverFactory f([sh]() -> SpectrumSolver {
+        auto state = std::make_shared<Walk>();
+        return [sh, state](double w) { return solve_one(*sh, *state, w); };
+    }, n, sh->work);
     // A root search follows its branch's mode alone (a few factorizations of the full
     // pencil) rather than stepping every mode of the band.
-    f.follow = [model, tol = opt.tolerance, work = sh->work](const Mode& from, double w, cd predicted, double reach) {
+    f.with_follow([model, tol = opt.tolerance, work = sh->work](const Mode& from, double w, cd predicted, double reach) {
         ++work->followed;
         return follow_mode([&model](double v) { return model->sparse_at_speed(v); }, model->whirl_pairs, from, w,
                            predicted, reach, tol);
-    };
-    f.make = [sh]() -> SpectrumSolver {
-        auto state = std::make_shared<Walk>();
-        return [sh, state](double w) { return solve_one(*sh, *state, w); };
-    };
+    });
     // A grid solved in order by one solver whose steps correct their modes on
     // `threads` threads: every grid speed is reached from the first anchor anyway,
     // so workers sharing the grid would each walk from there (the same bits).
-    f.walk = [sh](int threads) -> SpectrumSolver {
+    f.with_walk([sh](int threads) -> SpectrumSolver {
         auto state = std::make_shared<Walk>();
         state->threads = threads;
         return [sh, state](double w) { return solve_one(*sh, *state, w); };
-    };
+    });
     return f;
 }
 

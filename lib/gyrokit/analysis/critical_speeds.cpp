@@ -75,10 +75,10 @@ void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const H
         run_on_workers(make, found.size(), workers, [&](SpectrumSolver& solve, size_t k) {
             const Branch& b = *found[k].branch;
             const size_t i = found[k].i;
-            SpectrumSolver own = make.centred ? make.centred(b.points[i].mode.lambda.imag()) : SpectrumSolver{};
-            SpectrumSolver& use = make.centred ? own : solve;
+            SpectrumSolver own = make.has_centred() ? make.centred(b.points[i].mode.lambda.imag()) : SpectrumSolver{};
+            SpectrumSolver& use = make.has_centred() ? own : solve;
             const auto mode_at = [&](double w) -> Mode {
-                if (make.follow) {   // the branch's mode followed from the nearer end
+                if (make.can_follow()) {   // the branch's mode followed from the nearer end
                     const BranchPoint& p0 = b.points[i];
                     const BranchPoint& p1 = b.points[i + 1];
                     const double t = p1.speed > p0.speed ? (w - p0.speed) / (p1.speed - p0.speed) : 0.0;

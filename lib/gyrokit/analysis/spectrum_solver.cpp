@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -27,6 +28,49 @@ SolverWork WorkCounter::snapshot() const {
     return w;
 }
 
+SolverFactory::SolverFactory(Make make, int dofs, std::shared_ptr<WorkCounter> work)
+    : make_(std::move(make)), dofs_(dofs) {
+    if (work) work_ = std::move(work);
+}
+
+namespace {
+[[noreturn]] void missing(const char* what) {
+    throw std::logic_error(std::string("SolverFactory: this solver has no ") + what);
+}
+}  // namespace
+
+SpectrumSolver SolverFactory::operator()() const {
+    if (!make_) missing("solver (a default-constructed factory)");
+    return make_();
+}
+
+SpectrumSolver SolverFactory::centred(double nu) const {
+    if (!centred_) missing("centred window (has_centred)");
+    return centred_(nu);
+}
+
+std::optional<Mode> SolverFactory::follow(const Mode& from, double w, std::complex<double> predicted,
+                                          double reach) const {
+    if (!follow_) missing("mode following (can_follow)");
+    return follow_(from, w, predicted, reach);
+}
+
+SolverFactory SolverFactory::continued(const std::vector<double>& speeds, const ContinuationOptions& opt,
+                                       ContinuationReport* report) const {
+    if (!continued_) missing("continuation (can_continue)");
+    return continued_(speeds, opt, report);
+}
+
+SolverFactory SolverFactory::resized(int modes) const {
+    if (!resize_) missing("window to resize (can_resize)");
+    return resize_(modes);
+}
+
+SpectrumSolver SolverFactory::walk(int threads) const {
+    if (!walk_) missing("walk (walks)");
+    return walk_(threads);
+}
+
 SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig) {
     sys.validate("dense solver: the system");
     if (sys.size() > kDenseLimit)
@@ -35,9 +79,8 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
                                      option_field("solver"), sys.size(), kDenseLimit));
     // The solvers share ownership of one copy: a temporary system outlives the call.
     const auto model = std::make_shared<const GyroscopicSystem>(sys);
-    SolverFactory f;
-    f.dofs = model->size();
-    f.make = [model, eig, work = f.work]() -> SpectrumSolver {
+    const auto work = std::make_shared<WorkCounter>();
+    SolverFactory f([model, eig, work]() -> SpectrumSolver {
                 return [model, eig, work](double w) {
                     throw_if_interrupted();
                     ++work->full_solves;
@@ -49,13 +92,13 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
                         for (Mode& m : s.modes) m.left.resize(0);
                     return s;
                 };
-            };
-    f.continued = [model, eig](const std::vector<double>& speeds, const ContinuationOptions& opt,
-                               ContinuationReport* report) {
+            }, model->size(), work);
+    f.with_continuation([model, eig](const std::vector<double>& speeds, const ContinuationOptions& opt,
+                                     ContinuationReport* report) {
         ContinuationOptions o = opt;
         o.eig = eig;
         return continuation_solver(model, speeds, o, report);
-    };
+    });
     return f;
 }
 
@@ -170,24 +213,8 @@ namespace {
 
 // The sparse factory whose solvers count their work in `work`.
 SolverFactory sparse_factory(std::function<SparsePencil(double)> pencil, std::vector<std::pair<int, int>> whirl_pairs,
-                             const SparseEigenOptions& opt, bool reuse, std::shared_ptr<WorkCounter> work) {
-    SolverFactory f;
-    f.thread_safe = false;
-    f.work = work;
-    // A window centred on one mode's frequency, where a root search follows that mode
-    // (counted with the sweep's work).
-    f.centred = [pencil, whirl_pairs, opt, work](double nu) {
-        SparseEigenOptions o = opt;
-        o.shift = {0.0, nu};
-        o.shift_order = 0.0;
-        return sparse_factory(pencil, whirl_pairs, o, true, work).make();
-    };
-    f.follow = [pencil, whirl_pairs, tol = opt.verify_tolerance, work](const Mode& from, double w,
-                                                                        std::complex<double> predicted, double reach) {
-        ++work->followed;
-        return follow_mode(pencil, whirl_pairs, from, w, predicted, reach, tol);
-    };
-    f.walk = [pencil, whirl_pairs, opt, reuse, work](int threads) -> SpectrumSolver {
+                             const SparseEigenOptions& opt, bool reuse, std::shared_ptr<WorkCounter> work, int dofs) {
+    const SolverFactory::Walk walk = [pencil, whirl_pairs, opt, reuse, work](int threads) -> SpectrumSolver {
         // The state vectors [lambda x; x] of the last speed's modes, summed: a
         // start vector rich in the wanted invariant subspace.
         auto start = std::make_shared<Eigen::VectorXcd>();
@@ -243,24 +270,46 @@ SolverFactory sparse_factory(std::function<SparsePencil(double)> pencil, std::ve
             return keep(std::move(q));
         };
     };
-    f.make = [walk = f.walk]() { return walk(1); };
+    SolverFactory f([walk]() { return walk(1); }, dofs, work);
+    f.not_thread_safe();
+    // The same window of another size; Arnoldi vectors as asked where they still suffice.
+    f.with_window(opt.modes, [pencil, whirl_pairs, opt, reuse, work, dofs](int modes) {
+        SparseEigenOptions o = opt;
+        o.modes = modes;
+        if (o.lanczos_vectors > 0 && o.lanczos_vectors < 2 * modes + 2) o.lanczos_vectors = 0;
+        return sparse_factory(pencil, whirl_pairs, o, reuse, work, dofs);
+    });
+    // A window centred on one mode's frequency, where a root search follows that mode
+    // (counted with the sweep's work).
+    f.with_centred([pencil, whirl_pairs, opt, work, dofs](double nu) {
+        SparseEigenOptions o = opt;
+        o.shift = {0.0, nu};
+        o.shift_order = 0.0;
+        return sparse_factory(pencil, whirl_pairs, o, true, work, dofs)();
+    });
+    f.with_follow([pencil, whirl_pairs, tol = opt.verify_tolerance, work](const Mode& from, double w,
+                                                                           std::complex<double> predicted, double reach) {
+        ++work->followed;
+        return follow_mode(pencil, whirl_pairs, from, w, predicted, reach, tol);
+    });
     // Without state carried from speed to speed, or with a moving window, the
     // speeds are independent: blocks of them go to the workers.
-    if (!reuse || opt.shift_order != 0.0) f.walk = nullptr;
+    if (reuse && opt.shift_order == 0.0) f.with_walk(walk);
     return f;
 }
 
 }  // namespace
 
 SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vector<std::pair<int, int>> whirl_pairs,
-                            const SparseEigenOptions& opt, bool reuse) {
-    return sparse_factory(std::move(pencil), std::move(whirl_pairs), opt, reuse, std::make_shared<WorkCounter>());
+                            const SparseEigenOptions& opt, bool reuse, int dofs) {
+    return sparse_factory(std::move(pencil), std::move(whirl_pairs), opt, reuse, std::make_shared<WorkCounter>(), dofs);
 }
 
 SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse) {
     sys.validate("sparse solver: the system");
     const auto model = std::make_shared<const GyroscopicSystem>(sys);
-    return sparse_solver([model](double w) { return model->sparse_at_speed(w); }, sys.whirl_pairs, opt, reuse);
+    return sparse_solver([model](double w) { return model->sparse_at_speed(w); }, sys.whirl_pairs, opt, reuse,
+                         model->size());
 }
 
 }  // namespace gyrokit

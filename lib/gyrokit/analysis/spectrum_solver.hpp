@@ -44,36 +44,84 @@ struct WorkCounter {
     SolverWork snapshot() const;
 };
 
-struct SolverFactory {
-    std::function<SpectrumSolver()> make;
-    // Shared by the solvers this factory makes (and the copies of the factory).
-    std::shared_ptr<WorkCounter> work = std::make_shared<WorkCounter>();
-    // ARPACK keeps its iteration state in Fortran SAVE variables, so two
-    // ARPACK runs must not share a process: such solvers run in parallel in
-    // worker processes instead of threads.
-    bool thread_safe = true;
-    int dofs = 0;   // the model's size (0: not known)
-    // A window of modes (sparse solvers): a solver whose window is centred on the
-    // frequency nu (rad/s), so that a root search refines a mode on its own shift and
-    // the sweep's window cannot move the result. Empty for solvers of every mode.
-    std::function<SpectrumSolver(double nu)> centred;
-    // Window solvers: a mode followed from a nearby speed to w by inverse iteration
-    // on the full pencil (follow_mode: predicted eigenvalue, reach), for a root
-    // search along one branch at the cost of a few factorizations instead of a
-    // window; nothing where the step does not verify (then the window is solved).
-    std::function<std::optional<Mode>(const Mode& from, double w, std::complex<double> predicted, double reach)>
-        follow;
-    // Dense solvers: the continuation (continuation_solver) over `speeds` with
-    // options `opt` (their eig replaced by this solver's). Empty for the others.
-    std::function<SolverFactory(const std::vector<double>& speeds, const ContinuationOptions& opt,
-                                ContinuationReport* report)>
-        continued;
-    // Window solvers that continue from speed to speed: a solver whose steps use
-    // `threads` threads inside (the modes corrected in parallel). solve_speeds walks
-    // a grid with one such solver, in order, instead of sharing it among workers
-    // (a worker starting mid-grid would pay a full window solve there).
-    std::function<SpectrumSolver(int threads)> walk;
-    SpectrumSolver operator()() const { return make(); }
+// Makes the solvers of one model, each worker its own, and says what else its
+// solvers can do. Every factory solves a speed (operator()); the capabilities below
+// are named, asked for with can_* / has_* and refused (a logic error) where absent.
+class SolverFactory {
+public:
+    using Make = std::function<SpectrumSolver()>;
+    using Centred = std::function<SpectrumSolver(double nu)>;
+    using Follow = std::function<std::optional<Mode>(const Mode& from, double w, std::complex<double> predicted,
+                                                      double reach)>;
+    using Continue = std::function<SolverFactory(const std::vector<double>& speeds, const ContinuationOptions& opt,
+                                                 ContinuationReport* report)>;
+    using Walk = std::function<SpectrumSolver(int threads)>;
+    using Resize = std::function<SolverFactory(int modes)>;
+
+    SolverFactory() = default;   // no solver yet (a study's member before it runs)
+    // `make` gives a new solver of every speed; `dofs` the model's size (0: not known);
+    // `work` the counter its solvers share (a new one where none is given).
+    explicit SolverFactory(Make make, int dofs = 0, std::shared_ptr<WorkCounter> work = nullptr);
+
+    // A new solver (state kept between its calls: each worker makes its own).
+    SpectrumSolver operator()() const;
+    int dofs() const { return dofs_; }
+    // What the solvers of this factory (and its copies) did.
+    SolverWork work() const { return work_->snapshot(); }
+    const std::shared_ptr<WorkCounter>& counter() const { return work_; }
+
+    // ARPACK keeps its iteration state in Fortran SAVE variables, so two ARPACK runs
+    // must not share a process: such solvers run in parallel in worker processes.
+    bool thread_safe() const { return thread_safe_; }
+    SolverFactory& not_thread_safe() { thread_safe_ = false; return *this; }
+
+    // Window solvers: a solver whose window is centred on the frequency nu (rad/s), so
+    // that a root search refines a mode on its own shift and the sweep's window cannot
+    // move the result.
+    bool has_centred() const { return static_cast<bool>(centred_); }
+    SpectrumSolver centred(double nu) const;
+    SolverFactory& with_centred(Centred c) { centred_ = std::move(c); return *this; }
+
+    // A mode followed from a nearby speed to w by inverse iteration on the full pencil
+    // (follow_mode: predicted eigenvalue, reach), for a root search along one branch at
+    // the cost of a few factorizations; nothing where the step does not verify.
+    bool can_follow() const { return static_cast<bool>(follow_); }
+    std::optional<Mode> follow(const Mode& from, double w, std::complex<double> predicted, double reach) const;
+    SolverFactory& with_follow(Follow f) { follow_ = std::move(f); return *this; }
+
+    // Dense solvers: the continuation (continuation_solver) over `speeds` with options
+    // `opt` (their eig replaced by this solver's).
+    bool can_continue() const { return static_cast<bool>(continued_); }
+    SolverFactory continued(const std::vector<double>& speeds, const ContinuationOptions& opt,
+                            ContinuationReport* report) const;
+    SolverFactory& with_continuation(Continue c) { continued_ = std::move(c); return *this; }
+
+    // Solvers that continue from speed to speed: a solver whose steps use `threads`
+    // threads inside. solve_speeds walks a grid with one such solver, in order, instead
+    // of sharing it among workers (a worker starting mid-grid would pay a full solve there).
+    // Window solvers: how many modes a window holds (0: every mode), and the same
+    // solver with a window of `modes` modes (sharing this one's work counter).
+    int window() const { return window_; }
+    bool can_resize() const { return static_cast<bool>(resize_); }
+    SolverFactory resized(int modes) const;
+    SolverFactory& with_window(int modes, Resize r) { window_ = modes; resize_ = std::move(r); return *this; }
+
+    bool walks() const { return static_cast<bool>(walk_); }
+    SpectrumSolver walk(int threads) const;
+    SolverFactory& with_walk(Walk w) { walk_ = std::move(w); return *this; }
+    SolverFactory& without_walk() { walk_ = nullptr; return *this; }
+
+private:
+    Make make_;
+    int dofs_ = 0;
+    std::shared_ptr<WorkCounter> work_ = std::make_shared<WorkCounter>();
+    bool thread_safe_ = true;
+    Centred centred_;
+    Follow follow_;
+    Continue continued_;
+    Walk walk_;
+    int window_ = 0;
+    Resize resize_;
 };
 
 // The dense solver refuses models above this many DOFs (its 2n x 2n QZ needs
@@ -91,7 +139,7 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig 
 // Arnoldi iteration started from the last window's eigenvectors; such a factory
 // has `walk` (sweeps solve its speeds in order).
 SolverFactory sparse_solver(std::function<SparsePencil(double)> pencil, std::vector<std::pair<int, int>> whirl_pairs,
-                            const SparseEigenOptions& opt, bool reuse = true);
+                            const SparseEigenOptions& opt, bool reuse = true, int dofs = 0);
 // The system's sparse pencils (one shared copy of the validated system).
 SolverFactory sparse_solver(const GyroscopicSystem& sys, const SparseEigenOptions& opt, bool reuse = true);
 

@@ -337,7 +337,7 @@ std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t 
         }
     };
     const bool processes = workers.kind == WorkerKind::Processes ||
-                           (workers.kind == WorkerKind::Auto && !make.thread_safe);
+                           (workers.kind == WorkerKind::Auto && !make.thread_safe());
     if (t > 1 && processes) return run_in_processes(make, n, t, task, progress);
     if (t == 1) {
         work(0, n);
@@ -364,7 +364,7 @@ std::vector<QuadraticSpectrum> solve_speeds(const SolverFactory& make, const std
 std::vector<QuadraticSpectrum> solve_speeds_unchecked(const SolverFactory& make, const std::vector<double>& speeds,
                                                       Workers workers,
                                                       const std::function<void(size_t, size_t)>& progress) {
-    if (make.walk) {
+    if (make.walks()) {
         SpectrumSolver solve = make.walk(std::max(1, workers.count));
         std::vector<QuadraticSpectrum> out(speeds.size());
         for (size_t i = 0; i < speeds.size(); ++i) {

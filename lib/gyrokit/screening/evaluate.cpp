@@ -157,7 +157,7 @@ struct GrowingAbove {
 // crossings would insert thousands of speeds on a mesh's highest modes).
 GrowingAbove growing_above_band(const GyroscopicSystem& sys, const EigenOptions& eig,
                                 const std::vector<double>& speeds, double band, double before) {
-    SpectrumSolver solve = dense_solver(sys, eig).make();
+    SpectrumSolver solve = dense_solver(sys, eig)();
     GrowingAbove out;
     const auto grows = [&](double w) {
         const QuadraticSpectrum sp = solve(w);

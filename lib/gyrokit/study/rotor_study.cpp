@@ -50,7 +50,7 @@ CampbellStudy campbell_study(const GyroscopicSystem& sys, const StudyOptions& op
     CampbellStudy s;
     s.plan = choose_solver(sys, opt.solver);
     add_notes(s.diagnostics, Topic::Solver, s.plan.notes);
-    if (s.plan.make.walk && opt.speeds.size() > 1)
+    if (s.plan.make.walks() && opt.speeds.size() > 1)
         s.diagnostics.push_back({Level::Note, Topic::Solver,
                                  "the sparse window holds the modes nearest the target at the first speed, followed "
                                  "along their branches; a mode that comes nearer the target later joins it only where a "
