@@ -5,6 +5,7 @@
 // every-mode path, and how far the continuation's eigenvalues lie from the full
 // solve's in units of the sum of the two error bounds.
 // Exit status: 0 success, 2 bad input, 1 anything else.
+#include "bench_clock.hpp"
 #include "bench_common.hpp"
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/campbell.hpp>
@@ -24,9 +25,7 @@ using namespace gyrokit;
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using bench::seconds_since;
 
 struct Run {
     double campbell = 0, critical = 0;

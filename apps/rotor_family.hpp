@@ -6,6 +6,8 @@
 // Header-only.
 #pragma once
 
+#include "bench_clock.hpp"
+
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
@@ -185,9 +187,7 @@ struct CaseResult {
     bool ok() const { return failures.empty(); }
 };
 
-inline double seconds_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using bench::seconds_since;
 
 // Runs the default Campbell study and the critical speeds of case `c` and checks
 // them: cost at most `max_cost`, no ambiguous step, every 1x crossing found in

@@ -106,13 +106,13 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
 // mode, negative for an unstable one) where the frequency lies within `band` (the
 // excitation band of the scan). Real eigenvalues (overdamped, divergent) have no
 // decrement and rigid-body eigenvalues are no branches. None: no such mode.
-struct LeastDamped {
+struct LeastLogDecrement {
     const Branch* branch = nullptr;
     double log_dec = inf, speed = 0;
 };
 
-LeastDamped least_damped(const CampbellDiagram& cd, double band) {
-    LeastDamped out;
+LeastLogDecrement least_log_decrement(const CampbellDiagram& cd, double band) {
+    LeastLogDecrement out;
     for (const auto* list : {&cd.branches, &cd.untracked})   // the shown modes and the others judged
         for (const Branch& b : *list)
         for (const BranchPoint& p : b.points) {
@@ -129,7 +129,7 @@ void check_log_dec(const Sweep& s, const CampbellDiagram& cd, const StudyOptions
                    bool unstable, std::size_t q, DesignResult& r) {
     // The modes in range: what the speeds and harmonics can excite (a mesh's highest
     // modes, barely damped by the bearings, are no stability margin to keep).
-    const LeastDamped ld = least_damped(cd, judged_band(so.f_cut, so.speeds, so.harmonics));
+    const LeastLogDecrement ld = least_log_decrement(cd, judged_band(so.f_cut, so.speeds, so.harmonics));
     if (!ld.branch) return;   // no oscillating mode in range: nothing rings
     r.quantities[q] = ld.log_dec;
     r.quantities[q + 1] = ld.speed * s.unit.factor;
