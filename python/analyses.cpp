@@ -120,6 +120,21 @@ py::dict campbell_dict(const CampbellDiagram& cd) {
     d["max_backward_error"] = cd.max_backward_error;
     d["rigid_body"] = cd.rigid_body;
     d["notes"] = cd.notes;
+    // The modes judged beyond the K shown (ids K + 1 on: the critical speeds and
+    // stability changes may name them), speeds x those branches.
+    const auto nj = static_cast<py::ssize_t>(cd.untracked.size());
+    py::array_t<std::complex<double>> judged({ns, nj});
+    py::array_t<int> judged_ids(nj);
+    for (py::ssize_t i = 0; i < ns; ++i)
+        for (py::ssize_t b = 0; b < nj; ++b) judged.mutable_at(i, b) = {nan, nan};
+    for (py::ssize_t b = 0; b < nj; ++b) {
+        const Branch& br = cd.untracked[static_cast<size_t>(b)];
+        judged_ids.mutable_at(b) = br.id;
+        for (const BranchPoint& p : br.points)
+            if (const auto it = row.find(p.speed); it != row.end()) judged.mutable_at(it->second, b) = p.mode.lambda;
+    }
+    d["judged_eigenvalues"] = judged;
+    d["judged_branches"] = judged_ids;
     return d;
 }
 

@@ -158,6 +158,9 @@ class CampbellResult(_Result):
         self.backward_errors = d["backward_errors"]
         self.whirl = d["whirl"]
         self.branches = d["branches"]
+        # The modes up to f_cut beyond the K shown, judged as the shown ones (their ids K + 1 on).
+        self.judged_branches = d["judged_branches"]
+        self.judged_eigenvalues = d["judged_eigenvalues"]
         self.inserted_speeds = d["inserted_speeds"]
         self.ambiguous_steps = d["ambiguous_steps"]
         self.max_backward_error = d["max_backward_error"]

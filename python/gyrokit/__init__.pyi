@@ -124,6 +124,8 @@ class CampbellResult(_Result):
     backward_errors: npt.NDArray[np.float64]
     whirl: list[list[str]]
     branches: npt.NDArray[np.int32]
+    judged_branches: npt.NDArray[np.int32]   # the modes up to f_cut beyond the K shown (ids K + 1 on)
+    judged_eigenvalues: npt.NDArray[np.complex128]   # speeds x judged_branches
     inserted_speeds: int
     ambiguous_steps: int
     max_backward_error: float

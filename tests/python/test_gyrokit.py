@@ -880,3 +880,19 @@ def test_f_cut_in_the_callers_unit_as_the_clis_and_from_the_scene(tmp_path):
     assert list(gk.critical_speeds(keyed, unit="Hz").speeds) == pytest.approx(list(cut.speeds), rel=RTOL)
     with pytest.raises(gk.InputError, match="f_cut"):
         gk.stability(s, f_cut=0.0)
+
+
+def test_campbell_gives_the_judged_modes_beyond_the_k_shown():
+    s = gk.load_scene(scene("fe_rotor.toml"))
+    c = gk.campbell(s, modes=1)
+    assert list(c.branches) == [1]
+    assert c.judged_eigenvalues.shape == (len(c.speeds), len(c.judged_branches))
+    assert list(c.judged_branches) == list(range(2, 2 + len(c.judged_branches)))
+    # Every branch the critical speeds name is shown or judged.
+    cs = gk.critical_speeds(s, modes=1)
+    assert set(int(b) for b in cs.branch) <= {1} | set(int(b) for b in c.judged_branches)
+    # Mode 4 is unstable from 1100 rad/s on (the CLI's summary): its judged eigenvalues say so.
+    k = list(c.judged_branches).index(4)
+    top = c.judged_eigenvalues[-1, k]
+    assert top.real > 0 and top.imag > 0
+    assert any("mode 4 is unstable" in w for w in c.warnings)
