@@ -61,7 +61,7 @@ struct ContinuationReport {
 //    every pair verifies (backward errors of the right and left vectors <=
 //    opt.tolerance), stays within 0.3 of its distance to the nearest other
 //    prediction, and no two pairs land on one mode. A step that fails is taken
-//    as two half steps (each halved again where it fails: a quarter at most).
+//    as two half steps (each halved again where it fails: a sixteenth at most).
 //    At a check speed (every check_stride-th and the last) the continued modes
 //    must also account for every eigenvalue within twice the band there (QZ
 //    without vectors, computed at construction).
@@ -97,7 +97,7 @@ std::optional<Mode> follow_mode(const std::function<SparsePencil(double)>& penci
 // along their slopes and corrected at w, each kept if it verifies, stays within
 // 0.3 of its distance to the nearest other prediction and keeps MAC >= 0.9 with
 // its shape at from.speed (a mode outside the window cannot be seen, so the shape
-// tells a jump onto it), in half or quarter steps where the whole step fails
+// tells a jump onto it), in halves (down to sixteenths) where the whole step fails
 // (as step 1 above; the modes at w then keep MAC >= 0.9 with distinct modes of
 // `from`). With left vectors and slopes; nothing if any mode fails.
 // The modes are corrected on `threads` threads (the same result on any number).

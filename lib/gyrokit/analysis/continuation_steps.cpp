@@ -196,15 +196,26 @@ bool keeps_shapes(const Solved& from, const Solved& to, double min_mac) {
     return true;
 }
 
-std::optional<QuadraticSpectrum> branch_steps(const Frame& fr, const Solved& from, double w, Solved& next,
-                                              int halvings) {
+namespace {
+
+// The step in halves, each halved again where it fails, `halvings` levels down.
+std::optional<QuadraticSpectrum> in_parts(const Frame& fr, const Solved& from, double w, Solved& next, int halvings) {
     if (std::optional<QuadraticSpectrum> s = branch_solve(fr, from, w, next)) return s;
     if (halvings == 0 || from.track.empty() || w == from.w) return std::nullopt;
     Solved mid;
-    if (!branch_steps(fr, from, 0.5 * (from.w + w), mid, halvings - 1)) return std::nullopt;
-    std::optional<QuadraticSpectrum> s = branch_steps(fr, mid, w, next, halvings - 1);
+    if (!in_parts(fr, from, 0.5 * (from.w + w), mid, halvings - 1)) return std::nullopt;
+    std::optional<QuadraticSpectrum> s = in_parts(fr, mid, w, next, halvings - 1);
     if (s && fr.min_mac > 0.0 && !keeps_shapes(from, next, fr.min_mac)) return std::nullopt;
-    if (s && fr.work) ++fr.work->split_steps;
+    return s;
+}
+
+}  // namespace
+
+std::optional<QuadraticSpectrum> branch_steps(const Frame& fr, const Solved& from, double w, Solved& next,
+                                              int halvings) {
+    if (std::optional<QuadraticSpectrum> s = branch_solve(fr, from, w, next)) return s;
+    std::optional<QuadraticSpectrum> s = in_parts(fr, from, w, next, halvings);
+    if (s && fr.work) ++fr.work->split_steps;   // once per step, however deep it was split
     return s;
 }
 

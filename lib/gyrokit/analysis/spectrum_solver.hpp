@@ -33,7 +33,7 @@ struct SolverWork {
     long eigenvalue_checks = 0;  // the eigenvalues alone at one speed (continuation checks)
     long window_solves = 0;      // a window of modes by ARPACK shift-invert
     long steps = 0;              // speeds reached along the branches (verified corrections)
-    long split_steps = 0;        // of them, steps taken in parts (a half or a quarter)
+    long split_steps = 0;        // of them, steps taken in parts (halves down to sixteenths; counted once each)
     long local_solves = 0;       // full solves where a step did not verify (counted in full_solves too)
     long followed = 0;           // single modes followed to a speed (root searches)
 };

@@ -75,9 +75,11 @@ bool corrected(const SparsePencil& p, const PencilAction& action, Mode& m, cd pr
 bool lands_on_another(const std::vector<Mode>& modes, const Mode& m);
 // Step 1: every mode of `from` predicted along its slope and corrected at w.
 std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& from, double w, Solved& next);
-// Step 1 with the step halved where it fails, up to `halvings` times.
+// Step 1 with the step halved where it fails, up to `halvings` times (a sixteenth:
+// near an exceptional point or a close crossing a shorter step often verifies
+// where the whole did not, at a few corrections instead of a full solve).
 std::optional<QuadraticSpectrum> branch_steps(const Frame& fr, const Solved& from, double w, Solved& next,
-                                              int halvings = 2);
+                                              int halvings = 4);
 
 // --- the grid's shared state (continuation.cpp) ---
 
