@@ -235,6 +235,25 @@ double excitation_band(const std::vector<double>& speeds, const std::vector<int>
     return top > 0.0 && std::isfinite(top) ? kBandMargin * h * top : std::numeric_limits<double>::infinity();
 }
 
+namespace {
+
+// The K first branches shown, the others up to the band judged (untracked, with their
+// vectors, ids K + 1 on); the out-of-range ones numbered after them. K = 0: all shown.
+void show_k(CampbellDiagram& out, int k) {
+    std::vector<Branch>& br = out.branches;
+    if (k > 0 && static_cast<int>(br.size()) > k) {
+        for (size_t i = static_cast<size_t>(k); i < br.size(); ++i) {
+            br[i].id = static_cast<int>(i + 1);
+            out.untracked.push_back(std::move(br[i]));
+        }
+        br.resize(static_cast<size_t>(k));
+    }
+    for (size_t i = 0; i < out.out_of_range.size(); ++i)
+        out.out_of_range[i].id = static_cast<int>(br.size() + out.untracked.size() + i + 1);
+}
+
+}  // namespace
+
 double judged_band(std::optional<double> f_cut, const std::vector<double>& speeds, const std::vector<int>& harmonics) {
     if (!f_cut) return excitation_band(speeds, harmonics);
     if (!(std::isfinite(*f_cut) && *f_cut > 0))
@@ -437,15 +456,7 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
             out.out_of_range.push_back(std::move(*it));
         }
         br.erase(split, br.end());
-        if (opt.modes > 0 && static_cast<int>(br.size()) > opt.modes) {
-            for (size_t i = static_cast<size_t>(opt.modes); i < br.size(); ++i) {
-                br[i].id = static_cast<int>(i + 1);
-                out.untracked.push_back(std::move(br[i]));
-            }
-            br.resize(static_cast<size_t>(opt.modes));
-        }
-        for (size_t i = 0; i < out.out_of_range.size(); ++i)
-            out.out_of_range[i].id = static_cast<int>(br.size() + out.untracked.size() + i + 1);
+        show_k(out, opt.modes);
     } else if (opt.modes > 0 && !t.window && static_cast<int>(br.size()) > opt.modes) {
         // The others were tracked too (a dense spectrum is complete): kept by eigenvalue for a
         // stability verdict over every mode, numbered on from K + 1.
@@ -477,16 +488,7 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
         std::stable_sort(first, br.end(), [](const Branch& a, const Branch& b) {
             return a.points.front().speed < b.points.front().speed;
         });
-        // A window widened for the band: the K asked for shown, the others judged.
-        if (opt.modes > 0 && static_cast<int>(br.size()) > opt.modes) {
-            for (size_t i = static_cast<size_t>(opt.modes); i < br.size(); ++i) {
-                br[i].id = static_cast<int>(i + 1);
-                out.untracked.push_back(std::move(br[i]));
-            }
-            br.resize(static_cast<size_t>(opt.modes));
-            for (size_t i = 0; i < out.out_of_range.size(); ++i)
-                out.out_of_range[i].id = static_cast<int>(br.size() + out.untracked.size() + i + 1);
-        }
+        show_k(out, opt.modes);   // a window widened for the band
     }
     for (size_t i = 0; i < br.size(); ++i) br[i].id = static_cast<int>(i + 1);
     return out;
