@@ -237,6 +237,15 @@ double excitation_band(const std::vector<double>& speeds, const std::vector<int>
 
 namespace {
 
+// A branch in the band: its frequency (a real eigenvalue's modulus) at or below it
+// somewhere, or divergent (real and positive: judged whatever its size) anywhere.
+bool in_band(const Branch& b, double band) {
+    return std::any_of(b.points.begin(), b.points.end(), [&](const BranchPoint& p) {
+        const auto [rank, f] = frequency_rank(p.mode);
+        return f <= band || (rank == 1 && p.mode.lambda.real() > 0.0);
+    });
+}
+
 // The K first branches shown, the others up to the band judged (untracked, with their
 // vectors, ids K + 1 on); the out-of-range ones numbered after them. K = 0: all shown.
 void show_k(CampbellDiagram& out, int k) {
@@ -443,14 +452,8 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
         // (branches), the others kept with their vectors (untracked: their crossings and
         // stability changes are found too); those above the band at every speed are out
         // of range, named and not judged.
-        const auto in_range = [&](const Branch& b) {
-            return std::any_of(b.points.begin(), b.points.end(),
-                               [&](const BranchPoint& p) {
-                                   const auto [rank, f] = frequency_rank(p.mode);
-                                   return f <= opt.band || (rank == 1 && p.mode.lambda.real() > 0.0);   // divergent
-                               });
-        };
-        const auto split = std::stable_partition(br.begin(), br.end(), in_range);
+        const auto split =
+            std::stable_partition(br.begin(), br.end(), [&](const Branch& b) { return in_band(b, opt.band); });
         for (auto it = split; it != br.end(); ++it) {
             for (auto& p : it->points) p.mode.right.resize(0), p.mode.left.resize(0);
             out.out_of_range.push_back(std::move(*it));
@@ -467,17 +470,18 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
         }
         br.resize(static_cast<size_t>(opt.modes));
     } else if (std::isfinite(opt.band) && (opt.modes == 0 || t.window)) {
-        // Out of range: above the band at every speed. Named, not judged.
-        const auto in_range = [&](const Branch& b) {
-            return std::any_of(b.points.begin(), b.points.end(),
-                               [&](const BranchPoint& p) { return p.mode.frequency() <= opt.band; });
-        };
-        const auto split = std::stable_partition(br.begin(), br.end(), in_range);
-        for (auto it = split; it != br.end(); ++it) {
-            for (auto& p : it->points) p.mode.right.resize(0), p.mode.left.resize(0);
-            out.out_of_range.push_back(std::move(*it));
+        // Out of range: above the band at every speed. Named, not judged. A window keeps
+        // the K asked for (the first at the first speed) as the dense band does.
+        std::vector<Branch> kept;
+        for (size_t i = 0; i < br.size(); ++i) {
+            if (in_band(br[i], opt.band) || static_cast<int>(i) < opt.modes) {
+                kept.push_back(std::move(br[i]));
+                continue;
+            }
+            for (auto& p : br[i].points) p.mode.right.resize(0), p.mode.left.resize(0);
+            out.out_of_range.push_back(std::move(br[i]));
         }
-        br.erase(split, br.end());
+        br = std::move(kept);
         for (size_t i = 0; i < out.out_of_range.size(); ++i)
             out.out_of_range[i].id = static_cast<int>(br.size() + i + 1);
     }
