@@ -13,7 +13,9 @@ using namespace gyrokit;
 
 TEST_CASE("rotor family: crossings, counts and the least-damped mode on seeded random FE rotors",
           "[continuation][family]") {
-    for (unsigned seed = 1; seed <= 8; ++seed) {
+    // Seeds 1-8, and 196: overdamped bearings (zeta 3.8), whose real eigenvalue at
+    // standstill once counted as a "crossing" at 0 rad/s (it lies on every line there).
+    for (const unsigned seed : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 196u}) {
         const family::RotorCase c = family::random_rotor(seed, false);
         INFO(c.description);
         // The cost is timed by the benchmark; here the solver's counts stand for it.

@@ -167,7 +167,10 @@ std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const Ca
             // A root is a crossing only where the mode lies on the line: a branch that jumps
             // between two points (a real eigenvalue matched to a pair far above it) changes
             // the sign of Im lambda - k w without crossing, and the search ends at the jump.
-            if (std::abs(g(m, w)) <= 1e-6 * k * std::max(w, 1.0)) out.push_back({w, k, b.id, std::move(m)});
+            // A real eigenvalue lies "on" every line at standstill and crosses none: the
+            // mode at a crossing vibrates.
+            if (std::abs(g(m, w)) <= 1e-6 * k * std::max(w, 1.0) && m.whirl != Whirl::Real && m.lambda.imag() > 0.0)
+                out.push_back({w, k, b.id, std::move(m)});
         }, true);
     }
     std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
