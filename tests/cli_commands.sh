@@ -48,9 +48,9 @@ header "speed_hz,mode,whirl,harmonic,frequency_hz" critical "$scene" --units hz
     { echo "FAIL: campbell verdict of a widened sparse window"; fail=1; }
 # Where the model's size caps the window short of f_cut, the verdict covers the window and a note says so.
 "$cli" campbell "$data/fe_rotor.toml" --modes 2 --solver sparse --f-cut 1e7 > "$dir/short" 2> "$dir/short.err"
-grep -q "modes beyond the 32 tracked are not checked" "$dir/short" ||
+grep -q "modes beyond the 32 of the window are not checked" "$dir/short" ||
     { echo "FAIL: campbell verdict of a sparse window short of f_cut"; fail=1; }
-grep -q "the sparse window of 32 modes (the most this model's size allows) reaches .* short of 1.5 times f_cut" "$dir/short.err" ||
+grep -q "the sparse window of 32 modes (as wide as its cost budget for this model.s size allows) reaches .* short of 1.5 times f_cut" "$dir/short.err" ||
     { echo "FAIL: note of a sparse window short of f_cut"; fail=1; }
 
 # The 336-DOF compressor: with the modes in range (the default) auto keeps the dense

@@ -278,6 +278,10 @@ CampbellOptions tracking_options(const SolverChoice& plan, int modes, const std:
     // K shown (0: every mode in range, or every mode); a sparse window's size is its own.
     co.modes = modes == kModesInRange ? 0 : plan.modes;
     if (plan.kind == SolverKind::Sparse) co.window = plan.modes;
+    // A window centred away from zero (a target, or one moving with the speed) does not
+    // hold the lowest modes, however wide: it is not widened, and judges its own modes.
+    co.widen_window = !plan.shifted;
+    if (f_cut) judged_band(f_cut, speeds, harmonics);   // refused where it is no frequency, whatever modes is
     // Every mode (modes = 0) is judged wherever it is; else the modes up to f_cut (a
     // sparse window is widened to hold them: track).
     if (modes != 0) co.band = judged_band(f_cut, speeds, harmonics), co.band_asked = f_cut.has_value();
@@ -313,36 +317,59 @@ namespace {
 // modes (and at most 64, half the DOFs), never fewer than asked. On
 // data/fe_rotor_100k.toml (hundreds of nearly equal spans) a window of 8 in place of
 // 4 cuts a cluster of hundreds of modes, where ARPACK took minutes instead of
-// seconds: it stays at 4. `reach`: how far the window reaches where it stops short
-// (0: it holds the band); a window that may not grow is not solved here (NaN: the
-// diagram tells).
+// seconds: it stays at 4. Doubling only: a window grown by one or two modes would cut
+// such a cluster as well.
 constexpr double kWindowBudget = 5e5;
 constexpr int kMaxBandWindow = 64;
-SolverFactory window_for_band(const SolverFactory& make, double band, const std::vector<double>& speeds,
-                              double& reach) {
-    reach = 0.0;
-    if (!make.can_resize() || make.window() <= 0 || !std::isfinite(band) || speeds.empty() || make.dofs() <= 0)
-        return make;
-    const int budget = static_cast<int>(kWindowBudget / make.dofs());
-    const int cap = std::max(make.window(), std::min({kMaxBandWindow, make.dofs() / 2, budget}));
+// The speeds a window is checked at: the first, the middle and the last.
+std::vector<double> probe_speeds(const std::vector<double>& speeds) {
     std::vector<double> at{speeds.front()};
     if (speeds.size() > 2) at.push_back(speeds[speeds.size() / 2]);
     if (speeds.size() > 1) at.push_back(speeds.back());
-    SolverFactory use = make;
-    if (2 * use.window() > cap) {
-        reach = std::numeric_limits<double>::quiet_NaN();
-        return use;
+    return at;
+}
+
+// A window's modes at one speed: whether it holds the band there (fewer modes than the
+// window: every mode there is; else reaching 1.5 times the band by modulus), how far
+// it reaches, and how many of its modes lie in the band.
+struct WindowReach {
+    bool holds = true;
+    double reach = 0.0;
+    int in_band = 0;
+};
+WindowReach window_reach(const std::vector<const Mode*>& modes, int window, double band) {
+    WindowReach r;
+    for (const Mode* m : modes) {
+        r.reach = std::max(r.reach, std::abs(m->lambda));
+        const auto [rank, f] = frequency_rank(*m);
+        r.in_band += f <= band || (rank == 1 && m->lambda.real() > 0.0);
     }
+    r.holds = static_cast<int>(modes.size()) < window || r.reach >= 1.5 * band;
+    return r;
+}
+
+// The window doubled until, at the probe speeds, a fresh window solve holds the band
+// (window_reach), within the budget; the in-band counts of the last probes per speed
+// (empty where no probe was solved: the budget allows no wider window).
+SolverFactory window_for_band(const SolverFactory& make, double band, const std::vector<double>& speeds,
+                              std::vector<int>& probed) {
+    probed.clear();
+    if (make.dofs() <= 0) return make;
+    const int budget = static_cast<int>(kWindowBudget / make.dofs());
+    const int cap = std::max(make.window(), std::min({kMaxBandWindow, make.dofs() / 2, budget}));
+    if (2 * make.window() > cap) return make;
+    SolverFactory use = make;
     for (;;) {
         bool holds = true;
-        reach = std::numeric_limits<double>::infinity();
-        for (const double w : at) {
+        probed.clear();
+        for (const double w : probe_speeds(speeds)) {
             const QuadraticSpectrum s = use()(w);
-            double r = 0.0;
-            for (const Mode& m : s.modes) r = std::max(r, std::abs(m.lambda));
-            if (static_cast<int>(s.modes.size()) >= use.window() && r < 1.5 * band) holds = false, reach = std::min(reach, r);
+            std::vector<const Mode*> m;
+            for (const Mode& x : s.modes) m.push_back(&x);
+            const WindowReach r = window_reach(m, use.window(), band);
+            holds = holds && r.holds;
+            probed.push_back(r.in_band);
         }
-        if (holds) reach = 0.0;
         if (holds || 2 * use.window() > cap) return use;
         use = make.resized(2 * use.window());
     }
@@ -351,26 +378,34 @@ SolverFactory window_for_band(const SolverFactory& make, double band, const std:
 }  // namespace
 
 Tracking track(const SolverFactory& make, CampbellOptions co, const std::vector<double>& speeds) {
-    if (!make.can_continue() && std::isfinite(co.band) && make.can_resize() && !speeds.empty()) {
+    if (!make.can_continue() && std::isfinite(co.band) && co.widen_window && make.can_resize() && make.window() > 0 &&
+        !speeds.empty()) {
         // A window: widened to hold the modes up to f_cut, K of them shown.
-        double reach = 0.0;
-        const SolverFactory use = window_for_band(make, co.band, speeds, reach);
+        std::vector<int> probed;
+        const SolverFactory use = window_for_band(make, co.band, speeds, probed);
         co.window = use.window();
         Tracking t{use, campbell(use, speeds, co)};
-        if (std::isnan(reach)) {   // not checked: the first speed's window, as tracked, tells
-            reach = 0.0;
-            int held = 0;
-            double top = 0.0;
+        // The tracked window holds the band where, at each probe speed, it reaches 1.5
+        // times the band (or holds every mode) and has every in-band mode a fresh
+        // window solve found there (a mode that entered the band later would be missing).
+        const std::vector<double> at = probe_speeds(speeds);
+        double reach = std::numeric_limits<double>::infinity();
+        bool holds = true;
+        for (size_t k = 0; k < at.size(); ++k) {
+            std::vector<const Mode*> m;
             for (const auto* list : {&t.diagram.branches, &t.diagram.untracked, &t.diagram.out_of_range})
                 for (const Branch& b : *list)
-                    if (b.points.front().speed == speeds.front()) ++held, top = std::max(top, std::abs(b.points.front().mode.lambda));
-            if (held >= use.window() && top < 1.5 * co.band) reach = top;
+                    for (const BranchPoint& p : b.points)
+                        if (p.speed == at[k]) m.push_back(&p.mode);
+            const WindowReach r = window_reach(m, use.window(), co.band);
+            if (!r.holds || (k < probed.size() && r.in_band < probed[k])) holds = false, reach = std::min(reach, r.reach);
         }
-        t.diagram.window_holds_band = reach == 0.0;
-        if (reach > 0.0)
+        t.diagram.window_holds_band = holds;
+        if (!holds)
             t.diagram.notes.push_back(fmt::format(
-                "the sparse window of {} modes (the most this model's size allows) reaches {:.6g} rad/s, short of 1.5 "
-                "times f_cut ({:.6g} rad/s): modes between may be missed; set {} for a wider window",
+                "the sparse window of {} modes (as wide as its cost budget for this model's size allows) reaches "
+                "{:.6g} rad/s, short of 1.5 times f_cut ({:.6g} rad/s), or lost a mode that entered the band: "
+                "modes up to f_cut may be missed; set {} for a wider window",
                 use.window(), reach, 1.5 * co.band, option_field("modes")));
         return t;
     }
@@ -492,7 +527,7 @@ CampbellDiagram campbell(const SolverFactory& make, const std::vector<double>& s
         std::stable_sort(first, br.end(), [](const Branch& a, const Branch& b) {
             return a.points.front().speed < b.points.front().speed;
         });
-        show_k(out, opt.modes);   // a window widened for the band
+        if (std::isfinite(opt.band)) show_k(out, opt.modes);   // a window widened for the band
     }
     for (size_t i = 0; i < br.size(); ++i) br[i].id = static_cast<int>(i + 1);
     return out;

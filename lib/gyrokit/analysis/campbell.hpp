@@ -29,6 +29,7 @@ struct CampbellOptions {
     bool band_of_modes = false;
     bool band_asked = false;  // the band is an f_cut the caller gave, not excitation_band's default
     int window = 0;           // a window solver's size (modes beyond it are its edge); 0: `modes`
+    bool widen_window = true; // a window solver's window widened to hold the band (track)
     int max_refine = 8;       // bisection levels allowed between two grid speeds
     double mac_min = 0.9;     // a match with a lower MAC is ambiguous
     Workers threads = 1;      // grid speeds solved in parallel: this many threads or worker processes

@@ -214,7 +214,11 @@ std::optional<QuadraticSpectrum> in_parts(const Frame& fr, const Solved& from, d
 std::optional<QuadraticSpectrum> branch_steps(const Frame& fr, const Solved& from, double w, Solved& next,
                                               int halvings) {
     if (std::optional<QuadraticSpectrum> s = branch_solve(fr, from, w, next)) return s;
-    std::optional<QuadraticSpectrum> s = in_parts(fr, from, w, next, halvings);
+    if (halvings == 0 || from.track.empty() || w == from.w) return std::nullopt;
+    Solved mid;   // the whole step failed: its halves, each in parts where it fails
+    if (!in_parts(fr, from, 0.5 * (from.w + w), mid, halvings - 1)) return std::nullopt;
+    std::optional<QuadraticSpectrum> s = in_parts(fr, mid, w, next, halvings - 1);
+    if (s && fr.min_mac > 0.0 && !keeps_shapes(from, next, fr.min_mac)) return std::nullopt;
     if (s && fr.work) ++fr.work->split_steps;   // once per step, however deep it was split
     return s;
 }

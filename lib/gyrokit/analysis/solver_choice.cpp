@@ -57,6 +57,7 @@ SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt
                                       "number",
                                       so.modes));
     so.shift = {0.0, opt.target.value_or(0.0)};
+    c.shifted = opt.target.value_or(0.0) != 0.0 || opt.target_order != 0.0;
     so.shift_order = opt.target_order;
     so.lanczos_vectors = opt.lanczos_vectors;
     so.left_vectors = opt.eig.left_vectors;

@@ -47,6 +47,7 @@ struct SolverChoice {
     int modes = 0;                        // the number of modes (sparse: the window size; dense: as asked)
     SolverFactory make;
     std::vector<std::string> notes;       // e.g. the default number of sparse modes
+    bool shifted = false;                 // sparse: the window is centred away from zero (target, target_order)
 };
 // Auto resolved by size: kAutoSparseDofs, or kAutoDenseInRangeDofs where `modes`
 // is kModesInRange.

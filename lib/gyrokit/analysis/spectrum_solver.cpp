@@ -272,11 +272,13 @@ SolverFactory sparse_factory(std::function<SparsePencil(double)> pencil, std::ve
     };
     SolverFactory f([walk]() { return walk(1); }, dofs, work);
     f.not_thread_safe();
-    // The same window of another size; Arnoldi vectors as asked where they still suffice.
+    // The same window of another size; Arnoldi vectors as asked where they still suffice
+    // (at least the automatic count for that size), else automatic.
     f.with_window(opt.modes, [pencil, whirl_pairs, opt, reuse, work, dofs](int modes) {
         SparseEigenOptions o = opt;
         o.modes = modes;
-        if (o.lanczos_vectors > 0 && o.lanczos_vectors < 2 * modes + 2) o.lanczos_vectors = 0;
+        // ARPACK needs more than twice the window (and a reserve): automatic below that.
+        if (o.lanczos_vectors > 0 && o.lanczos_vectors < std::max(2 * (2 * modes + 2) + 1, 30)) o.lanczos_vectors = 0;
         return sparse_factory(pencil, whirl_pairs, o, reuse, work, dofs);
     });
     // A window centred on one mode's frequency, where a root search follows that mode

@@ -104,7 +104,7 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
         cd.untracked.empty() ? std::string()
                              : fmt::format(" ({} shown, {} more judged)", cd.branches.size(), cd.untracked.size());
     const std::string which =
-        window ? fmt::format("the {} tracked modes (the others are not checked)", cd.branches.size() + cd.untracked.size())
+        window ? fmt::format("the {} modes of the window (the others are not checked)", cd.branches.size() + cd.untracked.size())
                : (std::isfinite(cd.band) ? fmt::format("every mode up to {}{}", speed(cd.band), more)
                                          : "every mode");
     std::string verdict = unstable.empty() ? fmt::format("{} stable over the range (no real part beyond its error "
@@ -119,7 +119,7 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
                                    ? fmt::format(" (beyond the {} shown)", cd.branches.size())
                                    : "");
     if (!unstable.empty() && window)
-        verdict += fmt::format("; modes beyond the {} tracked are not checked", cd.branches.size() + cd.untracked.size());
+        verdict += fmt::format("; modes beyond the {} of the window are not checked", cd.branches.size() + cd.untracked.size());
     t.add_row({std::string("stability"), verdict});
     if (std::isfinite(cd.band)) t.add_row({std::string("out of range"), out_of_range_note(cd, u)});
     if (cd.rigid_body > 0)
