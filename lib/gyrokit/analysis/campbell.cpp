@@ -239,11 +239,12 @@ namespace {
 
 // A branch in the band: its frequency (a real eigenvalue's modulus) at or below it
 // somewhere, or divergent (real and positive: judged whatever its size) anywhere.
+bool mode_in_band(const Mode& m, double band) {
+    const auto [rank, f] = frequency_rank(m);
+    return f <= band || (rank == 1 && m.lambda.real() > 0.0);
+}
 bool in_band(const Branch& b, double band) {
-    return std::any_of(b.points.begin(), b.points.end(), [&](const BranchPoint& p) {
-        const auto [rank, f] = frequency_rank(p.mode);
-        return f <= band || (rank == 1 && p.mode.lambda.real() > 0.0);
-    });
+    return std::any_of(b.points.begin(), b.points.end(), [&](const BranchPoint& p) { return mode_in_band(p.mode, band); });
 }
 
 // The K first branches shown, the others up to the band judged (untracked, with their
@@ -341,8 +342,7 @@ WindowReach window_reach(const std::vector<const Mode*>& modes, int window, doub
     WindowReach r;
     for (const Mode* m : modes) {
         r.reach = std::max(r.reach, std::abs(m->lambda));
-        const auto [rank, f] = frequency_rank(*m);
-        r.in_band += f <= band || (rank == 1 && m->lambda.real() > 0.0);
+        r.in_band += mode_in_band(*m, band);
     }
     r.holds = static_cast<int>(modes.size()) < window || r.reach >= 1.5 * band;
     return r;
