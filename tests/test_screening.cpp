@@ -413,6 +413,20 @@ TEST_CASE("shards merge to the unsharded table, jobs do not change the rows", "[
     CHECK_THROWS_AS(merge_results(s, {files[0], files[0]}, false), InputError);
 }
 
+TEST_CASE("a result file whose trailer names no changed file is refused, not a crash", "[screening][merge]") {
+    TempDir d;
+    const Sweep s = read_sweep(pervasive_sweep(d));
+    for (const std::string tail : {"", " ", " a.toml"}) {
+        CAPTURE(tail);
+        const std::string path = (d.path / "trailer.csv").string();
+        {
+            std::ofstream f(path);
+            f << study_identity_line(s) << "\n" << kInputsChangedTrailer << tail << "\n";
+        }
+        CHECK_THROWS_AS(merge_results(s, {path}, false), InputError);
+    }
+}
+
 TEST_CASE("an interrupted run resumes without duplicates or gaps", "[screening][resume]") {
     TempDir d;
     const Sweep s = read_sweep(pervasive_sweep(d));

@@ -94,6 +94,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// What follows a marker on a line (the files a trailer names), at most 200 characters; a
+// line that ends at the marker names none.
+std::string printable_rest(const std::string& line, std::size_t marker) {
+    if (line.size() <= marker + 1) return "no file named";
+    return line.substr(marker + 1, 200);
+}
+
 std::string header_line(const Sweep& s) {
     std::string h = csv_line(result_columns(s));
     h.pop_back();
@@ -177,7 +184,7 @@ ParsedFile parse_result_file(const Sweep& s, const std::string& path, const Shar
             throw InputError(fmt::format("{}: line {}: the run that wrote it saw an input change while it ran ({}); its "
                                          "rows may not belong to the files as they are now; allowed: a new run "
                                          "(a new --out file)",
-                                         path, line_no, line.substr(std::string(kInputsChangedTrailer).size() + 1, 200)));
+                                         path, line_no, printable_rest(line, std::string(kInputsChangedTrailer).size())));
         if (line_no == 1) {
             // The study's identity: rows of another scene, sweep, criteria or version are not this study's answers.
             if (line.rfind("# study ", 0) != 0)
