@@ -131,7 +131,7 @@ QuadraticSpectrum solve_one(const Shared& sh, Walk& state, double w) {
     const auto check = on_grid ? sh.checks.find(w) : sh.checks.end();
     if (state.last && sh.opt.along_branches)
         if (std::optional<QuadraticSpectrum> s = branch_steps(frame_of(sh, state.threads), *state.last, w, next))
-            if (check == sh.checks.end() || accounts(next, check->second, sh.opt.band)) {
+            if (check == sh.checks.end() || accounts(next, check->second, sh.opt.band, frame_of(sh, state.threads))) {
                 ++sh.work->steps;
                 keep(next);
                 return std::move(*s);

@@ -19,9 +19,10 @@ namespace gyrokit {
 struct ContinuationOptions {
     double band = 0;            // rad/s: the modes kept (frequency <= band; a real eigenvalue |lambda| <= band)
     // > 0: the band is widened to hold this many lowest modes: at least band_margin
-    // times the largest frequency (|lambda| of a real eigenvalue) among the lowest + 2
-    // by frequency_rank at the anchors and checks (ContinuationReport::band); `band`
-    // (0 allowed then) is the least it is.
+    // times the largest frequency (|lambda| of a real eigenvalue) among the lowest
+    // by frequency_rank at the anchors and checks (ContinuationReport::band; a mode
+    // tied with the last of them lies inside the margin, one far above it is not
+    // followed for nothing); `band` (0 allowed then) is the least it is.
     int lowest = 0;
     double band_margin = 1.25;
     // Full solves (anchors) at the first speed and, if > 0, at every this many speeds

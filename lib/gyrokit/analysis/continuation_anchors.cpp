@@ -82,7 +82,7 @@ void solve_anchors(Shared& sh, ContinuationReport& rep) {
                                            return std::abs(x.lambda.imag()) <= s.real_tol && x.lambda.real() > 0.0;
                                        }),
                         m.end());
-                for (size_t i = 0; i < std::min(m.size(), static_cast<size_t>(opt.lowest) + 2); ++i)
+                for (size_t i = 0; i < std::min(m.size(), static_cast<size_t>(opt.lowest)); ++i)
                     top = std::max(top, frequency_rank(m[i]).second);
             }
         if (!(top > 0.0) || !std::isfinite(top))
@@ -153,11 +153,14 @@ QuadraticSpectrum eigenvalues_only(const GyroscopicSystem& sys, double w) {
 // twice the band: each in turn takes the nearest continued mode not yet taken, which
 // must lie within 1e-6 of its modulus (the eigenvalues alone are good to about
 // cond * 1e-16; a near miss costs only a full solve). A mode that came from beyond
-// twice the band since the last full solve or check would not be there.
-// The unmatched eigenvalues' smallest modulus becomes `at.beyond`.
-bool accounts(Solved& at, const QuadraticSpectrum& check, double band) {
+// twice the band since the last full solve or check would not be there: where it
+// lies beyond the band (followed, not reported) it joins the continued modes by
+// inverse iteration at its eigenvalue (joined_mode); inside the band the speed is
+// solved in full. The unmatched eigenvalues' smallest modulus becomes `at.beyond`.
+bool accounts(Solved& at, const QuadraticSpectrum& check, double band, const Frame& fr) {
     std::vector<char> used(at.track.size(), 0);
     double beyond = std::numeric_limits<double>::infinity();
+    std::vector<cd> join;
     for (const Mode& e : check.modes) {
         size_t best = at.track.size();
         double distance = std::numeric_limits<double>::infinity();
@@ -170,8 +173,23 @@ bool accounts(Solved& at, const QuadraticSpectrum& check, double band) {
             used[best] = 1;
             continue;
         }
-        if (within_band(e, 2.0 * band, check.real_tol)) return false;
-        beyond = std::min(beyond, std::abs(e.lambda));
+        if (within_band(e, band, check.real_tol)) return false;
+        if (within_band(e, 2.0 * band, check.real_tol))
+            join.push_back(e.lambda);
+        else
+            beyond = std::min(beyond, std::abs(e.lambda));
+    }
+    if (!join.empty()) {
+        Solved grown = at;
+        for (const cd l : join) {
+            std::optional<Mode> m = joined_mode(fr, grown, check.speed, l);
+            if (!m) return false;
+            grown.track.push_back(std::move(*m));
+            if (grown.slope_before.size() + 1 == grown.track.size())
+                grown.slope_before.push_back(cd(std::numeric_limits<double>::quiet_NaN(), 0.0));
+        }
+        at = std::move(grown);
+        if (fr.work) fr.work->joined += static_cast<long>(join.size());
     }
     at.beyond = beyond;
     return true;

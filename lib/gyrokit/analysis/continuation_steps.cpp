@@ -80,6 +80,23 @@ bool lands_on_another(const std::vector<Mode>& modes, const Mode& m) {
     return false;
 }
 
+std::optional<Mode> joined_mode(const Frame& fr, const Solved& at, double w, cd lambda) {
+    const SparsePencil p = fr.pencil(w);
+    const PencilAction action = action_of(p);
+    const QuadraticSpectrum frame = empty_spectrum(p, action, w);
+    if (lambda.imag() < 0.0) lambda = std::conj(lambda);
+    Mode m;
+    m.right = fixed_random_vector(p.M.rows()).cast<cd>();
+    if (!corrected(p, action, m, lambda, fr.tolerance, frame.scale, frame.real_tol, true)) return std::nullopt;
+    if (!(std::abs(m.lambda - lambda) <= 1e-6 * std::max(std::abs(lambda), frame.real_tol)) ||
+        lands_on_another(at.track, m))
+        return std::nullopt;
+    m.whirl = classify_whirl(m.lambda, m.right, *fr.whirl_pairs, frame.real_tol);
+    std::vector<Mode> one{std::move(m)};
+    set_slopes(one, fr.pencil, w, frame.scale, 1, &p);
+    return std::move(one[0]);
+}
+
 // Step 1: every mode of `from` predicted along its slope and corrected at w.
 std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& from, double w, Solved& next) {
     if (from.track.empty() || w == from.w) return std::nullopt;

@@ -25,6 +25,7 @@ SolverWork WorkCounter::snapshot() const {
     w.split_steps = split_steps.load();
     w.local_solves = local_solves.load();
     w.followed = followed.load();
+    w.joined = joined.load();
     return w;
 }
 

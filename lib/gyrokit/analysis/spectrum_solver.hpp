@@ -36,11 +36,12 @@ struct SolverWork {
     long split_steps = 0;        // of them, steps taken in parts (halves down to sixteenths; counted once each)
     long local_solves = 0;       // full solves where a step did not verify (counted in full_solves too)
     long followed = 0;           // single modes followed to a speed (root searches)
+    long joined = 0;             // modes joined at a check from beyond the band (inverse iteration at its eigenvalue)
 };
 
 struct WorkCounter {
     std::atomic<long> full_solves{0}, eigenvalue_checks{0}, window_solves{0}, steps{0}, split_steps{0},
-        local_solves{0}, followed{0};
+        local_solves{0}, followed{0}, joined{0};
     SolverWork snapshot() const;
 };
 

@@ -56,7 +56,7 @@ struct Frame {
     // first round that already reaches the right's target leaves the left vector one
     // plain round from its start.
     bool second_order = false;
-    WorkCounter* work = nullptr;   // counts the steps taken in parts (the continuation's)
+    WorkCounter* work = nullptr;   // counts the steps taken in parts and the modes joined (the continuation's)
 };
 
 // The common end of the continued solves: whirl, rigid-body split, error bounds,
@@ -73,6 +73,11 @@ bool corrected(const SparsePencil& p, const PencilAction& action, Mode& m, cd pr
                double scale, double real_tol, bool stepped = true);
 // Two refined pairs on one mode: a mode is missing.
 bool lands_on_another(const std::vector<Mode>& modes, const Mode& m);
+// The mode at speed w whose eigenvalue is `lambda` (known from the eigenvalues alone):
+// inverse iteration at it from a fixed start vector, verified, with its slope; none
+// where it does not converge to lambda (within 1e-6 of its modulus) or lands on a
+// mode of `at`.
+std::optional<Mode> joined_mode(const Frame& fr, const Solved& at, double w, cd lambda);
 // Step 1: every mode of `from` predicted along its slope and corrected at w.
 std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& from, double w, Solved& next);
 // Step 1 with the step halved where it fails, up to `halvings` times (a sixteenth:
@@ -111,8 +116,9 @@ void solve_anchors(Shared& sh, ContinuationReport& rep);
 // The eigenvalues at speed w alone, as a spectrum of modes without vectors.
 QuadraticSpectrum eigenvalues_only(const GyroscopicSystem& sys, double w);
 // Whether the modes continued to a check speed account for its eigenvalues within
-// twice the band; the unmatched eigenvalues' smallest modulus becomes `at.beyond`.
-bool accounts(Solved& at, const QuadraticSpectrum& check, double band);
+// twice the band (those beyond the band joined to `at` by joined_mode); the
+// unmatched eigenvalues' smallest modulus becomes `at.beyond`.
+bool accounts(Solved& at, const QuadraticSpectrum& check, double band, const Frame& fr);
 
 // --- the projected pencil (continuation_projection.cpp) ---
 
