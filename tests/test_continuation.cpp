@@ -509,3 +509,54 @@ TEST_CASE("f_cut sets the modes judged: the band as asked, every mode below it a
     sc.f_cut = -1.0;
     CHECK_THROWS_WITH(validate_settings(sc), Catch::Contains("f_cut = -1"));
 }
+
+TEST_CASE("damped modes meet on the real axis and part there, or leave it: the continuation follows them through "
+          "the exceptional points as a group, equal to the closed form",
+          "[continuation][exceptional]") {
+    // x and y each m = 1, c = 2, k(w) = k0 + s w^2 k2 with k2 = 0.01 and 0.012 (a stiffness
+    // that changes with the speed squared): lambda = -1 +- sqrt(1 - k(w)). With k0 = 0.5 and
+    // s = +1 two real eigenvalues per direction meet at -1 where k = 1 (w = 7.071 and 6.455
+    // rad/s) and leave it as a complex pair; with k0 = 1.5 and s = -1 a complex pair comes
+    // down to the real axis there and parts into two real eigenvalues. At standstill both
+    // directions are the same: double eigenvalues.
+    for (const auto& [k0, sign] : {std::pair{0.5, 1.0}, std::pair{1.5, -1.0}}) {
+        GyroscopicSystem s;
+        s.M = Eigen::MatrixXd(Eigen::MatrixXd::Identity(2, 2));
+        s.K = Eigen::MatrixXd(k0 * Eigen::MatrixXd::Identity(2, 2));
+        s.K2 = Eigen::MatrixXd((sign * Eigen::Vector2d(0.01, 0.012)).asDiagonal());
+        s.damping.push_back({"c", Eigen::MatrixXd(2.0 * Eigen::MatrixXd::Identity(2, 2))});
+        s.dof_names = {"x", "y"};
+        s.dof_units = {"m", "m"};
+        s.whirl_pairs = {{0, 1}};
+        const std::vector<double> grid = SpeedRange{0.0, 10.0, 101}.points();
+        ContinuationOptions o;
+        o.band = 10.0;
+        const SolverFactory cont = continuation_solver(std::make_shared<const GyroscopicSystem>(s), grid, o);
+        const std::vector<QuadraticSpectrum> got = solve_speeds(cont, grid, 1);
+        for (size_t k = 0; k < grid.size(); ++k) {
+            const double w = grid[k];
+            std::vector<std::complex<double>> exact;
+            for (const double k2 : {0.01, 0.012}) {
+                const double d = 1.0 - (k0 + sign * w * w * k2);
+                if (d >= 0.0)
+                    exact.push_back(-1.0 + std::sqrt(d)), exact.push_back(-1.0 - std::sqrt(d));
+                else
+                    exact.push_back({-1.0, std::sqrt(-d)});
+            }
+            INFO("k0 " << k0 << ", at " << w << " rad/s: " << got[k].method);
+            REQUIRE(got[k].modes.size() == exact.size());
+            for (const std::complex<double> e : exact) {
+                // Each exact eigenvalue within the error bound of as many modes as it has (a double one twice).
+                const auto near = std::count_if(got[k].modes.begin(), got[k].modes.end(), [&](const Mode& m) {
+                    return std::abs(m.lambda - e) <= std::max(m.error_bound, 1e-12);
+                });
+                CHECK(near == std::count(exact.begin(), exact.end(), e));
+            }
+        }
+        // Every speed but the first stepped: the groups at the two exceptional points
+        // (and at the standstill doubles), no full solve but the anchor's.
+        INFO("k0 " << k0);
+        CHECK(cont.work().local_solves == 0);
+        CHECK(cont.work().cluster_steps >= 2);
+    }
+}

@@ -6,9 +6,13 @@
 
 #include <gyrokit/core/parallel.hpp>
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace gyrokit {
 namespace continuation_detail {
@@ -97,8 +101,135 @@ std::optional<Mode> joined_mode(const Frame& fr, const Solved& at, double w, cd 
     return std::move(one[0]);
 }
 
-// Step 1: every mode of `from` predicted along its slope and corrected at w.
-std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& from, double w, Solved& next) {
+namespace {
+
+// A start of a correction: the predicted eigenvalue, a start vector (the mode's own
+// or a Ritz vector) and the tracked mode it continues (-1: a Ritz pair of a cluster,
+// whose modes may be one more or one fewer than before, at an exceptional point).
+struct Seed {
+    cd predicted;
+    Mode start;
+    long origin = -1;
+};
+
+// The modes of a failed step that move as a group: each mode that failed with its
+// nearest neighbour (the distance between eigenvalues, a conjugate's included), or
+// alone where its own conjugate is nearer (a complex pair about to meet on the real
+// axis). A near-double pair splits along a hyperbola whose slope at the start is no
+// guide, and two real eigenvalues that meet become a complex pair (and back) where
+// the slopes are infinite: the Ritz pairs of the group's span follow both.
+constexpr Eigen::Index kMaxClusterSize = 8;   // eigenvalues (conjugates counted)
+
+double pair_distance(cd a, cd b) { return std::min(std::abs(a - b), std::abs(a - std::conj(b))); }
+
+std::vector<std::vector<size_t>> clusters_of(const std::vector<Mode>& track, const std::vector<size_t>& failed,
+                                             double real_tol) {
+    std::vector<size_t> root(track.size());
+    for (size_t i = 0; i < root.size(); ++i) root[i] = i;
+    const auto find = [&](size_t i) {
+        while (root[i] != i) i = root[i] = root[root[i]];
+        return i;
+    };
+    std::vector<char> member(track.size(), 0);
+    for (const size_t i : failed) {
+        member[i] = 1;
+        const cd a = track[i].lambda;
+        double own = std::abs(a.imag()) > real_tol ? 2.0 * std::abs(a.imag()) : std::numeric_limits<double>::infinity();
+        size_t best = track.size();
+        double dist = std::numeric_limits<double>::infinity();
+        for (size_t j = 0; j < track.size(); ++j)
+            if (j != i && pair_distance(a, track[j].lambda) < dist) dist = pair_distance(a, track[j].lambda), best = j;
+        if (best < track.size() && dist < own) member[best] = 1, root[find(i)] = find(best);
+    }
+    std::map<size_t, std::vector<size_t>> groups;
+    for (size_t i = 0; i < track.size(); ++i)
+        if (member[i]) groups[find(i)].push_back(i);
+    std::vector<std::vector<size_t>> out;
+    for (auto& [r, g] : groups) out.push_back(std::move(g));
+    return out;
+}
+
+// The Ritz pairs of a cluster at w: the pencil projected on the real span of its
+// modes' right vectors (Galerkin: M stays definite), the eigenvalues nearest the
+// cluster's own (as many as it has, conjugates counted, closed under conjugation),
+// each with its Ritz vector; none where the span or the choice fails.
+std::optional<std::vector<Seed>> cluster_seeds(const SparsePencil& p, const std::vector<Mode>& track,
+                                               const std::vector<size_t>& members, double real_tol) {
+    std::vector<Eigen::VectorXd> columns;
+    std::vector<cd> own;   // the cluster's eigenvalues, conjugates included
+    for (size_t i : members) {
+        const Mode& m = track[i];
+        const Eigen::VectorXcd x = unit_vector(m.right);
+        for (const Eigen::VectorXd& c : {Eigen::VectorXd(x.real()), Eigen::VectorXd(x.imag())})
+            if (c.norm() > 1e-8) columns.push_back(c);
+        own.push_back(m.lambda);
+        if (std::abs(m.lambda.imag()) > real_tol) own.push_back(std::conj(m.lambda));
+    }
+    const Eigen::Index d = static_cast<Eigen::Index>(own.size());
+    if (d > kMaxClusterSize) return std::nullopt;
+    Eigen::MatrixXd A(p.M.rows(), static_cast<Eigen::Index>(columns.size()));
+    for (size_t j = 0; j < columns.size(); ++j) A.col(static_cast<Eigen::Index>(j)) = columns[j];
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeThinU);
+    Eigen::Index r = 0;
+    while (r < svd.singularValues().size() && svd.singularValues()(r) > 1e-8 * svd.singularValues()(0)) ++r;
+    // A projected pencil of r directions has 2 r eigenvalues: enough where 2 r >= d (two
+    // real eigenvalues of one direction, as next to an exceptional point, share a vector).
+    if (r == 0 || 2 * r < d) return std::nullopt;
+    const Eigen::MatrixXd V = svd.matrixU().leftCols(r);
+    const Eigen::MatrixXd Mr = V.transpose() * (p.M * V), Cr = V.transpose() * (p.C * V),
+                          Kr = V.transpose() * (p.K * V);
+    const Eigen::LDLT<Eigen::MatrixXd> mass(Mr);
+    if (mass.info() != Eigen::Success || !(mass.rcond() > 1e-12)) return std::nullopt;
+    Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(2 * r, 2 * r);
+    companion.topRightCorner(r, r).setIdentity();
+    companion.bottomLeftCorner(r, r) = -mass.solve(Kr);
+    companion.bottomRightCorner(r, r) = -mass.solve(Cr);
+    const Eigen::EigenSolver<Eigen::MatrixXd> es(companion, false);
+    if (es.info() != Eigen::Success) return std::nullopt;
+    const Eigen::VectorXcd mu = es.eigenvalues();
+    std::vector<char> taken(static_cast<size_t>(2 * r), 0);
+    std::vector<cd> chosen;
+    for (const cd l : own) {
+        Eigen::Index best = -1;
+        double dist = std::numeric_limits<double>::infinity();
+        for (Eigen::Index k = 0; k < 2 * r; ++k)
+            if (!taken[static_cast<size_t>(k)] && std::abs(mu(k) - l) < dist) dist = std::abs(mu(k) - l), best = k;
+        if (best < 0) return std::nullopt;
+        taken[static_cast<size_t>(best)] = 1;
+        chosen.push_back(mu(best));
+    }
+    // Closed under conjugation: a real pencil's eigenvalues near the real axis come
+    // in conjugate pairs or are real.
+    for (const cd c : chosen) {
+        if (std::abs(c.imag()) <= real_tol) continue;
+        bool pair = false;
+        for (const cd o : chosen) pair = pair || std::abs(o - std::conj(c)) <= 1e-6 * std::abs(c);
+        if (!pair) return std::nullopt;
+    }
+    std::vector<Seed> out;
+    for (const cd c : chosen) {
+        if (c.imag() < -real_tol) continue;   // its conjugate stands for it
+        const cd l = std::abs(c.imag()) <= real_tol ? cd(c.real(), 0.0) : c;
+        const Eigen::MatrixXcd P = (l * l) * Mr.cast<cd>() + l * Cr.cast<cd>() + Kr.cast<cd>();
+        const Eigen::JacobiSVD<Eigen::MatrixXcd> null(P, Eigen::ComputeFullV);
+        Seed sd;
+        sd.predicted = l;
+        sd.start.right = V.cast<cd>() * null.matrixV().col(r - 1);
+        sd.start.lambda = l;
+        out.push_back(std::move(sd));
+    }
+    return out;
+}
+
+}  // namespace
+
+// Step 1: every mode of `from` predicted along its slope and corrected at w; with
+// `cluster_failed` (the modes a plain step failed on), the modes of each cluster
+// (clusters_of) from the Ritz pairs of their span instead. `failed`: the modes that
+// fail are listed there (the others still checked).
+std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& from, double w, Solved& next,
+                                              const std::vector<size_t>* cluster_failed, std::vector<size_t>* failed) {
+    const bool clustered = cluster_failed != nullptr;
     if (from.track.empty() || w == from.w) return std::nullopt;
     const SparsePencil p = fr.pencil(w);
     const PencilAction action = action_of(p);
@@ -108,14 +239,33 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
     // curvature from the change of slope (the correction's first round then lands
     // closer, often close enough to stop there).
     const bool curved = fr.second_order && std::isfinite(from.before) && from.slope_before.size() == from.track.size();
-    std::vector<cd> pred;
+    std::vector<Seed> seeds;
+    std::vector<char> in_cluster(from.track.size(), 0);
+    if (clustered) {
+        const std::vector<std::vector<size_t>> groups = clusters_of(from.track, *cluster_failed, out.real_tol);
+        if (groups.empty()) return std::nullopt;   // nothing the plain step did not try
+        for (const std::vector<size_t>& g : groups) {
+            std::optional<std::vector<Seed>> s = cluster_seeds(p, from.track, g, out.real_tol);
+            if (!s) return std::nullopt;
+            for (Seed& sd : *s) seeds.push_back(std::move(sd));
+            for (size_t i : g) in_cluster[i] = 1;
+        }
+    }
+    // A mode without a slope (a double eigenvalue whose split its vectors do not give)
+    // fails the plain step before any correction; its cluster may predict it.
+    if (!clustered) {
+        for (size_t i = 0; i < from.track.size(); ++i)
+            if (!finite(from.track[i].slope) && failed) failed->push_back(i);
+        if (failed && !failed->empty()) return std::nullopt;
+    }
     for (size_t i = 0; i < from.track.size(); ++i) {
+        if (in_cluster[i]) continue;
         const Mode& m = from.track[i];
         if (!finite(m.slope)) return std::nullopt;
-        cd p = m.lambda + h * m.slope;
+        cd pr = m.lambda + h * m.slope;
         if (curved && finite(from.slope_before[i]))
-            p += (0.5 * h * h / (from.w - from.before)) * (m.slope - from.slope_before[i]);
-        pred.push_back(p);
+            pr += (0.5 * h * h / (from.w - from.before)) * (m.slope - from.slope_before[i]);
+        seeds.push_back({pr, m, static_cast<long>(i)});
     }
     // The rigid-body pairs stay where they are if they still verify and the damping
     // and gyroscopic terms do not act on them (C x = 0): then the zero eigenvalue keeps
@@ -130,31 +280,42 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
         if (!(r.backward_error <= fr.tolerance) || !(Cx.norm() <= fr.tolerance * c_scale)) return std::nullopt;
     }
     // Each mode corrected on its own (in parallel), then the checks in order.
-    std::vector<Mode> fixed(from.track);
+    std::vector<Mode> fixed(seeds.size());
+    for (size_t i = 0; i < seeds.size(); ++i) fixed[i] = seeds[i].start;
     std::vector<char> ok(fixed.size(), 0);
     for_each_index(fixed.size(), fr.threads, [&](size_t i) {
-        ok[i] = corrected(p, action, fixed[i], pred[i], fr.tolerance, out.scale, out.real_tol);
+        ok[i] = corrected(p, action, fixed[i], seeds[i].predicted, fr.tolerance, out.scale, out.real_tol);
     });
     std::vector<Mode> track;
+    std::vector<cd> slope_before;   // of each tracked mode: its origin's slope (NaN: a cluster's)
     for (size_t i = 0; i < fixed.size(); ++i) {
+        const cd pi = seeds[i].predicted;
         // The distance to the nearest other eigenvalue expected at w (the conjugate included).
-        double gap = std::abs(pred[i].imag()) > out.real_tol ? 2.0 * std::abs(pred[i].imag())
-                                                             : std::numeric_limits<double>::infinity();
-        for (size_t j = 0; j < pred.size(); ++j)
-            if (j != i) gap = std::min({gap, std::abs(pred[i] - pred[j]), std::abs(pred[i] - std::conj(pred[j]))});
-        if (std::isfinite(from.beyond)) gap = std::min(gap, std::abs(from.beyond - std::abs(pred[i])));
+        double gap = std::abs(pi.imag()) > out.real_tol ? 2.0 * std::abs(pi.imag()) : std::numeric_limits<double>::infinity();
+        for (size_t j = 0; j < seeds.size(); ++j)
+            if (j != i) gap = std::min(gap, pair_distance(pi, seeds[j].predicted));
+        if (std::isfinite(from.beyond)) gap = std::min(gap, std::abs(from.beyond - std::abs(pi)));
         Mode& m = fixed[i];
-        if (!ok[i]) return std::nullopt;
-        if (!(std::abs(m.lambda - pred[i]) <= 0.3 * gap) || lands_on_another(track, m)) return std::nullopt;
-        if (fr.min_mac > 0.0 && !(mac(m.right, from.track[i].right) >= fr.min_mac)) return std::nullopt;
+        const long o = seeds[i].origin;
+        // A failed mode of a plain step is noted (its cluster is tried next), the rest checked still.
+        if (!ok[i] || !(std::abs(m.lambda - pi) <= 0.3 * gap) || lands_on_another(track, m) ||
+            (o >= 0 && fr.min_mac > 0.0 && !(mac(m.right, from.track[static_cast<size_t>(o)].right) >= fr.min_mac))) {
+            if (!failed || o < 0) return std::nullopt;
+            failed->push_back(static_cast<size_t>(o));
+            continue;
+        }
+        slope_before.push_back(o >= 0 ? from.track[static_cast<size_t>(o)].slope
+                                      : cd(std::numeric_limits<double>::quiet_NaN(), 0.0));
         track.push_back(std::move(m));
     }
+    if (failed && !failed->empty()) return std::nullopt;
+    if (clustered && fr.work) ++fr.work->cluster_steps;
     next.w = w;
     next.rigid = rigid;
     next.beyond = from.beyond;
     next.before = from.w;
     next.slope_before.clear();
-    std::vector<cd> corrected_at(track.size());   // track[i] is from.track[i] corrected
+    std::vector<cd> corrected_at(track.size());   // track[i] as corrected, before finish()
     for (size_t i = 0; i < track.size(); ++i) corrected_at[i] = track[i].lambda;
     std::vector<Mode> modes;
     for (const Mode& m : track)
@@ -183,7 +344,7 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
     for (const Mode& m : next.track) {
         const auto k = std::find(corrected_at.begin(), corrected_at.end(), m.lambda);
         next.slope_before.push_back(k == corrected_at.end() ? cd(std::numeric_limits<double>::quiet_NaN(), 0.0)
-                                                            : from.track[static_cast<size_t>(k - corrected_at.begin())].slope);
+                                                            : slope_before[static_cast<size_t>(k - corrected_at.begin())]);
     }
     if (!fr.keep_left)
         for (Mode& m : out.modes) m.left.resize(0);
@@ -215,9 +376,17 @@ bool keeps_shapes(const Solved& from, const Solved& to, double min_mac) {
 
 namespace {
 
+// The step whole, then with the modes that failed moving as groups (clusters_of).
+std::optional<QuadraticSpectrum> whole_step(const Frame& fr, const Solved& from, double w, Solved& next) {
+    std::vector<size_t> failed;
+    if (std::optional<QuadraticSpectrum> s = branch_solve(fr, from, w, next, nullptr, &failed)) return s;
+    if (failed.empty()) return std::nullopt;
+    return branch_solve(fr, from, w, next, &failed, nullptr);
+}
+
 // The step in halves, each halved again where it fails, `halvings` levels down.
 std::optional<QuadraticSpectrum> in_parts(const Frame& fr, const Solved& from, double w, Solved& next, int halvings) {
-    if (std::optional<QuadraticSpectrum> s = branch_solve(fr, from, w, next)) return s;
+    if (std::optional<QuadraticSpectrum> s = whole_step(fr, from, w, next)) return s;
     if (halvings == 0 || from.track.empty() || w == from.w) return std::nullopt;
     Solved mid;
     if (!in_parts(fr, from, 0.5 * (from.w + w), mid, halvings - 1)) return std::nullopt;
@@ -230,7 +399,7 @@ std::optional<QuadraticSpectrum> in_parts(const Frame& fr, const Solved& from, d
 
 std::optional<QuadraticSpectrum> branch_steps(const Frame& fr, const Solved& from, double w, Solved& next,
                                               int halvings) {
-    if (std::optional<QuadraticSpectrum> s = branch_solve(fr, from, w, next)) return s;
+    if (std::optional<QuadraticSpectrum> s = whole_step(fr, from, w, next)) return s;
     if (halvings == 0 || from.track.empty() || w == from.w) return std::nullopt;
     Solved mid;   // the whole step failed: its halves, each in parts where it fails
     if (!in_parts(fr, from, 0.5 * (from.w + w), mid, halvings - 1)) return std::nullopt;

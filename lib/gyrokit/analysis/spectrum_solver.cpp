@@ -26,6 +26,7 @@ SolverWork WorkCounter::snapshot() const {
     w.local_solves = local_solves.load();
     w.followed = followed.load();
     w.joined = joined.load();
+    w.cluster_steps = cluster_steps.load();
     return w;
 }
 

@@ -37,11 +37,12 @@ struct SolverWork {
     long local_solves = 0;       // full solves where a step did not verify (counted in full_solves too)
     long followed = 0;           // single modes followed to a speed (root searches)
     long joined = 0;             // modes joined at a check from beyond the band (inverse iteration at its eigenvalue)
+    long cluster_steps = 0;      // steps (or parts) whose close modes moved as a group (Ritz pairs of their span)
 };
 
 struct WorkCounter {
     std::atomic<long> full_solves{0}, eigenvalue_checks{0}, window_solves{0}, steps{0}, split_steps{0},
-        local_solves{0}, followed{0}, joined{0};
+        local_solves{0}, followed{0}, joined{0}, cluster_steps{0};
     SolverWork snapshot() const;
 };
 

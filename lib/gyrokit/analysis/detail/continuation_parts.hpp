@@ -78,9 +78,15 @@ bool lands_on_another(const std::vector<Mode>& modes, const Mode& m);
 // where it does not converge to lambda (within 1e-6 of its modulus) or lands on a
 // mode of `at`.
 std::optional<Mode> joined_mode(const Frame& fr, const Solved& at, double w, cd lambda);
-// Step 1: every mode of `from` predicted along its slope and corrected at w.
-std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& from, double w, Solved& next);
-// Step 1 with the step halved where it fails, up to `halvings` times (a sixteenth:
+// Step 1: every mode of `from` predicted along its slope and corrected at w. Given
+// `cluster_failed` (the modes a plain step failed on, listed in `failed`), each of
+// them with its nearest neighbour (or alone, as a complex pair about to meet on the
+// real axis) is a cluster whose modes come from the Ritz pairs of its span: their
+// count may change (two real eigenvalues that meet become one complex pair).
+std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& from, double w, Solved& next,
+                                              const std::vector<size_t>* cluster_failed = nullptr,
+                                              std::vector<size_t>* failed = nullptr);
+// Step 1 (plain, then clustered) with the step halved where it fails, up to `halvings` times (a sixteenth:
 // near an exceptional point or a close crossing a shorter step often verifies
 // where the whole did not, at a few corrections instead of a full solve).
 std::optional<QuadraticSpectrum> branch_steps(const Frame& fr, const Solved& from, double w, Solved& next,
