@@ -74,6 +74,7 @@ Frame frame_of(const Shared& sh, int threads) {
     f.band = sh.opt.band;
     f.keep_left = sh.opt.eig.left_vectors;
     f.second_order = true;
+    f.clusters = true;
     f.work = sh.work.get();
     return f;
 }

@@ -380,7 +380,7 @@ namespace {
 std::optional<QuadraticSpectrum> whole_step(const Frame& fr, const Solved& from, double w, Solved& next) {
     std::vector<size_t> failed;
     if (std::optional<QuadraticSpectrum> s = branch_solve(fr, from, w, next, nullptr, &failed)) return s;
-    if (failed.empty()) return std::nullopt;
+    if (failed.empty() || !fr.clusters) return std::nullopt;
     return branch_solve(fr, from, w, next, &failed, nullptr);
 }
 

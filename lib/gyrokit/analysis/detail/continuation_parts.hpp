@@ -56,6 +56,10 @@ struct Frame {
     // first round that already reaches the right's target leaves the left vector one
     // plain round from its start.
     bool second_order = false;
+    // A failed step's modes tried again as groups (branch_solve's clusters): the
+    // continuation's own steps. A window's keep each mode's shape (min_mac) and fall
+    // back to a window solve, whose vectors of a double pair the Hautus test reads.
+    bool clusters = false;
     WorkCounter* work = nullptr;   // counts the steps taken in parts and the modes joined (the continuation's)
 };
 
