@@ -34,8 +34,8 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     bool all_ok = true;
     const int status = bench::guarded_main([&] {
-        Table t({"seed", "mesh", "dofs", "solver", "modes", "cost", "full", "checks", "steps", "split", "local",
-                 "windows", "followed", "shown", "crossings", "expected", "result"});
+        Table t({"seed", "mesh", "dofs", "solver", "modes", "cost", "full", "checks", "steps", "split", "groups", "joined",
+                 "local", "windows", "followed", "shown", "crossings", "expected", "result"});
         std::vector<double> costs[2];
         int failed[2] = {0, 0}, runs[2] = {0, 0};
         for (unsigned seed = first; seed < first + static_cast<unsigned>(count); ++seed)
@@ -59,7 +59,8 @@ int main(int argc, char** argv) {
                            c.modes == kModesInRange ? std::string("unset") : std::to_string(c.modes),
                            fmt::format("{:.1f}", r.cost), static_cast<long long>(r.work.full_solves),
                            static_cast<long long>(r.work.eigenvalue_checks), static_cast<long long>(r.work.steps),
-                           static_cast<long long>(r.work.split_steps), static_cast<long long>(r.work.local_solves),
+                           static_cast<long long>(r.work.split_steps), static_cast<long long>(r.work.cluster_steps),
+                           static_cast<long long>(r.work.joined), static_cast<long long>(r.work.local_solves),
                            static_cast<long long>(r.work.window_solves), static_cast<long long>(r.work.followed),
                            static_cast<long long>(r.shown), static_cast<long long>(r.crossings),
                            static_cast<long long>(r.expected), result});

@@ -13,9 +13,12 @@ using namespace gyrokit;
 
 TEST_CASE("rotor family: crossings, counts and the least-damped mode on seeded random FE rotors",
           "[continuation][family]") {
-    // Seeds 1-8, and 196: overdamped bearings (zeta 3.8), whose real eigenvalue at
-    // standstill once counted as a "crossing" at 0 rad/s (it lies on every line there).
-    for (const unsigned seed : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 196u}) {
+    // Seeds 1-8; 196: overdamped bearings (zeta 3.8), whose real eigenvalue at standstill
+    // once counted as a "crossing" at 0 rad/s (it lies on every line there); 67 (zeta 2.5):
+    // a near-double real pair at standstill that turns complex at once, and 99 (zeta 4):
+    // real eigenvalues that meet, both once solved in full at every failed step, now
+    // stepped as groups.
+    for (const unsigned seed : {1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 196u, 67u, 99u}) {
         const family::RotorCase c = family::random_rotor(seed, false);
         INFO(c.description);
         // The cost is timed by the benchmark; here the solver's counts stand for it.
@@ -30,6 +33,8 @@ TEST_CASE("rotor family: crossings, counts and the least-damped mode on seeded r
         CHECK(r.brackets);
         CHECK(r.least_shown);
         if (c.modes > 0) CHECK(r.shown == c.modes);
+        if (seed == 67u || seed == 99u) CHECK(r.work.cluster_steps >= 1);
+        if (seed == 67u) CHECK(r.work.local_solves == 0);
     }
 }
 
