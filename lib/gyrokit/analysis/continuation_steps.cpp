@@ -91,6 +91,11 @@ std::optional<Mode> joined_mode(const Frame& fr, const Solved& at, double w, cd 
     if (lambda.imag() < 0.0) lambda = std::conj(lambda);
     Mode m;
     m.right = fixed_random_vector(p.M.rows()).cast<cd>();
+    // A double eigenvalue's second mode: the start orthogonal to the vectors already
+    // followed there (from one start both would come out as one).
+    for (const Mode& o : at.track)
+        if (std::abs(o.lambda - lambda) <= 1e-6 * std::abs(lambda) && o.right.size() == m.right.size())
+            m.right -= (o.right.dot(m.right) / o.right.squaredNorm()) * o.right;
     if (!corrected(p, action, m, lambda, fr.tolerance, frame.scale, frame.real_tol, true)) return std::nullopt;
     if (!(std::abs(m.lambda - lambda) <= 1e-6 * std::max(std::abs(lambda), frame.real_tol)) ||
         lands_on_another(at.track, m))
@@ -200,12 +205,20 @@ std::optional<std::vector<Seed>> cluster_seeds(const SparsePencil& p, const std:
     }
     // Closed under conjugation: a real pencil's eigenvalues near the real axis come
     // in conjugate pairs or are real.
-    for (const cd c : chosen) {
-        if (std::abs(c.imag()) <= real_tol) continue;
-        bool pair = false;
-        for (const cd o : chosen) pair = pair || std::abs(o - std::conj(c)) <= 1e-6 * std::abs(c);
-        if (!pair) return std::nullopt;
+    // Each value above the axis takes a distinct partner below it.
+    std::vector<char> partnered(chosen.size(), 0);
+    for (size_t a = 0; a < chosen.size(); ++a) {
+        if (!(chosen[a].imag() > real_tol)) continue;
+        size_t b = chosen.size();
+        for (size_t o = 0; o < chosen.size() && b == chosen.size(); ++o)
+            if (!partnered[o] && chosen[o].imag() < -real_tol &&
+                std::abs(chosen[o] - std::conj(chosen[a])) <= 1e-6 * std::abs(chosen[a]))
+                b = o;
+        if (b == chosen.size()) return std::nullopt;
+        partnered[a] = partnered[b] = 1;
     }
+    for (size_t a = 0; a < chosen.size(); ++a)
+        if (std::abs(chosen[a].imag()) > real_tol && !partnered[a]) return std::nullopt;
     std::vector<Seed> out;
     for (const cd c : chosen) {
         if (c.imag() < -real_tol) continue;   // its conjugate stands for it
@@ -251,17 +264,17 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
             for (size_t i : g) in_cluster[i] = 1;
         }
     }
-    // A mode without a slope (a double eigenvalue whose split its vectors do not give)
-    // fails the plain step before any correction; its cluster may predict it.
-    if (!clustered) {
-        for (size_t i = 0; i < from.track.size(); ++i)
-            if (!finite(from.track[i].slope) && failed) failed->push_back(i);
-        if (failed && !failed->empty()) return std::nullopt;
-    }
     for (size_t i = 0; i < from.track.size(); ++i) {
         if (in_cluster[i]) continue;
         const Mode& m = from.track[i];
-        if (!finite(m.slope)) return std::nullopt;
+        // A mode without a slope (a double eigenvalue whose split its vectors do not
+        // give) fails a plain step; the others are still corrected and checked, so
+        // that its retry groups every mode that needs it.
+        if (!finite(m.slope)) {
+            if (!failed) return std::nullopt;
+            failed->push_back(i);
+            continue;
+        }
         cd pr = m.lambda + h * m.slope;
         if (curved && finite(from.slope_before[i]))
             pr += (0.5 * h * h / (from.w - from.before)) * (m.slope - from.slope_before[i]);
@@ -309,6 +322,15 @@ std::optional<QuadraticSpectrum> branch_solve(const Frame& fr, const Solved& fro
         track.push_back(std::move(m));
     }
     if (failed && !failed->empty()) return std::nullopt;
+    // As many eigenvalues as before (a complex mode stands for its pair): a group whose
+    // Ritz pairs turned two real eigenvalues into one complex mode, or back, must not
+    // lose one to a pair refined as real.
+    const auto count = [&](const std::vector<Mode>& ms) {
+        long c = 0;
+        for (const Mode& m : ms) c += std::abs(m.lambda.imag()) > out.real_tol ? 2 : 1;
+        return c;
+    };
+    if (clustered && count(track) != count(from.track)) return std::nullopt;
     if (clustered && fr.work) ++fr.work->cluster_steps;
     next.w = w;
     next.rigid = rigid;
