@@ -79,6 +79,7 @@ int main(int argc, char** argv) {
     for (auto& c : cli::add_fluid_commands(app)) commands.push_back(std::move(c));
     for (auto& c : cli::add_screen_commands(app)) commands.push_back(std::move(c));
     for (auto& c : cli::add_sommerfeld_commands(app)) commands.push_back(std::move(c));
+    for (auto& c : cli::add_defaults_commands(app)) commands.push_back(std::move(c));
 
     app.name("gyrokit");
     app.set_version_flag("--version", std::string("gyrokit ") + GYROKIT_VERSION);

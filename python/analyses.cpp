@@ -3,6 +3,8 @@
 // the GIL released while the library solves.
 #include "analyses.hpp"
 
+#include <gyrokit/study/response_study.hpp>
+
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/gyrokit.hpp>
 
@@ -370,8 +372,6 @@ py::dict py_pervasive(const GyroscopicSystem& s, const std::vector<double>& spee
                       const std::string& solver, int modes, const py::object& target, double target_order,
                       const std::string& method, int lanczos, int jobs, const std::string& unit) {
     const SpeedUnit u = SpeedUnit::parse(unit);
-    if (!(tolerance > 0.0 && tolerance < 1.0))
-        throw InputError("tolerance = " + std::to_string(tolerance) + ": allowed: 0 < tolerance < 1");
     PervasiveOptions po;
     po.tolerance = tolerance;
     po.modes = modes;
@@ -411,54 +411,36 @@ py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speed
                      const std::string& solver, int modes, const py::object& target, double target_order,
                      const std::vector<int>& outputs, const std::string& unit, const std::string& title,
                      const std::vector<std::pair<int, double>>& probe_list, const std::string& length_unit,
-                     std::optional<double> f_cut) {
+                     std::optional<double> f_cut, const std::string& method, int lanczos, int jobs,
+                     bool stability_check, bool extrema) {
     const SpeedUnit u = SpeedUnit::parse(unit);
-    const LengthUnit length = LengthUnit::parse(length_unit);
+    ResponseRequest rq;
+    rq.length = LengthUnit::parse(length_unit);
+    rq.probes = probes_of(s, probe_list);
+    rq.outputs = outputs;
+    rq.stability_check = stability_check;
+    rq.antiresonances = extrema;
     const std::vector<double> w = checked_speeds(speeds);
-    const std::vector<Probe> probes = probes_of(s, probe_list);
-    const SolverOptions o = solver_options(solver, modes, target, target_order, "qz", 0);
-    const SolverKind kind = resolve_solver_kind(s.size(), o.kind);
-    Eigen::MatrixXcd Z(static_cast<Eigen::Index>(w.size()), s.size());
-    Diagnostics warnings;
+    const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
+    const Workers workers = threads(jobs);
+    ResponseStudy st;
     {
         Released free;
-        s.validate("response: the system");
-        for (std::size_t i = 0; i < w.size(); ++i) {
-            throw_if_interrupted();
-            Z.row(static_cast<Eigen::Index>(i)) = unbalance_response(s, w[i], kind).transpose();
-        }
-        // The CLI's check: where a mode is unstable, the response is no steady state.
-        warnings = response_stability_warnings(s, study(o, w, harmonics, Workers{1, WorkerKind::Threads}, u, f_cut));
+        st = response_study(s, study(o, w, harmonics, workers, u, f_cut), rq);
     }
     py::dict d;
-    d["Z"] = Z;
-    put_diagnostics(d, warnings);
-    // The curve of the DOFs asked for (all: every DOF), or of the probes' readings (named
-    // NODE@ANGLE, in m), as the CLI's table and Bode and polar plots; of many DOFs the plots
-    // show the six largest of each unit (by their grid maxima).
-    ResponseCurve rc;
-    rc.speeds = w;
-    ProbeOutputs named{s.dof_names, s.dof_units, {}};
-    if (!probes.empty()) {
-        named = probe_outputs(s, probes);
-        std::vector<int> all(static_cast<std::size_t>(s.size()));
-        for (int k = 0; k < s.size(); ++k) all[static_cast<std::size_t>(k)] = k;
-        rc.dofs = named.outputs;
-        rc.Z = probe_readings(probes, all, Z);
-        d["probe_readings"] = rc.Z;
-        d["probe_names"] = std::vector<std::string>(named.names.begin() + s.size(), named.names.end());
-    } else {
-        for (int k = 0; k < s.size(); ++k)
-            if (outputs.empty() || std::find(outputs.begin(), outputs.end(), k) != outputs.end()) rc.dofs.push_back(k);
-        rc.Z.resize(Z.rows(), static_cast<Eigen::Index>(rc.dofs.size()));
-        for (std::size_t j = 0; j < rc.dofs.size(); ++j) rc.Z.col(static_cast<Eigen::Index>(j)) = Z.col(rc.dofs[j]);
-    }
-    to_length_unit(rc.dofs, rc.Z, named.units, length);   // the tables and figures as the scene states lengths
-    const std::vector<int> shown = rc.dofs.size() <= 6 ? std::vector<int>{}
-                                                       : largest_responses(named.units, response_maxima(rc, {}), 6);
-    put_reports(d, {response_table(named.names, named.units, rc, u)},
-                response_figure(named.names, named.units, rc, u, title, shown));
-    d["polar_figure"] = figure_dict(response_polar_figure(named.names, named.units, rc, u, title, shown));
+    d["Z"] = st.si;   // the outputs in SI units (m, rad)
+    std::vector<std::string> names;
+    for (const int k : st.curve.dofs) names.push_back(st.names[static_cast<std::size_t>(k)]);
+    d["names"] = names;
+    put_diagnostics(d, st.diagnostics);
+    // The CLI's tables: the summary with the refined peaks, the curve
+    // (the peaks and antiresonances with `extrema`, as --extrema) and its Bode and polar plots.
+    std::vector<Table> tables{response_summary(st.names, st.units, st.maxima, u, 8)};
+    if (extrema) tables.push_back(extrema_table(st.names, st.units, st.extrema, u));
+    tables.push_back(response_table(st.names, st.units, st.curve, u));
+    put_reports(d, tables, response_figure(st.names, st.units, st.curve, u, title, st.plotted));
+    d["polar_figure"] = figure_dict(response_polar_figure(st.names, st.units, st.curve, u, title, st.plotted));
     return d;
 }
 
@@ -491,5 +473,7 @@ void bind_analyses(py::module_& m) {
     m.def("response", &py_response, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
           py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("outputs") = std::vector<int>{},
           py::arg("unit") = "rad/s", py::arg("title") = "", py::arg("probes") = std::vector<std::pair<int, double>>{},
-          py::arg("length_unit") = "m", py::arg("f_cut") = py::none());
+          py::arg("length_unit") = "m", py::arg("f_cut") = py::none(), py::arg("method") = defaults::method,
+          py::arg("lanczos") = defaults::lanczos, py::arg("jobs") = defaults::jobs, py::arg("stability_check") = true,
+          py::arg("extrema") = false);
 }

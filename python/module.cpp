@@ -83,5 +83,14 @@ PYBIND11_MODULE(_core, m) {
     bind_screening(m);
     bind_balancing(m);
 
+    // The table of defaults (study/defaults.hpp): the package's signatures take their values from it.
+    m.def("defaults", [] {
+        py::list rows;
+        for (const defaults::Entry& e : defaults::table())
+            rows.append(py::dict(py::arg("name") = e.name, py::arg("value") = e.value, py::arg("meaning") = e.meaning,
+                                 py::arg("option") = e.option, py::arg("keyword") = e.keyword,
+                                 py::arg("command") = e.command, py::arg("function") = e.function));
+        return rows;
+    });
     m.attr("__version__") = GYROKIT_VERSION;
 }

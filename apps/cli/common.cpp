@@ -40,8 +40,9 @@ void add_solver_options(CLI::App* c, Common& o) {
     c->add_option("--target-order", o.target_order,
                   "sparse: move the search centre with the speed, to --target + ORDER * speed (1: follow the 1x "
                   "line); default: the scene's target_order, else 0");
-    c->add_option("--lanczos", o.lanczos, "Lanczos (Arnoldi) vectors of the sparse solver; 0 = automatic");
-    c->add_option("--jobs", o.jobs, "threads for the speeds of a sweep; 0 = all cores");
+    c->add_option("--lanczos", o.lanczos, "Lanczos (Arnoldi) vectors of the sparse solver; 0 = automatic")
+        ->capture_default_str();
+    c->add_option("--jobs", o.jobs, "threads for the speeds of a sweep; 0 = all cores")->capture_default_str();
 }
 
 void add_cut_option(CLI::App* c, Common& o) {
@@ -101,7 +102,7 @@ std::string flag_words(const std::string& field) {
         {"target_order", "--target-order"}, {"f_cut", "--f-cut"}, {"units", "--units"}, {"rows", "--rows, or --format csv|json"},
         {"plot", "--plot FILE.svg"},        {"dt", "--dt"},         {"duration", "--duration"},
         {"max_steps", "--max-steps"},       {"speed", "--speed"},   {"run_up", "--run-up"},
-        {"acceleration", "--acceleration"}, {"gravity", "--gravity"}};
+        {"acceleration", "--acceleration"}, {"gravity", "--gravity"}, {"tolerance", "--tolerance"}};
     for (const auto& [name, flag] : flags)
         if (field == name) return flag;
     return "";

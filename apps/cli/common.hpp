@@ -9,6 +9,7 @@
 #include <gyrokit/io/plot.hpp>
 #include <gyrokit/io/scene.hpp>
 #include <gyrokit/io/table.hpp>
+#include <gyrokit/study/defaults.hpp>
 #include <gyrokit/study/rotor_study.hpp>
 
 #include <CLI/CLI.hpp>
@@ -36,11 +37,11 @@ std::string flag_words(const std::string& field);
 
 // Options every scene command shares.
 struct Common {
-    std::string scene, format = "table", units = "rad/s", speeds, method = "qz", plot;
+    std::string scene, format = "table", units = defaults::unit, speeds, method = defaults::method, plot;
     // Solver choice (eig, campbell, critical, stability, response).
     std::string solver, target, target_order;
     std::string f_cut;    // campbell, critical, stability, response: the modes judged
-    int lanczos = 0, jobs = 0;
+    int lanczos = defaults::lanczos, jobs = defaults::jobs;
     std::string motion;   // FE rotors: the DOF set in place of the scene's
 };
 
@@ -140,6 +141,9 @@ std::vector<Command> add_critical_map_commands(CLI::App& app);
 
 // FE rotors at standstill: static.
 std::vector<Command> add_static_commands(CLI::App& app);
+
+// The table of defaults: defaults.
+std::vector<Command> add_defaults_commands(CLI::App& app);
 
 // The Sommerfeld effect: sommerfeld (stationary speed curves, limit speeds, folds; --runup).
 std::vector<Command> add_sommerfeld_commands(CLI::App& app);

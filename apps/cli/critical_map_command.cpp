@@ -17,7 +17,7 @@ namespace {
 struct Options {
     Common common;
     std::string stiffness, table;
-    int modes = 3;
+    int modes = defaults::critical_map_modes;
 };
 
 // --stiffness FROM:TO:N, N values log spaced from FROM to TO (N/m).
@@ -52,8 +52,11 @@ std::vector<Command> add_critical_map_commands(CLI::App& app) {
     cmd->add_option("scene", o->common.scene, "scene file (TOML)")->required();
     cmd->add_option("--format", o->common.format, "output format: table, csv or json")->capture_default_str();
     cmd->add_option("--units", o->common.units, "unit of the critical speeds: rad/s, Hz or rpm")->capture_default_str();
-    cmd->add_option("--stiffness", o->stiffness, "bearing stiffness FROM:TO:N, log spaced (N/m); default: 1e-2 to 1e3 "
-                                                 "times the shaft's 48 E I / L^3, 31 values");
+    cmd->add_option("--stiffness", o->stiffness, fmt::format("bearing stiffness FROM:TO:N, log spaced (N/m); default: {} to {} "
+                                                             "times the shaft's 48 E I / L^3, {} values",
+                                                             defaults::critical_map_stiffness_from,
+                                                             defaults::critical_map_stiffness_to,
+                                                             defaults::critical_map_points));
     cmd->add_option("--modes", o->modes, "critical speeds of each whirl per stiffness (the lowest)")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));

@@ -4,6 +4,7 @@
 #include <gyrokit/core/number_text.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/reports/reports.hpp>
+#include <gyrokit/study/response_study.hpp>
 
 #include <algorithm>
 #include <fmt/format.h>
@@ -18,7 +19,7 @@ struct Options {
     Common common;
     std::string dofs, nodes, at, probes;
     int modes = -1;
-    bool extrema = false, rows = false, polar = false;
+    bool extrema = false, rows = false, polar = false, no_stability_check = false;
 };
 
 // The items of a comma-separated list.
@@ -103,61 +104,36 @@ std::vector<Command> add_response_commands(CLI::App& app) {
     resp->add_option("--modes", o->modes, "modes checked for stability over the range (0 = all); default: the scene's, "
                                            "else the modes in range")
         ->check(CLI::Range(0, 100000000));
+    resp->add_flag("--no-stability-check", o->no_stability_check,
+                   "skip tracking the modes over the range (the warning where a mode is unstable and the response "
+                   "is no steady state)");
     cmds.push_back({resp, [o](std::ostream& out) {
         if (o->polar && o->common.plot.empty()) throw InputError("--polar: only together with --plot FILE");
         const Context c = open_scene(o->common, true);
         const Scene& sc = c.scene;
         if (!o->probes.empty() && !(o->dofs.empty() && o->nodes.empty() && o->at.empty()))
             throw InputError("--probes and --dofs, --nodes, --at: allowed: probes alone");
-        const std::vector<Probe> probes = parse_probes(o->probes, sc.system);
-        const std::vector<int> outputs = response_outputs(*o, sc.system, sc.length_unit());
-        // The sparse LU of the dynamic stiffness where the solver choice is sparse.
-        const SolverKind kind = use_sparse(c) ? SolverKind::Sparse : SolverKind::Dense;
-        // With probes the outputs are their readings, named as given (in m); else the model's DOFs.
-        ProbeOutputs named{sc.system.dof_names, sc.system.dof_units, {}};
-        if (!probes.empty()) {
-            named.names.clear(), named.units.clear();
-            for (const Probe& p : probes) named.names.push_back(p.name), named.units.push_back("m");
-        }
-        // Lengths as the scene states them (an mm scene prints mm).
-        const LengthUnit length = sc.length_unit();
-        Eigen::VectorXd shown_in = Eigen::VectorXd::Ones(sc.dofs());   // models without DOF units: as they are
-        for (std::size_t k = 0; k < sc.system.dof_units.size(); ++k)
-            shown_in(static_cast<Eigen::Index>(k)) = length.display_factor(sc.system.dof_units[k]);
-        const std::vector<std::string>& names = named.names;
-        const std::vector<std::string> units = length.display_units(named.units);
-        const ResponseSolver solve = [&](double w) -> Eigen::VectorXcd {
-            const Eigen::VectorXcd Z = unbalance_response(sc.system, w, kind);
-            if (probes.empty()) return Z.cwiseProduct(shown_in.cast<std::complex<double>>());
-            Eigen::VectorXcd reading(static_cast<Eigen::Index>(probes.size()));
-            for (std::size_t k = 0; k < probes.size(); ++k)
-                reading(static_cast<Eigen::Index>(k)) = length.display_factor("m") * probe_response(probes[k], Z);
-            return reading;
-        };
-        for (const auto& n : extrapolation_notes(sc.system.bearings, c.speeds.front(), c.speeds.back()))
-            std::cerr << "note: " << n << "\n";
-        const ResponseCurve rc =
-            unbalance_response(solve, probes.empty() ? sc.dofs() : static_cast<int>(probes.size()), c.speeds, outputs);
-        print_diagnostics(
-            response_stability_warnings(sc.system, study_of(c, wanted_modes(c, o->modes), c.scene.harmonics, true)));
+        ResponseRequest rq;
+        rq.probes = parse_probes(o->probes, sc.system);
+        rq.outputs = response_outputs(*o, sc.system, sc.length_unit());
+        rq.length = sc.length_unit();
+        rq.stability_check = !o->no_stability_check;
         const bool summary = c.format == TableFormat::Text && !o->rows && !o->extrema;
         // Peaks refined between grid speeds: the summary, --extrema, and the choice of curves to draw.
-        std::vector<ResponseExtremum> extrema;
-        if (summary || o->extrema || (!o->common.plot.empty() && outputs.empty()))
-            extrema = response_extrema(solve, rc, !o->extrema);
+        rq.peaks = summary || o->extrema || (!o->common.plot.empty() && rq.outputs.empty());
+        rq.antiresonances = o->extrema;
+        const ResponseStudy st =
+            response_study(sc.system, study_of(c, wanted_modes(c, o->modes), c.scene.harmonics, true), rq);
+        print_diagnostics(st.diagnostics);
         if (o->extrema)
-            write_table(out, extrema_table(names, units, extrema, c.unit), c.format);
+            write_table(out, extrema_table(st.names, st.units, st.extrema, c.unit), c.format);
         else if (summary)
-            write_table(out, response_summary(names, units, response_maxima(rc, extrema), c.unit, 8), c.format);
+            write_table(out, response_summary(st.names, st.units, st.maxima, c.unit, 8), c.format);
         else
-            write_table(out, response_table(names, units, rc, c.unit), c.format);
+            write_table(out, response_table(st.names, st.units, st.curve, c.unit), c.format);
         if (o->common.plot.empty()) return;
-        // Many DOFs: the six largest of each unit, so the legend stays readable.
-        const std::vector<int> shown =
-            !outputs.empty() || rc.dofs.size() <= 6 ? std::vector<int>{}
-                                                    : largest_responses(units, response_maxima(rc, extrema), 6);
-        plot_if(o->common.plot, o->polar ? response_polar_figure(names, units, rc, c.unit, sc.title, shown)
-                                         : response_figure(names, units, rc, c.unit, sc.title, shown));
+        plot_if(o->common.plot, o->polar ? response_polar_figure(st.names, st.units, st.curve, c.unit, sc.title, st.plotted)
+                                         : response_figure(st.names, st.units, st.curve, c.unit, sc.title, st.plotted));
     }});
 
     return cmds;

@@ -18,7 +18,7 @@ namespace {
 struct ScreenOptions {
     std::string sweep, shard = "0/1", resume, out, format = "csv", plot, axes;
     std::vector<std::string> merge;
-    int jobs = 0;
+    int jobs = defaults::jobs;
     long long limit = 0;
 };
 
@@ -45,7 +45,7 @@ std::vector<Command> add_screen_commands(CLI::App& app) {
     std::vector<Command> cmds;
     auto* c = app.add_subcommand("screen", "design study: sweep a scene's parameters and check criteria");
     c->add_option("sweep", o->sweep, "sweep file (TOML)")->required();
-    c->add_option("--jobs", o->jobs, "worker threads (default: all hardware threads)");
+    c->add_option("--jobs", o->jobs, "designs run in parallel; 0 = all cores")->capture_default_str();
     c->add_option("--shard", o->shard, "process shard K of N (0 <= K < N): the designs i with i mod N = K")
         ->capture_default_str();
     add_output_option(c, "--out", o->out, "write the rows (CSV) into FILE as they are done (overwrites FILE)");

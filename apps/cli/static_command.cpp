@@ -14,7 +14,7 @@ namespace {
 
 struct Options {
     Common common;
-    std::string gravity = "9.80665";
+    std::string gravity = fmt::format("{}", defaults::gravity);
     std::vector<std::string> loads;
     std::string table;
 };

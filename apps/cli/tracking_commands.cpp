@@ -17,7 +17,7 @@ struct Options {
     Common common;
     std::string harmonics, critical_method = "branches";
     int modes = -1;
-    double tolerance = 1e-8;
+    double tolerance = defaults::pervasive_tolerance;
     bool rows = false;
 };
 
@@ -132,8 +132,6 @@ Command pervasive_command(CLI::App& app, const std::shared_ptr<Options>& o) {
                                                   "modes in range")
         ->check(CLI::Range(0, 100000000));
     return {perv, [o](std::ostream& out) {
-        if (!(o->tolerance > 0.0 && o->tolerance < 1.0))
-            throw InputError(fmt::format("--tolerance {}: allowed: 0 < tolerance < 1", o->tolerance));
         const Context c = open_scene(o->common, true);
         PervasiveOptions po;
         po.tolerance = o->tolerance;

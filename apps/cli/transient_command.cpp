@@ -23,7 +23,7 @@ namespace {
 struct Options {
     Common common;
     std::string speed, run_up, acceleration, duration, dt, dofs, node, start = "rest", out, waterfall;
-    long long max_steps = kTransientMaxSteps;
+    long long max_steps = defaults::max_steps;
 };
 
 double number(const std::string& text, const std::string& option, const std::string& allowed) {

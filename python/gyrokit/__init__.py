@@ -18,6 +18,7 @@ import numpy as _np
 from ._core import Error, InputError, Scene, SolverError, System, __version__
 from ._core import Bearing, Disk, Pedestal, Rotor, Section, Support, coupling
 from . import _core
+from . import _defaults as _D
 from ._results import Result as _Result, Table, draw, load_tables
 from ._results import UNITS as _UNITS, factor as _factor
 from ._transient import TransientResponse, transient
@@ -29,7 +30,13 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
            "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap", "frf",
            "FrequencyResponse", "Table", "load_tables", "draw", "summary", "ModelSummary", "transient",
-           "TransientResponse"]
+           "TransientResponse", "defaults"]
+
+
+def defaults() -> list:
+    """The defaults of every call and command, as `gyrokit defaults` prints them (docs/defaults.md): a list of
+    dicts name, value (as written in a call; "" where the default is a rule) and meaning."""
+    return [dict(row) for row in _D.TABLE]
 
 
 def load_scene(path, overrides=None, motion=None) -> Scene:
@@ -75,7 +82,7 @@ def _f_cut(model, f_cut, unit):
     return float(f_cut) / _factor(unit)
 
 
-def _speeds(model, speeds, unit="rad/s"):
+def _speeds(model, speeds, unit=_D.UNIT):
     """Speeds in rad/s: the given ones (in `unit`) or the scene's [speeds] (rad/s)."""
     if speeds is None:
         speeds = model.speeds if isinstance(model, Scene) else None
@@ -118,7 +125,7 @@ class EigResult(_Result):
     """Eigenvalues at one speed, one per conjugate pair (Im >= 0) as the CLI prints, by frequency. `speed` and
     `frequencies` in `unit`; eigenvalues (and their real parts) in 1/s, as the CLI's re_1_s, im_rad_s."""
 
-    def __init__(self, d, speed, unit="rad/s"):
+    def __init__(self, d, speed, unit=_D.UNIT):
         f = _factor(unit)
         self.unit = unit
         self.speed = speed * f
@@ -147,7 +154,7 @@ class CampbellResult(_Result):
     """Tracked modes over speed: eigenvalues[i, b] of branch b at speeds[i] (NaN where b has no point).
     `speeds` and `frequencies` in `unit`; eigenvalues in 1/s; damping_ratios and log_decrements alike."""
 
-    def __init__(self, d, unit="rad/s"):
+    def __init__(self, d, unit=_D.UNIT):
         f = _factor(unit)
         self.unit = unit
         self.speeds = d["speeds"] * f
@@ -194,7 +201,7 @@ class CriticalSpeeds(_Result):
     API 684 amplification factor (half-power on the unbalance response, else 1/(2 zeta)); api684_critical
     is False for a heavily damped crossing (amplification factor < 2.5). Speeds in `unit`."""
 
-    def __init__(self, d, unit="rad/s"):
+    def __init__(self, d, unit=_D.UNIT):
         self.unit = unit
         self.speeds = d["speeds"] * _factor(unit)
         self.harmonic = d["harmonic"]
@@ -222,7 +229,7 @@ class StabilityChanges(_Result):
     """Speeds where a branch becomes unstable (or stable again), refined by root finding;
     bounds: |speed - exact threshold| <= bound. Both in `unit`."""
 
-    def __init__(self, d, unit="rad/s"):
+    def __init__(self, d, unit=_D.UNIT):
         f = _factor(unit)
         self.unit = unit
         self.speeds = d["speeds"] * f
@@ -238,8 +245,8 @@ class StabilityChanges(_Result):
                             "becomes_unstable": self.becomes_unstable})
 
 
-def eig(model, speed, *, solver=None, modes=None, target=None, target_order=None, method="qz",
-        lanczos=0, unit="rad/s") -> EigResult:
+def eig(model, speed, *, solver=None, modes=None, target=None, target_order=None, method=_D.METHOD,
+        lanczos=_D.LANCZOS, unit=_D.UNIT) -> EigResult:
     """Eigenvalues at one speed (in `unit`: rad/s, Hz, rpm). solver: "auto" | "dense" | "sparse"; modes: 0 = all."""
     system, o = _options(model, solver, modes, target, target_order)
     w = float(speed) / _factor(unit)
@@ -252,7 +259,7 @@ class ModeShapes(_Result):
     major/minor in the pair's unit, angle and phase in rad, whirl), as `gyrokit modes` prints.
     `speed` and `frequencies` in `unit`."""
 
-    def __init__(self, d, speed, dof_names, unit="rad/s"):
+    def __init__(self, d, speed, dof_names, unit=_D.UNIT):
         f = _factor(unit)
         self.unit = unit
         self.speed = speed * f
@@ -303,8 +310,8 @@ class ModeShapes(_Result):
         return ax
 
 
-def modes(model, speed, *, solver=None, modes=None, target=None, target_order=None, method="qz",
-          lanczos=0, unit="rad/s") -> ModeShapes:
+def modes(model, speed, *, solver=None, modes=None, target=None, target_order=None, method=_D.METHOD,
+          lanczos=_D.LANCZOS, unit=_D.UNIT) -> ModeShapes:
     """Mode shapes at one speed (in `unit`): the `modes` lowest (None: the scene's, 0: all)."""
     system, o = _options(model, solver, modes, target, target_order)
     w = float(speed) / _factor(unit)
@@ -316,7 +323,7 @@ def modes(model, speed, *, solver=None, modes=None, target=None, target_order=No
 
 
 def campbell(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
-             method="qz", lanczos=0, jobs=1, unit="rad/s", f_cut=None) -> CampbellResult:
+             method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=_D.UNIT, f_cut=None) -> CampbellResult:
     """Campbell diagram over `speeds` (in `unit`; default: the scene's [speeds]); jobs threads (0 = all cores).
     modes None (and no scene value): the modes in the band the speeds and harmonics excite; modes K: the K
     lowest branches shown, every mode up to f_cut (in `unit`; default: the scene's, else 1.5 times the
@@ -328,7 +335,7 @@ def campbell(model, speeds=None, *, harmonics=None, solver=None, modes=None, tar
 
 
 def critical_speeds(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
-                    method="qz", lanczos=0, jobs=1, unit="rad/s", f_cut=None) -> CriticalSpeeds:
+                    method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=_D.UNIT, f_cut=None) -> CriticalSpeeds:
     """Critical speeds (in `unit`) where tracked branches cross k * speed, k in `harmonics` (default: the scene's,
     or 1); `speeds` in `unit` too."""
     system, o = _options(model, solver, modes, target, target_order)
@@ -339,7 +346,7 @@ def critical_speeds(model, speeds=None, *, harmonics=None, solver=None, modes=No
 
 
 def stability(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
-               method="qz", lanczos=0, jobs=1, unit="rad/s", f_cut=None) -> StabilityChanges:
+               method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=_D.UNIT, f_cut=None) -> StabilityChanges:
     """Speeds where a mode becomes unstable or stable again (Re lambda beyond its error bound), over the
     modes in range (modes None; with modes = K as well: K only says how many branches a diagram shows; 0:
     every mode); speeds in `unit`."""
@@ -461,7 +468,7 @@ def _screen_on(executor, sweep, scene, names, values, progress, retries):
                              quantities=plan["quantities"], labels=plan["labels"], unit=plan["unit"]))
 
 
-def screen(sweep, designs=None, *, scene=None, jobs=0, progress=None, executor=None, retries=1) -> ScreenResult:
+def screen(sweep, designs=None, *, scene=None, jobs=_D.JOBS, progress=None, executor=None, retries=1) -> ScreenResult:
     """A design study: the criteria of the sweep file `sweep` on its own designs, or on `designs`, a list of
     dicts {parameter: value} (e.g. {"model.c_G": 400.0}). `scene` (a Scene, e.g. from rotor_scene) is the
     base scene in place of the sweep's `scene` key: its parameter paths address the scene it writes
@@ -530,7 +537,7 @@ def _probes(probes):
     return out
 
 
-def frf(model, speed, input, frequencies, *, dofs=None, probes=None, unit="rad/s", solver=None) -> FrequencyResponse:
+def frf(model, speed, input, frequencies, *, dofs=None, probes=None, unit=_D.UNIT, solver=None) -> FrequencyResponse:
     """Frequency response functions of `model` (a System or Scene) spinning at `speed`: the response of `dofs`
     (names; default: the input itself, the driving point) or of displacement `probes` [(node, angle), ...] (x cos +
     y sin, degrees from +x towards +y; outputs named "NODE@ANGLE") to a unit harmonic force at DOF `input` (a name:
@@ -603,7 +610,7 @@ class CriticalSpeedMap(_Result):
         return self._frame(rows)
 
 
-def critical_speed_map(model, *, stiffness=None, modes=3, unit="rad/s") -> CriticalSpeedMap:
+def critical_speed_map(model, *, stiffness=None, modes=_D.MAP_MODES, unit=_D.UNIT) -> CriticalSpeedMap:
     """The undamped critical speed map of an FE rotor scene: the lowest `modes` critical speeds of each whirl at
     each bearing stiffness (N/m, increasing; default: 1e-2 to 1e3 times the shaft's 48 E I / L^3, 31 values),
     with the rigid-support limit and the bearings' own curves; speeds in `unit` (rad/s, Hz, rpm)."""
@@ -614,7 +621,7 @@ def critical_speed_map(model, *, stiffness=None, modes=3, unit="rad/s") -> Criti
                             unit)
 
 
-def static(model, *, gravity=9.80665, loads=None) -> StaticDeflection:
+def static(model, *, gravity=_D.GRAVITY, loads=None) -> StaticDeflection:
     """An FE rotor scene at standstill under gravity (m/s^2 along -y) and point loads, a list of dicts
     {"node": n, "fx": .., "fy": .., "mx": .., "my": ..} (N, N m; missing ones 0). Speed-dependent bearings hold
     their nodes rigidly; constant bearings act as springs (docs/static.md)."""
@@ -654,7 +661,7 @@ class PervasiveLosses(_Result):
     """Speeds where a damping set (a component alone, or "total") does not reach a mode (Hautus test);
     speeds and frequencies in `unit`."""
 
-    def __init__(self, d, unit="rad/s"):
+    def __init__(self, d, unit=_D.UNIT):
         f = _factor(unit)
         self.unit = unit
         self.checked = list(d["checked"])
@@ -675,7 +682,7 @@ class Response(_Result):
     """Steady unbalance response: complex amplitudes Z[i, k] of DOF dofs[k] at speeds[i] (in `unit`); amplitude,
     phase (deg). plot(): the CLI's Bode plot (amplitude per unit, phase); plot_polar(): its polar plot."""
 
-    def __init__(self, speeds, dofs, Z, d=None, unit="rad/s"):
+    def __init__(self, speeds, dofs, Z, d=None, unit=_D.UNIT):
         self.unit = unit
         self.notes = list(d["notes"]) if d else []
         self.warnings = list(d["warnings"]) if d else []
@@ -698,8 +705,8 @@ class Response(_Result):
         return self._draw_figure(getattr(self, "_polar", None), path, axes)
 
 
-def pervasive(model, speeds=None, *, tolerance=1e-8, solver=None, modes=None, target=None, target_order=None,
-              method="qz", lanczos=0, jobs=1, unit="rad/s") -> PervasiveLosses:
+def pervasive(model, speeds=None, *, tolerance=_D.TOLERANCE, solver=None, modes=None, target=None, target_order=None,
+              method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=_D.UNIT) -> PervasiveLosses:
     """Hautus pervasive-damping check of each damping component alone and of the total damping; speeds in `unit`."""
     system, o = _options(model, solver, modes, target, target_order)
     return PervasiveLosses(_core.pervasive(system, _speeds(model, speeds, unit), float(tolerance), method=method,
@@ -707,12 +714,14 @@ def pervasive(model, speeds=None, *, tolerance=1e-8, solver=None, modes=None, ta
 
 
 def response(model, speeds=None, *, dofs=None, probes=None, solver=None, harmonics=None, modes=None,
-             unit="rad/s", f_cut=None) -> Response:
+             method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=_D.UNIT, f_cut=None,
+             stability_check=True, extrema=False) -> Response:
     """Unbalance response at `speeds` (in `unit`) of the named DOFs (default: all), by a dense or (solver "sparse";
-    "auto" above 200 DOFs) sparse LU of the dynamic stiffness. As the CLI, the modes (`modes`, default
-    those in range) are tracked over the range: each unstable range is a RuntimeWarning and in `warnings`
-    (the response there is not a steady state). `probes` [(node, angle), ...]: the readings of displacement probes
-    (x cos + y sin, degrees from +x towards +y) instead of DOFs, named "NODE@ANGLE"."""
+    "auto" above 200 DOFs) sparse LU of the dynamic stiffness, with the CLI's tables (summary with the peaks refined
+    between grid speeds; with `extrema` the peaks and antiresonances, as --extrema; the curve). As the CLI, the modes (`modes`, default those in range) are tracked
+    over the range: each unstable range is a RuntimeWarning and in `warnings` (the response there is not a steady
+    state); `stability_check=False` skips that tracking. `probes` [(node, angle), ...]: the readings of
+    displacement probes (x cos + y sin, degrees from +x towards +y) instead of DOFs, named "NODE@ANGLE"."""
     if dofs is not None and probes is not None:
         raise InputError("dofs and probes: allowed: one of them")
     system, o = _options(model, solver, modes, None, None)
@@ -723,14 +732,12 @@ def response(model, speeds=None, *, dofs=None, probes=None, solver=None, harmoni
     w = _speeds(model, speeds, unit)
     cols = [] if dofs is None else [names.index(x) for x in dofs]
     d = _core.response(system, w, _harmonics(model, harmonics), outputs=cols, unit=unit, title=_title(model),
-                       probes=_probes(probes), length_unit=_length(model), f_cut=_f_cut(model, f_cut, unit), **o)
+                       probes=_probes(probes), length_unit=_length(model), f_cut=_f_cut(model, f_cut, unit),
+                       method=method, lanczos=int(lanczos), jobs=int(jobs), stability_check=bool(stability_check),
+                       extrema=bool(extrema), **o)
     for msg in d["warnings"]:
         _warnings.warn(msg, RuntimeWarning, stacklevel=2)
-    if probes is not None:
-        return Response(w, list(d["probe_names"]), d["probe_readings"], d, unit)
-    if dofs is None:
-        return Response(w, names, d["Z"], d, unit)
-    return Response(w, list(dofs), d["Z"][:, cols], d, unit)
+    return Response(w, list(d["names"]), d["Z"], d, unit)
 
 
 # Models from keyword parameters, with the key names, checks and messages of scene files

@@ -159,6 +159,8 @@ class StabilityChanges(_Result):
     warnings: list[str]
     def to_pandas(self) -> Any: ...
 
+def defaults() -> list[dict[str, str]]: ...
+
 def load_scene(path: Union[str, PathLike[str]], overrides: Optional[Mapping[str, float]] = ...) -> Scene: ...
 def modes(model: Model, speed: float, *, solver: Optional[str] = ..., modes: Optional[int] = ...,
           target: Optional[float] = ..., target_order: Optional[float] = ..., method: str = ...,
@@ -230,7 +232,9 @@ def pervasive(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, tolerance:
 def response(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, dofs: Optional[Sequence[str]] = ...,
              probes: Optional[Sequence[tuple[int, float]]] = ...,
              solver: Optional[str] = ..., harmonics: Optional[Sequence[int]] = ...,
-             modes: Optional[int] = ..., unit: str = ..., f_cut: Optional[float] = ...) -> Response: ...
+             modes: Optional[int] = ..., method: str = ..., lanczos: int = ..., jobs: int = ...,
+             unit: str = ..., f_cut: Optional[float] = ..., stability_check: bool = ...,
+             extrema: bool = ...) -> Response: ...
 def gyrostat(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
              **keys: Any) -> Scene: ...
 def fe_rotor(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,

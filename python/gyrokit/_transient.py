@@ -5,6 +5,7 @@ import numpy as _np
 
 from ._core import InputError, Scene, System
 from . import _core
+from . import _defaults as _D
 from ._results import Result, UNITS as _UNITS, factor as _factor
 _PER_SECOND = {"rad/s": "rad/s^2", "Hz": "Hz/s", "rpm": "rpm/s"}
 
@@ -119,7 +120,7 @@ def _profile(speed, run_up, acceleration, unit):
 
 
 def transient(model, speed=None, *, run_up=None, acceleration=None, duration=None, dt=None, dofs=None, node=None,
-              unit="rad/s", start="rest", max_steps=2000000, solver=None, windows=20) -> TransientResponse:
+              unit=_D.UNIT, start="rest", max_steps=_D.MAX_STEPS, solver=None, windows=20) -> TransientResponse:
     """The unbalance response of `model` (a System or Scene) in time, by Newmark's average-acceleration method:
     at a constant `speed`, or in a run-up / run-down `run_up=(W0, W1)` at `acceleration` (in `unit` per s: rad/s^2,
     Hz/s, rpm/s), for `duration` s (default: the ramp; 100 revolutions at a constant speed; after the ramp the

@@ -170,6 +170,22 @@ def test_a_transient_run_carries_the_clis_table_and_pictures(tmp_path, scene):
     assert os.path.getsize(tmp_path / "orbit.png") > 1000 and "<svg" in open(tmp_path / "waterfall.svg").read()
 
 
+def test_response_is_the_clis_study(tmp_path, scene):
+    # One study (lib/gyrokit/study/response_study.hpp): the same curve, refined peaks and summary as the CLI.
+    args = ("response", SCENE, "--speeds", "0:1500:16", "--dofs", "x12,y12")
+    r = gk.response(scene, np.linspace(0.0, 1500.0, 16), dofs=["x12", "y12"], extrema=True)
+    assert [t.key for t in r.tables] == ["response_maxima", "response_peaks", "response"]
+    assert open(r.save(tmp_path / "curve.csv", table="response")).read() == cli(*args, "--format", "csv")
+    assert open(r.save(tmp_path / "peaks.csv", table="response_peaks")).read() == cli(
+        *args, "--extrema", "--format", "csv")
+    assert str(r.table("response_maxima")).strip() == cli(*args).strip()
+    # The grid maxima are not what the summary reports: a peak refined between grid speeds is higher.
+    top = r.table("response_maxima").column("max_amplitude")
+    assert all(m > a for m, a in zip(top, r.amplitude.max(axis=0)))
+    quick = gk.response(scene, np.linspace(0.0, 1500.0, 16), dofs=["x12", "y12"], stability_check=False)
+    np.testing.assert_array_equal(quick.amplitudes, r.amplitudes)
+
+
 def test_probes_at_any_angle_read_x_cos_plus_y_sin_as_the_cli(tmp_path, scene):
     speeds = np.linspace(0.0, 1500.0, 16)
     xy = gk.response(scene, speeds, dofs=["x12", "y12"])

@@ -132,7 +132,9 @@ std::vector<double> default_map_stiffness(const RotorModel& model) {
     EI /= length;
     const double k_shaft = 48.0 * EI / (length * length * length);
     std::vector<double> k;
-    for (int i = 0; i <= 30; ++i) k.push_back(k_shaft * std::pow(10.0, -2.0 + 5.0 * i / 30.0));
+    const double from = std::log10(kMapStiffnessFrom), to = std::log10(kMapStiffnessTo);
+    for (int i = 0; i < kMapStiffnessPoints; ++i)
+        k.push_back(k_shaft * std::pow(10.0, from + (to - from) * i / (kMapStiffnessPoints - 1)));
     return k;
 }
 

@@ -18,9 +18,12 @@
 
 namespace gyrokit {
 
+// The critical speeds of each whirl a map shows unless asked otherwise.
+constexpr int kCriticalMapModes = 3;
+
 struct CriticalSpeedMapOptions {
     std::vector<double> stiffness;   // N/m, > 0, increasing; empty: default_map_stiffness(model)
-    int modes = 3;                   // the lowest critical speeds of each whirl at each stiffness, >= 1
+    int modes = kCriticalMapModes;   // the lowest critical speeds of each whirl at each stiffness, >= 1
 };
 
 struct MapPoint {
@@ -47,8 +50,11 @@ struct CriticalSpeedMap {
     double max_backward_error = 0.0;
 };
 
-// From 1e-2 to 1e3 times the shaft's own stiffness 48 E I / L^3 (length-weighted mean
-// E I, rotor length L: a simply supported beam loaded at mid-span), 31 points, log spaced.
+// The default stiffness range: kMapStiffnessPoints values, log spaced, from
+// kMapStiffnessFrom to kMapStiffnessTo times the shaft's own stiffness 48 E I / L^3
+// (length-weighted mean E I, rotor length L: a simply supported beam loaded at mid-span).
+constexpr double kMapStiffnessFrom = 1e-2, kMapStiffnessTo = 1e3;
+constexpr int kMapStiffnessPoints = 31;
 std::vector<double> default_map_stiffness(const RotorModel& model);
 
 // InputError for a model without bearings, a stiffness list that is not positive and

@@ -3,7 +3,10 @@
 
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
+
+#include <fmt/format.h>
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -203,6 +206,8 @@ double pervasion_residual(const SparsePencil& p, const SparseMatrix& D, std::com
 
 PervasiveReport pervasive_damping(const GyroscopicSystem& sys, const std::vector<double>& speeds,
                                   const PervasiveOptions& opt) {
+    if (!(opt.tolerance > 0.0 && opt.tolerance < 1.0))
+        throw InputError(fmt::format("{} {}: allowed: 0 < tolerance < 1", option_field("tolerance"), opt.tolerance));
     PervasiveReport rep;
     std::vector<std::pair<std::string, GyroscopicSystem>> sets;
     const std::vector<std::string> names = sys.damping_names();

@@ -15,10 +15,13 @@
 
 namespace gyrokit {
 
+// The largest residual of a loss unless asked otherwise.
+constexpr double kPervasiveTolerance = 1e-8;
+
 struct PervasiveOptions {
     // Upper limit of the residual of a loss. Below it, a residual counts as a
     // loss only at the level the eigenpair's accuracy explains: r <= 1e3 max(eta, sqrt(n) eps).
-    double tolerance = 1e-8;
+    double tolerance = kPervasiveTolerance;
     int modes = 0;   // the K lowest branches at the first speed are checked; 0 = all (dense) or
                      // the sparse solver's default window; kModesInRange: those in range of 1x
                      // the speeds (tracking_options)

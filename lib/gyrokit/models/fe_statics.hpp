@@ -31,8 +31,11 @@ struct RigidHold {
     std::string name;                 // its reaction's name ("" : "rigid <index>")
 };
 
+// Standard gravity (m/s^2), the static load unless asked otherwise.
+constexpr double kStandardGravity = 9.80665;
+
 struct StaticOptions {
-    double gravity = 9.80665;         // m/s^2 along -y (0: no weight)
+    double gravity = kStandardGravity;       // m/s^2 along -y (0: no weight)
     std::vector<StaticLoad> loads;
     std::vector<RigidHold> rigid;
 };
@@ -90,6 +93,6 @@ StaticResult fe_static(const FeRotor& rotor, const StaticOptions& options);
 // theta_x and the pedestals' py; constant bearings' kyy, no cross-coupling), with
 // consistent loads (the mass matrix times the rigid lift), so a statically determinate
 // rotor gets its exact reactions. InputError if the rotor is not held in that plane.
-std::vector<double> fe_gravity_reactions(const FeRotor& r, const std::vector<int>& nodes, double g = 9.80665);
+std::vector<double> fe_gravity_reactions(const FeRotor& r, const std::vector<int>& nodes, double g = kStandardGravity);
 
 }  // namespace gyrokit

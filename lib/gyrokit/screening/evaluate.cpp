@@ -69,6 +69,7 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
     // The study the CLI and Python run on the design's scene (its solver and
     // modes), over the scan range with the criterion's harmonics.
     StudyOptions so = study_options(sc);
+    so.workers = 1;   // the designs run in parallel, each on one worker
     so.speeds = SpeedRange{0.0, w_scan, c.count}.points();
     so.harmonics = c.harmonics;
     so.amplification_factors = c.api684 || c.max_amplification.has_value();   // only these read them
@@ -191,6 +192,7 @@ void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& 
     // (symmetric stiffness, damping that dissipates); else a dense model's full spectrum
     // at each speed judges them (growing_above_band), a sparse model's window every mode.
     StudyOptions so = study_options(sc);
+    so.workers = 1;   // the designs run in parallel, each on one worker
     so.speeds = SpeedRange{0.0, c.up_to, c.count}.points();
     const double band = judged_band(so.f_cut, so.speeds, so.harmonics);
     bool scan_above = false;

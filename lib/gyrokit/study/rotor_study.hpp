@@ -13,6 +13,7 @@
 #include <gyrokit/core/diagnostics.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/io/scene.hpp>
+#include <gyrokit/study/defaults.hpp>
 
 #include <cstddef>
 #include <functional>
@@ -21,15 +22,23 @@
 
 namespace gyrokit {
 
+// Unset fields are the table's defaults (study/defaults.hpp).
 struct StudyOptions {
-    SolverOptions solver;            // modes: kModesInRange unless asked
+    SolverOptions solver = in_range();   // modes: the modes in range unless asked
     std::vector<double> speeds;      // rad/s
-    std::vector<int> harmonics{1};
+    std::vector<int> harmonics{defaults::harmonic};
     std::optional<double> f_cut;     // rad/s: the modes judged (judged_band: default 1.5 x the highest excitation)
-    Workers workers;
+    Workers workers{worker_count(defaults::jobs)};
     SpeedUnit unit;                  // the unit the diagnostics name speeds in
     std::function<void(std::size_t, std::size_t)> progress;   // speeds solved, of all
     bool amplification_factors = true;   // critical speeds: API 684 AF (half-power: some hundred solves each)
+
+private:
+    static SolverOptions in_range() {
+        SolverOptions s;
+        s.modes = defaults::modes;
+        return s;
+    }
 };
 
 // The scene's defaults: [analysis] solver options, modes and harmonics, [speeds].

@@ -1,0 +1,15 @@
+"""The defaults of every call: the library's table (study/defaults.hpp), which `gyrokit defaults` prints and
+docs/defaults.md lists. The signatures take their values from here, so that none is decided twice."""
+from . import _core
+
+TABLE = tuple(dict(row) for row in _core.defaults())
+_VALUE = {row["name"]: row["value"] for row in TABLE}
+
+UNIT = _VALUE["units"]
+METHOD = _VALUE["method"]
+LANCZOS = int(_VALUE["lanczos"])
+JOBS = int(_VALUE["jobs"])
+TOLERANCE = float(_VALUE["tolerance"])
+GRAVITY = float(_VALUE["gravity"])
+MAP_MODES = int(_VALUE["map modes"])
+MAX_STEPS = int(_VALUE["max steps"])
