@@ -173,16 +173,15 @@ py::dict py_eig(const GyroscopicSystem& s, double speed, const std::string& solv
                 const py::object& target, double target_order, const std::string& method, int lanczos,
                 const std::string& unit) {
     const SpeedUnit u = SpeedUnit::parse(unit);
-    if (!(std::isfinite(speed) && speed >= 0))
-        throw InputError("speed = " + std::to_string(speed) + ": allowed: a finite number >= 0 (rad/s)");
     const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
-    QuadraticSpectrum sp;
+    SpectrumStudy st;
     {
         Released free;
-        sp = choose_solver(s, o).make()(speed);
+        st = spectrum_study(s, speed, o);
     }
-    py::dict d = spectrum_dict(sp);
-    put_reports(d, {eig_table(sp, speed, u)});
+    py::dict d = spectrum_dict(st.spectrum);
+    put_diagnostics(d, st.diagnostics);
+    put_reports(d, {eig_table(st.spectrum, speed, u)});
     return d;
 }
 

@@ -28,15 +28,17 @@ Command eig_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     add_motion_option(eig, o->common);
     add_solver_options(eig, o->common);
     eig->add_option("--speed", o->speed, "spin speed (in --units)")->required();
-    eig->add_option("--modes", o->modes, "sparse solver: number of modes near --target (default: the scene's, else 6)");
+    eig->add_option("--modes", o->modes, "the K lowest modes (sparse: the K nearest --target); default: the scene's, else all "
+                                          "(sparse: 6)");
     eig->add_flag("--rigid-body", o->rigid_body, "list the rigid-body eigenvalues (lambda = 0) after the modes");
     return {eig, [o](std::ostream& out) {
         const Context c = open_scene(o->common, false);
         const double w = parse_speed(o->speed, "--speed", c.unit);
-        note_extrapolation(c, w);
-        const SolverChoice plan = plan_solver(c, wanted_modes(c, o->modes));
-        const QuadraticSpectrum s = plan.make()(w);
-        for (const auto& n : s.notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
+        SolverOptions so = c.solver;
+        so.modes = wanted_modes(c, o->modes);
+        const SpectrumStudy st = spectrum_study(c.scene.system, w, so);
+        print_diagnostics(st.diagnostics);
+        const QuadraticSpectrum& s = st.spectrum;
         if (!o->rigid_body && !s.rigid_body.empty())
             std::cerr << "note: " << rigid_body_note(s.rigid_body, c.scene.dof_names()) << " (--rigid-body lists them)\n";
         write_table(out, eig_table(s, w, c.unit, o->rigid_body), c.format);

@@ -43,6 +43,29 @@ def test_eig_matches_the_cli():
     assert ev.method == "scaled QZ"
 
 
+def test_eig_with_a_mode_count_gives_the_k_lowest_on_the_dense_solver_too():
+    # One meaning of modes = K at one speed: the K lowest by frequency, dense or sparse (spectrum_study).
+    path = scene("three_disk_rotor.toml")
+    s = gk.load_scene(path)
+    every = gk.eig(s, 300.0, modes=0)
+    six = gk.eig(s, 300.0, modes=6)
+    assert len(every.eigenvalues) > 6 and len(six.eigenvalues) == 6
+    # The six lowest by frequency (those that vibrate first), as a Campbell diagram's six lowest.
+    np.testing.assert_array_equal(six.eigenvalues, every.eigenvalues[:6])
+    f = every.eigenvalues.imag
+    assert np.all(np.diff(f[f > 0]) >= 0) and np.all(f[:6] > 0)
+    assert any("the 6 lowest by frequency of the dense solver's" in n for n in six.notes)
+    rows = cli("eig", path, "--speed", "300", "--modes", "6")
+    assert [complex(float(r["re_1_s"]), float(r["im_rad_s"])) for r in rows] == pytest.approx(list(six.eigenvalues),
+                                                                                             rel=RTOL)
+    # A sparse window holds the six nearest its target 0 instead: the real eigenvalue of an overdamped
+    # branch nearer 0 than a vibrating mode takes that mode's place.
+    sparse = gk.eig(s, 300.0, modes=6, solver="sparse")
+    assert np.sum(sparse.eigenvalues.imag == 0) >= 1
+    for lam in sparse.eigenvalues[sparse.eigenvalues.imag > 0]:
+        assert np.min(np.abs(every.eigenvalues - lam)) <= 1e-8 * abs(lam)
+
+
 def test_campbell_matches_the_cli():
     s = gk.load_scene(scene("centrifuge.toml"))
     cd = gk.campbell(s, speeds=np.linspace(0, 60, 241), modes=6)
@@ -428,9 +451,12 @@ def test_exported_rotor_rigid_body_modes_apart_and_eigenvalues_as_the_cli():
     # data/ross_rotor_example: 42 DOFs from another package, singular K (free axial and torsional
     # motion), no damping. Rigid-body eigenvalues are listed apart, never as modes.
     s = gk.load_scene(scene("ross_rotor_example/scene.toml"))
-    ev = gk.eig(s, 500.0)
-    rows = cli("eig", scene("ross_rotor_example/scene.toml"), "--speed", "500")
+    ev = gk.eig(s, 500.0, modes=0)
+    rows = cli("eig", scene("ross_rotor_example/scene.toml"), "--speed", "500", "--modes", "0")
     assert len(ev.eigenvalues) == len(rows) == 40
+    # The scene's [analysis] modes = 6: its six lowest, as the CLI's eig without --modes.
+    assert len(gk.eig(s, 500.0).eigenvalues) == len(cli("eig", scene("ross_rotor_example/scene.toml"), "--speed",
+                                                        "500")) == 6
     assert len(ev.rigid_body) == 4 and np.all(np.abs(ev.rigid_body) < 1e-6 * 500)
     for k, r in enumerate(rows):
         assert ev.frequencies[k] == pytest.approx(float(r["frequency_rad_s"]), rel=RTOL)

@@ -109,15 +109,13 @@ std::vector<ModeShape> mode_shapes(const GyroscopicSystem& sys, double w, const 
     if (!std::isfinite(w) || w < 0.0)
         throw InputError("mode shapes: speed = " + std::to_string(w) + " rad/s; allowed: a finite number >= 0");
     const SolverChoice plan = choose_solver(sys, options);
-    const QuadraticSpectrum spectrum = plan.make()(w);
+    QuadraticSpectrum spectrum = plan.make()(w);
+    if (plan.kind == SolverKind::Dense) keep_lowest_modes(spectrum, options.modes);   // the meaning of K
     if (notes) {
         notes->insert(notes->end(), plan.notes.begin(), plan.notes.end());
         notes->insert(notes->end(), spectrum.notes.begin(), spectrum.notes.end());
     }
-    std::vector<ModeShape> shapes = mode_shapes(spectrum, sys);
-    if (options.modes > 0 && static_cast<int>(shapes.size()) > options.modes)
-        shapes.resize(static_cast<size_t>(options.modes));
-    return shapes;
+    return mode_shapes(spectrum, sys);
 }
 
 }  // namespace gyrokit

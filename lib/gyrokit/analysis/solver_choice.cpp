@@ -66,4 +66,12 @@ SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt
     return c;
 }
 
+std::size_t keep_lowest_modes(QuadraticSpectrum& s, int modes) {
+    const std::size_t held = s.modes.size();
+    if (modes <= 0 || held <= static_cast<std::size_t>(modes)) return held;
+    sort_by_frequency(s.modes);
+    s.modes.resize(static_cast<std::size_t>(modes));
+    return held;
+}
+
 }  // namespace gyrokit

@@ -55,5 +55,12 @@ SolverKind resolve_solver_kind(int dofs, SolverKind requested, int modes = 0);
 // Validates the options (InputError naming the field) and the system, and makes the solver.
 SolverChoice choose_solver(const GyroscopicSystem& sys, const SolverOptions& opt);
 
+// The meaning of a mode count K at one speed on the dense solver: the K lowest by
+// frequency (the modes that vibrate first; real, non-oscillating eigenvalues after
+// them, by |lambda|), as the Campbell diagram's K lowest at its first speed. (A sparse
+// window holds the K nearest its target instead.) Nothing changes where K <= 0 or the
+// spectrum holds at most K modes. Returns how many it held.
+std::size_t keep_lowest_modes(QuadraticSpectrum& s, int modes);
+
 
 }  // namespace gyrokit

@@ -2,6 +2,7 @@
 
 #include <gyrokit/analysis/energy_bound.hpp>
 #include <gyrokit/core/bearing_table.hpp>
+#include <gyrokit/core/error.hpp>
 #include <gyrokit/reports/campbell_reports.hpp>
 
 #include <fmt/format.h>
@@ -42,6 +43,25 @@ StudyOptions study_options(const Scene& scene) {
     o.f_cut = scene.f_cut;
     if (scene.speeds) o.speeds = scene.speeds->points();
     return o;
+}
+
+SpectrumStudy spectrum_study(const GyroscopicSystem& sys, double speed, const SolverOptions& opt) {
+    if (!(std::isfinite(speed) && speed >= 0.0))
+        throw InputError(fmt::format("{} {}: allowed: a finite number >= 0 (rad/s)", option_field("speed"), speed));
+    SpectrumStudy s;
+    add_notes(s.diagnostics, Topic::Extrapolation, extrapolation_notes(sys.bearings, speed, speed));
+    s.plan = choose_solver(sys, opt);
+    add_notes(s.diagnostics, Topic::Solver, s.plan.notes);
+    s.spectrum = s.plan.make()(speed);
+    add_notes(s.diagnostics, Topic::Solver, s.spectrum.notes);
+    // The dense solver gives every mode: the K lowest by frequency where K are asked for.
+    if (s.plan.kind == SolverKind::Dense)
+        if (const std::size_t all = keep_lowest_modes(s.spectrum, opt.modes); all > s.spectrum.modes.size())
+            s.diagnostics.push_back({Level::Note, Topic::Solver,
+                                     fmt::format("{} {}: the {} lowest by frequency of the dense solver's {} modes "
+                                                 "(0: all)",
+                                                 option_field("modes"), opt.modes, opt.modes, all)});
+    return s;
 }
 
 CampbellStudy campbell_study(const GyroscopicSystem& sys, const StudyOptions& opt) {

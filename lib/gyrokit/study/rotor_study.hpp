@@ -44,6 +44,18 @@ private:
 // The scene's defaults: [analysis] solver options, modes and harmonics, [speeds].
 StudyOptions study_options(const Scene& scene);
 
+// The eigenvalues at one speed (eig), by the library's solver choice. A mode count
+// K > 0: the K lowest by frequency of the dense solver's spectrum (keep_lowest_modes,
+// as a Campbell diagram's K lowest), the sparse window of the K nearest the target;
+// 0 (and the modes in range, which one speed does not define) every mode (dense) or
+// the sparse default window. InputError for a speed that is not finite and >= 0.
+struct SpectrumStudy {
+    SolverChoice plan;
+    QuadraticSpectrum spectrum;
+    Diagnostics diagnostics;   // bearings beyond their tables at the speed, the solver's notes
+};
+SpectrumStudy spectrum_study(const GyroscopicSystem& sys, double speed, const SolverOptions& opt);
+
 // A tracked Campbell diagram and what it stood on.
 struct CampbellStudy {
     SolverChoice plan;       // the solver choice (its notes are in diagnostics)
