@@ -12,6 +12,7 @@
 #include <cmath>
 #include <complex>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -483,4 +484,50 @@ TEST_CASE("max_amplification_factor in a sweep file: read, and refused below 1",
     CHECK_FALSE(read_sweep(d.file("none.toml", head)).criteria.separation->max_amplification);
     CHECK_THROWS_WITH(read_sweep(d.file("bad.toml", head + "max_amplification_factor = 0.5\n")),
                       Catch::Contains("max_amplification_factor") && Catch::Contains("> 1"));
+}
+
+TEST_CASE("a bearing stiffness sweep with heavily damped crossings: separation verdicts are what critical says",
+          "[screening][separation]") {
+    // data/three_disk_rotor.toml: damped bearings give modes 3 and 4 crossings with AF ~0.6 inside the operating
+    // range, which `gyrokit critical` lists as heavily damped (not critical). A verdict that counted them
+    // flipped pass/fail/pass along the stiffness; each design's verdict must be `critical`'s.
+    TempDir d;
+    const std::string scene = std::string(GYROKIT_DATA_DIR) + "/three_disk_rotor.toml";
+    std::string values;
+    for (const double k : {5e6, 1e7, 1.5e7, 2e7, 3e7, 5e7, 8e7, 1.2e8, 2e8}) values += (values.empty() ? "" : ", ") + fmt::format("{}", k);
+    const auto sweep_text = [&](const std::string& extra) {
+        return fmt::format("scene = \"{}\"\nunits = \"rpm\"\n[sampling]\nmethod = \"grid\"\n[[parameter]]\nname = "
+                           "\"k\"\npaths = [\"model.bearing[*].kxx\", \"model.bearing[*].kyy\"]\nvalues = [{}]\n"
+                           "[operating]\nfrom = 6000\nto = 12000\n[criteria.separation]\nmargin_percent = 15\n{}",
+                           scene, values, extra);
+    };
+    const Sweep s = read_sweep(d.file("sweep.toml", sweep_text("")));
+    const Sweep counting = read_sweep(d.file("counting.toml", sweep_text("heavily_damped = \"count\"\n")));
+    const double from = s.op_from, to = s.op_to;   // rad/s
+    const auto margin = [&](double wc) {   // API 684 style, as the criterion computes it
+        return wc <= from ? 100.0 * (from - wc) / from
+               : wc >= to ? 100.0 * (wc - to) / to
+                          : -100.0 * std::min((wc - from) / from, (to - wc) / to);
+    };
+    int heavily_damped_inside = 0, differ = 0;
+    for (std::size_t i = 0; i < s.design_count(); ++i) {
+        const DesignResult r = evaluate_design(s, i);
+        const DesignResult c = evaluate_design(counting, i);
+        INFO("k = " << r.parameters[0] << ": " << r.reason << " | counting: " << c.reason);
+        // The critical command's study on the design's scene over the criterion's scan.
+        const Scene design = s.loader({{"model.bearing[*].kxx", r.parameters[0]}, {"model.bearing[*].kyy", r.parameters[0]}});
+        StudyOptions so = study_options(design);
+        so.speeds = SpeedRange{0.0, to * (1.0 + 15.0 / 100.0) * 1.05, 121}.points();
+        bool critical_inside = false, damped_inside = false;
+        for (const CriticalSpeed& x : critical_speed_study(design.system, so).critical)
+            (x.api684_critical() ? critical_inside : damped_inside) |= margin(x.speed) < 15.0;
+        heavily_damped_inside += damped_inside;
+        CHECK((r.verdict == Verdict::Fail) == critical_inside);
+        CHECK((c.verdict == Verdict::Fail) == (critical_inside || damped_inside));
+        differ += r.verdict != c.verdict;
+    }
+    // The sweep holds designs where only a heavily damped crossing lies within the margin.
+    CHECK(heavily_damped_inside >= 1);
+    CHECK(differ >= 1);
+    CHECK(study_identity_line(s).find("rules 2") != std::string::npos);
 }

@@ -72,14 +72,15 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
     so.workers = 1;   // the designs run in parallel, each on one worker
     so.speeds = SpeedRange{0.0, w_scan, c.count}.points();
     so.harmonics = c.harmonics;
-    so.amplification_factors = c.api684 || c.max_amplification.has_value();   // only these read them
+    // The factors tell the heavily damped crossings apart (the `critical` command's verdict).
+    so.amplification_factors = !c.count_heavily_damped || c.api684 || c.max_amplification.has_value();
     const std::vector<CriticalSpeed> cs = critical_speed_study(sc.system, so).critical;
     // The critical speed with the least margin to spare (its margin less the one it needs).
     const CriticalSpeed* worst = nullptr;
     double worst_sm = inf, worst_required = 0.0, spare = inf;
     for (const auto& x : cs) {
         if (c.forward_only && x.mode.whirl != Whirl::Forward) continue;
-        if (c.api684 && !x.api684_critical()) continue;   // heavily damped: no margin required
+        if (!c.count_heavily_damped && !x.api684_critical()) continue;   // heavily damped: no margin required
         const double sm = separation_margin(x.speed, s.op_from, s.op_to);
         const double required = c.api684 ? api684_required_margin(x.amplification, x.speed > s.op_to) : c.margin_percent;
         if (sm - required < spare) spare = sm - required, worst = &x, worst_sm = sm, worst_required = required;

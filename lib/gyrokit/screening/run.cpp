@@ -429,7 +429,9 @@ std::string study_identity_line(const Sweep& s) {
     for (const auto& [written, path] : named_files(s))
         h = fnv1a(file_bytes(path, "file the scene names", kMaxDataInputBytes), fnv1a("\x1f" + written + "\x1f", h));
     h = fnv1a("\x1f" GYROKIT_VERSION, h);
-    return fmt::format("# study {:016x} (sweep, base scene and criteria; gyrokit {})", h, GYROKIT_VERSION);
+    h = fnv1a(fmt::format("\x1f{}", kScreeningRules), h);
+    return fmt::format("# study {:016x} (sweep, base scene and criteria; gyrokit {}, rules {})", h, GYROKIT_VERSION,
+                       kScreeningRules);
 }
 
 }  // namespace gyrokit

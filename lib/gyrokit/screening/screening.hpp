@@ -75,10 +75,17 @@ struct RunResult {
 // --resume and --merge refuse such a file.
 constexpr const char* kInputsChangedTrailer = "# inputs changed during the run:";
 
-// The first line of a result file: "# study <16 hex digits> (…; gyrokit VERSION)",
-// a 64-bit FNV-1a fingerprint of the sweep file (parameters and criteria), its
-// base scene file and gyrokit's version. --resume and --merge refuse a file of
-// another study: rows computed before a change are not this study's answers.
+// The revision of the verdicts' rules: raised where a criterion judges the same
+// design differently (2: a separation criterion skips the crossings `critical` calls
+// heavily damped, unless heavily_damped = "count"), so that rows judged by the old
+// rules are not resumed or merged with new ones.
+constexpr int kScreeningRules = 2;
+
+// The first line of a result file: "# study <16 hex digits> (…; gyrokit VERSION,
+// rules N)", a 64-bit FNV-1a fingerprint of the sweep file (parameters and
+// criteria), its base scene file, gyrokit's version and kScreeningRules. --resume
+// and --merge refuse a file of another study: rows computed before a change are not
+// this study's answers.
 std::string study_identity_line(const Sweep& s);
 
 // Seconds between syncs of a result file to the disk while rows are written.

@@ -44,6 +44,9 @@ struct SeparationCriterion {
     // A limit on the amplification factor of every critical speed of the scan (a run-up
     // passes through those below the range too); none: the factors only rule the margins.
     std::optional<double> max_amplification;
+    // Crossings that `critical` calls heavily damped (AF < 2.5, not critical by API 684)
+    // need no margin unless the sweep asks for them (heavily_damped = "count").
+    bool count_heavily_damped = false;
 };
 
 // No mode with Re(lambda) > 0 from speed 0 up to `up_to`; with `min_log_dec`, also

@@ -155,7 +155,7 @@ void read_operating(const toml::table& root, const std::string& path, Sweep& s) 
 
 // [criteria.separation]: the margin of critical speeds from the operating range.
 SeparationCriterion read_separation(const TomlKeys& c) {
-    c.only({"margin_percent", "rule", "whirl", "harmonics", "count", "max_amplification_factor"});
+    c.only({"margin_percent", "rule", "whirl", "harmonics", "count", "max_amplification_factor", "heavily_damped"});
     SeparationCriterion sc;
     sc.api684 = c.choice("rule", "margin", {"margin", "api684"}) == "api684";
     if (sc.api684 && c.has("margin_percent"))
@@ -163,6 +163,10 @@ SeparationCriterion read_separation(const TomlKeys& c) {
                          "each critical speed's amplification factor)");
     sc.margin_percent = sc.api684 ? 26.0 : c.number("margin_percent", 15.0, 0, false, "%");
     sc.forward_only = c.choice("whirl", "all", {"all", "forward"}) == "forward";
+    sc.count_heavily_damped = c.choice("heavily_damped", "skip", {"skip", "count"}) == "count";
+    if (sc.api684 && sc.count_heavily_damped)
+        throw InputError(c.where("heavily_damped") + " = \"count\": not used with rule = \"api684\" (a heavily damped "
+                         "crossing needs no margin there)");
     if (c.has("harmonics")) {
         for (double h : numbers_of(c, "harmonics")) {
             if (h != std::floor(h) || h < 1 || h > 1000)
