@@ -6,6 +6,7 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/scene.hpp>
 #include <gyrokit/reports/critical_map_reports.hpp>
+#include <gyrokit/study/critical_map_study.hpp>
 
 #include "reports.hpp"
 
@@ -20,16 +21,13 @@ void bind_critical_map(py::module_& m) {
     m.def("critical_speed_map", [](const Scene& scene, const std::vector<double>& stiffness, int modes,
                                    const std::string& unit) {
         const SpeedUnit u = SpeedUnit::parse(unit);
-        if (!scene.rotor_model)
-            throw InputError(scene.path + ": a critical speed map of a [model] of type " + scene.model_type +
-                             "; allowed: an fe_rotor model");
         CriticalSpeedMapOptions o;
         o.stiffness = stiffness;
         o.modes = modes;
         CriticalSpeedMap map;
         {
             Released free;
-            map = critical_speed_map(*scene.rotor_model, o);
+            map = critical_map_study(scene, o);
         }
         const auto rows = [](const std::vector<MapPoint>& ps) {
             py::dict d;

@@ -4,9 +4,13 @@
 // rigid rotor on springs (cylindrical and conical modes) and, above it, the free-free beam.
 #include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/io/scene.hpp>
+#include <gyrokit/study/critical_map_study.hpp>
+#include <gyrokit/study/defaults.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <string>
 
 using namespace gyrokit;
 
@@ -146,4 +150,18 @@ TEST_CASE("critical speed map: bad options and a model without bearings are refu
     REQUIRE(k.size() == 31);
     CHECK(k.front() == Approx(1e-2 * k_shaft).epsilon(1e-12));
     CHECK(k.back() == Approx(1e3 * k_shaft).epsilon(1e-12));
+}
+
+TEST_CASE("the critical map study refuses a scene without an FE rotor, in the library", "[critical_map][errors]") {
+    const Scene gyrostat = load_scene(std::string(GYROKIT_DATA_DIR) + "/centrifuge.toml");
+    CHECK_THROWS_WITH(critical_map_study(gyrostat),
+                      Catch::Contains("a critical speed map of a [model] of type") &&
+                          Catch::Contains("allowed: an fe_rotor model"));
+    const Scene fe = load_scene(std::string(GYROKIT_DATA_DIR) + "/three_disk_rotor.toml");
+    CriticalSpeedMapOptions two;
+    two.stiffness = {1e7, 1e8};
+    const CriticalSpeedMap map = critical_map_study(fe, two);
+    CHECK(map.stiffness == two.stiffness);
+    for (const MapPoint& p : map.points) CHECK(p.number <= defaults::critical_map_modes);
+    CHECK_FALSE(map.points.empty());
 }

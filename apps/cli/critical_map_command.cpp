@@ -4,6 +4,7 @@
 #include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/reports/critical_map_reports.hpp>
+#include <gyrokit/study/critical_map_study.hpp>
 
 #include <cmath>
 #include <fmt/format.h>
@@ -70,11 +71,7 @@ std::vector<Command> add_critical_map_commands(CLI::App& app) {
                  if (!o->stiffness.empty()) opt.stiffness = parse_stiffness(o->stiffness);
                  opt.modes = o->modes;
                  const Scene sc = load_scene(o->common.scene);
-                 if (!sc.rotor_model)
-                     throw InputError(fmt::format("{}: a critical speed map of a [model] of type {}; allowed: an "
-                                                  "fe_rotor model",
-                                                  sc.path, sc.model_type));
-                 const CriticalSpeedMap map = critical_speed_map(*sc.rotor_model, opt);
+                 const CriticalSpeedMap map = critical_map_study(sc, opt);
                  write_result(out, {critical_map_table(map, unit), bearing_curve_table(map, unit)}, format, o->table);
                  plot_if(o->common.plot, critical_map_figure(map, unit, sc.title));
              }}};

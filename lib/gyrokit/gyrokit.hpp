@@ -16,6 +16,7 @@
 #include <gyrokit/analysis/spectrum_solver.hpp>
 #include <gyrokit/analysis/workers.hpp>
 #include <gyrokit/core/diagnostics.hpp>
+#include <gyrokit/study/critical_map_study.hpp>
 #include <gyrokit/study/defaults.hpp>
 #include <gyrokit/study/response_study.hpp>
 #include <gyrokit/study/rotor_study.hpp>
