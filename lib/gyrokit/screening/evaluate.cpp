@@ -18,12 +18,44 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <memory>
+#include <stdexcept>
 
 namespace gyrokit {
 
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
+
+// A criterion filling a column it did not declare: the code's error, never a design's.
+struct UndeclaredColumn : std::logic_error {
+    using std::logic_error::logic_error;
+};
+
+// One design's row as its criteria fill it: each value by the name of a column the
+// criterion declared (a name it did not declare is a bug, not a design's failure).
+class Row {
+public:
+    Row(DesignResult& r, const std::vector<std::string>& quantities, const std::vector<std::string>& labels)
+        : result(r), quantities_(quantities), labels_(labels) {}
+    void set(const std::string& column, double value) { result.quantities.at(index(quantities_, column)) = value; }
+    void label(const std::string& column, std::string text) { result.labels.at(index(labels_, column)) = std::move(text); }
+    // A criterion not met: its name in `failed`, "name: text" in the reason.
+    void fail(const std::string& criterion, const std::string& text) {
+        result.failed.push_back(criterion);
+        result.reason += (result.reason.empty() ? "" : "; ") + criterion + ": " + text;
+    }
+    DesignResult& result;
+
+private:
+    static std::size_t index(const std::vector<std::string>& columns, const std::string& name) {
+        const auto it = std::find(columns.begin(), columns.end(), name);
+        if (it == columns.end()) throw UndeclaredColumn("screening: column " + name + " is not declared");
+        return static_cast<std::size_t>(it - columns.begin());
+    }
+    const std::vector<std::string>& quantities_;
+    const std::vector<std::string>& labels_;
+};
 
 std::string position_text(double sm, double wc, const Sweep& s) {
     if (sm >= 0 && wc <= s.op_from) return fmt::format("is {:.3g}% below the operating range", sm);
@@ -40,31 +72,28 @@ double separation_margin(double wc, double from, double to) {
 
 // max_amplification_factor: the largest amplification factor among the critical speeds
 // of the scan (those the separation criterion counts: its whirl), and its speed.
-void check_amplification(const Sweep& s, const SeparationCriterion& c, const std::vector<CriticalSpeed>& cs,
-                         std::size_t& q, DesignResult& r) {
+void check_amplification(const Sweep& s, const SeparationCriterion& c, const std::vector<CriticalSpeed>& cs, Row& row) {
     const CriticalSpeed* top = nullptr;
     for (const auto& x : cs) {
         if (c.forward_only && x.mode.whirl != Whirl::Forward) continue;
         if (!top || x.amplification > top->amplification) top = &x;
     }
     if (top) {
-        r.quantities[q] = top->amplification;
-        r.quantities[q + 1] = top->speed * s.unit.factor;
+        row.set("max_amplification_factor", top->amplification);
+        row.set(s.unit.column("max_amplification_speed"), top->speed * s.unit.factor);
         if (top->amplification > *c.max_amplification) {
-            r.failed.push_back("amplification");
-            r.reason += fmt::format("{}amplification: critical speed {:.6g} {} ({}x, {} whirl, branch {}) has AF {:.3g} "
+            row.fail("amplification",
+                     fmt::format("critical speed {:.6g} {} ({}x, {} whirl, branch {}) has AF {:.3g} "
                                     "({}), allowed at most {:.3g}",
-                                    r.reason.empty() ? "" : "; ", top->speed * s.unit.factor, s.unit.name, top->harmonic,
+                                    top->speed * s.unit.factor, s.unit.name, top->harmonic,
                                     to_string(top->mode.whirl), top->branch, top->amplification,
                                     to_string(top->amplification_method),
-                                    *c.max_amplification);
+                                    *c.max_amplification));
         }
     }
-    q += 2;
 }
 
-void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion& c, std::size_t& q,
-                      DesignResult& r) {
+void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion& c, Row& row) {
     const double w_scan = s.op_to * (1.0 + c.margin_percent / 100.0) * 1.05;
     // The study the CLI and Python run on the design's scene (its solver and
     // modes), over the scan range with the criterion's harmonics.
@@ -86,21 +115,20 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
         if (sm - required < spare) spare = sm - required, worst = &x, worst_sm = sm, worst_required = required;
     }
     if (worst) {
-        r.quantities[q] = worst->speed * s.unit.factor;
-        r.quantities[q + 1] = worst_sm;
-        if (c.api684) r.quantities[q + 2] = worst_required, r.quantities[q + 3] = worst->amplification;
+        row.set(s.unit.column("critical_speed"), worst->speed * s.unit.factor);
+        row.set("separation_percent", worst_sm);
+        if (c.api684) row.set("required_separation_percent", worst_required), row.set("amplification_factor", worst->amplification);
         if (spare < 0.0) {
-            r.failed.push_back("separation");
-            r.reason += fmt::format("{}separation: critical speed {:.6g} {} ({}x, {} whirl, branch {}{}) {}, required "
+            row.fail("separation",
+                     fmt::format("critical speed {:.6g} {} ({}x, {} whirl, branch {}{}) {}, required "
                                     "{:.3g}%",
-                                    r.reason.empty() ? "" : "; ", worst->speed * s.unit.factor, s.unit.name,
+                                    worst->speed * s.unit.factor, s.unit.name,
                                     worst->harmonic, to_string(worst->mode.whirl), worst->branch,
                                     c.api684 ? fmt::format(", AF {:.3g}", worst->amplification) : "",
-                                    position_text(worst_sm, worst->speed, s), worst_required);
+                                    position_text(worst_sm, worst->speed, s), worst_required));
         }
     }
-    q += c.api684 ? 4 : 2;
-    if (c.max_amplification) check_amplification(s, c, cs, q, r);
+    if (c.max_amplification) check_amplification(s, c, cs, row);
 }
 
 // The least damped oscillating mode in range of a diagram: the smallest logarithmic
@@ -128,23 +156,22 @@ LeastLogDecrement least_log_decrement(const CampbellDiagram& cd, double band) {
 // min_log_dec: the least log decrement and its speed into the columns after the
 // onset; below the limit, stability fails (an unstable mode's reason gains it).
 void check_log_dec(const Sweep& s, const CampbellDiagram& cd, const StudyOptions& so, const StabilityCriterion& c,
-                   bool unstable, std::size_t q, DesignResult& r) {
+                   bool unstable, Row& row) {
     // The modes in range: what the speeds and harmonics can excite (a mesh's highest
     // modes, barely damped by the bearings, are no stability margin to keep).
     const LeastLogDecrement ld = least_log_decrement(cd, judged_band(so.f_cut, so.speeds, so.harmonics));
     if (!ld.branch) return;   // no oscillating mode in range: nothing rings
-    r.quantities[q] = ld.log_dec;
-    r.quantities[q + 1] = ld.speed * s.unit.factor;
+    row.set("min_log_dec", ld.log_dec);
+    row.set(s.unit.column("min_log_dec_speed"), ld.speed * s.unit.factor);
     if (!(ld.log_dec < *c.min_log_dec)) return;
     const std::string what = fmt::format("log decrement {:.4g} (mode {} at {:.6g} {}), required {:.4g}", ld.log_dec,
                                          ld.branch->id, ld.speed * s.unit.factor, s.unit.name, *c.min_log_dec);
     if (unstable) {
-        r.reason += ", least " + what;
+        row.result.reason += ", least " + what;
         return;
     }
-    r.failed.push_back("stability");
-    r.reason += fmt::format("{}stability: {}, short by {:.3g} (checked up to {:.6g} {})", r.reason.empty() ? "" : "; ",
-                            what, *c.min_log_dec - ld.log_dec, c.up_to * s.unit.factor, s.unit.name);
+    row.fail("stability", fmt::format("{}, short by {:.3g} (checked up to {:.6g} {})",
+                                      what, *c.min_log_dec - ld.log_dec, c.up_to * s.unit.factor, s.unit.name));
 }
 
 // A mode above the band that grows: the first speed of `speeds` below `before` at which
@@ -185,8 +212,7 @@ GrowingAbove growing_above_band(const GyroscopicSystem& sys, const EigenOptions&
     return out;
 }
 
-void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& c, std::size_t& q,
-                     DesignResult& r) {
+void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& c, Row& row) {
     // The stability study of the CLI and Python, but a design is judged on every mode
     // unless the scene names a number: the modes in range are tracked, and those above
     // the band are covered by the energy bound where it shows that none of them can grow
@@ -224,28 +250,23 @@ void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& 
     }
     const GrowingAbove above = scan_above ? growing_above_band(sc.system, so.solver.eig, so.speeds, band, onset) : GrowingAbove{};
     if (above.speed < onset) {
-        r.quantities[q] = above.speed * s.unit.factor;
-        r.failed.push_back("stability");
+        row.set(s.unit.column("instability_onset"), above.speed * s.unit.factor);
         const std::string what = above.frequency > 0.0
                                      ? fmt::format("a mode above the range ({:.6g} {} at the onset)",
                                                    above.frequency * s.unit.factor, s.unit.name)
                                      : std::string("a real eigenvalue above the range (divergence)");
-        r.reason += fmt::format("{}stability: {} is unstable from {:.6g} {} (checked up to {:.6g} {})",
-                                r.reason.empty() ? "" : "; ", what, above.speed * s.unit.factor, s.unit.name,
-                                c.up_to * s.unit.factor, s.unit.name);
+        row.fail("stability", fmt::format("{} is unstable from {:.6g} {} (checked up to {:.6g} {})", what,
+                                          above.speed * s.unit.factor, s.unit.name, c.up_to * s.unit.factor,
+                                          s.unit.name));
     } else if (which) {
-        r.quantities[q] = onset * s.unit.factor;
-        r.failed.push_back("stability");
-        r.reason += fmt::format("{}stability: mode {} is unstable from {:.6g} {} (checked up to {:.6g} {})",
-                                r.reason.empty() ? "" : "; ", which->id, onset * s.unit.factor, s.unit.name,
-                                c.up_to * s.unit.factor, s.unit.name);
+        row.set(s.unit.column("instability_onset"), onset * s.unit.factor);
+        row.fail("stability", fmt::format("mode {} is unstable from {:.6g} {} (checked up to {:.6g} {})", which->id,
+                                          onset * s.unit.factor, s.unit.name, c.up_to * s.unit.factor, s.unit.name));
     }
-    if (c.min_log_dec) check_log_dec(s, cd, so, c, which != nullptr || above.speed < inf, q + 1, r);
-    q += c.min_log_dec ? 3 : 1;
+    if (c.min_log_dec) check_log_dec(s, cd, so, c, which != nullptr || above.speed < inf, row);
 }
 
-void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& c, std::size_t& q,
-                     DesignResult& r) {
+void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& c, Row& row) {
     const GyroscopicSystem& sys = sc.system;
     double first = inf;
     std::string lost_set;
@@ -288,15 +309,11 @@ void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& 
             if (l.damping == "total" && l.speed < first) first = l.speed, lost_set = name, lost_mode = l.mode;
     }
     if (first < inf) {
-        r.quantities[q] = first * s.unit.factor;
-        r.failed.push_back("pervasive");
-        r.reason += lost_mode > 0 ? fmt::format("{}pervasive: damping {} does not reach mode {} at {:.6g} {}",
-                                                r.reason.empty() ? "" : "; ", lost_set, lost_mode,
-                                                first * s.unit.factor, s.unit.name)
-                                  : fmt::format("{}pervasive: damping {} is missing", r.reason.empty() ? "" : "; ",
-                                                lost_set);
+        row.set(s.unit.column("pervasive_loss"), first * s.unit.factor);
+        row.fail("pervasive", lost_mode > 0 ? fmt::format("damping {} does not reach mode {} at {:.6g} {}", lost_set,
+                                                          lost_mode, first * s.unit.factor, s.unit.name)
+                                            : fmt::format("damping {} is missing", lost_set));
     }
-    q += 1;
 }
 
 // The outputs the response criterion reads: the chosen DOFs (dofs: their indices),
@@ -327,8 +344,7 @@ ResponseOutputs response_outputs(const GyroscopicSystem& sys, const ResponseCrit
     return o;
 }
 
-void check_response(const Sweep& s, const Scene& sc, const ResponseCriterion& c, std::size_t& q,
-                    DesignResult& r) {
+void check_response(const Sweep& s, const Scene& sc, const ResponseCriterion& c, Row& row) {
     const GyroscopicSystem& sys = sc.system;
     const ResponseOutputs out = response_outputs(sys, c);
     // The largest amplitude of the chosen DOFs or probes, peaks refined between grid
@@ -348,23 +364,97 @@ void check_response(const Sweep& s, const Scene& sc, const ResponseCriterion& c,
     int kmax = 0;
     for (const auto& m : response_maxima(rc, response_extrema(solve, rc, true)))
         if (m.amplitude > amax) amax = m.amplitude, wmax = m.speed, kmax = m.dof;
-    r.quantities[q] = amax;
-    r.quantities[q + 1] = wmax * s.unit.factor;
-    if (!out.probes.empty()) {
-        const std::vector<std::string> lc = label_columns(s);
-        const auto l = std::find(lc.begin(), lc.end(), "max_amplitude_probe") - lc.begin();
-        r.labels.at(static_cast<std::size_t>(l)) = out.probes.at(static_cast<std::size_t>(kmax)).name;
+    row.set("max_amplitude", amax);
+    row.set(s.unit.column("max_amplitude_speed"), wmax * s.unit.factor);
+    if (!out.probes.empty()) row.label("max_amplitude_probe", out.probes.at(static_cast<std::size_t>(kmax)).name);
+    if (amax > c.max_amplitude)
+        row.fail("response", std::isinf(amax)
+                                 ? fmt::format("{} is unbounded at {:.6g} {} (an undamped resonance)", out.name(sys, kmax),
+                                               wmax * s.unit.factor, s.unit.name)
+                                 : fmt::format("{} = {:.4g} at {:.6g} {} exceeds {:.4g}", out.name(sys, kmax), amax,
+                                               wmax * s.unit.factor, s.unit.name, c.max_amplitude));
+}
+
+// A criterion of the sweep: the columns it declares, in order, and its check, which
+// fills them by name (Row).
+class Criterion {
+public:
+    virtual ~Criterion() = default;
+    virtual std::vector<std::string> quantities() const = 0;
+    virtual std::vector<std::string> labels() const { return {}; }
+    virtual void check(const Scene& sc, Row& row) const = 0;
+};
+
+class Separation final : public Criterion {
+public:
+    Separation(const Sweep& s, const SeparationCriterion& c) : s_(s), c_(c) {}
+    std::vector<std::string> quantities() const override {
+        // Speeds in the sweep's unit, named with it (critical_speed_rad_s, ..._hz, ..._rpm).
+        std::vector<std::string> q{s_.unit.column("critical_speed"), "separation_percent"};
+        if (c_.api684) q.insert(q.end(), {"required_separation_percent", "amplification_factor"});
+        if (c_.max_amplification)
+            q.insert(q.end(), {"max_amplification_factor", s_.unit.column("max_amplification_speed")});
+        return q;
     }
-    if (amax > c.max_amplitude) {
-        r.failed.push_back("response");
-        r.reason += std::isinf(amax)
-                        ? fmt::format("{}response: {} is unbounded at {:.6g} {} (an undamped resonance)",
-                                      r.reason.empty() ? "" : "; ", out.name(sys, kmax), wmax * s.unit.factor,
-                                      s.unit.name)
-                        : fmt::format("{}response: {} = {:.4g} at {:.6g} {} exceeds {:.4g}", r.reason.empty() ? "" : "; ",
-                                      out.name(sys, kmax), amax, wmax * s.unit.factor, s.unit.name, c.max_amplitude);
+    void check(const Scene& sc, Row& row) const override { check_separation(s_, sc, c_, row); }
+
+private:
+    const Sweep& s_;
+    const SeparationCriterion& c_;
+};
+
+class Stability final : public Criterion {
+public:
+    Stability(const Sweep& s, const StabilityCriterion& c) : s_(s), c_(c) {}
+    std::vector<std::string> quantities() const override {
+        std::vector<std::string> q{s_.unit.column("instability_onset")};
+        if (c_.min_log_dec) q.insert(q.end(), {"min_log_dec", s_.unit.column("min_log_dec_speed")});
+        return q;
     }
-    q += 2;
+    void check(const Scene& sc, Row& row) const override { check_stability(s_, sc, c_, row); }
+
+private:
+    const Sweep& s_;
+    const StabilityCriterion& c_;
+};
+
+class Pervasive final : public Criterion {
+public:
+    Pervasive(const Sweep& s, const PervasiveCriterion& c) : s_(s), c_(c) {}
+    std::vector<std::string> quantities() const override { return {s_.unit.column("pervasive_loss")}; }
+    void check(const Scene& sc, Row& row) const override { check_pervasive(s_, sc, c_, row); }
+
+private:
+    const Sweep& s_;
+    const PervasiveCriterion& c_;
+};
+
+class Response final : public Criterion {
+public:
+    Response(const Sweep& s, const ResponseCriterion& c) : s_(s), c_(c) {}
+    std::vector<std::string> quantities() const override {
+        return {"max_amplitude", s_.unit.column("max_amplitude_speed")};
+    }
+    // With probes: the probe that read the largest amplitude.
+    std::vector<std::string> labels() const override {
+        return c_.probes.empty() ? std::vector<std::string>{} : std::vector<std::string>{"max_amplitude_probe"};
+    }
+    void check(const Scene& sc, Row& row) const override { check_response(s_, sc, c_, row); }
+
+private:
+    const Sweep& s_;
+    const ResponseCriterion& c_;
+};
+
+// The sweep's criteria in the order of their columns.
+std::vector<std::unique_ptr<Criterion>> criteria_of(const Sweep& s) {
+    std::vector<std::unique_ptr<Criterion>> out;
+    const Criteria& c = s.criteria;
+    if (c.separation) out.push_back(std::make_unique<Separation>(s, *c.separation));
+    if (c.stability) out.push_back(std::make_unique<Stability>(s, *c.stability));
+    if (c.pervasive) out.push_back(std::make_unique<Pervasive>(s, *c.pervasive));
+    if (c.response) out.push_back(std::make_unique<Response>(s, *c.response));
+    return out;
 }
 
 std::string one_line(std::string m) {
@@ -385,23 +475,16 @@ std::string to_string(Verdict v) {
 
 std::vector<std::string> quantity_columns(const Sweep& s) {
     std::vector<std::string> c;
-    // Speeds in the sweep's unit, named with it (critical_speed_rad_s, ..._hz, ..._rpm).
-    if (s.criteria.separation) c.insert(c.end(), {s.unit.column("critical_speed"), "separation_percent"});
-    if (s.criteria.separation && s.criteria.separation->api684)
-        c.insert(c.end(), {"required_separation_percent", "amplification_factor"});
-    if (s.criteria.separation && s.criteria.separation->max_amplification)
-        c.insert(c.end(), {"max_amplification_factor", s.unit.column("max_amplification_speed")});
-    if (s.criteria.stability) c.push_back(s.unit.column("instability_onset"));
-    if (s.criteria.stability && s.criteria.stability->min_log_dec)
-        c.insert(c.end(), {"min_log_dec", s.unit.column("min_log_dec_speed")});
-    if (s.criteria.pervasive) c.push_back(s.unit.column("pervasive_loss"));
-    if (s.criteria.response) c.insert(c.end(), {"max_amplitude", s.unit.column("max_amplitude_speed")});
+    for (const auto& k : criteria_of(s))
+        for (std::string& q : k->quantities()) c.push_back(std::move(q));
     return c;
 }
 
 std::vector<std::string> label_columns(const Sweep& s) {
-    if (s.criteria.response && !s.criteria.response->probes.empty()) return {"max_amplitude_probe"};
-    return {};
+    std::vector<std::string> c;
+    for (const auto& k : criteria_of(s))
+        for (std::string& l : k->labels()) c.push_back(std::move(l));
+    return c;
 }
 
 std::vector<std::string> result_columns(const Sweep& s) {
@@ -417,9 +500,9 @@ DesignResult evaluate_design(const Sweep& s, std::size_t i) {
     DesignResult r;
     r.index = i;
     r.parameters = s.design(i);
-    const std::vector<std::string> qc = quantity_columns(s);
+    const std::vector<std::string> qc = quantity_columns(s), lc = label_columns(s);
     r.quantities.assign(qc.size(), std::nullopt);
-    r.labels.assign(label_columns(s).size(), std::string());
+    r.labels.assign(lc.size(), std::string());
     Scene sc;
     try {
         sc = s.loader(design_overrides(s, r.parameters));
@@ -431,12 +514,8 @@ DesignResult evaluate_design(const Sweep& s, std::size_t i) {
         return r;
     }
     try {
-        std::size_t q = 0;
-        const Criteria& c = s.criteria;
-        if (c.separation) check_separation(s, sc, *c.separation, q, r);
-        if (c.stability) check_stability(s, sc, *c.stability, q, r);
-        if (c.pervasive) check_pervasive(s, sc, *c.pervasive, q, r);
-        if (c.response) check_response(s, sc, *c.response, q, r);
+        Row row(r, qc, lc);
+        for (const auto& k : criteria_of(s)) k->check(sc, row);
         // +inf only as the amplitude at an undamped resonance or the amplification factor of an
         // undamped mode; anything else non-finite is a failure.
         for (std::size_t k = 0; k < qc.size(); ++k)
@@ -446,6 +525,8 @@ DesignResult evaluate_design(const Sweep& s, std::size_t i) {
                 throw SolverError(qc[k] + " is not finite");
     } catch (const Interrupted&) {
         throw;
+    } catch (const UndeclaredColumn&) {
+        throw;   // the code's error, not the design's
     } catch (const std::exception& e) {
         r.verdict = Verdict::Error;
         r.failed.clear();
