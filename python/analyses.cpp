@@ -411,7 +411,7 @@ py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speed
                      const std::vector<int>& outputs, const std::string& unit, const std::string& title,
                      const std::vector<std::pair<int, double>>& probe_list, const std::string& length_unit,
                      std::optional<double> f_cut, const std::string& method, int lanczos, int jobs,
-                     bool stability_check, bool extrema) {
+                     bool stability_check, bool extrema, bool peaks) {
     const SpeedUnit u = SpeedUnit::parse(unit);
     ResponseRequest rq;
     rq.length = LengthUnit::parse(length_unit);
@@ -419,6 +419,7 @@ py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speed
     rq.outputs = outputs;
     rq.stability_check = stability_check;
     rq.antiresonances = extrema;
+    rq.peaks = peaks || extrema;
     const std::vector<double> w = checked_speeds(speeds);
     const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
     const Workers workers = threads(jobs);
@@ -435,9 +436,10 @@ py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speed
     put_diagnostics(d, st.diagnostics);
     // The CLI's tables: the summary with the refined peaks, the curve
     // (the peaks and antiresonances with `extrema`, as --extrema) and its Bode and polar plots.
-    std::vector<Table> tables{response_summary(st.names, st.units, st.maxima, u, 8)};
+    // The curve first (the CLI's --format csv and json; a CSV saved without a table name).
+    std::vector<Table> tables{response_table(st.names, st.units, st.curve, u)};
+    if (rq.peaks) tables.push_back(response_summary(st.names, st.units, st.maxima, u, 8));
     if (extrema) tables.push_back(extrema_table(st.names, st.units, st.extrema, u));
-    tables.push_back(response_table(st.names, st.units, st.curve, u));
     put_reports(d, tables, response_figure(st.names, st.units, st.curve, u, title, st.plotted));
     d["polar_figure"] = figure_dict(response_polar_figure(st.names, st.units, st.curve, u, title, st.plotted));
     return d;
@@ -474,5 +476,5 @@ void bind_analyses(py::module_& m) {
           py::arg("unit") = "rad/s", py::arg("title") = "", py::arg("probes") = std::vector<std::pair<int, double>>{},
           py::arg("length_unit") = "m", py::arg("f_cut") = py::none(), py::arg("method") = defaults::method,
           py::arg("lanczos") = defaults::lanczos, py::arg("jobs") = defaults::jobs, py::arg("stability_check") = true,
-          py::arg("extrema") = false);
+          py::arg("extrema") = false, py::arg("peaks") = true);
 }

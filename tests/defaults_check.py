@@ -2,7 +2,7 @@
 """One table of defaults (lib/gyrokit/study/defaults.hpp), shown alike everywhere.
 
 `gyrokit defaults --format json` is the table. It must equal, row for row:
-- docs/defaults.md's table (name, value, meaning);
+- docs/defaults.md's table (name, value, meaning, option, keyword);
 - gyrokit.defaults() in Python;
 and each value it gives (not a rule) must be
 - the default the CLI's help shows for its option, in every command that has the option
@@ -43,7 +43,7 @@ def docs_rows(root):
                 break
             if set(cells[0]) <= set("-: "):
                 continue
-            rows.append([c.replace("\\|", "|").strip("`") for c in cells[:3]])
+            rows.append([c.replace("\\|", "|").strip("`") for c in cells[:5]])
     return rows
 
 
@@ -101,7 +101,7 @@ def main():
         fail("gyrokit.defaults() differs from `gyrokit defaults`")
 
     docs = docs_rows(root)
-    want = [[r["name"], r["value"], r["meaning"]] for r in table]
+    want = [[r["name"], r["value"], r["meaning"], r["option"], r["keyword"]] for r in table]
     if docs != want:
         for d, w in zip(docs + [None] * len(want), want + [None] * len(docs)):
             if d != w:

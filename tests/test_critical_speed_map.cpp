@@ -9,6 +9,7 @@
 #include <gyrokit/study/defaults.hpp>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -162,6 +163,7 @@ TEST_CASE("the critical map study refuses a scene without an FE rotor, in the li
     two.stiffness = {1e7, 1e8};
     const CriticalSpeedMap map = critical_map_study(fe, two);
     CHECK(map.stiffness == two.stiffness);
-    for (const MapPoint& p : map.points) CHECK(p.number <= defaults::critical_map_modes);
-    CHECK_FALSE(map.points.empty());
+    int most = 0;
+    for (const MapPoint& p : map.points) most = std::max(most, p.number);
+    CHECK(most == defaults::critical_map_modes);   // the default count, each whirl's lowest
 }

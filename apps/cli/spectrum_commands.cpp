@@ -23,7 +23,7 @@ struct Options {
 
 // eig: every eigenvalue at one speed.
 Command eig_command(CLI::App& app, const std::shared_ptr<Options>& o) {
-    auto* eig = app.add_subcommand("eig", "all eigenvalues at one speed");
+    auto* eig = app.add_subcommand("eig", "the eigenvalues at one speed (all, or the K lowest with --modes K)");
     add_common(eig, o->common, false);
     add_motion_option(eig, o->common);
     add_solver_options(eig, o->common);

@@ -35,7 +35,9 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
 
 def defaults() -> list:
     """The defaults of every call and command, as `gyrokit defaults` prints them (docs/defaults.md): a list of
-    dicts name, value (as written in a call; "" where the default is a rule) and meaning."""
+    dicts name, value (as written in a call; "" where the default is a rule), meaning, option (the CLI's),
+    keyword (Python's), command and function (where the row applies to one command and call only; "": to
+    every one with that option or keyword)."""
     return [dict(row) for row in _D.TABLE]
 
 
@@ -715,15 +717,18 @@ def pervasive(model, speeds=None, *, tolerance=_D.TOLERANCE, solver=None, modes=
 
 def response(model, speeds=None, *, dofs=None, probes=None, solver=None, harmonics=None, modes=None,
              method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=_D.UNIT, f_cut=None,
-             stability_check=True, extrema=False) -> Response:
+             stability_check=True, extrema=False, peaks=True) -> Response:
     """Unbalance response at `speeds` (in `unit`) of the named DOFs (default: all), by a dense or (solver "sparse";
     "auto" above 200 DOFs) sparse LU of the dynamic stiffness, with the CLI's tables (summary with the peaks refined
-    between grid speeds; with `extrema` the peaks and antiresonances, as --extrema; the curve). As the CLI, the modes (`modes`, default those in range) are tracked
+    between grid speeds, left out with peaks=False, which saves those searches; with `extrema` the peaks and
+    antiresonances, as --extrema). As the CLI, the modes (`modes`, default those in range) are tracked
     over the range: each unstable range is a RuntimeWarning and in `warnings` (the response there is not a steady
     state); `stability_check=False` skips that tracking. `probes` [(node, angle), ...]: the readings of
     displacement probes (x cos + y sin, degrees from +x towards +y) instead of DOFs, named "NODE@ANGLE"."""
     if dofs is not None and probes is not None:
         raise InputError("dofs and probes: allowed: one of them")
+    if dofs is not None and len(dofs) == 0:
+        raise InputError("dofs: empty; allowed: DOF names, or None for every DOF")
     system, o = _options(model, solver, modes, None, None)
     names = system.dof_names
     missing = [d for d in (dofs or []) if d not in names]
@@ -734,7 +739,7 @@ def response(model, speeds=None, *, dofs=None, probes=None, solver=None, harmoni
     d = _core.response(system, w, _harmonics(model, harmonics), outputs=cols, unit=unit, title=_title(model),
                        probes=_probes(probes), length_unit=_length(model), f_cut=_f_cut(model, f_cut, unit),
                        method=method, lanczos=int(lanczos), jobs=int(jobs), stability_check=bool(stability_check),
-                       extrema=bool(extrema), **o)
+                       extrema=bool(extrema), peaks=bool(peaks), **o)
     for msg in d["warnings"]:
         _warnings.warn(msg, RuntimeWarning, stacklevel=2)
     return Response(w, list(d["names"]), d["Z"], d, unit)

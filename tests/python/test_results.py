@@ -174,16 +174,19 @@ def test_response_is_the_clis_study(tmp_path, scene):
     # One study (lib/gyrokit/study/response_study.hpp): the same curve, refined peaks and summary as the CLI.
     args = ("response", SCENE, "--speeds", "0:1500:16", "--dofs", "x12,y12")
     r = gk.response(scene, np.linspace(0.0, 1500.0, 16), dofs=["x12", "y12"], extrema=True)
-    assert [t.key for t in r.tables] == ["response_maxima", "response_peaks", "response"]
-    assert open(r.save(tmp_path / "curve.csv", table="response")).read() == cli(*args, "--format", "csv")
+    assert [t.key for t in r.tables] == ["response", "response_maxima", "response_peaks"]
+    assert open(r.save(tmp_path / "curve.csv")).read() == cli(*args, "--format", "csv")   # the curve by default
     assert open(r.save(tmp_path / "peaks.csv", table="response_peaks")).read() == cli(
         *args, "--extrema", "--format", "csv")
     assert str(r.table("response_maxima")).strip() == cli(*args).strip()
     # The grid maxima are not what the summary reports: a peak refined between grid speeds is higher.
     top = r.table("response_maxima").column("max_amplitude")
     assert all(m > a for m, a in zip(top, r.amplitude.max(axis=0)))
-    quick = gk.response(scene, np.linspace(0.0, 1500.0, 16), dofs=["x12", "y12"], stability_check=False)
+    quick = gk.response(scene, np.linspace(0.0, 1500.0, 16), dofs=["x12", "y12"], stability_check=False, peaks=False)
     np.testing.assert_array_equal(quick.amplitudes, r.amplitudes)
+    assert [t.key for t in quick.tables] == ["response"]
+    with pytest.raises(gk.InputError, match="dofs: empty"):
+        gk.response(scene, [100.0], dofs=[])
 
 
 def test_probes_at_any_angle_read_x_cos_plus_y_sin_as_the_cli(tmp_path, scene):

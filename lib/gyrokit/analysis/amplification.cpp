@@ -84,12 +84,14 @@ bool has_unbalance(const GyroscopicSystem& sys) { return sys.unbalance.size() > 
 
 }  // namespace
 
-void set_amplification_factors(std::vector<CriticalSpeed>& cs, const GyroscopicSystem& sys) {
+void set_amplification_factors(std::vector<CriticalSpeed>& cs, const GyroscopicSystem& sys, std::size_t only) {
     std::vector<double> ones;   // the 1x crossings, for the neighbours' midpoints
     for (const auto& c : cs)
         if (c.harmonic == 1) ones.push_back(c.speed);
     std::sort(ones.begin(), ones.end());
-    for (CriticalSpeed& c : cs) {
+    for (std::size_t i = 0; i < cs.size(); ++i) {
+        if (only < cs.size() && i != only) continue;
+        CriticalSpeed& c = cs[i];
         c.amplification = from_damping(c.mode);
         c.amplification_method = AmplificationMethod::DampingRatio;
         c.probe = -1;

@@ -48,7 +48,10 @@ double api684_required_margin(double af, bool above);
 // points within the search. Otherwise (other harmonics, no unbalance, no peak,
 // models above kHalfPowerDofs DOFs) AF = 1/(2 zeta) from the mode's damping
 // ratio (infinite for an undamped or unstable mode).
-void set_amplification_factors(std::vector<CriticalSpeed>& cs, const GyroscopicSystem& sys);
+// `only`: the index of the one crossing to set (the others' speeds still bound its
+// half-power search); npos: every crossing.
+void set_amplification_factors(std::vector<CriticalSpeed>& cs, const GyroscopicSystem& sys,
+                               std::size_t only = static_cast<std::size_t>(-1));
 
 // Crossings of every oscillating branch with the lines k w, k in `harmonics`,
 // refined with GSL Brent on f(w) = Im lambda(w) - k w.

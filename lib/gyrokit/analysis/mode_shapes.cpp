@@ -3,6 +3,8 @@
 
 #include <gyrokit/core/error.hpp>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <climits>
 #include <map>
@@ -110,7 +112,11 @@ std::vector<ModeShape> mode_shapes(const GyroscopicSystem& sys, double w, const 
         throw InputError("mode shapes: speed = " + std::to_string(w) + " rad/s; allowed: a finite number >= 0");
     const SolverChoice plan = choose_solver(sys, options);
     QuadraticSpectrum spectrum = plan.make()(w);
-    if (plan.kind == SolverKind::Dense) keep_lowest_modes(spectrum, options.modes);   // the meaning of K
+    // The meaning of K: the K lowest by frequency (a sparse window may hold one more where
+    // its edge cuts a double eigenvalue).
+    if (const std::size_t all = keep_lowest_modes(spectrum, options.modes); all > spectrum.modes.size() && notes)
+        notes->push_back(fmt::format("the {} lowest by frequency of the {} modes computed ({} 0 lists all)",
+                                     options.modes, all, option_field("modes")));
     if (notes) {
         notes->insert(notes->end(), plan.notes.begin(), plan.notes.end());
         notes->insert(notes->end(), spectrum.notes.begin(), spectrum.notes.end());

@@ -71,6 +71,7 @@ std::size_t keep_lowest_modes(QuadraticSpectrum& s, int modes) {
     if (modes <= 0 || held <= static_cast<std::size_t>(modes)) return held;
     sort_by_frequency(s.modes);
     s.modes.resize(static_cast<std::size_t>(modes));
+    s.partial = true;   // not every mode of the pencil
     return held;
 }
 

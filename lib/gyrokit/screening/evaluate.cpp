@@ -101,15 +101,31 @@ void check_separation(const Sweep& s, const Scene& sc, const SeparationCriterion
     so.workers = 1;   // the designs run in parallel, each on one worker
     so.speeds = SpeedRange{0.0, w_scan, c.count}.points();
     so.harmonics = c.harmonics;
-    // The factors tell the heavily damped crossings apart (the `critical` command's verdict).
-    so.amplification_factors = !c.count_heavily_damped || c.api684 || c.max_amplification.has_value();
-    const std::vector<CriticalSpeed> cs = critical_speed_study(sc.system, so).critical;
+    so.amplification_factors = c.api684 || c.max_amplification.has_value();   // these read every factor
+    std::vector<CriticalSpeed> cs = critical_speed_study(sc.system, so).critical;
+    // Else the factors only tell the heavily damped crossings apart (the `critical` command's
+    // verdict): those of the crossings nearest the operating range, in order of their margins,
+    // until one is critical (a half-power factor costs some hundred solves).
+    if (!so.amplification_factors && !c.count_heavily_damped) {
+        std::vector<std::size_t> order;
+        for (std::size_t i = 0; i < cs.size(); ++i)
+            if (!c.forward_only || cs[i].mode.whirl == Whirl::Forward) order.push_back(i);
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+            return separation_margin(cs[a].speed, s.op_from, s.op_to) < separation_margin(cs[b].speed, s.op_from, s.op_to);
+        });
+        for (const std::size_t i : order) {
+            set_amplification_factors(cs, sc.system, i);
+            if (cs[i].api684_critical()) break;   // the least margin among the critical ones
+        }
+    }
     // The critical speed with the least margin to spare (its margin less the one it needs).
     const CriticalSpeed* worst = nullptr;
     double worst_sm = inf, worst_required = 0.0, spare = inf;
     for (const auto& x : cs) {
         if (c.forward_only && x.mode.whirl != Whirl::Forward) continue;
-        if (!c.count_heavily_damped && !x.api684_critical()) continue;   // heavily damped: no margin required
+        // Heavily damped: no margin required (a factor left unset, NaN, is a crossing beyond the
+        // first critical one found above: not the worst either way).
+        if (!c.count_heavily_damped && !x.api684_critical()) continue;
         const double sm = separation_margin(x.speed, s.op_from, s.op_to);
         const double required = c.api684 ? api684_required_margin(x.amplification, x.speed > s.op_to) : c.margin_percent;
         if (sm - required < spare) spare = sm - required, worst = &x, worst_sm = sm, worst_required = required;

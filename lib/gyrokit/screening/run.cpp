@@ -194,7 +194,8 @@ ParsedFile parse_result_file(const Sweep& s, const std::string& path, const Shar
                                              path, s.path));
             if (line != identity)
                 throw InputError(fmt::format("{}: written by another study: its scene, a file the scene names, its "
-                                             "sweep or criteria, or the gyrokit version, changed since ('{}'; this study: '{}'); allowed: the "
+                                             "sweep or criteria, the gyrokit version or the revision of the verdicts' rules (a file judged "
+                                             "by older rules), changed since ('{}'; this study: '{}'); allowed: the "
                                              "result file of this study, or a new file",
                                              path, line.substr(0, 120), identity));
             pf.has_identity = true;

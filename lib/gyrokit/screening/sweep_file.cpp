@@ -4,6 +4,7 @@
 
 #include <gyrokit/screening/detail/probes.hpp>
 
+#include <gyrokit/analysis/pervasive_damping.hpp>
 #include <gyrokit/core/error.hpp>
 #include "gyrokit/io/detail/toml_keys.hpp"
 #include <gyrokit/core/input_file.hpp>
@@ -203,7 +204,7 @@ PervasiveCriterion read_pervasive(const TomlKeys& c) {
     PervasiveCriterion pc;
     if (c.has("damping")) pc.damping = strings_of(c, "damping");
     if (pc.damping.empty()) throw InputError(c.where("damping") + " is empty; allowed: e.g. [\"total\"]");
-    pc.tolerance = c.number("tolerance", 1e-8, 0, true, "1");
+    pc.tolerance = c.number("tolerance", kPervasiveTolerance, 0, true, "1");
     if (pc.tolerance >= 1) throw InputError(c.where("tolerance") + ": allowed: 0 < tolerance < 1");
     return pc;
 }

@@ -11,8 +11,9 @@ const std::vector<Entry>& table() {
         {"modes", "",
          fmt::format("the modes in range: every mode up to f_cut is tracked and judged; a count K shows the K lowest "
                      "branches (critical speeds and verdicts still cover every mode up to f_cut); 0: every mode "
-                     "(sparse: a window of {})",
-                     sparse_modes),
+                     "(sparse: a window of {}); at one speed (eig, modes), where no range defines the modes in "
+                     "range, every mode (sparse: {})",
+                     sparse_modes, sparse_modes),
          "--modes", "modes", "", ""},
         {"f_cut", "",
          fmt::format("{} times the highest excitation frequency (the highest harmonic times the top speed)",

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace gyrokit {
 
 ResponseStudy response_study(const GyroscopicSystem& sys, const StudyOptions& opt, const ResponseRequest& r) {
@@ -47,8 +49,8 @@ ResponseStudy response_study(const GyroscopicSystem& sys, const StudyOptions& op
     const ResponseSolver shown = [&](double w) -> Eigen::VectorXcd {
         return in_si(w).cwiseProduct(shown_per_si.cast<std::complex<double>>());
     };
-    add_notes(s.diagnostics, Topic::Extrapolation,
-              extrapolation_notes(sys.bearings, opt.speeds.front(), opt.speeds.back()));
+    const auto [lowest, highest] = std::minmax_element(opt.speeds.begin(), opt.speeds.end());   // in any order
+    add_notes(s.diagnostics, Topic::Extrapolation, extrapolation_notes(sys.bearings, *lowest, *highest));
     const ResponseCurve si = unbalance_response(in_si, count, opt.speeds, r.outputs);
     s.si = si.Z;
     s.curve = si;

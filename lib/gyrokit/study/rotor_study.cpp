@@ -58,9 +58,9 @@ SpectrumStudy spectrum_study(const GyroscopicSystem& sys, double speed, const So
     if (s.plan.kind == SolverKind::Dense)
         if (const std::size_t all = keep_lowest_modes(s.spectrum, opt.modes); all > s.spectrum.modes.size())
             s.diagnostics.push_back({Level::Note, Topic::Solver,
-                                     fmt::format("{} {}: the {} lowest by frequency of the dense solver's {} modes "
-                                                 "(0: all)",
-                                                 option_field("modes"), opt.modes, opt.modes, all)});
+                                     fmt::format("the {} lowest by frequency of the dense solver's {} modes ({} 0 "
+                                                 "lists all)",
+                                                 opt.modes, all, option_field("modes"))});
     return s;
 }
 

@@ -28,7 +28,8 @@ struct StudyOptions {
     std::vector<double> speeds;      // rad/s
     std::vector<int> harmonics{defaults::harmonic};
     std::optional<double> f_cut;     // rad/s: the modes judged (judged_band: default 1.5 x the highest excitation)
-    Workers workers{worker_count(defaults::jobs)};
+    // Every core (defaults::jobs), as threads: a library caller's process is not forked.
+    Workers workers{worker_count(defaults::jobs), WorkerKind::Threads};
     SpeedUnit unit;                  // the unit the diagnostics name speeds in
     std::function<void(std::size_t, std::size_t)> progress;   // speeds solved, of all
     bool amplification_factors = true;   // critical speeds: API 684 AF (half-power: some hundred solves each)
