@@ -34,6 +34,7 @@ std::string keyword_words(const std::string& field) {
     if (field == "units") return "unit =";
     if (field == "rows") return "result.table('campbell')";
     if (field == "plot") return "result.plot(FILE.svg)";
+    if (field == "rigid_body") return "result.rigid_body";
     return "";   // the others are named as in the library: "modes =
 }
 

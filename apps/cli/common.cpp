@@ -102,7 +102,8 @@ std::string flag_words(const std::string& field) {
         {"target_order", "--target-order"}, {"f_cut", "--f-cut"}, {"units", "--units"}, {"rows", "--rows, or --format csv|json"},
         {"plot", "--plot FILE.svg"},        {"dt", "--dt"},         {"duration", "--duration"},
         {"max_steps", "--max-steps"},       {"speed", "--speed"},   {"run_up", "--run-up"},
-        {"acceleration", "--acceleration"}, {"gravity", "--gravity"}, {"tolerance", "--tolerance"}};
+        {"acceleration", "--acceleration"}, {"gravity", "--gravity"}, {"tolerance", "--tolerance"},
+        {"rigid_body", "--rigid-body"}};
     for (const auto& [name, flag] : flags)
         if (field == name) return flag;
     return "";

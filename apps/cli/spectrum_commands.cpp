@@ -37,10 +37,12 @@ Command eig_command(CLI::App& app, const std::shared_ptr<Options>& o) {
         SolverOptions so = c.solver;
         so.modes = wanted_modes(c, o->modes);
         const SpectrumStudy st = spectrum_study(c.scene.system, w, so);
-        print_diagnostics(st.diagnostics);
+        // With --rigid-body the table lists them: no note.
+        if (o->rigid_body)
+            print_diagnostics(st.diagnostics, {Diagnostic::Topic::RigidBody});
+        else
+            print_diagnostics(st.diagnostics);
         const QuadraticSpectrum& s = st.spectrum;
-        if (!o->rigid_body && !s.rigid_body.empty())
-            std::cerr << "note: " << rigid_body_note(s.rigid_body, c.scene.dof_names()) << " (--rigid-body lists them)\n";
         write_table(out, eig_table(s, w, c.unit, o->rigid_body), c.format);
     }};
 }

@@ -4,6 +4,7 @@
 #include <gyrokit/core/bearing_table.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/reports/campbell_reports.hpp>
+#include <gyrokit/reports/spectrum_reports.hpp>
 
 #include <fmt/format.h>
 
@@ -54,6 +55,10 @@ SpectrumStudy spectrum_study(const GyroscopicSystem& sys, double speed, const So
     add_notes(s.diagnostics, Topic::Solver, s.plan.notes);
     s.spectrum = s.plan.make()(speed);
     add_notes(s.diagnostics, Topic::Solver, s.spectrum.notes);
+    if (!s.spectrum.rigid_body.empty())
+        s.diagnostics.push_back({Level::Note, Topic::RigidBody,
+                                 rigid_body_note(s.spectrum.rigid_body, sys.dof_names) + " (" +
+                                     option_field("rigid_body") + " lists them)"});
     // The dense solver gives every mode: the K lowest by frequency where K are asked for.
     if (s.plan.kind == SolverKind::Dense)
         if (const std::size_t all = keep_lowest_modes(s.spectrum, opt.modes); all > s.spectrum.modes.size())

@@ -53,7 +53,7 @@ StudyOptions study_options(const Scene& scene);
 struct SpectrumStudy {
     SolverChoice plan;
     QuadraticSpectrum spectrum;
-    Diagnostics diagnostics;   // bearings beyond their tables at the speed, the solver's notes
+    Diagnostics diagnostics;   // bearings beyond their tables at the speed, the solver's notes, rigid-body eigenvalues
 };
 SpectrumStudy spectrum_study(const GyroscopicSystem& sys, double speed, const SolverOptions& opt);
 

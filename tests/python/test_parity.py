@@ -1,0 +1,87 @@
+"""One study behind every front end: for each rotor scene of data/ and each analysis, the CLI's JSON output and
+the Python result's tables (saved as JSON, full precision) are the same rows, bit for bit, and so are the notes
+and warnings (the CLI's stderr, Python's `notes` and `warnings`). The screening's critical speed and
+instability onset are the same study's (test_gyrokit.py: test_screening_judges_the_critical_speeds_...)."""
+import glob
+import json
+import tomllib
+import os
+import subprocess
+import warnings
+
+import numpy as np
+import pytest
+
+import gyrokit as gk
+
+CLI = os.environ.get("GYROKIT_CLI")
+DATA = os.environ["GYROKIT_DATA"]
+
+# The rotor scenes (gyrostat, fe_rotor, matrices) of data/, but the 100,000-DOF one (docs/large_models.md).
+SCENES = sorted(p for p in glob.glob(os.path.join(DATA, "*.toml")) + [os.path.join(DATA, "ross_rotor_example",
+                                                                                   "scene.toml")]
+                if os.path.basename(p) != "fe_rotor_100k.toml"
+                and tomllib.load(open(p, "rb")).get("model", {}).get("type") in ("gyrostat", "fe_rotor", "matrices"))
+
+# The analysis, its Python call and extra CLI arguments, and which of Python's tables the CLI's JSON holds
+# (the CLI lists the critical speeds and the heavily damped crossings as one table).
+ANALYSES = {
+    "eig": (lambda s, w: gk.eig(s, w), lambda w: ["--speed", repr(w)], ["eigenvalues"]),
+    "modes": (lambda s, w: gk.modes(s, w), lambda w: ["--speed", repr(w)], ["mode_orbits"]),
+    "campbell": (lambda s, w: gk.campbell(s), lambda w: [], ["campbell"]),
+    "critical": (lambda s, w: gk.critical_speeds(s), lambda w: [], ["critical_speeds", "heavily_damped_crossings"]),
+    "stability": (lambda s, w: gk.stability(s), lambda w: [], ["stability_changes"]),
+    "response": (lambda s, w: gk.response(s, peaks=False), lambda w: [], ["response"]),   # JSON: the curve
+    # Three speeds, 0 to the top (the checker is slow on the larger FE rotors: 37 s for 3 speeds of
+    # data/compressor.toml, so it runs on the smaller scenes here).
+    "pervasive": (lambda s, w: gk.pervasive(s, [0.0, w, 2.0 * w]), lambda w: ["--speeds", f"0:{2.0 * w!r}:3"],
+                  ["pervasive_damping"]),
+}
+PERVASIVE_SCENES = {"centrifuge.toml", "friswell_5_9_1.toml", "scene.toml", "three_disk_rotor.toml"}
+
+
+if not CLI:
+    pytest.skip("GYROKIT_CLI not set", allow_module_level=True)
+
+
+def cli(*args):
+    return subprocess.run([CLI, *args, "--format", "json"], check=True, capture_output=True, text=True)
+
+
+@pytest.mark.parametrize("analysis", list(ANALYSES))
+@pytest.mark.parametrize("path", SCENES, ids=lambda p: os.path.relpath(p, DATA))
+def test_the_cli_and_python_give_the_same_rows_and_notes(tmp_path, path, analysis):
+    scene = gk.load_scene(path)
+    if scene.speeds is None or len(scene.speeds) == 0:
+        pytest.skip("no [speeds] in the scene")
+    if analysis == "pervasive" and os.path.basename(path) not in PERVASIVE_SCENES:
+        pytest.skip("pervasive: the smaller scenes only")
+    call, args, keys = ANALYSES[analysis]
+    w = float(np.max(scene.speeds)) / 2.0   # rad/s: the one-speed analyses at half the top speed
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")   # the unstable ranges: compared below as the result's `warnings`
+            result = call(scene, w)
+    except gk.InputError as e:
+        # Bad input is the same error in both, with the CLI's exit status 2.
+        bad = subprocess.run([CLI, analysis, path, *args(w), "--format", "json"], capture_output=True, text=True)
+        assert bad.returncode == 2 and f"error: {e}" in bad.stderr.splitlines()
+        return
+    run = cli(analysis, path, *args(w))
+    tables = json.load(open(result.save(tmp_path / "result.json")))
+    rows = [row for key in keys for row in tables.get(key, [])]
+    assert json.loads(run.stdout) == rows
+    lines = run.stderr.splitlines()
+    # Each front end names the options in its own words (the library marks them): --modes 0, modes = 0.
+    words = {"--modes 0": "modes = 0", "--f-cut": "f_cut =", "--rigid-body lists": "result.rigid_body lists"}
+    spelled = []
+    for x in lines:
+        for flag, keyword in words.items():
+            x = x.replace(flag, keyword)
+        spelled.append(x)
+    notes = getattr(result, "notes", None)
+    if notes is not None:
+        assert [f"note: {n}" for n in notes] == [x for x in spelled if x.startswith("note: ")]
+    warned = getattr(result, "warnings", None)
+    if warned is not None:
+        assert [f"warning: {n}" for n in warned] == [x for x in spelled if x.startswith("warning: ")]
