@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
             const std::string path = name.find('/') == std::string::npos ? std::string(GYROKIT_DATA_DIR) + "/" + name : name;
             const Scene sc = load_scene(path);
             if (!sc.speeds) throw InputError(path + ": no [speeds]");
-            const std::vector<double> speeds = sc.speeds->points();
+            const std::vector<double> speeds = sc.speed_points();
             SolverOptions so;
             so.kind = SolverKind::Dense;
             const SolverChoice plan = choose_solver(sc.system, so);

@@ -207,7 +207,7 @@ int main(int argc, char** argv) {
                 throw InputError(fmt::format("--sizes {}: allowed: multiples of 4, at least 8", n));
 
         const Scene scene = load_scene(scene_path);
-        const std::vector<double> scene_speeds = scene.speeds ? scene.speeds->points() : linspace(0.0, 60.0, 241);
+        const std::vector<double> scene_speeds = scene.speeds ? scene.speed_points() : linspace(0.0, 60.0, 241);
         std::vector<Case> cases{{"centrifuge", scene.system, scene_speeds}};
         for (int n : sizes)
             cases.push_back({fmt::format("rotor {} disks", n / 4), make_multi_disk_rotor(n / 4),

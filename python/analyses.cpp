@@ -10,10 +10,12 @@
 
 #include "common.hpp"
 #include "frf.hpp"
+#include "request.hpp"
 #include "reports.hpp"
 
 #include <gyrokit/reports/reports.hpp>
 
+#include <fmt/format.h>
 #include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 #include <pybind11/functional.h>
@@ -38,23 +40,6 @@ std::vector<std::string> spelled(const std::vector<std::string>& notes) {
     std::vector<std::string> out;
     for (const auto& n : notes) out.push_back(spell_fields(n, keyword_words));
     return out;
-}
-
-SolverOptions solver_options(const std::string& solver, int modes, const py::object& target, double target_order,
-                             const std::string& method, int lanczos) {
-    SolverOptions o;
-    o.kind = parse_solver_kind(solver);
-    o.modes = modes;
-    if (!target.is_none()) o.target = target.cast<double>();
-    o.target_order = target_order;
-    o.eig.method = parse_eigen_method(method);
-    o.lanczos_vectors = lanczos;
-    return o;
-}
-
-std::vector<double> checked_speeds(const std::vector<double>& speeds) {
-    if (speeds.empty()) throw InputError("speeds: empty; allowed: one or more speeds >= 0 (rad/s)");
-    return speeds;
 }
 
 // One eigenvalue per conjugate pair (Im >= 0), as the CLI prints.
@@ -140,19 +125,6 @@ py::dict campbell_dict(const CampbellDiagram& cd) {
     return d;
 }
 
-// The study every front end runs, from the call's arguments.
-StudyOptions study(const SolverOptions& o, const std::vector<double>& w, const std::vector<int>& harmonics,
-                   Workers workers, const SpeedUnit& unit = {}, std::optional<double> f_cut = std::nullopt) {
-    StudyOptions so;
-    so.f_cut = f_cut;
-    so.unit = unit;
-    so.solver = o;
-    so.speeds = w;
-    so.harmonics = harmonics;
-    so.workers = workers;
-    return so;
-}
-
 // A study's notes and warnings as the result's lists, option fields as keywords.
 void put_diagnostics(py::dict& d, const Diagnostics& diagnostics) {
     py::list notes, warnings;
@@ -169,39 +141,41 @@ void put_reports(py::dict& d, const std::vector<Table>& tables, const std::optio
 }
 
 // gk.eig: every eigenvalue at one speed (one per conjugate pair).
-py::dict py_eig(const GyroscopicSystem& s, double speed, const std::string& solver, int modes,
-                const py::object& target, double target_order, const std::string& method, int lanczos,
-                const std::string& unit) {
-    const SpeedUnit u = SpeedUnit::parse(unit);
-    const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
+py::dict py_eig(const py::object& model, double speed, const py::dict& request) {
+    const ModelArg m(model);
+    const StudyOptions so = resolve(m, request, SpeedsNeeded::No);
+    const SpeedUnit& u = so.unit;
+    speed /= u.factor;
     SpectrumStudy st;
     {
         Released free;
-        st = spectrum_study(s, speed, o);
+        st = spectrum_study(m.system(), speed, so.solver);
     }
     py::dict d = spectrum_dict(st.spectrum);
+    d["speed"] = speed;
+    d["unit"] = u.name;
     put_diagnostics(d, st.diagnostics);
     put_reports(d, {eig_table(st.spectrum, speed, u)});
     return d;
 }
 
 // gk.mode_shapes: the shapes as columns, and their orbits per whirl pair (the CLI's --per node table).
-py::dict py_mode_shapes(const GyroscopicSystem& s, double speed, const std::string& solver, int modes,
-                        const py::object& target, double target_order, const std::string& method, int lanczos,
-                        const std::string& unit, const std::string& title, const std::string& length_unit,
-                        const py::object& scene) {
-    const SpeedUnit u = SpeedUnit::parse(unit);
-    const LengthUnit length = LengthUnit::parse(length_unit);
+py::dict py_mode_shapes(const py::object& model, double speed, const py::dict& request) {
+    const ModelArg m(model);
+    const GyroscopicSystem& s = m.system();
+    const StudyOptions so = resolve(m, request, SpeedsNeeded::No);
+    const SpeedUnit& u = so.unit;
+    const LengthUnit length = m.scene().length_unit();
     // A scene's FE rotor: its disks, bearings and supports marked on the shapes.
-    const AxisMarks marks = scene.is_none() ? AxisMarks{} : axis_marks(scene.cast<const Scene&>());
+    const AxisMarks marks = axis_marks(m.scene());
     if (!(std::isfinite(speed) && speed >= 0))
-        throw InputError("speed = " + std::to_string(speed) + ": allowed: a finite number >= 0 (rad/s)");
-    const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
+        throw InputError(fmt::format("{} {}: allowed: a finite number >= 0 ({})", option_field("speed"), speed, u.name));
+    speed /= u.factor;
     std::vector<ModeShape> shapes;
     std::vector<std::string> notes;
     {
         Released free;
-        shapes = mode_shapes(s, speed, o, &notes);
+        shapes = mode_shapes(s, speed, so.solver, &notes);
     }
     const auto k = static_cast<Eigen::Index>(shapes.size());
     Eigen::VectorXcd lambda(k);
@@ -233,6 +207,9 @@ py::dict py_mode_shapes(const GyroscopicSystem& s, double speed, const std::stri
         }
     }
     py::dict d;
+    d["speed"] = speed;
+    d["unit"] = u.name;
+    d["dof_names"] = s.dof_names;
     d["eigenvalues"] = lambda;
     d["shapes"] = vectors;
     d["numbers"] = number;
@@ -254,51 +231,43 @@ py::dict py_mode_shapes(const GyroscopicSystem& s, double speed, const std::stri
     put_reports(d,
                 {mode_list_table(shapes, s.dof_names, speed, u), mode_orbit_table(shapes, speed, u, length),
                  mode_dof_table(shapes, s.dof_names, s.dof_units, speed, u)},
-                mode_shape_figure(shapes, speed, u, title, length, marks));
+                mode_shape_figure(shapes, speed, u, m.scene().title, length, marks));
     return d;
 }
 
 // gk.campbell: the Campbell study, its speeds solved on threads.
-py::dict py_campbell(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
-                     const std::string& solver, int modes, const py::object& target, double target_order,
-                     const std::string& method, int lanczos, int jobs, const std::string& unit,
-                     const std::string& title, std::optional<double> f_cut) {
-    const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
-    const std::vector<double> w = checked_speeds(speeds);
-    const Workers workers = threads(jobs);
-    const SpeedUnit u = SpeedUnit::parse(unit);
+py::dict py_campbell(const py::object& model, const py::dict& request) {
+    const ModelArg m(model);
+    const GyroscopicSystem& s = m.system();
+    const StudyOptions so = resolve(m, request);
+    const SpeedUnit& u = so.unit;
+    const std::vector<int>& harmonics = so.harmonics;
     CampbellStudy st;
     std::vector<CriticalSpeed> cs;
     {
         Released free;
-        StudyOptions so = study(o, w, harmonics, workers, u, f_cut);
         st = campbell_study(s, so);
         cs = critical_speeds_of(s, st, so);   // the summary's and the figure's
     }
     py::dict d = campbell_dict(st.diagram);
+    d["unit"] = u.name;
     put_diagnostics(d, st.diagnostics);
     std::vector<Table> tables{campbell_summary(st.diagram, cs, u, "", st.plan.kind == SolverKind::Sparse),
                               campbell_table(st.diagram, u)};
     for (Table& t : critical_tables(cs, u)) tables.push_back(std::move(t));
-    put_reports(d, tables, campbell_figure(st.diagram, cs, harmonics, u, title));
+    put_reports(d, tables, campbell_figure(st.diagram, cs, harmonics, u, m.scene().title));
     return d;
 }
 
 // gk.critical_speeds: the critical speeds with their API 684 amplification factors, as columns.
-py::dict py_critical_speeds(const GyroscopicSystem& s, const std::vector<double>& speeds,
-                            const std::vector<int>& harmonics, const std::string& solver, int modes,
-                            const py::object& target, double target_order, const std::string& method, int lanczos,
-                            int jobs, const std::string& unit, std::optional<double> f_cut) {
-    const SpeedUnit u = SpeedUnit::parse(unit);
-    const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
-    const std::vector<double> w = checked_speeds(speeds);
-    const Workers workers = threads(jobs);
-    for (int h : harmonics)
-        if (h < 1) throw InputError("harmonics: " + std::to_string(h) + " is not allowed; allowed: whole numbers >= 1");
+py::dict py_critical_speeds(const py::object& model, const py::dict& request) {
+    const ModelArg m(model);
+    const StudyOptions so = resolve(m, request);
+    const SpeedUnit& u = so.unit;
     CriticalSpeedStudy st;
     {
         Released free;
-        st = critical_speed_study(s, study(o, w, harmonics, workers, u, f_cut));
+        st = critical_speed_study(m.system(), so);
     }
     const std::vector<CriticalSpeed>& cs = st.critical;
     const auto n = static_cast<py::ssize_t>(cs.size());
@@ -318,6 +287,7 @@ py::dict py_critical_speeds(const GyroscopicSystem& s, const std::vector<double>
         critical.mutable_at(k) = c.api684_critical();
     }
     py::dict d;
+    d["unit"] = u.name;
     d["speeds"] = speed;
     d["harmonic"] = harmonic;
     d["branch"] = branch;
@@ -332,18 +302,14 @@ py::dict py_critical_speeds(const GyroscopicSystem& s, const std::vector<double>
 }
 
 // gk.stability: the speeds where a mode becomes unstable or stable again.
-py::dict py_stability(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
-                      const std::string& solver, int modes, const py::object& target, double target_order,
-                      const std::string& method, int lanczos, int jobs, const std::string& unit,
-                      std::optional<double> f_cut) {
-    const SpeedUnit u = SpeedUnit::parse(unit);
-    const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
-    const std::vector<double> w = checked_speeds(speeds);
-    const Workers workers = threads(jobs);
+py::dict py_stability(const py::object& model, const py::dict& request) {
+    const ModelArg m(model);
+    const StudyOptions so = resolve(m, request);
+    const SpeedUnit& u = so.unit;
     StabilityStudy st;
     {
         Released free;
-        st = stability_study(s, study(o, w, harmonics, workers, u, f_cut));
+        st = stability_study(m.system(), so);
     }
     const std::vector<StabilityChange>& ch = st.changes;
     const auto n = static_cast<py::ssize_t>(ch.size());
@@ -357,6 +323,7 @@ py::dict py_stability(const GyroscopicSystem& s, const std::vector<double>& spee
         unstable.mutable_at(k) = ch[static_cast<size_t>(k)].becomes_unstable;
     }
     py::dict d;
+    d["unit"] = u.name;
     d["speeds"] = speed;
     d["bounds"] = bound;
     d["branch"] = branch;
@@ -367,20 +334,19 @@ py::dict py_stability(const GyroscopicSystem& s, const std::vector<double>& spee
 }
 
 // gk.pervasive: the Hautus check, one row per mode a damping component does not reach.
-py::dict py_pervasive(const GyroscopicSystem& s, const std::vector<double>& speeds, double tolerance,
-                      const std::string& solver, int modes, const py::object& target, double target_order,
-                      const std::string& method, int lanczos, int jobs, const std::string& unit) {
-    const SpeedUnit u = SpeedUnit::parse(unit);
+py::dict py_pervasive(const py::object& model, double tolerance, const py::dict& request) {
+    const ModelArg m(model);
+    const StudyOptions so = resolve(m, request);
+    const SpeedUnit& u = so.unit;
     PervasiveOptions po;
     po.tolerance = tolerance;
-    po.modes = modes;
-    po.solver = solver_options(solver, modes, target, target_order, method, lanczos);
-    po.threads = threads(jobs);
-    const std::vector<double> w = checked_speeds(speeds);
+    po.modes = so.solver.modes;
+    po.solver = so.solver;
+    po.threads = so.workers;
     PervasiveReport rep;
     {
         Released free;
-        rep = pervasive_damping(s, w, po);
+        rep = pervasive_damping(m.system(), so.speeds, po);
     }
     py::list damping, whirl;
     std::vector<double> speed, frequency, residual;
@@ -394,6 +360,7 @@ py::dict py_pervasive(const GyroscopicSystem& s, const std::vector<double>& spee
         mode.push_back(l.mode);
     }
     py::dict d;
+    d["unit"] = u.name;
     d["checked"] = rep.checked;
     d["damping"] = damping;
     d["speeds"] = py::array_t<double>(static_cast<py::ssize_t>(speed.size()), speed.data());
@@ -406,29 +373,29 @@ py::dict py_pervasive(const GyroscopicSystem& s, const std::vector<double>& spee
 }
 
 // gk.response: the unbalance response per speed and DOF, with the CLI's stability warnings.
-py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speeds, const std::vector<int>& harmonics,
-                     const std::string& solver, int modes, const py::object& target, double target_order,
-                     const std::vector<int>& outputs, const std::string& unit, const std::string& title,
-                     const std::vector<std::pair<int, double>>& probe_list, const std::string& length_unit,
-                     std::optional<double> f_cut, const std::string& method, int lanczos, int jobs,
-                     bool stability_check, bool extrema, bool peaks) {
-    const SpeedUnit u = SpeedUnit::parse(unit);
+py::dict py_response(const py::object& model, const py::dict& request, const std::vector<int>& outputs,
+                     const std::vector<std::pair<int, double>>& probe_list, bool stability_check, bool extrema,
+                     bool peaks) {
+    const ModelArg m(model);
+    const GyroscopicSystem& s = m.system();
+    const StudyOptions so = resolve(m, request);
+    const SpeedUnit& u = so.unit;
+    const std::string& title = m.scene().title;
     ResponseRequest rq;
-    rq.length = LengthUnit::parse(length_unit);
+    rq.length = m.scene().length_unit();
     rq.probes = probes_of(s, probe_list);
     rq.outputs = outputs;
     rq.stability_check = stability_check;
     rq.antiresonances = extrema;
     rq.peaks = peaks || extrema;
-    const std::vector<double> w = checked_speeds(speeds);
-    const SolverOptions o = solver_options(solver, modes, target, target_order, method, lanczos);
-    const Workers workers = threads(jobs);
     ResponseStudy st;
     {
         Released free;
-        st = response_study(s, study(o, w, harmonics, workers, u, f_cut), rq);
+        st = response_study(s, so, rq);
     }
     py::dict d;
+    d["unit"] = u.name;
+    d["speeds"] = so.speeds;
     d["Z"] = st.si;   // the outputs in SI units (m, rad)
     std::vector<std::string> names;
     for (const int k : st.curve.dofs) names.push_back(st.names[static_cast<std::size_t>(k)]);
@@ -448,33 +415,23 @@ py::dict py_response(const GyroscopicSystem& s, const std::vector<double>& speed
 }  // namespace
 
 void bind_analyses(py::module_& m) {
-    m.def("eig", &py_eig, py::arg("system"), py::arg("speed"), py::arg("solver"), py::arg("modes"), py::arg("target"),
-          py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("unit") = "rad/s");
-
-    m.def("mode_shapes", &py_mode_shapes, py::arg("system"), py::arg("speed"), py::arg("solver"), py::arg("modes"),
-          py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"), py::arg("unit") = "rad/s",
-          py::arg("title") = "", py::arg("length_unit") = "m", py::arg("scene") = py::none());
-
-    m.def("campbell", &py_campbell, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
-          py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),
-          py::arg("jobs"), py::arg("unit") = "rad/s", py::arg("title") = "", py::arg("f_cut") = py::none());
-
-    m.def("critical_speeds", &py_critical_speeds, py::arg("system"), py::arg("speeds"), py::arg("harmonics"),
-          py::arg("solver"), py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"),
-          py::arg("lanczos"), py::arg("jobs"), py::arg("unit") = "rad/s", py::arg("f_cut") = py::none());
-
-    m.def("stability", &py_stability, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
-          py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),
-          py::arg("jobs"), py::arg("unit") = "rad/s", py::arg("f_cut") = py::none());
-
-    m.def("pervasive", &py_pervasive, py::arg("system"), py::arg("speeds"), py::arg("tolerance"), py::arg("solver"),
-          py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("method"), py::arg("lanczos"),
-          py::arg("jobs"), py::arg("unit") = "rad/s");
-
-    m.def("response", &py_response, py::arg("system"), py::arg("speeds"), py::arg("harmonics"), py::arg("solver"),
-          py::arg("modes"), py::arg("target"), py::arg("target_order"), py::arg("outputs") = std::vector<int>{},
-          py::arg("unit") = "rad/s", py::arg("title") = "", py::arg("probes") = std::vector<std::pair<int, double>>{},
-          py::arg("length_unit") = "m", py::arg("f_cut") = py::none(), py::arg("method") = defaults::method,
-          py::arg("lanczos") = defaults::lanczos, py::arg("jobs") = defaults::jobs, py::arg("stability_check") = true,
+    // The unit of a call's speeds and results: `unit`, else the scene's [speeds] units.
+    m.def(
+        "resolve_unit",
+        [](const py::object& model, const py::object& unit) {
+            const ModelArg a(model);
+            return resolve_unit(a.scene(), unit.is_none() ? std::nullopt : std::optional<std::string>(unit.cast<std::string>()))
+                .name;
+        },
+        py::arg("model"), py::arg("unit"));
+    // `request`: the keywords of rotor_request (None: not given).
+    m.def("eig", &py_eig, py::arg("model"), py::arg("speed"), py::arg("request"));
+    m.def("mode_shapes", &py_mode_shapes, py::arg("model"), py::arg("speed"), py::arg("request"));
+    m.def("campbell", &py_campbell, py::arg("model"), py::arg("request"));
+    m.def("critical_speeds", &py_critical_speeds, py::arg("model"), py::arg("request"));
+    m.def("stability", &py_stability, py::arg("model"), py::arg("request"));
+    m.def("pervasive", &py_pervasive, py::arg("model"), py::arg("tolerance"), py::arg("request"));
+    m.def("response", &py_response, py::arg("model"), py::arg("request"), py::arg("outputs") = std::vector<int>{},
+          py::arg("probes") = std::vector<std::pair<int, double>>{}, py::arg("stability_check") = true,
           py::arg("extrema") = false, py::arg("peaks") = true);
 }

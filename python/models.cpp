@@ -196,8 +196,9 @@ Scene scene_of(const RotorModel& model, const std::string& title, const py::obje
                double target_order, const py::object& f_cut) {
     Scene sc = rotor_scene(model, title);
     if (!speeds.is_none()) {
-        const auto t = speeds.cast<std::tuple<double, double, int>>();
+        const auto t = speeds.cast<std::tuple<double, double, int, std::string>>();
         sc.speeds = SpeedRange{std::get<0>(t), std::get<1>(t), std::get<2>(t)};
+        sc.speed_unit = SpeedUnit::parse(std::get<3>(t));
     }
     if (!modes.is_none()) sc.modes = modes.cast<int>();
     if (!harmonics.is_none()) sc.harmonics = harmonics.cast<std::vector<int>>();

@@ -143,9 +143,11 @@ py::class_<Scene> bind_system(py::module_& m) {
         .def_property_readonly("solver", [](const Scene& s) { return to_string(s.solver); })
         .def_property_readonly("speeds", [](const Scene& s) -> py::object {
             if (!s.speeds) return py::none();
-            const std::vector<double> p = s.speeds->points();
+            const std::vector<double> p = s.speed_points();
             return py::array_t<double>(static_cast<py::ssize_t>(p.size()), p.data());
-        });
+        }, "the [speeds] grid in rad/s (None without [speeds])")
+        .def_property_readonly("speed_unit", [](const Scene& s) { return s.speed_unit.name; },
+                               "[speeds] units: the unit results are given in unless a call names one");
 
     // What a model is: the CLI's `gyrokit model` table and, for an FE rotor, its drawing.
     m.def("model_summary", [](const Scene& scene) {

@@ -51,6 +51,7 @@ py::dict run(const GyroscopicSystem& s, const SpeedProfile& profile, double dura
     const SpeedUnit u = SpeedUnit::parse(unit);
     const LengthUnit length = LengthUnit::parse(length_unit);
     TransientOptions o;
+    o.unit = u;
     o.profile = profile;
     o.duration = duration;
     o.dt = dt;

@@ -75,11 +75,11 @@ expect "did you mean 'campbell'" campbel "$dir/ok.toml"
 expect "--speed '-3'" eig "$dir/ok.toml" --speed -3
 expect "table format 'xml'" eig "$dir/ok.toml" --speed 1 --format xml
 expect "--units" eig "$dir/ok.toml" --speed 1 --units furlong
-expect "eigen method 'lu'" eig "$dir/ok.toml" --speed 1 --method lu
+expect "--method 'lu': allowed: qz, qz-classic, state" eig "$dir/ok.toml" --speed 1 --method lu
 expect "harmonics" critical "$dir/ok.toml" --harmonics 0
 expect "--plot" campbell "$dir/ok.toml" --plot "$dir/x.pdf"
 expect "--tolerance" pervasive "$dir/ok.toml" --tolerance 2
-expect "--target-order '-1'" campbell "$dir/ok.toml" --solver sparse --target-order -1
+expect "--target-order -1: allowed" campbell "$dir/ok.toml" --solver sparse --target-order -1
 expect "--target-order 'fast'" critical "$dir/ok.toml" --target-order fast
 scene badorder "$good_model" '[analysis]
 target_order = -0.5'
@@ -88,7 +88,7 @@ scene badcut "$good_model" '[analysis]
 f_cut = 0'
 expect "f_cut" campbell "$dir/badcut.toml" --speeds 0:40:5
 expect "--f-cut 0: allowed: a finite frequency > 0" critical "$dir/ok.toml" --f-cut 0
-expect "--f-cut '-5'" stability "$dir/ok.toml" --f-cut -5
+expect "--f-cut -5: allowed" stability "$dir/ok.toml" --f-cut -5
 scene damped "$good_model
 d_G = 1.0"
 expect "needs an undamped system" critical "$dir/damped.toml" --speeds 0:40:41 --critical-method direct
@@ -260,11 +260,11 @@ expect "has no mass, stiffness, damping or coupling" eig "$dir/one.toml" --speed
 # Numbers, lists and names that once gave a wrong or unreadable answer: one line naming the value and range.
 td=$data/three_disk_rotor.toml
 expect "frequency 5e+299 rad/s: the dynamic stiffness K - w^2 M leaves double precision's range" \
-    frf "$td" --speed 100 --input y3 --frequencies 0:1e300:3
+    frf "$td" --units rad/s --speed 100 --input y3 --frequencies 0:1e300:3
 expect "--dofs 'y3,y3': 'y3' is listed twice" frf "$td" --speed 100 --input y3 --frequencies 1:1000:3 --dofs y3,y3
 expect "--dofs 'y3,y3': 'y3' is listed twice" transient "$td" --speed 100 --dofs y3,y3
 expect "--stiffness '1e-320:1:3': allowed:" critical-map "$td" --stiffness 1e-320:1:3
-expect "takes 6.28e+300 steps; allowed: at most --max-steps" transient "$td" --speed 100 --node 3 --dt 1e-300
+expect "takes 6.28e+300 steps; allowed: at most --max-steps" transient "$td" --units rad/s --speed 100 --node 3 --dt 1e-300
 expect "0 <= K < N <= 1000000" screen "$data/screen_centrifuge.toml" --shard 0/10000000
 expect "--gravity '0x10': allowed: a number from 0 to 1e+06" static "$td" --gravity 0x10
 expect "--gravity '1e-310': a subnormal number" static "$td" --gravity 1e-310

@@ -56,11 +56,11 @@ grep -q "the sparse window of 32 modes (as wide as its cost budget for this mode
 # The 336-DOF compressor: with the modes in range (the default) auto keeps the dense
 # continuation, which judges every mode in range (no window note); its seal makes mode 2
 # unstable at 803.71 rad/s, as the sparse window of 6 modes finds within the bounds.
-"$cli" stability "$data/compressor336.toml" > "$dir/c336" 2> "$dir/c336.err" ||
+"$cli" stability "$data/compressor336.toml" --units rad/s > "$dir/c336" 2> "$dir/c336.err" ||
     { echo "FAIL: compressor336 stability"; fail=1; }
 grep -q "sparse" "$dir/c336.err" && { echo "FAIL: compressor336 default is not the dense continuation"; fail=1; }
 grep -q "^ *803\.7[01][0-9]* .* 2  unstable" "$dir/c336" || { echo "FAIL: compressor336 threshold"; cat "$dir/c336"; fail=1; }
-"$cli" stability "$data/compressor336.toml" --solver sparse 2> /dev/null | grep -q "^ *803\.7[01][0-9]* .* 2  unstable" ||
+"$cli" stability "$data/compressor336.toml" --units rad/s --solver sparse 2> /dev/null | grep -q "^ *803\.7[01][0-9]* .* 2  unstable" ||
     { echo "FAIL: compressor336 sparse threshold"; fail=1; }
 
 # A dense diagram of fewer modes than DOFs still judges a divergent (real, positive)

@@ -16,6 +16,8 @@ mkdir -p "$w/ross"
 cp "$data/three_disk_rotor.toml" "$data/centrifuge.toml" "$data/screen_centrifuge.toml" "$data/fluid_N2.toml" \
    "$data/balancer_bild7.toml" "$data/sommerfeld_rotor.toml" "$w/"
 cp "$data"/ross_rotor_example/*.mtx "$data/ross_rotor_example/scene.toml" "$w/ross/"
+# Speeds below are written in rad/s, the unit of a scene whose [speeds] name none.
+sed -i 's/^units = "rpm"/units = "rad\/s"/' "$w/three_disk_rotor.toml"
 
 # How to run each command that writes files, quickly: its input first.
 declare -A recipe=(

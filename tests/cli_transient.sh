@@ -6,7 +6,10 @@ set -u
 cli=$1
 data=$(cd "${2:-$(dirname "$0")/../data}" && pwd)
 source "$(dirname "$0")/cli_lib.sh"
-rotor="$data/three_disk_rotor.toml"
+# The three-disk rotor with its [speeds] in rad/s: the speeds below are written in rad/s,
+# the unit a run takes and prints by default (the scene's [speeds] units).
+rotor="$dir/three_disk_rotor.toml"
+sed 's/^units = "rpm"/units = "rad\/s"/' "$data/three_disk_rotor.toml" > "$rotor"
 
 expect "--dt -1 s: allowed: (0, 0.001309] s" transient "$rotor" --speed 600 --dt -1
 expect "--dt 0 s: allowed: a finite time step > 0" transient "$rotor" --speed 600 --dt 0

@@ -90,6 +90,37 @@ def same(value, default):
         return False
 
 
+def rule_shown(r, table, helps, calls):
+    """A rule (no value): no command's help shows a default for its option, every Python keyword's default is
+    None, so that the library applies the rule (a command or call another row names for the same option or
+    keyword is that row's). The count of options and keywords checked."""
+    own_commands = {x["command"] for x in table if x is not r and x["option"] == r["option"] and x["command"]}
+    own_calls = {x["function"] for x in table if x is not r and x["keyword"] == r["keyword"] and x["function"]}
+    seen = 0
+    if r["option"]:
+        for name, text in helps.items():
+            if (r["command"] and name != r["command"]) or name in own_commands:
+                continue
+            shown = shown_default(text, r["option"])
+            if shown is False:
+                continue
+            if shown is not None:
+                fail(f"gyrokit {name} --help: {r['option']} shows {shown!r}; the table's rule: {r['meaning']!r}")
+            seen += 1
+    if r["keyword"]:
+        for name, f in calls.items():
+            if (r["function"] and name != r["function"]) or name in own_calls:
+                continue
+            p = inspect.signature(f).parameters.get(r["keyword"])
+            if p is None:
+                continue
+            if p.default is not None:
+                fail(f"gyrokit.{name}({r['keyword']}={p.default!r}): the table's rule is {r['meaning']!r}, "
+                     "so the default must be None")
+            seen += 1
+    return seen
+
+
 def main():
     cli, root = sys.argv[1], sys.argv[2]
     table = json.loads(run(cli, "defaults", "--format", "json"))
@@ -113,7 +144,8 @@ def main():
     checked = 0
     for r in table:
         if not r["value"]:
-            continue   # a rule, stated in the meaning
+            checked += rule_shown(r, table, helps, calls)
+            continue
         if r["option"]:
             seen = 0
             for name, text in helps.items():

@@ -86,7 +86,7 @@ TEST_CASE("continuation: the modes in range equal the full solve's within their 
           "[continuation][slow]") {
     int used = 0;
     for (const auto& [name, sc] : dense_rotor_scenes(2)) {
-        const std::vector<double> grid = thinned(sc.speeds->points(), 26);
+        const std::vector<double> grid = thinned(sc.speed_points(), 26);
         const double band = excitation_band(grid, sc.harmonics);
         if (!std::isfinite(band)) continue;
         const auto model = std::make_shared<const GyroscopicSystem>(sc.system);
@@ -123,7 +123,7 @@ TEST_CASE("three-disk rotor: default Campbell tracks the modes in range without 
           "critical speeds equal the full solve's",
           "[continuation]") {
     const Scene sc = load_scene(data + "/three_disk_rotor.toml");
-    const std::vector<double> grid = sc.speeds->points();
+    const std::vector<double> grid = sc.speed_points();
     SolverOptions so;
     so.modes = kModesInRange;
     const SolverChoice plan = choose_solver(sc.system, so);
@@ -251,7 +251,7 @@ TEST_CASE("the K lowest modes on the continuation: the same branches as a full s
     // compressor's continuation is checked by the modes-in-range case above).
     for (const auto& [where, sc] : dense_rotor_scenes(24)) {
         if (sc.dofs() > 200) continue;
-        const std::vector<double> grid = thinned(sc.speeds->points(), 26);
+        const std::vector<double> grid = thinned(sc.speed_points(), 26);
         if (grid.size() < 2) continue;
         CampbellOptions co;
         co.modes = 4;   // the reference: a full solve at every speed, its 4 lowest branches
@@ -466,7 +466,7 @@ TEST_CASE("f_cut sets the modes judged: the band as asked, every mode below it a
           "it named; from the scene key as from the option",
           "[continuation]") {
     Scene sc = load_scene(data + "/three_disk_rotor.toml");
-    const std::vector<double> grid = thinned(sc.speeds->points(), 31);
+    const std::vector<double> grid = thinned(sc.speed_points(), 31);
     StudyOptions so = study_options(sc);
     so.speeds = grid;
     CHECK_FALSE(so.f_cut);

@@ -325,7 +325,7 @@ TEST_CASE("sparse window following the 1x line finds every 1x critical speed wit
     // at each speed, the modes near the excitation line: every crossing of 1x in
     // 0..4000 rad/s must come out, as with the dense solver tracking all modes.
     const Scene sc = load_scene(data("fe_rotor.toml"));
-    const std::vector<double> speeds = sc.speeds->points();
+    const std::vector<double> speeds = sc.speed_points();
     CampbellOptions low;
     low.modes = 14;   // all branches below 4000 rad/s at every speed, and more
     const CampbellDiagram dense = campbell(dense_solver(sc.system), speeds, low);
@@ -356,7 +356,7 @@ TEST_CASE("critical speeds refined on two workers equal the serial ones", "[crit
     // The root searches are independent: on two threads (dense QZ) they must give
     // exactly the serial result, in worker processes (ARPACK) the same to 1e-10.
     const Scene cf = load_scene(data("centrifuge.toml"));
-    const CampbellDiagram dense = campbell(dense_solver(cf.system), cf.speeds->points());
+    const CampbellDiagram dense = campbell(dense_solver(cf.system), cf.speed_points());
     const auto d1 = critical_speeds(dense_solver(cf.system), dense, {1, 2}, 1);
     const auto d2 = critical_speeds(dense_solver(cf.system), dense, {1, 2}, 2);
     REQUIRE(d1.size() >= 5);

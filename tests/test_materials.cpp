@@ -98,9 +98,12 @@ TEST_CASE("[speeds] in rpm or Hz are converted to rad/s", "[materials][speeds]")
     const Scene hz = parse_scene(rotor("material = \"steel\"", disk, "[speeds]\nfrom = 0\nto = 100\ncount = 3\nunits = \"HZ\""),
                                  "hz.toml");
     REQUIRE(rpm.speeds);
-    CHECK(rpm.speeds->to == Approx(6000 * 2 * pi / 60).epsilon(1e-15));
-    CHECK(rpm.speeds->points()[1] == Approx(1000 * 2 * pi / 60).epsilon(1e-15));
-    CHECK(hz.speeds->to == Approx(200 * pi).epsilon(1e-15));
+    CHECK(rpm.speeds->to == 6000);   // as written, in the scene's unit
+    CHECK(rpm.speed_unit.name == "rpm");
+    CHECK(rpm.speed_points().back() == Approx(6000 * 2 * pi / 60).epsilon(1e-15));
+    CHECK(rpm.speed_points()[1] == Approx(1000 * 2 * pi / 60).epsilon(1e-15));
+    CHECK(hz.speed_unit.name == "Hz");
+    CHECK(hz.speed_points().back() == Approx(200 * pi).epsilon(1e-15));
 }
 
 TEST_CASE("materials, disk geometry and speed units: bad input names the key, value and what is allowed",

@@ -66,6 +66,8 @@ void check_same(const Scene& a, const Scene& b) {
         CHECK(a.speeds->from == b.speeds->from);
         CHECK(a.speeds->to == b.speeds->to);
         CHECK(a.speeds->count == b.speeds->count);
+        CHECK(a.speed_unit.name == b.speed_unit.name);
+        CHECK(a.speed_points() == b.speed_points());
     }
 }
 

@@ -18,7 +18,7 @@ void add_common(CLI::App* c, Common& o, bool with_speeds) {
     c->add_option("scene", o.scene, "scene file (TOML)")->required();
     c->add_option("--format", o.format, "output format: table, csv or json")->capture_default_str();
     c->add_option("--units", o.units, "unit of speeds and frequencies on the command line and in the output: "
-                                      "rad/s, Hz or rpm")->capture_default_str();
+                                      "rad/s, Hz or rpm; default: the scene's [speeds] units, else rad/s");
     c->add_option("--method", o.method, "eigensolver: qz (scaled QZ, default) or state (M^-1 state matrix)")
         ->capture_default_str();
     if (with_speeds) c->add_option("--speeds", o.speeds, "speed range FROM:TO:N (overrides the scene's [speeds])");
@@ -56,31 +56,26 @@ void add_cut_option(CLI::App* c, Common& o) {
 TableFormat parse_format(const Common& o) { return parse_table_format(o.format); }
 
 bool use_sparse(const Context& c) {
-    return resolve_solver_kind(c.scene.dofs(), c.solver.kind) == SolverKind::Sparse;
+    return resolve_solver_kind(c.scene.dofs(), c.study.solver.kind) == SolverKind::Sparse;
 }
 
 SolverChoice plan_solver(const Context& c, int modes) {
-    SolverOptions so = c.solver;
+    SolverOptions so = c.study.solver;
     so.modes = modes;
     SolverChoice choice = choose_solver(c.scene.system, so);
     for (const auto& n : choice.notes) std::cerr << "note: " << n << "\n";
     return choice;
 }
 
-StudyOptions study_of(const Context& c, int modes, const std::vector<int>& harmonics, bool quiet) {
-    StudyOptions s;
-    s.solver = c.solver;
-    s.solver.modes = modes;
-    s.speeds = c.speeds;
-    s.harmonics = harmonics;
-    s.f_cut = c.f_cut;
-    s.workers = c.jobs;
-    s.unit = c.unit;
+StudyOptions with_progress(StudyOptions s, bool quiet) {
     if (!quiet) s.progress = progress_bar("speeds");
     return s;
 }
 
-int wanted_modes(const Context& c, int modes) { return modes >= 0 ? modes : c.scene.modes; }
+std::optional<int> given_modes(int modes, int not_given) {
+    if (modes == not_given) return std::nullopt;
+    return modes;   // a negative count is the library's to refuse
+}
 
 void print_diagnostics(const Diagnostics& d, std::initializer_list<Diagnostic::Topic> skip) {
     for (const Diagnostic& x : d) {
@@ -118,34 +113,38 @@ void require_dense(const Context& c, const std::string& command) {
 
 Scene load_motion_scene(const Common& o) { return load_scene(o.scene, {}, o.motion); }
 
-Context open_scene(const Common& o, bool need_speeds) {
+RotorRequest request_of(const Common& o) {
+    RotorRequest r;
+    if (!o.units.empty()) r.unit = o.units;
+    // FROM:TO:N in the request's unit, converted by the library with every other value.
+    if (!o.speeds.empty()) r.speeds = SpeedRange::parse(o.speeds, "--speeds").points();
+    if (!o.solver.empty()) r.solver = o.solver;
+    r.method = o.method;
+    if (!o.target.empty()) r.target = parse_number(o.target, "--target");
+    if (!o.target_order.empty()) r.target_order = parse_number(o.target_order, "--target-order");
+    if (!o.f_cut.empty()) r.f_cut = parse_number(o.f_cut, "--f-cut");
+    r.lanczos = o.lanczos;
+    r.jobs = o.jobs;
+    return r;
+}
+
+Context open_scene(const Common& o, bool need_speeds) { return open_scene(o, request_of(o), need_speeds); }
+
+Context open_scene(const Common& o, const RotorRequest& request, bool need_speeds) {
     Context c;
     c.format = parse_format(o);
-    c.unit = SpeedUnit::parse(o.units);
-    const EigenMethod method = parse_eigen_method(o.method);
     check_plot_path(o.plot);
-    if (o.lanczos < 0) throw InputError(fmt::format("--lanczos {}: allowed: 0 (automatic) or a count", o.lanczos));
-    if (!o.solver.empty() && o.solver != "auto" && o.solver != "dense" && o.solver != "sparse")
-        throw InputError("--solver '" + o.solver + "': allowed: auto, dense, sparse");
-    std::vector<std::string> notes;
-    c.jobs = worker_count(o.jobs, &notes);
-    for (const auto& n : notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
+    if (request.unit) SpeedUnit::parse(*request.unit);   // a wrong unit before the scene is read
     c.scene = load_motion_scene(o);
-    c.solver = c.scene.solver_options();
-    c.solver.eig.method = method;
-    c.solver.lanczos_vectors = o.lanczos;
-    if (!o.solver.empty()) c.solver.kind = parse_solver_kind(o.solver);
-    if (!o.target.empty()) c.solver.target = parse_speed(o.target, "--target", c.unit);
-    if (!o.target_order.empty()) c.solver.target_order = parse_order(o.target_order, "--target-order");
-    c.f_cut = c.scene.f_cut;
-    if (!o.f_cut.empty()) c.f_cut = parse_speed(o.f_cut, "--f-cut", c.unit);
-    if (!o.speeds.empty()) {
-        c.speeds = SpeedRange::parse(o.speeds, "--speeds", c.unit.factor).points();
-    } else if (c.scene.speeds) {
-        c.speeds = c.scene.speeds->points();
-    } else if (need_speeds) {
-        throw InputError(o.scene + ": no speed range; give --speeds FROM:TO:N or a [speeds] table in the scene");
-    }
+    c.request = request;
+    std::vector<std::string> notes;
+    c.study = resolve_request(c.scene, request, need_speeds ? SpeedsNeeded::Yes : SpeedsNeeded::No, &notes);
+    // The command line's own process may run a sweep's solvers in worker processes
+    // where they are not thread-safe (a library caller's process is not forked).
+    c.study.workers.kind = WorkerKind::Auto;
+    for (const auto& n : notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
+    c.unit = c.study.unit;
+    c.speeds = c.study.speeds;
     return c;
 }
 

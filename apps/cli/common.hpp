@@ -10,6 +10,7 @@
 #include <gyrokit/io/scene.hpp>
 #include <gyrokit/io/table.hpp>
 #include <gyrokit/study/defaults.hpp>
+#include <gyrokit/study/request.hpp>
 #include <gyrokit/study/rotor_study.hpp>
 
 #include <CLI/CLI.hpp>
@@ -37,7 +38,7 @@ std::string flag_words(const std::string& field);
 
 // Options every scene command shares.
 struct Common {
-    std::string scene, format = "table", units = defaults::unit, speeds, method = defaults::method, plot;
+    std::string scene, format = "table", units, speeds, method = defaults::method, plot;
     // Solver choice (eig, campbell, critical, stability, response).
     std::string solver, target, target_order;
     std::string f_cut;    // campbell, critical, stability, response: the modes judged
@@ -58,23 +59,24 @@ void add_cut_option(CLI::App* c, Common& o);
 struct Context {
     Scene scene;
     TableFormat format;
-    SpeedUnit unit;
-    std::vector<double> speeds;
-    // The scene's [analysis] solver options with --solver, --target,
-    // --target-order, --lanczos and --method in their place.
-    SolverOptions solver;
-    std::optional<double> f_cut;   // rad/s: the scene's f_cut or --f-cut
-    int jobs = 1;
+    // What the command line gave and the study it asks for (resolve_request: the
+    // scene's [speeds] and [analysis] where an option is not given, then the defaults).
+    RotorRequest request;
+    StudyOptions study;
+    SpeedUnit unit;               // study.unit: the scene's [speeds] units unless --units
+    std::vector<double> speeds;   // study.speeds (rad/s)
 };
 
-// The library's solver choice (choose_solver) for `modes` modes (0: all, or the
-// sparse default); its notes go to stderr.
+// The request of the options every scene command shares (--units, --speeds, the
+// solver options, --f-cut, --jobs), values as written (in --units where a unit applies).
+RotorRequest request_of(const Common& o);
+// --modes as given (a count >= 0); `not_given` (the option's initial value): unset.
+std::optional<int> given_modes(int modes, int not_given = -1);
+// The library's solver choice (choose_solver) for the study with `modes` modes
+// (0: all, or the sparse default); its notes go to stderr.
 SolverChoice plan_solver(const Context& c, int modes);
-// The study of a command: the scene's options with the flags in their place,
-// `modes` as wanted_modes gives it, a progress bar unless `quiet`.
-StudyOptions study_of(const Context& c, int modes, const std::vector<int>& harmonics, bool quiet = false);
-// --modes given (>= 0), else the scene's [analysis] modes.
-int wanted_modes(const Context& c, int modes);
+// The study with a progress bar unless `quiet`.
+StudyOptions with_progress(StudyOptions s, bool quiet = false);
 // Diagnostics on stderr ("note: ", "warning: "), option fields as flags; topics in
 // `skip` are left out (the output already shows them).
 void print_diagnostics(const Diagnostics& d, std::initializer_list<Diagnostic::Topic> skip = {});
@@ -85,11 +87,15 @@ bool use_sparse(const Context& c);
 // Throws InputError naming `command` when the model is above the dense limit.
 void require_dense(const Context& c, const std::string& command);
 
-// Validates the options (before any work) and loads the scene.
+// Validates the options (before any work), loads the scene and resolves `request`
+// (request_of(o) with the command's own fields, e.g. --modes, --harmonics) on it.
+Context open_scene(const Common& o, const RotorRequest& request, bool need_speeds);
 Context open_scene(const Common& o, bool need_speeds);
 TableFormat parse_format(const Common& o);
 
 double parse_speed(const std::string& text, const std::string& option, const SpeedUnit& u);
+// A number spelled out completely (its range is the library's to check).
+double parse_number(const std::string& text, const std::string& option);
 // A dimensionless multiple of the speed (>= 0), e.g. --target-order.
 double parse_order(const std::string& text, const std::string& option);
 // Whole numbers in [1, 1000] separated by commas (harmonics, mode numbers); empty: `fallback`.

@@ -52,7 +52,8 @@ std::vector<Command> add_critical_map_commands(CLI::App& app) {
                                                    "(forward, backward, rigid-support limit, the bearings' curves)");
     cmd->add_option("scene", o->common.scene, "scene file (TOML)")->required();
     cmd->add_option("--format", o->common.format, "output format: table, csv or json")->capture_default_str();
-    cmd->add_option("--units", o->common.units, "unit of the critical speeds: rad/s, Hz or rpm")->capture_default_str();
+    cmd->add_option("--units", o->common.units, "unit of the critical speeds: rad/s, Hz or rpm; default: the scene's "
+                                                "[speeds] units, else rad/s");
     cmd->add_option("--stiffness", o->stiffness, fmt::format("bearing stiffness FROM:TO:N, log spaced (N/m); default: {} to {} "
                                                              "times the shaft's 48 E I / L^3, {} values",
                                                              defaults::critical_map_stiffness_from,
@@ -65,12 +66,14 @@ std::vector<Command> add_critical_map_commands(CLI::App& app) {
     add_output_option(cmd, "--plot", o->common.plot, "draw the map into FILE.svg|.png");
     return {{cmd, [o](std::ostream& out) {
                  const TableFormat format = parse_format(o->common);
-                 const SpeedUnit unit = SpeedUnit::parse(o->common.units);
+                 if (!o->common.units.empty()) SpeedUnit::parse(o->common.units);   // before any work
                  check_plot_path(o->common.plot);
                  CriticalSpeedMapOptions opt;
                  if (!o->stiffness.empty()) opt.stiffness = parse_stiffness(o->stiffness);
                  opt.modes = o->modes;
                  const Scene sc = load_scene(o->common.scene);
+                 const SpeedUnit unit = resolve_unit(sc, o->common.units.empty() ? std::nullopt
+                                                                                 : std::optional<std::string>(o->common.units));
                  const CriticalSpeedMap map = critical_map_study(sc, opt);
                  write_result(out, {critical_map_table(map, unit), bearing_curve_table(map, unit)}, format, o->table);
                  plot_if(o->common.plot, critical_map_figure(map, unit, sc.title));

@@ -60,6 +60,11 @@ double parse_speed(const std::string& text, const std::string& option, const Spe
     throw InputError(fmt::format("{} '{}': allowed: a finite number >= 0 ({})", option, text, u.name));
 }
 
+double parse_number(const std::string& text, const std::string& option) {
+    if (const auto v = decimal_number(text)) return *v;
+    throw InputError(fmt::format("{} '{}': allowed: a number", option, text));
+}
+
 double parse_order(const std::string& text, const std::string& option) {
     if (const auto v = nonnegative(text)) return *v;
     throw InputError(fmt::format("{} '{}': allowed: a finite number >= 0 (a multiple of the speed)", option, text));

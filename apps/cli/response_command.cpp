@@ -109,7 +109,9 @@ std::vector<Command> add_response_commands(CLI::App& app) {
                    "is no steady state)");
     cmds.push_back({resp, [o](std::ostream& out) {
         if (o->polar && o->common.plot.empty()) throw InputError("--polar: only together with --plot FILE");
-        const Context c = open_scene(o->common, true);
+        RotorRequest r = request_of(o->common);
+        r.modes = given_modes(o->modes);
+        const Context c = open_scene(o->common, r, true);
         const Scene& sc = c.scene;
         if (!o->probes.empty() && !(o->dofs.empty() && o->nodes.empty() && o->at.empty()))
             throw InputError("--probes and --dofs, --nodes, --at: allowed: probes alone");
@@ -123,7 +125,7 @@ std::vector<Command> add_response_commands(CLI::App& app) {
         rq.peaks = summary || o->extrema || (!o->common.plot.empty() && rq.outputs.empty());
         rq.antiresonances = o->extrema;
         const ResponseStudy st =
-            response_study(sc.system, study_of(c, wanted_modes(c, o->modes), c.scene.harmonics, true), rq);
+            response_study(sc.system, c.study, rq);
         print_diagnostics(st.diagnostics);
         if (o->extrema)
             write_table(out, extrema_table(st.names, st.units, st.extrema, c.unit), c.format);

@@ -21,6 +21,13 @@ struct Options {
     bool rigid_body = false;
 };
 
+// The shared options with this command's --modes.
+RotorRequest request(const Options& o) {
+    RotorRequest r = request_of(o.common);
+    r.modes = given_modes(o.modes);
+    return r;
+}
+
 // eig: every eigenvalue at one speed.
 Command eig_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     auto* eig = app.add_subcommand("eig", "the eigenvalues at one speed (all, or the K lowest with --modes K)");
@@ -32,10 +39,9 @@ Command eig_command(CLI::App& app, const std::shared_ptr<Options>& o) {
                                           "(sparse: 6)");
     eig->add_flag("--rigid-body", o->rigid_body, "list the rigid-body eigenvalues (lambda = 0) after the modes");
     return {eig, [o](std::ostream& out) {
-        const Context c = open_scene(o->common, false);
+        const Context c = open_scene(o->common, request(*o), false);
         const double w = parse_speed(o->speed, "--speed", c.unit);
-        SolverOptions so = c.solver;
-        so.modes = wanted_modes(c, o->modes);
+        const SolverOptions& so = c.study.solver;
         const SpectrumStudy st = spectrum_study(c.scene.system, w, so);
         // With --rigid-body the table lists them: no note.
         if (o->rigid_body)
@@ -81,13 +87,12 @@ Command modes_command(CLI::App& app, const std::shared_ptr<Options>& o) {
         ->capture_default_str();
     add_output_option(modes, "--plot", o->common.plot, "draw the shapes along the axis (or the orbits) into FILE.svg|.png");
     return {modes, [o](std::ostream& out) {
-        const Context c = open_scene(o->common, false);
+        const Context c = open_scene(o->common, request(*o), false);
         if (o->per != "node" && o->per != "dof")
             throw InputError("--per '" + o->per + "': allowed: node, dof");
         const double w = o->speed.empty() ? 0.0 : parse_speed(o->speed, "--speed", c.unit);
         note_extrapolation(c, w);
-        SolverOptions so = c.solver;
-        so.modes = wanted_modes(c, o->modes);
+        const SolverOptions& so = c.study.solver;
         std::vector<std::string> notes;
         std::vector<ModeShape> shapes = mode_shapes(c.scene.system, w, so, &notes);
         for (const auto& n : notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";

@@ -21,6 +21,14 @@ struct Options {
     bool rows = false;
 };
 
+// The shared options with this command's --modes and --harmonics.
+RotorRequest request(const Options& o) {
+    RotorRequest r = request_of(o.common);
+    r.modes = given_modes(o.modes);
+    if (!o.harmonics.empty()) r.harmonics = parse_harmonics(o.harmonics, {});
+    return r;
+}
+
 // campbell: the tracked diagram; on the first screen a summary with the critical speeds.
 Command campbell_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     auto* camp = app.add_subcommand("campbell", "modes tracked over speed (Campbell diagram)");
@@ -35,9 +43,9 @@ Command campbell_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     camp->add_option("--harmonics", o->harmonics, "harmonic lines drawn, e.g. 1,2 (default: the scene's, else 1)");
     camp->add_flag("--rows", o->rows, "table format: every row of the diagram instead of the summary");
     return {camp, [o](std::ostream& out) {
-        const Context c = open_scene(o->common, true);
-        const auto h = parse_harmonics(o->harmonics, c.scene.harmonics);
-        const StudyOptions so = study_of(c, wanted_modes(c, o->modes), h);
+        const Context c = open_scene(o->common, request(*o), true);
+        const StudyOptions so = with_progress(c.study);
+        const std::vector<int>& h = so.harmonics;
         const CampbellStudy st = campbell_study(c.scene.system, so);
         const CampbellDiagram& cd = st.diagram;
         // The first screen (table format): a summary and the critical speeds; the rows on request.
@@ -77,8 +85,8 @@ Command critical_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     return {crit, [o](std::ostream& out) {
         if (o->critical_method != "branches" && o->critical_method != "direct")
             throw InputError("--critical-method '" + o->critical_method + "': allowed: branches, direct");
-        const Context c = open_scene(o->common, true);
-        const auto h = parse_harmonics(o->harmonics, c.scene.harmonics);
+        const Context c = open_scene(o->common, request(*o), true);
+        const std::vector<int>& h = c.study.harmonics;
         std::vector<CriticalSpeed> cs;
         if (o->critical_method == "direct") {
             require_dense(c, "critical --critical-method direct");
@@ -89,7 +97,7 @@ Command critical_command(CLI::App& app, const std::shared_ptr<Options>& o) {
             std::sort(cs.begin(), cs.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
             set_amplification_factors(cs, c.scene.system);
         } else {
-            const CriticalSpeedStudy st = critical_speed_study(c.scene.system, study_of(c, wanted_modes(c, o->modes), h));
+            const CriticalSpeedStudy st = critical_speed_study(c.scene.system, with_progress(c.study));
             cs = st.critical;
             print_diagnostics(st.tracked.diagnostics);
         }
@@ -111,9 +119,8 @@ Command stability_command(CLI::App& app, const std::shared_ptr<Options>& o) {
     stab->add_option("--modes", o->modes, "number of modes considered (0 = all; sparse: default 6); default: the scene's, else the "
                                           "modes in range");
     return {stab, [o](std::ostream& out) {
-        const Context c = open_scene(o->common, true);
-        const StabilityStudy st =
-            stability_study(c.scene.system, study_of(c, wanted_modes(c, o->modes), c.scene.harmonics));
+        const Context c = open_scene(o->common, request(*o), true);
+        const StabilityStudy st = stability_study(c.scene.system, with_progress(c.study));
         write_table(out, stability_table(st.changes, c.unit), c.format);
         print_diagnostics(st.tracked.diagnostics);
     }};
@@ -132,12 +139,12 @@ Command pervasive_command(CLI::App& app, const std::shared_ptr<Options>& o) {
                                                   "modes in range")
         ->check(CLI::Range(0, 100000000));
     return {perv, [o](std::ostream& out) {
-        const Context c = open_scene(o->common, true);
+        const Context c = open_scene(o->common, request(*o), true);
         PervasiveOptions po;
         po.tolerance = o->tolerance;
-        po.modes = wanted_modes(c, o->modes);
-        po.solver = c.solver;
-        po.threads = c.jobs;
+        po.modes = c.study.solver.modes;
+        po.solver = c.study.solver;
+        po.threads = c.study.workers.count;
         if (use_sparse(c) && po.modes == 0)
             std::cerr << "note: the sparse solver checks the " << kDefaultSparseModes
                       << " modes nearest the target; set --modes K for another number\n";

@@ -50,12 +50,12 @@ SpeedProfile profile_of(const Options& o, const SpeedUnit& u) {
         throw InputError(fmt::format("--run-up '{}': allowed: {}", o.run_up, allowed));
     if (o.acceleration.empty())
         throw InputError(fmt::format("--run-up needs --acceleration A ({}; > 0 for a run-up, < 0 for a run-down)",
-                                     per_second_unit(u)));
+                                     u.per_second()));
     const std::string sign = to > from ? "> 0" : "< 0";
-    const double a = number(o.acceleration, "--acceleration", fmt::format("a finite number {} ({})", sign, per_second_unit(u)));
+    const double a = number(o.acceleration, "--acceleration", fmt::format("a finite number {} ({})", sign, u.per_second()));
     if ((to - from) * a <= 0.0)
         throw InputError(fmt::format("--acceleration {} {} with a {} from {} to {} {}: allowed: a finite number {}",
-                                     o.acceleration, per_second_unit(u), to > from ? "run-up" : "run-down", from, to, u.name,
+                                     o.acceleration, u.per_second(), to > from ? "run-up" : "run-down", from, to, u.name,
                                      sign));
     return {from / u.factor, to / u.factor, a / u.factor};
 }
@@ -94,6 +94,7 @@ void run(const Options& o, std::ostream& out) {
     const GyroscopicSystem& sys = c.scene.system;
     TransientOptions opt;
     opt.profile = profile_of(o, c.unit);
+    opt.unit = c.unit;
     // 0 means the default to the library: given, it is refused here.
     if (!o.duration.empty() && (opt.duration = number(o.duration, "--duration", "a finite time > 0 (s)")) == 0.0)
         throw InputError("--duration 0 s: allowed: a finite time > 0 (s); none: the ramp or 100 revolutions");

@@ -48,54 +48,16 @@ def load_scene(path, overrides=None, motion=None) -> Scene:
     return _core.load_scene(str(path), dict(overrides or {}), motion or "")
 
 
-_IN_RANGE = -1   # modes not given: those in the range the speeds and harmonics excite
-
-
-def _harmonics(model, harmonics):
-    if harmonics is None:
-        harmonics = model.harmonics if isinstance(model, Scene) else [1]
-    return [int(h) for h in harmonics]
-
-
-def _options(model, solver, modes, target, target_order):
-    """The system and the solver options: a scene's [analysis] values where a keyword is None."""
-    if modes is not None and (int(modes) != modes or modes < 0):
-        raise InputError(f"modes = {modes}: allowed: a whole number >= 0 (0: all); None: the modes in range")
-    if isinstance(model, Scene):
-        system = model.system
-        solver = model.solver if solver is None else solver
-        modes = model.modes if modes is None else modes
-        target = model.target if target is None else target
-        target_order = model.target_order if target_order is None else target_order
-    elif isinstance(model, System):
-        system = model
-    else:
-        raise InputError(f"expected a gyrokit.System or gyrokit.Scene, got {type(model).__name__}")
-    # None (and a scene without [analysis] modes): the modes the speeds and harmonics excite.
-    return system, dict(solver=solver or "auto", modes=_IN_RANGE if modes is None else int(modes), target=target,
-                        target_order=float(target_order or 0.0))
-
-
-def _f_cut(model, f_cut, unit):
-    """The cut-off of the judged modes in rad/s: the given one (in `unit`), else the scene's f_cut, else None
-    (the library's default: 1.5 times the highest excitation)."""
-    if f_cut is None:
-        return model.f_cut if isinstance(model, Scene) else None
-    return float(f_cut) / _factor(unit)
-
-
-def _speeds(model, speeds, unit=_D.UNIT):
-    """Speeds in rad/s: the given ones (in `unit`) or the scene's [speeds] (rad/s)."""
-    if speeds is None:
-        speeds = model.speeds if isinstance(model, Scene) else None
-        if speeds is None:
-            raise InputError("speeds: none given and the scene has no [speeds]; give speeds=np.linspace(...)")
-    else:
-        speeds = _np.asarray(speeds, dtype=float) / _factor(unit)
-    w = _np.asarray(speeds, dtype=float).ravel()
-    if w.size == 0 or not _np.all(_np.isfinite(w)) or _np.any(w < 0):
-        raise InputError(f"speeds: allowed: one or more finite speeds >= 0 ({unit})")
-    return w.tolist()
+def _request(**given):
+    """The call's keywords as the library's request (resolve_request): None is "not given", so that the scene's
+    [speeds] and [analysis] and then the table of defaults decide, as for the CLI. Speeds as a flat list."""
+    speeds = given.get("speeds")
+    if speeds is not None:
+        try:
+            given["speeds"] = _np.asarray(speeds, dtype=float).ravel().tolist()
+        except (TypeError, ValueError):
+            raise InputError(f"speeds = {speeds!r}: allowed: numbers (a list or an array)") from None
+    return given
 
 
 def _title(model):
@@ -127,10 +89,10 @@ class EigResult(_Result):
     """Eigenvalues at one speed, one per conjugate pair (Im >= 0) as the CLI prints, by frequency. `speed` and
     `frequencies` in `unit`; eigenvalues (and their real parts) in 1/s, as the CLI's re_1_s, im_rad_s."""
 
-    def __init__(self, d, speed, unit=_D.UNIT):
-        f = _factor(unit)
-        self.unit = unit
-        self.speed = speed * f
+    def __init__(self, d):
+        self.unit = d["unit"]
+        f = _factor(self.unit)
+        self.speed = d["speed"] * f
         self.eigenvalues = d["eigenvalues"]
         self.frequencies = self.eigenvalues.imag * f
         self.damping_ratios = _zeta(self.eigenvalues)
@@ -156,9 +118,9 @@ class CampbellResult(_Result):
     """Tracked modes over speed: eigenvalues[i, b] of branch b at speeds[i] (NaN where b has no point).
     `speeds` and `frequencies` in `unit`; eigenvalues in 1/s; damping_ratios and log_decrements alike."""
 
-    def __init__(self, d, unit=_D.UNIT):
-        f = _factor(unit)
-        self.unit = unit
+    def __init__(self, d):
+        self.unit = d["unit"]
+        f = _factor(self.unit)
         self.speeds = d["speeds"] * f
         self.eigenvalues = d["eigenvalues"]
         self.frequencies = self.eigenvalues.imag * f
@@ -203,9 +165,9 @@ class CriticalSpeeds(_Result):
     API 684 amplification factor (half-power on the unbalance response, else 1/(2 zeta)); api684_critical
     is False for a heavily damped crossing (amplification factor < 2.5). Speeds in `unit`."""
 
-    def __init__(self, d, unit=_D.UNIT):
-        self.unit = unit
-        self.speeds = d["speeds"] * _factor(unit)
+    def __init__(self, d):
+        self.unit = d["unit"]
+        self.speeds = d["speeds"] * _factor(self.unit)
         self.harmonic = d["harmonic"]
         self.branch = d["branch"]
         self.whirl = list(d["whirl"])
@@ -231,9 +193,9 @@ class StabilityChanges(_Result):
     """Speeds where a branch becomes unstable (or stable again), refined by root finding;
     bounds: |speed - exact threshold| <= bound. Both in `unit`."""
 
-    def __init__(self, d, unit=_D.UNIT):
-        f = _factor(unit)
-        self.unit = unit
+    def __init__(self, d):
+        self.unit = d["unit"]
+        f = _factor(self.unit)
         self.speeds = d["speeds"] * f
         self.bounds = d["bounds"] * f
         self.branch = d["branch"]
@@ -248,11 +210,12 @@ class StabilityChanges(_Result):
 
 
 def eig(model, speed, *, solver=None, modes=None, target=None, target_order=None, method=_D.METHOD,
-        lanczos=_D.LANCZOS, unit=_D.UNIT) -> EigResult:
-    """Eigenvalues at one speed (in `unit`: rad/s, Hz, rpm). solver: "auto" | "dense" | "sparse"; modes: 0 = all."""
-    system, o = _options(model, solver, modes, target, target_order)
-    w = float(speed) / _factor(unit)
-    return EigResult(_core.eig(system, w, method=method, lanczos=int(lanczos), unit=unit, **o), w, unit)
+        lanczos=_D.LANCZOS, unit=None) -> EigResult:
+    """Eigenvalues at one speed (in `unit`: rad/s, Hz, rpm; default the scene's [speeds] units, else rad/s).
+    solver: "auto" | "dense" | "sparse"; modes: K the K lowest (sparse: nearest the target), 0 = all."""
+    return EigResult(_core.eig(model, float(speed), _request(solver=solver, modes=modes, target=target,
+                                                              target_order=target_order, method=method,
+                                                              lanczos=lanczos, unit=unit)))
 
 
 class ModeShapes(_Result):
@@ -261,10 +224,11 @@ class ModeShapes(_Result):
     major/minor in the pair's unit, angle and phase in rad, whirl), as `gyrokit modes` prints.
     `speed` and `frequencies` in `unit`."""
 
-    def __init__(self, d, speed, dof_names, unit=_D.UNIT):
-        f = _factor(unit)
-        self.unit = unit
-        self.speed = speed * f
+    def __init__(self, d):
+        self.unit = d["unit"]
+        f = _factor(self.unit)
+        dof_names = d["dof_names"]
+        self.speed = d["speed"] * f
         self.eigenvalues = d["eigenvalues"]
         self.frequencies = self.eigenvalues.imag * f
         self.damping_ratios = _zeta(self.eigenvalues)
@@ -313,50 +277,42 @@ class ModeShapes(_Result):
 
 
 def modes(model, speed, *, solver=None, modes=None, target=None, target_order=None, method=_D.METHOD,
-          lanczos=_D.LANCZOS, unit=_D.UNIT) -> ModeShapes:
-    """Mode shapes at one speed (in `unit`): the `modes` lowest (None: the scene's, 0: all)."""
-    system, o = _options(model, solver, modes, target, target_order)
-    w = float(speed) / _factor(unit)
-    length = _length(model)
-    return ModeShapes(_core.mode_shapes(system, w, method=method, lanczos=int(lanczos), unit=unit,
-                                        title=_title(model), length_unit=length,
-                                        scene=model if isinstance(model, Scene) else None, **o),
-                      w, system.dof_names, unit)
+          lanczos=_D.LANCZOS, unit=None) -> ModeShapes:
+    """Mode shapes at one speed (in `unit`; default the scene's [speeds] units, else rad/s): the `modes` lowest
+    (None: the scene's, 0: all)."""
+    return ModeShapes(_core.mode_shapes(model, float(speed), _request(solver=solver, modes=modes, target=target,
+                                                                       target_order=target_order, method=method,
+                                                                       lanczos=lanczos, unit=unit)))
 
 
 def campbell(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
-             method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=_D.UNIT, f_cut=None) -> CampbellResult:
+             method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=None, f_cut=None) -> CampbellResult:
     """Campbell diagram over `speeds` (in `unit`; default: the scene's [speeds]); jobs threads (0 = all cores).
     modes None (and no scene value): the modes in the band the speeds and harmonics excite; modes K: the K
     lowest branches shown, every mode up to f_cut (in `unit`; default: the scene's, else 1.5 times the
     highest excitation) tracked and judged."""
-    system, o = _options(model, solver, modes, target, target_order)
-    return CampbellResult(_core.campbell(system, _speeds(model, speeds, unit), _harmonics(model, harmonics),
-                                         method=method, lanczos=int(lanczos), jobs=int(jobs), unit=unit,
-                                         title=_title(model), f_cut=_f_cut(model, f_cut, unit), **o), unit)
+    return CampbellResult(_core.campbell(model, _request(speeds=speeds, harmonics=harmonics, solver=solver, modes=modes,
+                                                 target=target, target_order=target_order, method=method,
+                                                 lanczos=lanczos, jobs=jobs, unit=unit, f_cut=f_cut)))
 
 
 def critical_speeds(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
-                    method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=_D.UNIT, f_cut=None) -> CriticalSpeeds:
+                    method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=None, f_cut=None) -> CriticalSpeeds:
     """Critical speeds (in `unit`) where tracked branches cross k * speed, k in `harmonics` (default: the scene's,
     or 1); `speeds` in `unit` too."""
-    system, o = _options(model, solver, modes, target, target_order)
-    return CriticalSpeeds(_core.critical_speeds(system, _speeds(model, speeds, unit), _harmonics(model, harmonics),
-                                                method=method, lanczos=int(lanczos), jobs=int(jobs), unit=unit,
-                                                f_cut=_f_cut(model, f_cut, unit), **o),
-                          unit)
+    return CriticalSpeeds(_core.critical_speeds(model, _request(speeds=speeds, harmonics=harmonics, solver=solver, modes=modes,
+                                                 target=target, target_order=target_order, method=method,
+                                                 lanczos=lanczos, jobs=jobs, unit=unit, f_cut=f_cut)))
 
 
 def stability(model, speeds=None, *, harmonics=None, solver=None, modes=None, target=None, target_order=None,
-               method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=_D.UNIT, f_cut=None) -> StabilityChanges:
+               method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=None, f_cut=None) -> StabilityChanges:
     """Speeds where a mode becomes unstable or stable again (Re lambda beyond its error bound), over the
     modes in range (modes None; with modes = K as well: K only says how many branches a diagram shows; 0:
     every mode); speeds in `unit`."""
-    system, o = _options(model, solver, modes, target, target_order)
-    return StabilityChanges(_core.stability(system, _speeds(model, speeds, unit), _harmonics(model, harmonics),
-                                            method=method, lanczos=int(lanczos), jobs=int(jobs), unit=unit,
-                                            f_cut=_f_cut(model, f_cut, unit), **o),
-                            unit)
+    return StabilityChanges(_core.stability(model, _request(speeds=speeds, harmonics=harmonics, solver=solver, modes=modes,
+                                                 target=target, target_order=target_order, method=method,
+                                                 lanczos=lanczos, jobs=jobs, unit=unit, f_cut=f_cut)))
 
 
 class ScreenResult(_Result):
@@ -539,15 +495,15 @@ def _probes(probes):
     return out
 
 
-def frf(model, speed, input, frequencies, *, dofs=None, probes=None, unit=_D.UNIT, solver=None) -> FrequencyResponse:
+def frf(model, speed, input, frequencies, *, dofs=None, probes=None, unit=None, solver=None) -> FrequencyResponse:
     """Frequency response functions of `model` (a System or Scene) spinning at `speed`: the response of `dofs`
     (names; default: the input itself, the driving point) or of displacement `probes` [(node, angle), ...] (x cos +
     y sin, degrees from +x towards +y; outputs named "NODE@ANGLE") to a unit harmonic force at DOF `input` (a name:
-    "y12"; a moment: "tx12"), at `frequencies`; `speed` and `frequencies` in `unit` (rad/s, Hz, rpm). Dense or
-    sparse LU by `solver` (auto: sparse above 200 DOFs). See docs/frf.md."""
+    "y12"; a moment: "tx12"), at `frequencies`; `speed` and `frequencies` in `unit` (rad/s, Hz, rpm; default the
+    scene's [speeds] units, else rad/s). Dense or sparse LU by `solver` (auto: sparse above 200 DOFs). See docs/frf.md."""
     if dofs is not None and probes is not None:
         raise InputError("dofs and probes: allowed: one of them")
-    _factor(unit)
+    unit = _core.resolve_unit(model, unit)
     system = model.system if isinstance(model, Scene) else model
     if not isinstance(system, System):
         raise InputError(f"expected a gyrokit.System or gyrokit.Scene, got {type(model).__name__}")
@@ -612,13 +568,14 @@ class CriticalSpeedMap(_Result):
         return self._frame(rows)
 
 
-def critical_speed_map(model, *, stiffness=None, modes=_D.MAP_MODES, unit=_D.UNIT) -> CriticalSpeedMap:
+def critical_speed_map(model, *, stiffness=None, modes=_D.MAP_MODES, unit=None) -> CriticalSpeedMap:
     """The undamped critical speed map of an FE rotor scene: the lowest `modes` critical speeds of each whirl at
     each bearing stiffness (N/m, increasing; default: 1e-2 to 1e3 times the shaft's 48 E I / L^3, 31 values),
-    with the rigid-support limit and the bearings' own curves; speeds in `unit` (rad/s, Hz, rpm)."""
+    with the rigid-support limit and the bearings' own curves; speeds in `unit` (rad/s, Hz, rpm; default the
+    scene's [speeds] units, else rad/s)."""
     if not isinstance(model, Scene):
         raise InputError(f"critical_speed_map: expected a gyrokit.Scene of an FE rotor, got {type(model).__name__}")
-    _factor(unit)
+    unit = _core.resolve_unit(model, unit)
     return CriticalSpeedMap(_core.critical_speed_map(model, [float(k) for k in (stiffness or [])], int(modes), unit),
                             unit)
 
@@ -663,9 +620,9 @@ class PervasiveLosses(_Result):
     """Speeds where a damping set (a component alone, or "total") does not reach a mode (Hautus test);
     speeds and frequencies in `unit`."""
 
-    def __init__(self, d, unit=_D.UNIT):
-        f = _factor(unit)
-        self.unit = unit
+    def __init__(self, d):
+        self.unit = d["unit"]
+        f = _factor(self.unit)
         self.checked = list(d["checked"])
         self.damping = list(d["damping"])
         self.speeds = d["speeds"] * f
@@ -684,7 +641,7 @@ class Response(_Result):
     """Steady unbalance response: complex amplitudes Z[i, k] of DOF dofs[k] at speeds[i] (in `unit`); amplitude,
     phase (deg). plot(): the CLI's Bode plot (amplitude per unit, phase); plot_polar(): its polar plot."""
 
-    def __init__(self, speeds, dofs, Z, d=None, unit=_D.UNIT):
+    def __init__(self, speeds, dofs, Z, d=None, unit="rad/s"):
         self.unit = unit
         self.notes = list(d["notes"]) if d else []
         self.warnings = list(d["warnings"]) if d else []
@@ -708,17 +665,19 @@ class Response(_Result):
 
 
 def pervasive(model, speeds=None, *, tolerance=_D.TOLERANCE, solver=None, modes=None, target=None, target_order=None,
-              method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=_D.UNIT) -> PervasiveLosses:
-    """Hautus pervasive-damping check of each damping component alone and of the total damping; speeds in `unit`."""
-    system, o = _options(model, solver, modes, target, target_order)
-    return PervasiveLosses(_core.pervasive(system, _speeds(model, speeds, unit), float(tolerance), method=method,
-                                           lanczos=int(lanczos), jobs=int(jobs), unit=unit, **o), unit)
+              method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=None) -> PervasiveLosses:
+    """Hautus pervasive-damping check of each damping component alone and of the total damping; speeds in `unit`
+    (default the scene's [speeds] units, else rad/s)."""
+    return PervasiveLosses(_core.pervasive(model, float(tolerance),
+                                           _request(speeds=speeds, solver=solver, modes=modes, target=target,
+                                                    target_order=target_order, method=method, lanczos=lanczos,
+                                                    jobs=jobs, unit=unit)))
 
 
 def response(model, speeds=None, *, dofs=None, probes=None, solver=None, harmonics=None, modes=None,
-             method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=_D.UNIT, f_cut=None,
+             method=_D.METHOD, lanczos=_D.LANCZOS, jobs=_D.JOBS, unit=None, f_cut=None,
              stability_check=True, extrema=False, peaks=True) -> Response:
-    """Unbalance response at `speeds` (in `unit`) of the named DOFs (default: all), by a dense or (solver "sparse";
+    """Unbalance response at `speeds` (in `unit`; default the scene's [speeds] units, else rad/s) of the named DOFs (default: all), by a dense or (solver "sparse";
     "auto" above 200 DOFs) sparse LU of the dynamic stiffness, with the CLI's tables (summary with the peaks refined
     between grid speeds, left out with peaks=False, which saves those searches; with `extrema` the peaks and
     antiresonances, as --extrema). As the CLI, the modes (`modes`, default those in range) are tracked
@@ -729,20 +688,19 @@ def response(model, speeds=None, *, dofs=None, probes=None, solver=None, harmoni
         raise InputError("dofs and probes: allowed: one of them")
     if dofs is not None and len(dofs) == 0:
         raise InputError("dofs: empty; allowed: DOF names, or None for every DOF")
-    system, o = _options(model, solver, modes, None, None)
+    system = model.system if isinstance(model, Scene) else model
     names = system.dof_names
     missing = [d for d in (dofs or []) if d not in names]
     if missing:
         raise InputError(f"dofs: {missing[0]!r} is not a DOF of the model; allowed: names such as {names[0]!r}")
-    w = _speeds(model, speeds, unit)
     cols = [] if dofs is None else [names.index(x) for x in dofs]
-    d = _core.response(system, w, _harmonics(model, harmonics), outputs=cols, unit=unit, title=_title(model),
-                       probes=_probes(probes), length_unit=_length(model), f_cut=_f_cut(model, f_cut, unit),
-                       method=method, lanczos=int(lanczos), jobs=int(jobs), stability_check=bool(stability_check),
-                       extrema=bool(extrema), peaks=bool(peaks), **o)
+    d = _core.response(model, _request(speeds=speeds, harmonics=harmonics, solver=solver, modes=modes, method=method,
+                                       lanczos=lanczos, jobs=jobs, unit=unit, f_cut=f_cut),
+                       outputs=cols, probes=_probes(probes), stability_check=bool(stability_check),
+                       extrema=bool(extrema), peaks=bool(peaks))
     for msg in d["warnings"]:
         _warnings.warn(msg, RuntimeWarning, stacklevel=2)
-    return Response(w, list(d["names"]), d["Z"], d, unit)
+    return Response(d["speeds"], list(d["names"]), d["Z"], d, d["unit"])
 
 
 # Models from keyword parameters, with the key names, checks and messages of scene files
@@ -804,12 +762,13 @@ def fe_rotor(*, speeds=None, analysis=None, directory=".", **keys) -> Scene:
 
 def rotor_scene(rotor, *, title="", speeds=None, analysis=None) -> Scene:
     """A scene of an FE rotor built in Python (Rotor(sections=[Section(...)], disks=[Disk(...)], ...)), with
-    speeds {"from": .., "to": .., "count": ..} (rad/s) and analysis {"modes", "harmonics", "solver",
+    speeds {"from": .., "to": .., "count": .., "units": ..} (units rad/s, Hz or rpm; default rad/s: the unit its
+    results are given in unless a call names one) and analysis {"modes", "harmonics", "solver",
     "target", "target_order", "f_cut"} as a scene's [speeds] and [analysis]. Scene.to_toml() and Scene.write(path)
     give its scene file."""
     speeds = dict(speeds or {})
     analysis = dict(analysis or {})
-    for given, allowed, name in ((speeds, {"from", "to", "count"}, "speeds"),
+    for given, allowed, name in ((speeds, {"from", "to", "count", "units"}, "speeds"),
                                  (analysis, {"modes", "harmonics", "solver", "target", "target_order", "f_cut"},
                                   "analysis")):
         unknown = sorted(set(given) - allowed)
@@ -819,8 +778,8 @@ def rotor_scene(rotor, *, title="", speeds=None, analysis=None) -> Scene:
     if speeds:
         missing = [k for k in ("from", "to") if k not in speeds]
         if missing:
-            raise InputError(f"speeds: {missing[0]!r} is missing; required: from, to (rad/s), count (default 201)")
-        span = (float(speeds["from"]), float(speeds["to"]), int(speeds.get("count", 201)))
+            raise InputError(f"speeds: {missing[0]!r} is missing; required: from, to (in units), count (default 201)")
+        span = (float(speeds["from"]), float(speeds["to"]), int(speeds.get("count", 201)), str(speeds.get("units", "rad/s")))
     harmonics = analysis.get("harmonics")
     return _core.rotor_scene(rotor, str(title), span, analysis.get("modes"),
                              None if harmonics is None else [int(h) for h in harmonics],

@@ -41,6 +41,7 @@ class Scene:
     title: str
     inputs: list[str]   # the files read to build it: no result of it is saved over one
     length_unit: str   # "m" or "mm": how the scene states lengths (tables print them so)
+    speed_unit: str    # [speeds] units: the unit results are given in unless a call names one
     model_type: str
     system: System
     modes: int
@@ -164,23 +165,23 @@ def defaults() -> list[dict[str, str]]: ...
 def load_scene(path: Union[str, PathLike[str]], overrides: Optional[Mapping[str, float]] = ...) -> Scene: ...
 def modes(model: Model, speed: float, *, solver: Optional[str] = ..., modes: Optional[int] = ...,
           target: Optional[float] = ..., target_order: Optional[float] = ..., method: str = ...,
-          lanczos: int = ..., unit: str = ...) -> ModeShapes: ...
+          lanczos: int = ..., unit: Optional[str] = ...) -> ModeShapes: ...
 def eig(model: Model, speed: float, *, solver: Optional[str] = ..., modes: Optional[int] = ...,
         target: Optional[float] = ..., target_order: Optional[float] = ..., method: str = ...,
-        lanczos: int = ..., unit: str = ...) -> EigResult: ...
+        lanczos: int = ..., unit: Optional[str] = ...) -> EigResult: ...
 def campbell(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, harmonics: Optional[Sequence[int]] = ...,
              solver: Optional[str] = ...,
              modes: Optional[int] = ..., target: Optional[float] = ..., target_order: Optional[float] = ...,
-             method: str = ..., lanczos: int = ..., jobs: int = ..., unit: str = ...,
+             method: str = ..., lanczos: int = ..., jobs: int = ..., unit: Optional[str] = ...,
              f_cut: Optional[float] = ...) -> CampbellResult: ...
 def critical_speeds(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, harmonics: Optional[Sequence[int]] = ...,
                     solver: Optional[str] = ..., modes: Optional[int] = ..., target: Optional[float] = ...,
                     target_order: Optional[float] = ..., method: str = ..., lanczos: int = ...,
-                    jobs: int = ..., unit: str = ..., f_cut: Optional[float] = ...) -> CriticalSpeeds: ...
+                    jobs: int = ..., unit: Optional[str] = ..., f_cut: Optional[float] = ...) -> CriticalSpeeds: ...
 def stability(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, harmonics: Optional[Sequence[int]] = ...,
               solver: Optional[str] = ...,
               modes: Optional[int] = ..., target: Optional[float] = ..., target_order: Optional[float] = ...,
-              method: str = ..., lanczos: int = ..., jobs: int = ..., unit: str = ...,
+              method: str = ..., lanczos: int = ..., jobs: int = ..., unit: Optional[str] = ...,
               f_cut: Optional[float] = ...) -> StabilityChanges: ...
 
 class ScreenResult:
@@ -228,12 +229,12 @@ class Response(_Result):
 def pervasive(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, tolerance: float = ...,
               solver: Optional[str] = ..., modes: Optional[int] = ..., target: Optional[float] = ...,
               target_order: Optional[float] = ..., method: str = ..., lanczos: int = ...,
-              jobs: int = ..., unit: str = ...) -> PervasiveLosses: ...
+              jobs: int = ..., unit: Optional[str] = ...) -> PervasiveLosses: ...
 def response(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, dofs: Optional[Sequence[str]] = ...,
              probes: Optional[Sequence[tuple[int, float]]] = ...,
              solver: Optional[str] = ..., harmonics: Optional[Sequence[int]] = ...,
              modes: Optional[int] = ..., method: str = ..., lanczos: int = ..., jobs: int = ...,
-             unit: str = ..., f_cut: Optional[float] = ..., stability_check: bool = ...,
+             unit: Optional[str] = ..., f_cut: Optional[float] = ..., stability_check: bool = ...,
              extrema: bool = ..., peaks: bool = ...) -> Response: ...
 def gyrostat(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
              **keys: Any) -> Scene: ...
@@ -348,7 +349,7 @@ class FrequencyResponse(_Result):
     def plot_polar(self, path: Optional[Path] = ..., axes: Any = ...) -> Any: ...
 
 def frf(model: Model, speed: float, input: str, frequencies: npt.ArrayLike, *, dofs: Optional[Sequence[str]] = ...,
-        probes: Optional[Sequence[tuple[int, float]]] = ..., unit: str = ...,
+        probes: Optional[Sequence[tuple[int, float]]] = ..., unit: Optional[str] = ...,
         solver: Optional[str] = ...) -> FrequencyResponse: ...
 
 class StaticDeflection(_Result):
@@ -374,7 +375,7 @@ class CriticalSpeedMap(_Result):
     def to_pandas(self) -> Any: ...
 
 def critical_speed_map(model: Scene, *, stiffness: Optional[Sequence[float]] = ..., modes: int = ...,
-                       unit: str = ...) -> CriticalSpeedMap: ...
+                       unit: Optional[str] = ...) -> CriticalSpeedMap: ...
 
 class ModelSummary(_Result): ...
 
@@ -395,5 +396,5 @@ class TransientResponse(_Result):
     def plot_waterfall(self, path: Optional[Path] = ..., axes: Any = ...) -> Any: ...
 def transient(model: Model, speed: Optional[float] = ..., *, run_up: Optional[tuple[float, float]] = ...,
               acceleration: Optional[float] = ..., duration: Optional[float] = ..., dt: Optional[float] = ...,
-              dofs: Optional[Sequence[str]] = ..., node: Optional[int] = ..., unit: str = ..., start: str = ...,
+              dofs: Optional[Sequence[str]] = ..., node: Optional[int] = ..., unit: Optional[str] = ..., start: str = ...,
               max_steps: int = ..., solver: Optional[str] = ..., windows: int = ...) -> TransientResponse: ...

@@ -5,7 +5,6 @@ from . import _core
 TABLE = tuple(dict(row) for row in _core.defaults())
 _VALUE = {row["name"]: row["value"] for row in TABLE}
 
-UNIT = _VALUE["units"]
 METHOD = _VALUE["method"]
 LANCZOS = int(_VALUE["lanczos"])
 JOBS = int(_VALUE["jobs"])

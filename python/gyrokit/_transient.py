@@ -120,14 +120,15 @@ def _profile(speed, run_up, acceleration, unit):
 
 
 def transient(model, speed=None, *, run_up=None, acceleration=None, duration=None, dt=None, dofs=None, node=None,
-              unit=_D.UNIT, start="rest", max_steps=_D.MAX_STEPS, solver=None, windows=20) -> TransientResponse:
+              unit=None, start="rest", max_steps=_D.MAX_STEPS, solver=None, windows=20) -> TransientResponse:
     """The unbalance response of `model` (a System or Scene) in time, by Newmark's average-acceleration method:
     at a constant `speed`, or in a run-up / run-down `run_up=(W0, W1)` at `acceleration` (in `unit` per s: rad/s^2,
     Hz/s, rpm/s), for `duration` s (default: the ramp; 100 revolutions at a constant speed; after the ramp the
     speed holds) with the step `dt` s (default: 32 steps per period of 1.5 x the top speed). Records `dofs` (names)
     or the x, y of `node` (default: the node of the largest unbalance); `start`: "rest" or "steady" (the steady
-    response at the first speed). See docs/transient.md."""
-    _factor(unit)
+    response at the first speed). Speeds in `unit` (default the scene's [speeds] units, else rad/s).
+    See docs/transient.md."""
+    unit = _core.resolve_unit(model, unit)
     if start not in ("rest", "steady"):
         raise InputError(f"start = {start!r}; allowed: rest, steady")
     system = model.system if isinstance(model, Scene) else model

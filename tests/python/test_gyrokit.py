@@ -582,7 +582,10 @@ def test_the_cli_and_python_run_one_study_with_the_same_notes(name):
     c = gk.critical_speeds(gk.load_scene(scene(name)))
     run = subprocess.run([CLI, "critical", scene(name), "--format", "csv"], check=True, capture_output=True, text=True)
     rows = list(csv.DictReader(io.StringIO(run.stdout)))
-    assert [float(r["speed_rad_s"]) for r in rows] == pytest.approx(list(c.speeds), rel=RTOL)
+    # Both in the scene's [speeds] units (rpm where the scene says so, else rad/s).
+    assert c.unit == gk.load_scene(scene(name)).speed_unit
+    column = {"rad/s": "speed_rad_s", "Hz": "speed_hz", "rpm": "speed_rpm"}[c.unit]
+    assert [float(r[column]) for r in rows] == pytest.approx(list(c.speeds), rel=RTOL)
     # Each front end names the options in its own words (the library marks them): --modes 0, modes = 0.
     lines = run.stderr.replace("--modes 0", "modes = 0").splitlines()
     assert [f"note: {n}" for n in c.notes] == [x for x in lines if x.startswith("note: ")]
@@ -850,7 +853,7 @@ def _every_result(tmp_path):
         (rotor, gk.pervasive(rotor, speeds)), (rotor, gk.response(rotor, speeds)),
         (rotor, gk.frf(rotor, 100.0, "y3", np.linspace(10, 1000, 5))), (rotor, gk.static(rotor)),
         (rotor, gk.critical_speed_map(rotor, stiffness=[1e6, 1e7, 1e8])), (rotor, gk.summary(rotor)),
-        (rotor, gk.transient(rotor, 100.0, node=3, duration=0.02)),
+        (rotor, gk.transient(rotor, 100.0, node=3, duration=0.02, unit="rad/s")),
         (str(tmp_path / "screen_centrifuge.toml"), gk.screen(str(tmp_path / "screen_centrifuge.toml"),
                                                              [{"model.c_G": 150.0}])),
         (str(tmp_path / "balancer_bild7.toml"), gk.balancer(str(tmp_path / "balancer_bild7.toml"))),

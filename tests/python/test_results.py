@@ -9,11 +9,15 @@ import numpy as np
 import pytest
 
 import gyrokit as gk
+from scenes import three_disk_in_rad_s
 
 DATA = os.environ.get("GYROKIT_DATA", os.path.join(os.path.dirname(__file__), "..", "..", "data"))
 CLI = os.environ.get("GYROKIT_CLI")
-SCENE = os.path.join(DATA, "three_disk_rotor.toml")
+SCENE_RPM = os.path.join(DATA, "three_disk_rotor.toml")
 EPS = np.finfo(float).eps
+
+
+SCENE = three_disk_in_rad_s(SCENE_RPM)
 
 
 def cli(*args):
@@ -39,22 +43,39 @@ def test_the_campbell_table_is_the_clis_csv_byte_for_byte(tmp_path, diagram):
 
 
 def test_units_per_call_scale_speeds_and_frequencies_only(scene, diagram):
-    rad = gk.campbell(scene)
+    rad = gk.campbell(scene, unit="rad/s")
     f = 30.0 / np.pi
     np.testing.assert_allclose(diagram.speeds, rad.speeds * f, rtol=2 * EPS, atol=0)
     np.testing.assert_allclose(diagram.frequencies, rad.frequencies * f, rtol=2 * EPS, atol=0)
     np.testing.assert_array_equal(diagram.eigenvalues, rad.eigenvalues)   # 1/s in every unit, as the CLI
     hz = gk.critical_speeds(scene, unit="Hz")
     assert hz.tables[0].columns[0] == "speed_hz"
-    np.testing.assert_allclose(hz.speeds, gk.critical_speeds(scene).speeds / (2 * np.pi), rtol=2 * EPS, atol=0)
+    np.testing.assert_allclose(hz.speeds, gk.critical_speeds(scene, unit="rad/s").speeds / (2 * np.pi), rtol=2 * EPS,
+                               atol=0)
     # Speeds given in the call's unit: 3000 rpm is 100 pi rad/s.
     e = gk.eig(scene, 3000.0, unit="rpm")
     assert e.speed == pytest.approx(3000.0, rel=4 * EPS)
-    ref = gk.eig(scene, 100 * np.pi)
+    ref = gk.eig(scene, 100 * np.pi, unit="rad/s")
     # The speeds differ by the rounding of rpm -> rad/s (an ulp): within the two error bounds.
     assert np.all(np.abs(e.eigenvalues - ref.eigenvalues) <= e.error_bounds + ref.error_bounds)
     with pytest.raises(gk.InputError, match="unit = 'rps' is unknown; allowed: rad/s, Hz, rpm"):
         gk.campbell(scene, unit="rps")
+
+
+def test_a_scene_in_rpm_gives_rpm_unless_a_call_names_a_unit():
+    # The scene's [speeds] are in rpm: every result is, as the CLI's (resolve_request decides for both).
+    scene = gk.load_scene(SCENE_RPM)
+    assert scene.speed_unit == "rpm"
+    for result in (gk.campbell(scene), gk.critical_speeds(scene), gk.stability(scene), gk.eig(scene, 3000.0),
+                   gk.modes(scene, 3000.0), gk.response(scene, peaks=False, stability_check=False)):
+        assert result.unit == "rpm"
+    c = gk.critical_speeds(scene)
+    assert c.tables[0].columns[0] == "speed_rpm"
+    assert cli("critical", SCENE_RPM, "--format", "csv").splitlines()[0].startswith("speed_rpm,")
+    np.testing.assert_allclose(c.speeds, gk.critical_speeds(scene, unit="rad/s").speeds * 30 / np.pi, rtol=4 * EPS)
+    # Speeds given by the call are in that unit too: 3000 rpm.
+    assert gk.eig(scene, 3000.0).speed == pytest.approx(3000.0, rel=4 * EPS)
+    assert gk.campbell(scene, speeds=[0.0, 6000.0]).speeds[-1] == pytest.approx(6000.0, rel=4 * EPS)
 
 
 def test_log_decrements_and_damping_ratios_equal_the_librarys(diagram):

@@ -10,9 +10,11 @@ import numpy as np
 import pytest
 
 import gyrokit as gk
+from scenes import three_disk_in_rad_s
 
 DATA = os.environ.get("GYROKIT_DATA", os.path.join(os.path.dirname(__file__), "..", "..", "data"))
-SCENE = os.path.join(DATA, "three_disk_rotor.toml")
+# Speeds below are in rad/s, the unit of this copy's [speeds] (the scene's own are in rpm).
+SCENE = three_disk_in_rad_s(os.path.join(DATA, "three_disk_rotor.toml"))
 
 
 def cli(*args):

@@ -23,21 +23,23 @@ double SpeedProfile::angle(double t) const {
 
 double SpeedProfile::angular_acceleration(double t) const { return t < ramp_end() ? acceleration : 0.0; }
 
-void SpeedProfile::validate() const {
+void SpeedProfile::validate(const SpeedUnit& u) const {
+    const double f = u.factor;
+    const std::string& n = u.name;
     if (acceleration == 0.0) {
         if (!(std::isfinite(from) && from > 0.0 && to == from))
-            throw InputError(fmt::format("{} {} rad/s: allowed: a finite speed > 0 (rad/s); at 0 the unbalance "
+            throw InputError(fmt::format("{} {} {}: allowed: a finite speed > 0 ({}); at 0 the unbalance "
                                          "exerts no force",
-                                         option_field("speed"), from));
+                                         option_field("speed"), from * f, n, n));
         return;
     }
     if (!(std::isfinite(from) && std::isfinite(to) && from >= 0.0 && to >= 0.0 && from != to))
-        throw InputError(fmt::format("{} {}:{} rad/s: allowed: two different finite speeds >= 0 (from:to)",
-                                     option_field("run_up"), from, to));
+        throw InputError(fmt::format("{} {}:{} {}: allowed: two different finite speeds >= 0 (from:to)",
+                                     option_field("run_up"), from * f, to * f, n));
     if (!std::isfinite(acceleration) || (to - from) * acceleration < 0.0)
-        throw InputError(fmt::format("{} {} rad/s^2 with a {} from {} to {} rad/s: allowed: a finite number {} 0",
-                                     option_field("acceleration"), acceleration,
-                                     to > from ? "run-up" : "run-down", from, to, to > from ? ">" : "<"));
+        throw InputError(fmt::format("{} {} {} with a {} from {} to {} {}: allowed: a finite number {} 0",
+                                     option_field("acceleration"), acceleration * f, u.per_second(),
+                                     to > from ? "run-up" : "run-down", from * f, to * f, n, to > from ? ">" : "<"));
 }
 
 Eigen::VectorXd unbalance_force_at(const Eigen::VectorXcd& u, const SpeedProfile& p, double t) {
@@ -273,7 +275,7 @@ struct Plan {
 // The duration, the time step and the step count, each checked against its range.
 Plan plan_run(const TransientOptions& o) {
     const SpeedProfile& p = o.profile;
-    p.validate();
+    p.validate(o.unit);
     if (!(o.max_steps >= 1 && o.max_steps <= kTransientStepLimit))
         throw InputError(fmt::format("{} {}: allowed: 1 to {}", option_field("max_steps"), o.max_steps,
                                      kTransientStepLimit));
@@ -287,8 +289,9 @@ Plan plan_run(const TransientOptions& o) {
     const double dt = o.dt != 0.0 ? o.dt : policy;
     if (!(std::isfinite(o.dt) && o.dt >= 0.0 && dt <= coarsest))
         throw InputError(fmt::format("{} {} s: allowed: (0, {:.6g}] s, at least 8 steps per revolution at the top "
-                                     "speed {:.6g} rad/s; none: {:.6g} s, {} steps per period of the excitation band",
-                                     option_field("dt"), o.dt, coarsest, top, policy, kStepsPerPeriod));
+                                     "speed {:.6g} {}; none: {:.6g} s, {} steps per period of the excitation band",
+                                     option_field("dt"), o.dt, coarsest, top * o.unit.factor, o.unit.name, policy,
+                                     kStepsPerPeriod));
     if (dt > plan.duration)
         throw InputError(fmt::format("{} {} s is longer than the run ({} {} s); allowed: (0, {:.6g}] s",
                                      option_field("dt"), dt, option_field("duration"), plan.duration, plan.duration));
@@ -305,12 +308,12 @@ Plan plan_run(const TransientOptions& o) {
     return plan;
 }
 
-std::string step_note(const SpeedProfile& p, const Plan& plan) {
+std::string step_note(const SpeedProfile& p, const Plan& plan, const SpeedUnit& u) {
     const double band = kBandMargin * p.top(), wdt = band * plan.dt;
     return fmt::format("Newmark average acceleration, {} steps of {:.4g} s over {:.6g} s: {:.1f} steps per period at "
-                       "the band edge {:.6g} rad/s ({} x the top speed), {:.1f} per revolution at the top speed; "
+                       "the band edge {:.6g} {} ({} x the top speed), {:.1f} per revolution at the top speed; "
                        "period error (w dt)^2/12 there {:.2g} %",
-                       plan.steps, plan.dt, plan.duration, 2.0 * M_PI / wdt, band, kBandMargin,
+                       plan.steps, plan.dt, plan.duration, 2.0 * M_PI / wdt, band * u.factor, u.name, kBandMargin,
                        2.0 * M_PI / (p.top() * plan.dt), 100.0 * wdt * wdt / 12.0);
 }
 
@@ -336,7 +339,7 @@ TransientResult transient_response(const GyroscopicSystem& sys, const TransientO
     const SpeedProfile& p = o.profile;
     r.profile = p;
     r.dt = plan.dt;
-    r.notes.push_back(step_note(p, plan));
+    r.notes.push_back(step_note(p, plan, o.unit));
     for (const auto& n : extrapolation_notes(sys.bearings, std::min(p.from, p.to), p.top())) r.notes.push_back(n);
 
     Eigen::VectorXd z0, v0;

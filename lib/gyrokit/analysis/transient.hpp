@@ -8,6 +8,7 @@
 
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
+#include <gyrokit/core/speed_range.hpp>
 
 #include <memory>
 #include <string>
@@ -27,7 +28,7 @@ struct SpeedProfile {
     double angular_acceleration(double t) const;   // phi''(t), rad/s^2
     double top() const { return from > to ? from : to; }
     // InputError naming the field (speed, run_up, acceleration), the value and the allowed range.
-    void validate() const;
+    void validate(const SpeedUnit& u = {}) const;   // messages name speeds in `u`
 };
 
 // The unbalance force at time t: Re(u (phi'^2 - i phi'') e^{i phi}), the reaction of the
@@ -98,6 +99,7 @@ struct TransientOptions {
     bool start_steady = false;     // start on the steady response at `from`; false: at rest
     long long max_steps = kTransientMaxSteps;
     SolverKind kind = SolverKind::Auto;
+    SpeedUnit unit;                // the unit its messages and notes name speeds in
 };
 
 struct TransientResult {

@@ -22,8 +22,8 @@ SpeedRange SpeedRange::parse(const std::string& text, const std::string& option,
         size_t pc = 0;
         const std::optional<double> fa = decimal_number(a), fb = decimal_number(b);
         if (!fa || !fb) throw std::invalid_argument("not a decimal number");
-        r.from = *fa / unit_factor;
-        r.to = *fb / unit_factor;
+        r.from = *fa;
+        r.to = *fb;
         const long n = std::stol(c, &pc);
         if (pc != c.size()) throw std::invalid_argument("trailing");
         if (n < 1 || n > 10000000) throw std::out_of_range("count");
@@ -33,7 +33,9 @@ SpeedRange SpeedRange::parse(const std::string& text, const std::string& option,
                                      "number N in [1, 10000000]",
                                      option, text));
     }
-    r.validate(option + " '" + text + "'");
+    r.validate(option + " '" + text + "'");   // as written: the message quotes the user's numbers
+    r.from /= unit_factor;
+    r.to /= unit_factor;
     return r;
 }
 
@@ -73,6 +75,8 @@ SpeedUnit SpeedUnit::parse(const std::string& name) {
     if (lower == "rpm") return {"rpm", 60.0 / (2.0 * M_PI)};
     throw InputError(fmt::format("{} '{}' is unknown; allowed: rad/s, Hz, rpm", option_field("units"), name));
 }
+
+std::string SpeedUnit::per_second() const { return name == "rad/s" ? "rad/s^2" : name + "/s"; }
 
 std::string SpeedUnit::column(const std::string& base) const {
     std::string suffix;

@@ -25,6 +25,8 @@ struct SpeedUnit {
     static SpeedUnit parse(const std::string& name);   // throws InputError
     // A column name that records the unit: "speed" -> speed_rad_s, speed_hz, speed_rpm.
     std::string column(const std::string& base) const;
+    // The unit of an angular acceleration in it: rad/s^2, Hz/s, rpm/s.
+    std::string per_second() const;
 };
 
 }  // namespace gyrokit

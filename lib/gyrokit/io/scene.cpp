@@ -320,9 +320,8 @@ Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
         r.to = k.number("to", std::nullopt, 0, false, unit.name.c_str());
         r.count = static_cast<int>(k.integer("count", 201, 1, 10000000));
         r.validate(path + ": [speeds]");   // in the scene's unit, as the user wrote them
-        r.from /= unit.factor;
-        r.to /= unit.factor;
         sc.speeds = r;
+        sc.speed_unit = unit;
     } else if (root.contains("speeds")) {
         throw InputError(path + ": speeds must be a table [speeds] with from, to, count");
     }
@@ -393,6 +392,12 @@ void validate_settings(const Scene& sc) {
                                      sc.path, sc.target_order));
     if (sc.f_cut && !(std::isfinite(*sc.f_cut) && *sc.f_cut > 0))
         throw InputError(fmt::format("{}: f_cut = {}; allowed: a finite frequency > 0 (rad/s)", sc.path, *sc.f_cut));
+}
+
+std::vector<double> Scene::speed_points() const {
+    std::vector<double> w = speeds ? speeds->points() : std::vector<double>{};
+    for (double& x : w) x /= speed_unit.factor;
+    return w;
 }
 
 SolverOptions Scene::solver_options() const {

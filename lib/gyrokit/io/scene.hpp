@@ -25,7 +25,10 @@ struct Scene {
     std::optional<double> target;      // [analysis] target: frequency (rad/s) the sparse search centres on
     double target_order = 0.0;         // [analysis] target_order: the centre moves as target + order * speed
     std::optional<double> f_cut;       // [analysis] f_cut (rad/s): the modes judged (default: excitation_band)
-    std::optional<SpeedRange> speeds;  // [speeds] from, to, count
+    std::optional<SpeedRange> speeds;  // [speeds] from, to, count as written, in speed_unit
+    // [speeds] units (rad/s where the scene names none): the unit a study gives and
+    // takes speeds and frequencies in unless the call names another (resolve_request).
+    SpeedUnit speed_unit;
     int modes = kModesInRange;         // [analysis] modes (0 = all; absent: those in range)
     std::vector<int> harmonics{1};     // [analysis] harmonics
     std::optional<FluidRotorParameters> fluid;   // set for [model] type = "fluid_rotor"
@@ -41,6 +44,10 @@ struct Scene {
     int dofs() const { return system.size(); }
     // The unit the scene states lengths in (an FE rotor's length_unit; else metres).
     LengthUnit length_unit() const { return rotor_model ? LengthUnit::parse(rotor_model->length_unit) : LengthUnit{}; }
+    // The [speeds] grid in rad/s (empty without [speeds]): the points in the scene's
+    // unit, each converted (speed_unit), so that a range written in rpm is the same
+    // grid however it reaches a study.
+    std::vector<double> speed_points() const;
     // [analysis] solver, modes, target and target_order as solver options.
     SolverOptions solver_options() const;
     const std::vector<std::string>& dof_names() const { return system.dof_names; }

@@ -200,7 +200,7 @@ void write_settings(Writer& w, const Scene& sc) {
         w.key("from", sc.speeds->from);
         w.key("to", sc.speeds->to);
         w.key("count", sc.speeds->count);
-        w.key("units", "rad/s");
+        w.key("units", sc.speed_unit.name);
     }
     w.table("[analysis]");
     w.key("solver", to_string(sc.solver));

@@ -154,13 +154,12 @@ Figure waterfall_figure(const std::vector<std::string>& names, const std::vector
     return f;
 }
 
-std::string per_second_unit(const SpeedUnit& u) { return u.name == "rad/s" ? "rad/s^2" : u.name + "/s"; }
 
 std::string transient_description(const SpeedProfile& p, const SpeedUnit& u, bool steady_start) {
     const std::string from = steady_start ? "from its steady state" : "from rest";
     if (p.acceleration == 0.0) return fmt::format("at {:.6g} {} {}", u.factor * p.from, u.name, from);
     return fmt::format("{} {:.6g} to {:.6g} {} at {:.6g} {} {}", p.to > p.from ? "run-up" : "run-down",
-                       u.factor * p.from, u.factor * p.to, u.name, u.factor * p.acceleration, per_second_unit(u), from);
+                       u.factor * p.from, u.factor * p.to, u.name, u.factor * p.acceleration, u.per_second(), from);
 }
 
 namespace {

@@ -40,8 +40,7 @@ Figure waterfall_figure(const std::vector<std::string>& dof_names, const std::ve
                         const std::vector<Waterfall>& w, const SpeedUnit& u, bool by_speed, const std::string& title);
 
 // A run's one-line description: "run-up 0 to 1571 rad/s at 100 rad/s^2 from rest", "at 600 rad/s
-// from its steady state"; `per_second_unit` the acceleration's unit (rad/s^2, Hz/s, rpm/s).
-std::string per_second_unit(const SpeedUnit& u);
+// from its steady state" (the acceleration in SpeedUnit::per_second: rad/s^2, Hz/s, rpm/s).
 std::string transient_description(const SpeedProfile& p, const SpeedUnit& u, bool steady_start);
 
 // The table a person reads of a run (the CLI's, Python's first): the envelope over 20

@@ -81,7 +81,7 @@ void check_parameter(const Sweep& s, const SweepParameter& p) {
         for (std::size_t i = 1; i < models.size(); ++i) {
             const Scene& b = models[i].second;
             if (a.speeds.has_value() != b.speeds.has_value() ||
-                (a.speeds && b.speeds && a.speeds->points() != b.speeds->points()) || a.modes != b.modes ||
+                (a.speeds && b.speeds && a.speed_points() != b.speed_points()) || a.modes != b.modes ||
                 a.harmonics != b.harmonics || a.target != b.target || a.target_order != b.target_order)
                 return;   // it changes the analysis settings
         }

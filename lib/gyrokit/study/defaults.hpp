@@ -24,7 +24,7 @@ inline constexpr int modes = kModesInRange;
 inline constexpr double f_cut_margin = kBandMargin;
 // The excitation lines: 1x.
 inline constexpr int harmonic = 1;
-// Speeds and frequencies in and out.
+// Speeds and frequencies in and out where neither the call nor the scene's [speeds] names a unit.
 inline constexpr const char* unit = "rad/s";
 // The dense eigensolver: scaled QZ.
 inline constexpr const char* method = "qz";

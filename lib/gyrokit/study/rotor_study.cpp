@@ -42,7 +42,8 @@ StudyOptions study_options(const Scene& scene) {
     o.solver.modes = scene.modes;
     o.harmonics = scene.harmonics;
     o.f_cut = scene.f_cut;
-    if (scene.speeds) o.speeds = scene.speeds->points();
+    o.speeds = scene.speed_points();
+    o.unit = scene.speed_unit;
     return o;
 }
 

@@ -42,7 +42,8 @@ private:
     }
 };
 
-// The scene's defaults: [analysis] solver options, modes and harmonics, [speeds].
+// The scene's defaults: [analysis] solver options, modes and harmonics, [speeds] and
+// their units. A caller's own values on top: resolve_request (study/request.hpp).
 StudyOptions study_options(const Scene& scene);
 
 // The eigenvalues at one speed (eig), by the library's solver choice. A mode count

@@ -1,0 +1,163 @@
+// A request meets a scene once, in the library (resolve_request): the call's
+// values where given, else the scene's [speeds] and [analysis], else the table of
+// defaults; the unit of speeds in and out is the scene's [speeds] units unless the
+// call names one; every range check names the field through the library's API.
+#include <gyrokit/gyrokit.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+using namespace gyrokit;
+
+namespace {
+
+// The centrifuge gyrostat with the given [speeds] and [analysis].
+Scene scene_with(const std::string& settings) {
+    return parse_scene(R"([model]
+type = "gyrostat"
+A_G = 2.0
+B_G = 2.0
+A_R = 0.09
+C_R = 0.10
+m = 8.0
+s = 0.25
+eps = 1.0e-3
+c_G = 306.862
+c_T = 2112.19
+c_R = 74.1333
+d_G = 4.0
+d_T = 5.0
+d_R = 0.02
+)" + settings,
+                       "request.toml");
+}
+
+std::string message_of(const Scene& sc, const RotorRequest& r, SpeedsNeeded need = SpeedsNeeded::Yes) {
+    try {
+        resolve_request(sc, r, need);
+    } catch (const InputError& e) {
+        return e.message({});
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("request: the scene's [speeds] units are the unit of a study unless the call names one", "[request]") {
+    const Scene rpm = scene_with("[speeds]\nfrom = 0\nto = 6000\ncount = 4\nunits = \"rpm\"\n");
+    const double pi = std::acos(-1.0);
+    const StudyOptions o = resolve_request(rpm, {});
+    CHECK(o.unit.name == "rpm");
+    REQUIRE(o.speeds.size() == 4);
+    CHECK(o.speeds[1] == Approx(2000 * pi / 30).epsilon(1e-15));
+    CHECK(o.speeds == rpm.speed_points());
+
+    // Given speeds are in the request's unit: the scene's, or the one named.
+    RotorRequest r;
+    r.speeds = std::vector<double>{0, 600};
+    CHECK(resolve_request(rpm, r).speeds.back() == Approx(20 * pi).epsilon(1e-15));
+    r.unit = "hz";
+    const StudyOptions hz = resolve_request(rpm, r);
+    CHECK(hz.unit.name == "Hz");
+    CHECK(hz.speeds.back() == Approx(1200 * pi).epsilon(1e-15));
+
+    // A scene without [speeds] units (and a system alone) is in rad/s.
+    const Scene plain = scene_with("[speeds]\nfrom = 0\nto = 10\ncount = 3\n");
+    CHECK(resolve_request(plain, {}).unit.name == "rad/s");
+    CHECK(resolve_request(scene_of(plain.system), {}, SpeedsNeeded::No).unit.name == "rad/s");
+    CHECK(resolve_unit(rpm, std::nullopt).name == "rpm");
+    CHECK(resolve_unit(rpm, std::string("RAD/S")).name == "rad/s");
+}
+
+TEST_CASE("request: a value given comes before the scene's, the scene's before the default", "[request]") {
+    const Scene sc = scene_with("[speeds]\nfrom = 0\nto = 10\ncount = 3\n[analysis]\nmodes = 4\nharmonics = [1, 2]\n"
+                                "f_cut = 50.0\n");
+    const StudyOptions from_scene = resolve_request(sc, {});
+    CHECK(from_scene.solver.modes == 4);
+    CHECK(from_scene.harmonics == std::vector<int>{1, 2});
+    CHECK(from_scene.f_cut == 50.0);
+    CHECK(from_scene.solver.eig.method == parse_eigen_method(defaults::method));
+    CHECK(from_scene.workers.count == worker_count(defaults::jobs));
+
+    RotorRequest r;
+    r.modes = 0;
+    r.harmonics = std::vector<int>{3};
+    r.f_cut = 20.0;
+    r.method = "state";
+    r.solver = "dense";
+    r.target = 5.0;
+    r.target_order = 1.0;
+    r.lanczos = 40;
+    r.jobs = 1;
+    const StudyOptions given = resolve_request(sc, r);
+    CHECK(given.solver.modes == 0);
+    CHECK(given.harmonics == std::vector<int>{3});
+    CHECK(given.f_cut == 20.0);
+    CHECK(given.solver.eig.method == EigenMethod::StateMatrix);
+    CHECK(given.solver.kind == SolverKind::Dense);
+    CHECK(given.solver.target == 5.0);
+    CHECK(given.solver.target_order == 1.0);
+    CHECK(given.solver.lanczos_vectors == 40);
+    CHECK(given.workers.count == 1);
+
+    // Nothing in the scene: the table's defaults.
+    const StudyOptions bare = resolve_request(scene_of(sc.system), {}, SpeedsNeeded::No);
+    CHECK(bare.solver.modes == defaults::modes);
+    CHECK(bare.harmonics == std::vector<int>{defaults::harmonic});
+    CHECK_FALSE(bare.f_cut.has_value());
+    CHECK(bare.speeds.empty());
+}
+
+TEST_CASE("request: each value out of range is refused naming its field", "[request][errors]") {
+    const Scene sc = scene_with("[speeds]\nfrom = 0\nto = 10\ncount = 3\n");
+    const auto refused = [&](RotorRequest r, const std::string& field) {
+        const std::string m = message_of(sc, r);
+        INFO(m);
+        CHECK(m.rfind(field, 0) == 0);
+        CHECK(m.find("allowed") != std::string::npos);
+    };
+    RotorRequest r;
+    r.speeds = std::vector<double>{};
+    refused(r, "speeds");
+    r.speeds = std::vector<double>{0, -1};
+    refused(r, "speeds =");
+    r.speeds = std::vector<double>{0, std::nan("")};
+    refused(r, "speeds =");
+    r = {};
+    r.modes = -2;
+    refused(r, "modes =");
+    r = {};
+    r.harmonics = std::vector<int>{0};
+    refused(r, "harmonics =");
+    r.harmonics = std::vector<int>{};
+    refused(r, "harmonics");
+    r = {};
+    r.f_cut = 0.0;
+    refused(r, "f_cut =");
+    r = {};
+    r.target = -1.0;
+    refused(r, "target =");
+    r = {};
+    r.target_order = std::nan("");
+    refused(r, "target_order =");
+    r = {};
+    r.lanczos = -1;
+    refused(r, "lanczos_vectors =");
+    r = {};
+    r.jobs = -1;
+    refused(r, "jobs =");
+    r = {};
+    r.unit = "furlongs";
+    refused(r, "units =");
+    r = {};
+    r.solver = "fast";
+    refused(r, "solver =");
+    r = {};
+    r.method = "lu";
+    refused(r, "method =");
+    // A sweep needs speeds: none given and none in the scene.
+    CHECK(message_of(scene_of(sc.system), {}).rfind("no speed range; give speeds", 0) == 0);
+    CHECK(message_of(scene_of(sc.system), {}, SpeedsNeeded::No).empty());
+}
