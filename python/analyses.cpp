@@ -125,15 +125,6 @@ py::dict campbell_dict(const CampbellDiagram& cd) {
     return d;
 }
 
-// A study's notes and warnings as the result's lists, option fields as keywords.
-void put_diagnostics(py::dict& d, const Diagnostics& diagnostics) {
-    py::list notes, warnings;
-    for (const Diagnostic& x : diagnostics)
-        (x.level == Diagnostic::Level::Warning ? warnings : notes).append(spell_fields(x.text, keyword_words));
-    d["notes"] = notes;
-    d["warnings"] = warnings;
-}
-
 // What the CLI prints and draws of the result, in the call's unit.
 void put_reports(py::dict& d, const std::vector<Table>& tables, const std::optional<Figure>& figure = std::nullopt) {
     d["tables"] = tables_list(tables);

@@ -2,10 +2,11 @@
 // and Bode and polar figures in the call's unit.
 #include "common.hpp"
 #include "frf.hpp"
+#include "request.hpp"
 
 #include "reports.hpp"
 
-#include <gyrokit/analysis/frequency_response.hpp>
+#include <gyrokit/study/frf_study.hpp>
 #include <gyrokit/analysis/probe.hpp>
 #include <gyrokit/reports/frf_reports.hpp>
 #include <gyrokit/reports/response_reports.hpp>
@@ -45,34 +46,42 @@ std::vector<Probe> probes_of(const GyroscopicSystem& s, const std::vector<std::p
 }  // namespace gyrokit_python
 
 void bind_frf(py::module_& m) {
-    m.def("frf", [](const GyroscopicSystem& s, double spin, const std::vector<double>& frequencies, int input,
-                    std::vector<int> outputs, const std::string& solver, const std::string& unit,
-                    const std::vector<std::pair<int, double>>& probe_list, const std::string& length_unit) {
-        const SolverKind kind = parse_solver_kind(solver);
-        const SpeedUnit u = SpeedUnit::parse(unit);
-        const std::vector<Probe> probes = probes_of(s, probe_list);
-        if (!probes.empty()) outputs = probe_dofs(probes);
-        FrequencyResponse r;
+    // The study of the library (frf_study): the request's keywords, the input and outputs by name.
+    m.def("frf", [](const py::object& model, const py::dict& request, const std::string& input, double speed,
+                    std::optional<std::vector<double>> frequencies, const std::vector<std::string>& dofs,
+                    const std::vector<std::pair<int, double>>& probe_list) {
+        const ModelArg a(model);
+        FrfRequest rq;
+        rq.input = input;
+        rq.speed = speed;
+        rq.frequencies = std::move(frequencies);
+        rq.dofs = dofs;
+        rq.probes = probes_of(a.system(), probe_list);
+        const RotorRequest common = rotor_request(request);
+        FrfStudy st;
         {
             Released free;   // Ctrl-C stops it at the next frequency
-            r = frequency_response(s, spin, frequencies, input, outputs, kind);
+            st = frf_study(a.scene(), common, rq);
         }
-        // Probes: their readings are the outputs, named "NODE@ANGLE".
-        ProbeOutputs named{s.dof_names, s.dof_units, {}};
-        if (!probes.empty()) {
-            named = probe_outputs(s, probes);
-            r.H = probe_readings(probes, r.outputs, r.H);
-            r.outputs = named.outputs;
-        }
+        const FrequencyResponse& r = st.response;
+        const SpeedUnit& u = st.unit;
         py::dict d;
-        d["H"] = r.H;   // SI: m/N, rad/N, ...; the tables and figures in the scene's length unit
-        to_length_unit(r.outputs, r.H, named.units, LengthUnit::parse(length_unit));
-        d["names"] = std::vector<std::string>(named.names.begin() + s.size(), named.names.end());
-        d["tables"] = tables_list({frf_table(named.names, named.units, r, u)});
-        d["figure"] = figure_dict(frf_figure(named.names, named.units, r, u, false));
-        d["polar_figure"] = figure_dict(frf_figure(named.names, named.units, r, u, true));
+        d["unit"] = u.name;
+        d["input"] = input;
+        d["speed"] = r.spin;
+        d["frequencies"] = r.frequencies;
+        d["H"] = st.si;   // SI: m/N, rad/N, ...; the tables and figures in the scene's length unit
+        d["names"] = std::vector<std::string>(st.named.names.begin() + a.system().size(), st.named.names.end());
+        if (rq.probes.empty()) {
+            std::vector<std::string> names;
+            for (const int k : r.outputs) names.push_back(st.named.names[static_cast<std::size_t>(k)]);
+            d["names"] = names;
+        }
+        put_diagnostics(d, st.diagnostics);
+        d["tables"] = tables_list({frf_table(st.named.names, st.named.units, r, u)});
+        d["figure"] = figure_dict(frf_figure(st.named.names, st.named.units, r, u, false));
+        d["polar_figure"] = figure_dict(frf_figure(st.named.names, st.named.units, r, u, true));
         return d;
-    }, py::arg("system"), py::arg("spin"), py::arg("frequencies"), py::arg("input"), py::arg("outputs"),
-          py::arg("solver"), py::arg("unit") = "rad/s", py::arg("probes") = std::vector<std::pair<int, double>>{},
-          py::arg("length_unit") = "m");
+    }, py::arg("model"), py::arg("request"), py::arg("input"), py::arg("speed"), py::arg("frequencies"),
+          py::arg("dofs"), py::arg("probes"));
 }

@@ -30,7 +30,9 @@ namespace gyrokit_python {
 // Python's keyword arguments for the library's option fields (as the CLI's flag_words).
 std::string keyword_words(const std::string& field) {
     if (field == "lanczos_vectors") return "lanczos =";
-    if (field == "speeds") return "speeds";
+    // Names that read as nouns in a message ("dofs and probes: allowed: one of them").
+    for (const char* noun : {"speeds", "dofs", "probes", "input", "frequencies"})
+        if (field == noun) return noun;
     if (field == "units") return "unit =";
     if (field == "rows") return "result.table('campbell')";
     if (field == "plot") return "result.plot(FILE.svg)";

@@ -16,6 +16,14 @@ using namespace gyrokit;
 
 namespace gyrokit_python {
 
+void put_diagnostics(py::dict& d, const Diagnostics& diagnostics) {
+    py::list notes, warnings;
+    for (const Diagnostic& x : diagnostics)
+        (x.level == Diagnostic::Level::Warning ? warnings : notes).append(spell_fields(x.text, keyword_words));
+    d["notes"] = notes;
+    d["warnings"] = warnings;
+}
+
 namespace {
 
 py::object cell_object(const Cell& c) {

@@ -4,6 +4,7 @@
 // with the CLI's picture.
 #pragma once
 
+#include <gyrokit/core/diagnostics.hpp>
 #include <gyrokit/io/plot.hpp>
 #include <gyrokit/io/table.hpp>
 
@@ -15,6 +16,9 @@ namespace gyrokit_python {
 
 pybind11::list tables_list(const std::vector<gyrokit::Table>& tables);
 pybind11::dict figure_dict(const gyrokit::Figure& figure);
+// A study's notes and warnings as the result's lists (d["notes"], d["warnings"]),
+// option fields in Python's keywords.
+void put_diagnostics(pybind11::dict& d, const gyrokit::Diagnostics& diagnostics);
 
 }  // namespace gyrokit_python
 

@@ -180,7 +180,7 @@ expect "--probes and --dofs, --nodes, --at: allowed: probes alone" response "$di
 three_disk="$data/three_disk_rotor.toml"
 expect "--input 'q9': not a DOF of the model" frf "$three_disk" --input q9
 expect "--frequencies '5:1:3': FROM = 5 is greater than TO = 1" frf "$three_disk" --input y12 --frequencies 5:1:3
-expect "--speed '-3': allowed: a finite number >= 0" frf "$three_disk" --input y12 --speed -3
+expect "--speed -3: allowed: a finite number >= 0 (rpm)" frf "$three_disk" --input y12 --speed -3
 expect "--load '12:x:1': allowed: NODE:FX:FY or NODE:FX:FY:MX:MY" static "$three_disk" --load 12:x:1
 expect "load 0 at node 99; allowed: 0 to 24" static "$three_disk" --load 99:0:1
 expect "static analysis: --gravity -1; allowed: 0 (no weight)" static "$three_disk" --gravity -1

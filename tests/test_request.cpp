@@ -161,3 +161,49 @@ TEST_CASE("request: each value out of range is refused naming its field", "[requ
     CHECK(message_of(scene_of(sc.system), {}).rfind("no speed range; give speeds", 0) == 0);
     CHECK(message_of(scene_of(sc.system), {}, SpeedsNeeded::No).empty());
 }
+
+TEST_CASE("request: the frequency response study takes its input, outputs and grid by name and unit", "[request][frf]") {
+    const Scene rpm = load_scene(std::string(GYROKIT_DATA_DIR) + "/three_disk_rotor.toml");
+    FrfRequest rq;
+    rq.input = "y12";
+    rq.speed = 6000.0;   // rpm: the scene's [speeds] units
+    rq.frequencies = std::vector<double>{3000.0};
+    const FrfStudy st = frf_study(rpm, {}, rq);
+    CHECK(st.unit.name == "rpm");
+    const double pi = std::acos(-1.0);
+    CHECK(st.response.spin == Approx(200 * pi).epsilon(1e-15));
+    CHECK(st.response.outputs == std::vector<int>{st.response.input});   // the driving point
+    // The same response asked in rad/s: the same numbers, bit for bit where the speeds are.
+    RotorRequest rad;
+    rad.unit = "rad/s";
+    FrfRequest same = rq;
+    same.speed = st.response.spin;
+    same.frequencies = std::vector<double>{st.response.frequencies[0]};
+    CHECK(frf_study(rpm, rad, same).si == st.si);
+    // Without frequencies: the scene's [speeds] grid.
+    FrfRequest grid;
+    grid.input = "y12";
+    CHECK(frf_study(rpm, {}, grid).response.frequencies == rpm.speed_points());
+
+    const auto refused = [&](FrfRequest r, const std::string& start) {
+        try {
+            frf_study(rpm, {}, r);
+            FAIL("accepted");
+        } catch (const InputError& e) {
+            INFO(e.message({}));
+            CHECK(e.message({}).rfind(start, 0) == 0);
+        }
+    };
+    FrfRequest bad = rq;
+    bad.input = "q9";
+    refused(bad, "input = 'q9': not a DOF of the model");
+    bad = rq;
+    bad.dofs = {"y3", "y3"};
+    refused(bad, "dofs = 'y3,y3': 'y3' is listed twice");
+    bad = rq;
+    bad.speed = -3.0;
+    refused(bad, "speed = -3: allowed: a finite number >= 0 (rpm)");
+    bad = rq;
+    bad.frequencies = std::vector<double>{};
+    refused(bad, "frequencies = (none)");
+}

@@ -98,7 +98,8 @@ std::string flag_words(const std::string& field) {
         {"plot", "--plot FILE.svg"},        {"dt", "--dt"},         {"duration", "--duration"},
         {"max_steps", "--max-steps"},       {"speed", "--speed"},   {"run_up", "--run-up"},
         {"acceleration", "--acceleration"}, {"gravity", "--gravity"}, {"tolerance", "--tolerance"},
-        {"rigid_body", "--rigid-body"}};
+        {"rigid_body", "--rigid-body"}, {"input", "--input"}, {"dofs", "--dofs"}, {"probes", "--probes"},
+        {"frequencies", "--frequencies"}};
     for (const auto& [name, flag] : flags)
         if (field == name) return flag;
     return "";

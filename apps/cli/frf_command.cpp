@@ -1,6 +1,6 @@
 // frf: frequency response functions at a fixed spin speed (a unit harmonic force or moment at one DOF).
 #include "cli/common.hpp"
-#include <gyrokit/analysis/frequency_response.hpp>
+#include <gyrokit/study/frf_study.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/reports/frf_reports.hpp>
 #include <gyrokit/reports/response_reports.hpp>
@@ -19,12 +19,16 @@ struct Options {
     bool polar = false;
 };
 
-int dof_index(const std::vector<std::string>& names, const std::string& name, const char* option) {
-    const auto it = std::find(names.begin(), names.end(), name);
-    if (it == names.end())
-        throw InputError(fmt::format("{} '{}': not a DOF of the model; allowed: names such as {}", option, name,
-                                     names.empty() ? std::string("-") : names.front()));
-    return static_cast<int>(it - names.begin());
+// "x12,y12" as names (empty: none); a name that is no DOF is the library's to refuse.
+std::vector<std::string> split_names(const std::string& list) {
+    std::vector<std::string> out;
+    std::size_t start = 0;
+    while (!list.empty() && start <= list.size()) {
+        const std::size_t end = std::min(list.find(',', start), list.size());
+        out.push_back(list.substr(start, end - start));
+        start = end + 1;
+    }
+    return out;
 }
 
 }  // namespace
@@ -47,32 +51,17 @@ std::vector<Command> add_frf_commands(CLI::App& app) {
     return {{cmd, [o](std::ostream& out) {
                  if (o->polar && o->common.plot.empty()) throw InputError("--polar: only together with --plot FILE");
                  const Context c = open_scene(o->common, false);
-                 const GyroscopicSystem& sys = c.scene.system;
-                 std::vector<double> frequencies = c.speeds;   // the scene's [speeds] range
+                 FrfRequest rq;
+                 rq.input = o->input;
+                 rq.speed = parse_number(o->speed, "--speed");
                  if (!o->frequencies.empty())
-                     frequencies = SpeedRange::parse(o->frequencies, "--frequencies", c.unit.factor).points();
-                 else if (frequencies.empty())
-                     throw InputError(o->common.scene + ": no frequencies; give --frequencies FROM:TO:N or a [speeds] "
-                                                        "table in the scene");
-                 const double spin = parse_speed(o->speed, "--speed", c.unit);
-                 const int input = dof_index(sys.dof_names, o->input, "--input");
-                 if (!o->dofs.empty() && !o->probes.empty())
-                     throw InputError("--dofs and --probes: allowed: one of them");
-                 const std::vector<Probe> probes = parse_probes(o->probes, sys);
-                 std::vector<int> outputs = probes.empty() ? dofs_by_name(o->dofs, sys.dof_names, "--dofs")
-                                                           : probe_dofs(probes);
-                 if (outputs.empty()) outputs.push_back(input);
-                 note_extrapolation(c, spin);
-                 FrequencyResponse r = frequency_response(sys, spin, frequencies, input, outputs,
-                                                          use_sparse(c) ? SolverKind::Sparse : SolverKind::Dense);
-                 // Probes: their readings are the outputs, named as given.
-                 ProbeOutputs named{sys.dof_names, sys.dof_units, {}};
-                 if (!probes.empty()) {
-                     named = probe_outputs(sys, probes);
-                     r.H = probe_readings(probes, r.outputs, r.H);
-                     r.outputs = named.outputs;
-                 }
-                 to_length_unit(r.outputs, r.H, named.units, c.scene.length_unit());   // mm in an mm scene
+                     rq.frequencies = SpeedRange::parse(o->frequencies, "--frequencies").points();
+                 rq.dofs = split_names(o->dofs);
+                 rq.probes = parse_probes(o->probes, c.scene.system);
+                 const FrfStudy st = frf_study(c.scene, c.request, rq);
+                 print_diagnostics(st.diagnostics);
+                 const FrequencyResponse& r = st.response;
+                 const ProbeOutputs& named = st.named;
                  write_table(out, frf_table(named.names, named.units, r, c.unit), c.format);
                  if (!o->common.plot.empty())
                      plot_if(o->common.plot, frf_figure(named.names, named.units, r, c.unit, o->polar));

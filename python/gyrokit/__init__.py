@@ -460,10 +460,12 @@ class FrequencyResponse(_Result):
     H[i, k] of DOF dofs[k] at frequencies[i] (complex, the output's unit per N or N m); amplitude, phase (deg).
     Speeds and frequencies in `unit`. plot(): the CLI's Bode plot; plot_polar(): its polar plot."""
 
-    def __init__(self, speed, frequencies, input, dofs, d, unit):
-        self.speed, self.unit, self.input = speed, unit, input
-        self.frequencies = _np.asarray(frequencies, dtype=float)
-        self.dofs = list(dofs)
+    def __init__(self, d):
+        self.unit, self.input = d["unit"], d["input"]
+        f = _factor(self.unit)
+        self.speed = d["speed"] * f
+        self.frequencies = _np.asarray(d["frequencies"], dtype=float) * f
+        self.dofs = list(d["names"])
         self.H = d["H"]
         self.amplitude = _np.abs(self.H)
         self.phase = _np.degrees(_np.angle(self.H))
@@ -495,31 +497,16 @@ def _probes(probes):
     return out
 
 
-def frf(model, speed, input, frequencies, *, dofs=None, probes=None, unit=None, solver=None) -> FrequencyResponse:
+def frf(model, speed, input, frequencies=None, *, dofs=None, probes=None, unit=None, solver=None) -> FrequencyResponse:
     """Frequency response functions of `model` (a System or Scene) spinning at `speed`: the response of `dofs`
     (names; default: the input itself, the driving point) or of displacement `probes` [(node, angle), ...] (x cos +
     y sin, degrees from +x towards +y; outputs named "NODE@ANGLE") to a unit harmonic force at DOF `input` (a name:
     "y12"; a moment: "tx12"), at `frequencies`; `speed` and `frequencies` in `unit` (rad/s, Hz, rpm; default the
     scene's [speeds] units, else rad/s). Dense or sparse LU by `solver` (auto: sparse above 200 DOFs). See docs/frf.md."""
-    if dofs is not None and probes is not None:
-        raise InputError("dofs and probes: allowed: one of them")
-    unit = _core.resolve_unit(model, unit)
-    system = model.system if isinstance(model, Scene) else model
-    if not isinstance(system, System):
-        raise InputError(f"expected a gyrokit.System or gyrokit.Scene, got {type(model).__name__}")
-    names = system.dof_names
-    dofs = [input] if dofs is None else list(dofs)
-    for key, d in [("input", input)] + [("dofs", d) for d in dofs]:
-        if d not in names:
-            raise InputError(f"{key}: {d!r} is not a DOF of the model; allowed: names such as {names[0]!r}")
-    factor = _UNITS[unit]
-    w = _np.asarray(frequencies, dtype=float) / factor
-    d = _core.frf(system, float(speed) / factor, list(w), names.index(input), [names.index(d) for d in dofs],
-                  solver or (model.solver if isinstance(model, Scene) else "auto"), unit, _probes(probes),
-                  _length(model))
-    if probes is not None:
-        dofs = list(d["names"])
-    return FrequencyResponse(float(speed), _np.asarray(frequencies, dtype=float), input, dofs, d, unit)
+    d = _core.frf(model, _request(unit=unit, solver=solver), str(input), float(speed),
+                  None if frequencies is None else _np.asarray(frequencies, dtype=float).ravel().tolist(),
+                  [str(x) for x in (dofs or [])], _probes(probes))
+    return FrequencyResponse(d)
 
 
 class StaticDeflection(_Result):
