@@ -159,15 +159,13 @@ py::dict py_mode_shapes(const py::object& model, double speed, const py::dict& r
     const LengthUnit length = m.scene().length_unit();
     // A scene's FE rotor: its disks, bearings and supports marked on the shapes.
     const AxisMarks marks = axis_marks(m.scene());
-    if (!(std::isfinite(speed) && speed >= 0))
-        throw InputError(fmt::format("{} {}: allowed: a finite number >= 0 ({})", option_field("speed"), speed, u.name));
     speed /= u.factor;
-    std::vector<ModeShape> shapes;
-    std::vector<std::string> notes;
+    ModeShapeStudy st;
     {
         Released free;
-        shapes = mode_shapes(s, speed, so.solver, &notes);
+        st = mode_shape_study(s, speed, so.solver, u);
     }
+    const std::vector<ModeShape>& shapes = st.shapes;
     const auto k = static_cast<Eigen::Index>(shapes.size());
     Eigen::VectorXcd lambda(k);
     Eigen::MatrixXcd vectors(s.size(), k);
@@ -206,7 +204,7 @@ py::dict py_mode_shapes(const py::object& model, double speed, const py::dict& r
     d["numbers"] = number;
     d["reference"] = reference;
     d["whirl"] = whirl;
-    d["notes"] = spelled(notes);
+    put_diagnostics(d, st.diagnostics);
     py::dict orbits;
     orbits["mode"] = orbit_mode;
     orbits["pair"] = orbit_pair;
@@ -329,16 +327,12 @@ py::dict py_pervasive(const py::object& model, double tolerance, const py::dict&
     const ModelArg m(model);
     const StudyOptions so = resolve(m, request);
     const SpeedUnit& u = so.unit;
-    PervasiveOptions po;
-    po.tolerance = tolerance;
-    po.modes = so.solver.modes;
-    po.solver = so.solver;
-    po.threads = so.workers;
-    PervasiveReport rep;
+    PervasiveStudy st;
     {
         Released free;
-        rep = pervasive_damping(m.system(), so.speeds, po);
+        st = pervasive_study(m.system(), so, tolerance);
     }
+    const PervasiveReport& rep = st.report;
     py::list damping, whirl;
     std::vector<double> speed, frequency, residual;
     std::vector<int> mode;
@@ -359,6 +353,7 @@ py::dict py_pervasive(const py::object& model, double tolerance, const py::dict&
     d["frequency"] = py::array_t<double>(static_cast<py::ssize_t>(frequency.size()), frequency.data());
     d["whirl"] = whirl;
     d["residual"] = py::array_t<double>(static_cast<py::ssize_t>(residual.size()), residual.data());
+    put_diagnostics(d, st.diagnostics);
     put_reports(d, {pervasive_table(rep, u)});
     return d;
 }

@@ -91,22 +91,11 @@ Command modes_command(CLI::App& app, const std::shared_ptr<Options>& o) {
         if (o->per != "node" && o->per != "dof")
             throw InputError("--per '" + o->per + "': allowed: node, dof");
         const double w = o->speed.empty() ? 0.0 : parse_speed(o->speed, "--speed", c.unit);
-        note_extrapolation(c, w);
-        const SolverOptions& so = c.study.solver;
-        std::vector<std::string> notes;
-        std::vector<ModeShape> shapes = mode_shapes(c.scene.system, w, so, &notes);
-        for (const auto& n : notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
-        if (!o->select.empty()) {
-            std::vector<ModeShape> chosen;
-            for (const int k : parse_harmonics(o->select, {}, "--mode")) {
-                if (k > static_cast<int>(shapes.size()))
-                    throw InputError(shapes.empty() ? fmt::format("--mode {}: no mode was computed at this speed", k)
-                                                    : fmt::format("--mode {}: allowed: 1 to {} (the modes computed)",
-                                                                  k, shapes.size()));
-                chosen.push_back(shapes[static_cast<size_t>(k - 1)]);
-            }
-            shapes = std::move(chosen);
-        }
+        const ModeShapeStudy st = mode_shape_study(c.scene.system, w, c.study.solver, c.unit,
+                                                   o->select.empty() ? std::vector<int>{}
+                                                                     : parse_harmonics(o->select, {}, "--mode"));
+        print_diagnostics(st.diagnostics);
+        const std::vector<ModeShape>& shapes = st.shapes;
         const auto& sys = c.scene.system;
         const bool per_dof = o->per == "dof" || sys.whirl_pairs.empty();
         Table detail = per_dof ? mode_dof_table(shapes, sys.dof_names, sys.dof_units, w, c.unit)

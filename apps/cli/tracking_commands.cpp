@@ -140,15 +140,9 @@ Command pervasive_command(CLI::App& app, const std::shared_ptr<Options>& o) {
         ->check(CLI::Range(0, 100000000));
     return {perv, [o](std::ostream& out) {
         const Context c = open_scene(o->common, request(*o), true);
-        PervasiveOptions po;
-        po.tolerance = o->tolerance;
-        po.modes = c.study.solver.modes;
-        po.solver = c.study.solver;
-        po.threads = c.study.workers.count;
-        if (use_sparse(c) && po.modes == 0)
-            std::cerr << "note: the sparse solver checks the " << kDefaultSparseModes
-                      << " modes nearest the target; set --modes K for another number\n";
-        write_table(out, pervasive_table(pervasive_damping(c.scene.system, c.speeds, po), c.unit), c.format);
+        const PervasiveStudy st = pervasive_study(c.scene.system, c.study, o->tolerance);
+        print_diagnostics(st.diagnostics);
+        write_table(out, pervasive_table(st.report, c.unit), c.format);
     }};
 }
 

@@ -617,6 +617,7 @@ class PervasiveLosses(_Result):
         self.frequency = d["frequency"] * f
         self.whirl = list(d["whirl"])
         self.residual = d["residual"]
+        self.notes = list(d["notes"])
         self._take_reports(d)
 
     def to_pandas(self):

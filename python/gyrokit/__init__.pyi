@@ -212,6 +212,7 @@ class PervasiveLosses(_Result):
     frequency: npt.NDArray[np.float64]
     whirl: list[str]
     residual: npt.NDArray[np.float64]
+    notes: list[str]
     def to_pandas(self) -> Any: ...
 
 class Response(_Result):
@@ -348,7 +349,7 @@ class FrequencyResponse(_Result):
     def to_pandas(self) -> Any: ...
     def plot_polar(self, path: Optional[Path] = ..., axes: Any = ...) -> Any: ...
 
-def frf(model: Model, speed: float, input: str, frequencies: npt.ArrayLike, *, dofs: Optional[Sequence[str]] = ...,
+def frf(model: Model, speed: float, input: str, frequencies: Optional[npt.ArrayLike] = ..., *, dofs: Optional[Sequence[str]] = ...,
         probes: Optional[Sequence[tuple[int, float]]] = ..., unit: Optional[str] = ...,
         solver: Optional[str] = ...) -> FrequencyResponse: ...
 

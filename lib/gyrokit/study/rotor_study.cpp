@@ -70,6 +70,48 @@ SpectrumStudy spectrum_study(const GyroscopicSystem& sys, double speed, const So
     return s;
 }
 
+ModeShapeStudy mode_shape_study(const GyroscopicSystem& sys, double speed, const SolverOptions& opt,
+                                const SpeedUnit& unit, const std::vector<int>& select) {
+    if (!(std::isfinite(speed) && speed >= 0.0))
+        throw InputError(fmt::format("{} {}: allowed: a finite number >= 0 ({})", option_field("speed"),
+                                     speed * unit.factor, unit.name));
+    ModeShapeStudy s;
+    add_notes(s.diagnostics, Topic::Extrapolation, extrapolation_notes(sys.bearings, speed, speed));
+    std::vector<std::string> notes;
+    s.shapes = mode_shapes(sys, speed, opt, &notes);
+    add_notes(s.diagnostics, Topic::Solver, notes);
+    if (select.empty()) return s;
+    std::vector<ModeShape> chosen;
+    for (const int k : select) {
+        if (k < 1 || k > static_cast<int>(s.shapes.size()))
+            throw InputError(s.shapes.empty()
+                                 ? fmt::format("{} {}: no mode was computed at this speed", option_field("mode"), k)
+                                 : fmt::format("{} {}: allowed: 1 to {} (the modes computed)", option_field("mode"), k,
+                                               s.shapes.size()));
+        chosen.push_back(s.shapes[static_cast<std::size_t>(k - 1)]);
+    }
+    s.shapes = std::move(chosen);
+    return s;
+}
+
+PervasiveStudy pervasive_study(const GyroscopicSystem& sys, const StudyOptions& opt, double tolerance) {
+    if (opt.speeds.empty())
+        throw InputError(option_field("speeds") + " (none): allowed: at least one speed in rad/s");
+    PervasiveStudy s;
+    PervasiveOptions po;
+    po.tolerance = tolerance;
+    po.modes = opt.solver.modes;
+    po.solver = opt.solver;
+    po.threads = opt.workers;
+    if (po.modes == 0 && resolve_solver_kind(sys.size(), opt.solver.kind) == SolverKind::Sparse)
+        s.diagnostics.push_back({Level::Note, Topic::Solver,
+                                 fmt::format("the sparse solver checks the {} modes nearest the target; set {} K for "
+                                             "another number",
+                                             kDefaultSparseModes, option_field("modes"))});
+    s.report = pervasive_damping(sys, opt.speeds, po);
+    return s;
+}
+
 CampbellStudy campbell_study(const GyroscopicSystem& sys, const StudyOptions& opt) {
     if (opt.speeds.empty())
         throw InputError(option_field("speeds") + " (none): allowed: at least one speed in rad/s");

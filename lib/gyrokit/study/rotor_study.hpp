@@ -8,6 +8,8 @@
 
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
+#include <gyrokit/analysis/mode_shapes.hpp>
+#include <gyrokit/analysis/pervasive_damping.hpp>
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/workers.hpp>
 #include <gyrokit/core/diagnostics.hpp>
@@ -57,6 +59,26 @@ struct SpectrumStudy {
     Diagnostics diagnostics;   // bearings beyond their tables at the speed, the solver's notes, rigid-body eigenvalues
 };
 SpectrumStudy spectrum_study(const GyroscopicSystem& sys, double speed, const SolverOptions& opt);
+
+// The mode shapes at one speed (modes, mode_shapes): the opt.modes lowest (0: every
+// mode computed); `select` (numbers from 1 of those computed) keeps only these, in
+// that order. InputError naming the field (speed, mode) and its range; speeds in
+// messages in `unit`.
+struct ModeShapeStudy {
+    std::vector<ModeShape> shapes;
+    Diagnostics diagnostics;   // bearings beyond their tables at the speed, the solver's notes
+};
+ModeShapeStudy mode_shape_study(const GyroscopicSystem& sys, double speed, const SolverOptions& opt,
+                                const SpeedUnit& unit = {}, const std::vector<int>& select = {});
+
+// The Hautus check of each damping component and of the total damping over the
+// study's speeds, the modes the study names (opt.solver.modes), its workers.
+struct PervasiveStudy {
+    PervasiveReport report;
+    Diagnostics diagnostics;   // what the check covers where the sparse solver's window limits it
+};
+PervasiveStudy pervasive_study(const GyroscopicSystem& sys, const StudyOptions& opt,
+                               double tolerance = defaults::pervasive_tolerance);
 
 // A tracked Campbell diagram and what it stood on.
 struct CampbellStudy {
