@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "%s: the scene has no [speeds]\n", argv[1]);
             return 2;
         }
-        const gyrokit::CampbellDiagram cd = gyrokit::campbell(scene.system, scene.speeds->points());
+        const gyrokit::CampbellDiagram cd = gyrokit::campbell(scene.system, scene.speed_points());
         for (const auto& c : gyrokit::critical_speeds(scene.system, cd, {1}))
             std::printf("%10.4f rad/s  branch %d  %s\n", c.speed, c.branch, gyrokit::to_string(c.mode.whirl).c_str());
     } catch (const std::exception& e) {   // gyrokit::InputError: one line naming the file and key

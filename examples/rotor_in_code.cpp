@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
         gyrokit::Scene built = gyrokit::rotor_scene(three_disk_rotor(), "three-disk rotor, built in code");
         const gyrokit::Scene file = gyrokit::load_scene(argv[1]);
         built.speeds = file.speeds;
+        built.speed_unit = file.speed_unit;   // [speeds] as written, in their units
         if (argc > 2 && std::strcmp(argv[2], "--write") == 0) {
             std::fputs(gyrokit::scene_text(built).c_str(), stdout);
             return 0;

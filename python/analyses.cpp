@@ -35,13 +35,6 @@ using namespace gyrokit_python;
 
 namespace {
 
-// Notes with their option fields in Python's keywords.
-std::vector<std::string> spelled(const std::vector<std::string>& notes) {
-    std::vector<std::string> out;
-    for (const auto& n : notes) out.push_back(spell_fields(n, keyword_words));
-    return out;
-}
-
 // One eigenvalue per conjugate pair (Im >= 0), as the CLI prints.
 py::dict spectrum_dict(const QuadraticSpectrum& s) {
     const auto n = static_cast<py::ssize_t>(s.modes.size());
@@ -69,7 +62,6 @@ py::dict spectrum_dict(const QuadraticSpectrum& s) {
     d["vectors"] = X;
     d["rigid_body"] = rigid;
     d["method"] = s.method;
-    d["notes"] = spelled(s.notes);
     d["partial"] = s.partial;
     return d;
 }
@@ -106,7 +98,6 @@ py::dict campbell_dict(const CampbellDiagram& cd) {
     d["ambiguous_steps"] = cd.ambiguous_steps;
     d["max_backward_error"] = cd.max_backward_error;
     d["rigid_body"] = cd.rigid_body;
-    d["notes"] = cd.notes;
     // The modes judged beyond the K shown (ids K + 1 on: the critical speeds and
     // stability changes may name them), speeds x those branches.
     const auto nj = static_cast<py::ssize_t>(cd.untracked.size());
@@ -140,7 +131,7 @@ py::dict py_eig(const py::object& model, double speed, const py::dict& request) 
     SpectrumStudy st;
     {
         Released free;
-        st = spectrum_study(m.system(), speed, so.solver);
+        st = spectrum_study(m.system(), speed, so.solver, u);
     }
     py::dict d = spectrum_dict(st.spectrum);
     d["speed"] = speed;
@@ -406,8 +397,9 @@ void bind_analyses(py::module_& m) {
         "resolve_unit",
         [](const py::object& model, const py::object& unit) {
             const ModelArg a(model);
-            return resolve_unit(a.scene(), unit.is_none() ? std::nullopt : std::optional<std::string>(unit.cast<std::string>()))
-                .name;
+            py::dict keywords;
+            keywords["unit"] = unit;   // checked as every call's keyword
+            return resolve_unit(a.scene(), rotor_request(keywords).unit).name;
         },
         py::arg("model"), py::arg("unit"));
     // `request`: the keywords of rotor_request (None: not given).

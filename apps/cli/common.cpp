@@ -48,7 +48,7 @@ void add_solver_options(CLI::App* c, Common& o) {
 void add_cut_option(CLI::App* c, Common& o) {
     c->add_option("--f-cut", o.f_cut,
                   fmt::format("frequency (in --units) up to which every mode is tracked and judged (critical speeds, "
-                              "stability), whatever --modes shows; default: the scene's f_cut, else {} times the "
+                              "stability), whatever --modes shows; default: the scene's f_cut (rad/s in [analysis]), else {} times the "
                               "highest harmonic times the top speed",
                               kBandMargin));
 }
@@ -59,22 +59,14 @@ bool use_sparse(const Context& c) {
     return resolve_solver_kind(c.scene.dofs(), c.study.solver.kind) == SolverKind::Sparse;
 }
 
-SolverChoice plan_solver(const Context& c, int modes) {
-    SolverOptions so = c.study.solver;
-    so.modes = modes;
-    SolverChoice choice = choose_solver(c.scene.system, so);
-    for (const auto& n : choice.notes) std::cerr << "note: " << n << "\n";
-    return choice;
-}
-
 StudyOptions with_progress(StudyOptions s, bool quiet) {
     if (!quiet) s.progress = progress_bar("speeds");
     return s;
 }
 
-std::optional<int> given_modes(int modes, int not_given) {
-    if (modes == not_given) return std::nullopt;
-    return modes;   // a negative count is the library's to refuse
+std::optional<int> given_modes(int modes) {
+    if (modes == kNotGiven) return std::nullopt;
+    return modes;
 }
 
 void print_diagnostics(const Diagnostics& d, std::initializer_list<Diagnostic::Topic> skip) {

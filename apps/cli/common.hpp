@@ -15,6 +15,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -70,11 +71,10 @@ struct Context {
 // The request of the options every scene command shares (--units, --speeds, the
 // solver options, --f-cut, --jobs), values as written (in --units where a unit applies).
 RotorRequest request_of(const Common& o);
-// --modes as given (a count >= 0); `not_given` (the option's initial value): unset.
-std::optional<int> given_modes(int modes, int not_given = -1);
-// The library's solver choice (choose_solver) for the study with `modes` modes
-// (0: all, or the sparse default); its notes go to stderr.
-SolverChoice plan_solver(const Context& c, int modes);
+// The initial value of a count option that no one types: the option was not given.
+constexpr int kNotGiven = std::numeric_limits<int>::min();
+// --modes as given (a negative count is the library's to refuse); kNotGiven: unset.
+std::optional<int> given_modes(int modes);
 // The study with a progress bar unless `quiet`.
 StudyOptions with_progress(StudyOptions s, bool quiet = false);
 // Diagnostics on stderr ("note: ", "warning: "), option fields as flags; topics in
@@ -96,8 +96,6 @@ TableFormat parse_format(const Common& o);
 double parse_speed(const std::string& text, const std::string& option, const SpeedUnit& u);
 // A number spelled out completely (its range is the library's to check).
 double parse_number(const std::string& text, const std::string& option);
-// A dimensionless multiple of the speed (>= 0), e.g. --target-order.
-double parse_order(const std::string& text, const std::string& option);
 // Whole numbers in [1, 1000] separated by commas (harmonics, mode numbers); empty: `fallback`.
 std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>& fallback,
                                  const std::string& option = "--harmonics");

@@ -65,11 +65,6 @@ double parse_number(const std::string& text, const std::string& option) {
     throw InputError(fmt::format("{} '{}': allowed: a number", option, text));
 }
 
-double parse_order(const std::string& text, const std::string& option) {
-    if (const auto v = nonnegative(text)) return *v;
-    throw InputError(fmt::format("{} '{}': allowed: a finite number >= 0 (a multiple of the speed)", option, text));
-}
-
 std::vector<int> parse_harmonics(const std::string& text, const std::vector<int>& fallback,
                                  const std::string& option) {
     if (text.empty()) return fallback;

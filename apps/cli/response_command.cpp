@@ -18,7 +18,7 @@ namespace {
 struct Options {
     Common common;
     std::string dofs, nodes, at, probes;
-    int modes = -1;
+    int modes = kNotGiven;
     bool extrema = false, rows = false, polar = false, no_stability_check = false;
 };
 

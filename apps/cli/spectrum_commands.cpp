@@ -17,7 +17,7 @@ namespace {
 struct Options {
     Common common;
     std::string speed, dir, select, per = "node";
-    int modes = -1;
+    int modes = kNotGiven;
     bool rigid_body = false;
 };
 
@@ -42,7 +42,7 @@ Command eig_command(CLI::App& app, const std::shared_ptr<Options>& o) {
         const Context c = open_scene(o->common, request(*o), false);
         const double w = parse_speed(o->speed, "--speed", c.unit);
         const SolverOptions& so = c.study.solver;
-        const SpectrumStudy st = spectrum_study(c.scene.system, w, so);
+        const SpectrumStudy st = spectrum_study(c.scene.system, w, so, c.unit);
         // With --rigid-body the table lists them: no note.
         if (o->rigid_body)
             print_diagnostics(st.diagnostics, {Diagnostic::Topic::RigidBody});

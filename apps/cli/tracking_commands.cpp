@@ -16,7 +16,7 @@ namespace {
 struct Options {
     Common common;
     std::string harmonics, critical_method = "branches";
-    int modes = -1;
+    int modes = kNotGiven;
     double tolerance = defaults::pervasive_tolerance;
     bool rows = false;
 };

@@ -60,15 +60,6 @@ def _request(**given):
     return given
 
 
-def _title(model):
-    return model.title if isinstance(model, Scene) else ""
-
-
-def _length(model):
-    """The unit a scene states lengths in (its tables and figures print them so); m for a System."""
-    return model.length_unit if isinstance(model, Scene) else "m"
-
-
 def _log_dec(lam):
     """-2 pi Re / Im of each eigenvalue, as the CLI's log_dec: a real eigenvalue (no oscillation) gives
     +inf where it decays, -inf where it grows, 0 at zero; NaN where a branch has no point."""
@@ -467,6 +458,7 @@ class FrequencyResponse(_Result):
         self.frequencies = _np.asarray(d["frequencies"], dtype=float) * f
         self.dofs = list(d["names"])
         self.H = d["H"]
+        self.notes, self.warnings = list(d["notes"]), list(d["warnings"])
         self.amplitude = _np.abs(self.H)
         self.phase = _np.degrees(_np.angle(self.H))
         self._take_reports(d)

@@ -237,9 +237,9 @@ def response(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, dofs: Optio
              modes: Optional[int] = ..., method: str = ..., lanczos: int = ..., jobs: int = ...,
              unit: Optional[str] = ..., f_cut: Optional[float] = ..., stability_check: bool = ...,
              extrema: bool = ..., peaks: bool = ...) -> Response: ...
-def gyrostat(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
+def gyrostat(*, speeds: Optional[Mapping[str, Union[float, str]]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
              **keys: Any) -> Scene: ...
-def fe_rotor(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
+def fe_rotor(*, speeds: Optional[Mapping[str, Union[float, str]]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
              directory: str = ..., **keys: Any) -> Scene: ...
 class Section:
     def __init__(self, *, length: float, outer_diameter: float, E: Optional[float] = ...,
@@ -303,12 +303,12 @@ class Rotor:
     pedestals: list[Pedestal]
     motion: str
 
-def rotor_scene(rotor: Rotor, *, title: str = ..., speeds: Optional[Mapping[str, float]] = ...,
+def rotor_scene(rotor: Rotor, *, title: str = ..., speeds: Optional[Mapping[str, Union[float, str]]] = ...,
                 analysis: Optional[Mapping[str, Any]] = ...) -> Scene: ...
 
-def fluid_rotor(*, speeds: Optional[Mapping[str, float]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
+def fluid_rotor(*, speeds: Optional[Mapping[str, Union[float, str]]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
                 **keys: Any) -> Scene: ...
-def matrices_scene(directory: str, *, speeds: Optional[Mapping[str, float]] = ...,
+def matrices_scene(directory: str, *, speeds: Optional[Mapping[str, Union[float, str]]] = ...,
                    analysis: Optional[Mapping[str, Any]] = ..., **keys: Any) -> Scene: ...
 
 class BalancerStates:
@@ -346,6 +346,8 @@ class FrequencyResponse(_Result):
     H: npt.NDArray[np.complex128]
     amplitude: npt.NDArray[np.float64]
     phase: npt.NDArray[np.float64]  # degrees
+    notes: list[str]
+    warnings: list[str]
     def to_pandas(self) -> Any: ...
     def plot_polar(self, path: Optional[Path] = ..., axes: Any = ...) -> Any: ...
 

@@ -26,16 +26,22 @@ SCENES = sorted(p for p in glob.glob(os.path.join(DATA, "*.toml")) + [os.path.jo
 # The analysis, its Python call and extra CLI arguments, and which of Python's tables the CLI's JSON holds
 # (the CLI lists the critical speeds and the heavily damped crossings as one table).
 ANALYSES = {
-    "eig": (lambda s, w: gk.eig(s, w), lambda w: ["--speed", repr(w)], ["eigenvalues"]),
-    "modes": (lambda s, w: gk.modes(s, w), lambda w: ["--speed", repr(w)], ["mode_orbits"]),
-    "campbell": (lambda s, w: gk.campbell(s), lambda w: [], ["campbell"]),
-    "critical": (lambda s, w: gk.critical_speeds(s), lambda w: [], ["critical_speeds", "heavily_damped_crossings"]),
-    "stability": (lambda s, w: gk.stability(s), lambda w: [], ["stability_changes"]),
-    "response": (lambda s, w: gk.response(s, peaks=False), lambda w: [], ["response"]),   # JSON: the curve
+    "eig": (lambda s, w: gk.eig(s, w), lambda s, w: ["--speed", repr(w)], ["eigenvalues"]),
+    "modes": (lambda s, w: gk.modes(s, w), lambda s, w: ["--speed", repr(w)], ["mode_orbits"]),
+    "campbell": (lambda s, w: gk.campbell(s), lambda s, w: [], ["campbell"]),
+    "critical": (lambda s, w: gk.critical_speeds(s), lambda s, w: [], ["critical_speeds", "heavily_damped_crossings"]),
+    "stability": (lambda s, w: gk.stability(s), lambda s, w: [], ["stability_changes"]),
+    "response": (lambda s, w: gk.response(s, peaks=False), lambda s, w: [], ["response"]),   # JSON: the curve
     # Three speeds, 0 to the top (the checker is slow on the larger FE rotors: 37 s for 3 speeds of
     # data/compressor.toml, so it runs on the smaller scenes here).
-    "pervasive": (lambda s, w: gk.pervasive(s, [0.0, w, 2.0 * w]), lambda w: ["--speeds", f"0:{2.0 * w!r}:3"],
+    "pervasive": (lambda s, w: gk.pervasive(s, [0.0, w, 2.0 * w]), lambda s, w: ["--speeds", f"0:{2.0 * w!r}:3"],
                   ["pervasive_damping"]),
+    # A unit force at the first DOF, at half the top speed, over the scene's [speeds] grid.
+    "frf": (lambda s, w: gk.frf(s, w, s.system.dof_names[0]),
+            lambda s, w: ["--speed", repr(w), "--input", s.system.dof_names[0]], ["frf"]),
+    # FE rotors (an InputError, the same in both, for the other models).
+    "static": (lambda s, w: gk.static(s), lambda s, w: [], ["deflection", "static", "reactions", "internal_forces"]),
+    "critical-map": (lambda s, w: gk.critical_speed_map(s), lambda s, w: [], ["critical_map", "bearing_curves"]),
 }
 PERVASIVE_SCENES = {"centrifuge.toml", "friswell_5_9_1.toml", "scene.toml", "three_disk_rotor.toml"}
 
@@ -57,20 +63,27 @@ def test_the_cli_and_python_give_the_same_rows_and_notes(tmp_path, path, analysi
     if analysis == "pervasive" and os.path.basename(path) not in PERVASIVE_SCENES:
         pytest.skip("pervasive: the smaller scenes only")
     call, args, keys = ANALYSES[analysis]
-    w = float(np.max(scene.speeds)) / 2.0   # rad/s: the one-speed analyses at half the top speed
+    # The one-speed analyses at half the top speed, in the scene's [speeds] units (both front ends' default).
+    per_rad_s = {"rad/s": 1.0, "Hz": 0.5 / np.pi, "rpm": 30.0 / np.pi}[scene.speed_unit]
+    w = float(np.max(scene.speeds)) / 2.0 * per_rad_s
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")   # the unstable ranges: compared below as the result's `warnings`
             result = call(scene, w)
-    except gk.InputError as e:
-        # Bad input is the same error in both, with the CLI's exit status 2.
-        bad = subprocess.run([CLI, analysis, path, *args(w), "--format", "json"], capture_output=True, text=True)
-        assert bad.returncode == 2 and f"error: {e}" in bad.stderr.splitlines()
+    except (gk.InputError, gk.SolverError) as e:
+        # Bad input (a solver's failure) is the same error in both, with the CLI's exit status 2 (3).
+        bad = subprocess.run([CLI, analysis, path, *args(scene, w), "--format", "json"], capture_output=True,
+                             text=True)
+        status, word = (2, "error") if isinstance(e, gk.InputError) else (3, "solver error")
+        assert bad.returncode == status and f"{word}: {e}" in bad.stderr.splitlines()
         return
-    run = cli(analysis, path, *args(w))
+    run = cli(analysis, path, *args(scene, w))
     tables = json.load(open(result.save(tmp_path / "result.json")))
-    rows = [row for key in keys for row in tables.get(key, [])]
-    assert json.loads(run.stdout) == rows
+    printed = json.loads(run.stdout)
+    if isinstance(printed, dict):   # several tables: each by its key
+        assert printed == {key: tables[key] for key in keys if key in tables}
+    else:
+        assert printed == [row for key in keys for row in tables.get(key, [])]
     lines = run.stderr.splitlines()
     # Each front end names the options in its own words (the library marks them): --modes 0, modes = 0.
     words = {"--modes 0": "modes = 0", "--f-cut": "f_cut =", "--rigid-body lists": "result.rigid_body lists"}

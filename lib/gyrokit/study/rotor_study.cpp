@@ -47,9 +47,11 @@ StudyOptions study_options(const Scene& scene) {
     return o;
 }
 
-SpectrumStudy spectrum_study(const GyroscopicSystem& sys, double speed, const SolverOptions& opt) {
+SpectrumStudy spectrum_study(const GyroscopicSystem& sys, double speed, const SolverOptions& opt,
+                             const SpeedUnit& unit) {
     if (!(std::isfinite(speed) && speed >= 0.0))
-        throw InputError(fmt::format("{} {}: allowed: a finite number >= 0 (rad/s)", option_field("speed"), speed));
+        throw InputError(fmt::format("{} {:.12g}: allowed: a finite number >= 0 ({})", option_field("speed"),
+                                     speed * unit.factor, unit.name));
     SpectrumStudy s;
     add_notes(s.diagnostics, Topic::Extrapolation, extrapolation_notes(sys.bearings, speed, speed));
     s.plan = choose_solver(sys, opt);
@@ -73,7 +75,7 @@ SpectrumStudy spectrum_study(const GyroscopicSystem& sys, double speed, const So
 ModeShapeStudy mode_shape_study(const GyroscopicSystem& sys, double speed, const SolverOptions& opt,
                                 const SpeedUnit& unit, const std::vector<int>& select) {
     if (!(std::isfinite(speed) && speed >= 0.0))
-        throw InputError(fmt::format("{} {}: allowed: a finite number >= 0 ({})", option_field("speed"),
+        throw InputError(fmt::format("{} {:.12g}: allowed: a finite number >= 0 ({})", option_field("speed"),
                                      speed * unit.factor, unit.name));
     ModeShapeStudy s;
     add_notes(s.diagnostics, Topic::Extrapolation, extrapolation_notes(sys.bearings, speed, speed));

@@ -58,7 +58,8 @@ struct SpectrumStudy {
     QuadraticSpectrum spectrum;
     Diagnostics diagnostics;   // bearings beyond their tables at the speed, the solver's notes, rigid-body eigenvalues
 };
-SpectrumStudy spectrum_study(const GyroscopicSystem& sys, double speed, const SolverOptions& opt);
+SpectrumStudy spectrum_study(const GyroscopicSystem& sys, double speed, const SolverOptions& opt,
+                             const SpeedUnit& unit = {});   // the unit messages name the speed in
 
 // The mode shapes at one speed (modes, mode_shapes): the opt.modes lowest (0: every
 // mode computed); `select` (numbers from 1 of those computed) keeps only these, in
