@@ -389,9 +389,53 @@ py::dict py_response(const py::object& model, const py::dict& request, const std
     return d;
 }
 
+// gk.fluid: the liquid-filled rotor's critical speeds, sloshing coefficients, or a fill sweep.
+py::dict py_fluid(const Scene& scene, const py::object& unit, std::optional<std::vector<double>> fill) {
+    py::dict keywords;
+    keywords["unit"] = unit;
+    FluidRequest rq;
+    rq.unit = rotor_request(keywords).unit;
+    rq.fill = std::move(fill);
+    FluidStudy st;
+    {
+        Released free;
+        st = fluid_study(scene, rq);
+    }
+    const SpeedUnit& u = st.unit;
+    py::dict d;
+    d["unit"] = u.name;
+    put_diagnostics(d, st.diagnostics);
+    if (st.sweep) {
+        const FillSweep& w = *st.sweep;
+        d["fills"] = w.fills;
+        py::dict by_model;
+        for (const auto& [name, model] : {std::pair{"moving_undamped", LiquidModel::MovingUndamped},
+                                          std::pair{"moving_damped", LiquidModel::MovingDamped},
+                                          std::pair{"rigid", LiquidModel::Rigid}}) {
+            py::list per_fill;
+            for (const FluidCriticalSpeeds& cs : w.speeds) per_fill.append(cs.of(model));
+            by_model[name] = per_fill;
+        }
+        d["critical_speeds"] = by_model;
+        put_reports(d, {fill_sweep_table(w, u)}, fill_sweep_figure(w, u, scene.title));
+        return d;
+    }
+    const FluidCriticalSpeeds& cs = *st.critical;
+    py::dict by_model;
+    by_model["moving_undamped"] = cs.moving_undamped;
+    by_model["moving_damped"] = cs.moving_damped;
+    by_model["rigid"] = cs.rigid;
+    d["critical_speeds"] = by_model;
+    d["J_eq"] = cs.J_eq;
+    d["J_eq_rigid"] = cs.J_eq_rigid;
+    put_reports(d, {fluid_critical_table(cs, u), sloshing_modes_table(st.rotor, cs, u), liquid_table(st.rotor, cs)});
+    return d;
+}
+
 }  // namespace
 
 void bind_analyses(py::module_& m) {
+    m.def("fluid", &py_fluid, py::arg("scene"), py::arg("unit"), py::arg("fill"));
     // The unit of a call's speeds and results: `unit`, else the scene's [speeds] units.
     m.def(
         "resolve_unit",

@@ -31,7 +31,7 @@ namespace gyrokit_python {
 std::string keyword_words(const std::string& field) {
     if (field == "lanczos_vectors") return "lanczos =";
     // Names that read as nouns in a message ("dofs and probes: allowed: one of them").
-    for (const char* noun : {"speeds", "dofs", "probes", "input", "frequencies"})
+    for (const char* noun : {"speeds", "dofs", "probes", "input", "frequencies", "fill"})
         if (field == noun) return noun;
     if (field == "units") return "unit =";
     if (field == "rows") return "result.table('campbell')";

@@ -207,3 +207,33 @@ TEST_CASE("request: the frequency response study takes its input, outputs and gr
     bad.frequencies = std::vector<double>{};
     refused(bad, "frequencies = (none)");
 }
+
+TEST_CASE("request: the fluid study checks its model and fill levels in the library", "[request][fluid]") {
+    const Scene n2 = load_scene(std::string(GYROKIT_DATA_DIR) + "/fluid_N2.toml");
+    const FluidStudy one = fluid_study(n2, {});
+    REQUIRE(one.critical);
+    CHECK_FALSE(one.sweep);
+    CHECK(one.unit.name == "rad/s");
+    CHECK(one.critical->moving_undamped == fluid_critical_speeds(build_fluid_rotor(*n2.fluid)).moving_undamped);
+    FluidRequest rq;
+    rq.unit = "rpm";
+    rq.fill = std::vector<double>{0.1, 0.3};
+    const FluidStudy sweep = fluid_study(n2, rq);
+    REQUIRE(sweep.sweep);
+    CHECK(sweep.unit.name == "rpm");
+    CHECK(sweep.sweep->fills.size() + static_cast<std::size_t>(sweep.sweep->skipped) == 2);
+    const auto message = [](const Scene& sc, const FluidRequest& r) {
+        try {
+            fluid_study(sc, r);
+        } catch (const InputError& e) {
+            return e.message({});
+        }
+        return std::string();
+    };
+    rq.fill = std::vector<double>{0.0};
+    CHECK(message(n2, rq).rfind("fill = R0 = 0: allowed: 0 < R0 < R", 0) == 0);
+    rq.fill = std::vector<double>{n2.fluid->R};
+    CHECK(message(n2, rq).find("allowed: 0 < R0 < R") != std::string::npos);
+    const Scene centrifuge = load_scene(std::string(GYROKIT_DATA_DIR) + "/centrifuge.toml");
+    CHECK(message(centrifuge, {}).find("needs type = \"fluid_rotor\"") != std::string::npos);
+}

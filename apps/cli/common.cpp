@@ -91,7 +91,7 @@ std::string flag_words(const std::string& field) {
         {"max_steps", "--max-steps"},       {"speed", "--speed"},   {"run_up", "--run-up"},
         {"acceleration", "--acceleration"}, {"gravity", "--gravity"}, {"tolerance", "--tolerance"},
         {"rigid_body", "--rigid-body"}, {"input", "--input"}, {"dofs", "--dofs"}, {"probes", "--probes"},
-        {"frequencies", "--frequencies"}, {"mode", "--mode"}};
+        {"frequencies", "--frequencies"}, {"mode", "--mode"}, {"fill", "--fill"}};
     for (const auto& [name, flag] : flags)
         if (field == name) return flag;
     return "";

@@ -1,7 +1,7 @@
 // fluid: critical speeds of a liquid-filled rotor (liquid moving, undamped and
 // damped; liquid frozen as a solid), the sloshing coefficients, and with --fill a
 // sweep of the free-surface radius R0 (the paper's Bild 2).
-#include <gyrokit/analysis/fluid_critical_speeds.hpp>
+#include <gyrokit/study/fluid_study.hpp>
 #include <gyrokit/reports/fluid_reports.hpp>
 #include "cli/common.hpp"
 #include <gyrokit/core/error.hpp>
@@ -19,14 +19,6 @@ struct FluidOptions {
     std::string fill, table;
 };
 
-std::vector<double> parse_fill(const std::string& text, double R) {
-    const SpeedRange r = SpeedRange::parse(text, "--fill", 1.0);
-    if (!(r.from > 0.0) || !(r.to < R))
-        throw InputError(fmt::format("--fill '{}': R0 from {} to {}; allowed: 0 < R0 < R = {} (m)", text, r.from,
-                                     r.to, R));
-    return r.points();
-}
-
 }  // namespace
 
 std::vector<Command> add_fluid_commands(CLI::App& app) {
@@ -42,21 +34,19 @@ std::vector<Command> add_fluid_commands(CLI::App& app) {
     cmds.push_back({fl, [o](std::ostream& out) {
         if (!o->common.plot.empty() && o->fill.empty()) throw InputError("--plot: only together with --fill");
         const Context c = open_scene(o->common, false);
-        if (!c.scene.fluid)
-            throw InputError(fmt::format("{}: [model] type = '{}'; the fluid command needs type = \"fluid_rotor\"",
-                                         c.scene.path, c.scene.model_type));
-        const FluidRotorParameters p0 = *c.scene.fluid;
-        if (!o->fill.empty()) {
-            const FillSweep sweep = fill_sweep(p0, parse_fill(o->fill, p0.R));
-            write_result(out, {fill_sweep_table(sweep, c.unit)}, c.format, o->table);
-            if (sweep.skipped)
-                std::cerr << "note: " << sweep.skipped << " fill levels lie exactly at a sloshing resonance\n";
-            if (!o->common.plot.empty()) plot_if(o->common.plot, fill_sweep_figure(sweep, c.unit, c.scene.title));
+        FluidRequest rq;
+        rq.unit = c.request.unit;
+        if (!o->fill.empty()) rq.fill = SpeedRange::parse(o->fill, "--fill").points();
+        const FluidStudy st = fluid_study(c.scene, rq);
+        print_diagnostics(st.diagnostics);
+        if (st.sweep) {
+            write_result(out, {fill_sweep_table(*st.sweep, st.unit)}, c.format, o->table);
+            if (!o->common.plot.empty()) plot_if(o->common.plot, fill_sweep_figure(*st.sweep, st.unit, c.scene.title));
             return;
         }
-        const FluidRotor f = build_fluid_rotor(p0);
-        const FluidCriticalSpeeds cs = fluid_critical_speeds(f);
-        write_result(out, {fluid_critical_table(cs, c.unit), sloshing_modes_table(f, cs, c.unit), liquid_table(f, cs)},
+        write_result(out,
+                     {fluid_critical_table(*st.critical, st.unit), sloshing_modes_table(st.rotor, *st.critical, st.unit),
+                      liquid_table(st.rotor, *st.critical)},
                      c.format, o->table);
     }});
     return cmds;

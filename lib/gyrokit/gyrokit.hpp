@@ -18,6 +18,7 @@
 #include <gyrokit/core/diagnostics.hpp>
 #include <gyrokit/study/critical_map_study.hpp>
 #include <gyrokit/study/defaults.hpp>
+#include <gyrokit/study/fluid_study.hpp>
 #include <gyrokit/study/frf_study.hpp>
 #include <gyrokit/study/request.hpp>
 #include <gyrokit/study/response_study.hpp>

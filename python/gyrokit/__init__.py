@@ -30,7 +30,7 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
            "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap", "frf",
            "FrequencyResponse", "Table", "load_tables", "draw", "summary", "ModelSummary", "transient",
-           "TransientResponse", "defaults"]
+           "TransientResponse", "defaults", "fluid", "FluidResult"]
 
 
 def defaults() -> list:
@@ -775,6 +775,37 @@ def fluid_rotor(*, speeds=None, analysis=None, **keys) -> Scene:
 def matrices_scene(directory, *, speeds=None, analysis=None, **keys) -> Scene:
     """A matrices model whose Matrix Market files (M, K, D, G, N, unbalance) lie in `directory`."""
     return _model_scene("matrices", keys, speeds, analysis, directory)
+
+
+class FluidResult(_Result):
+    """The liquid-filled rotor (docs/fluid_rotor.md), as `gyrokit fluid` prints it: `critical_speeds` by liquid
+    model ("moving_undamped", "moving_damped", "rigid"; arrays in `unit`), `J_eq` and `J_eq_rigid` (kg m^2), or with
+    a fill sweep `fills` (R0 in m) and `critical_speeds[model][k]` the speeds at fills[k]; `tables` (critical
+    speeds, sloshing modes, liquid; or the sweep), `plot()` the sweep's figure; `notes`."""
+
+    def __init__(self, d):
+        self.unit = d["unit"]
+        f = _factor(self.unit)
+        self.fills = _np.asarray(d["fills"], dtype=float) if "fills" in d else None
+        if self.fills is None:
+            self.critical_speeds = {k: _np.asarray(v, dtype=float) * f for k, v in d["critical_speeds"].items()}
+            self.J_eq, self.J_eq_rigid = d["J_eq"], d["J_eq_rigid"]
+        else:
+            self.critical_speeds = {k: [_np.asarray(x, dtype=float) * f for x in v]
+                                    for k, v in d["critical_speeds"].items()}
+        self.notes = list(d["notes"])
+        self._take_reports(d)
+
+
+def fluid(scene, *, fill=None, unit=None) -> FluidResult:
+    """Critical speeds of a liquid-filled rotor scene (`[model] type = "fluid_rotor"`) with the liquid moving
+    (undamped, damped) and frozen, and the sloshing coefficients; `fill` (free-surface radii R0 in m, 0 < R0 < R):
+    the sweep over the fill level instead, as `gyrokit fluid --fill`. Speeds in `unit` (default the scene's
+    [speeds] units, else rad/s)."""
+    if not isinstance(scene, Scene):
+        raise InputError(f"fluid: expected a gyrokit.Scene of a fluid_rotor model, got {type(scene).__name__}")
+    return FluidResult(_core.fluid(scene, unit, None if fill is None else
+                                   _np.asarray(fill, dtype=float).ravel().tolist()))
 
 
 class BalancerStates(_Result):

@@ -311,6 +311,16 @@ def fluid_rotor(*, speeds: Optional[Mapping[str, Union[float, str]]] = ..., anal
 def matrices_scene(directory: str, *, speeds: Optional[Mapping[str, Union[float, str]]] = ...,
                    analysis: Optional[Mapping[str, Any]] = ..., **keys: Any) -> Scene: ...
 
+class FluidResult(_Result):
+    unit: str
+    fills: Optional[npt.NDArray[np.float64]]
+    critical_speeds: dict[str, Any]
+    J_eq: float
+    J_eq_rigid: float
+    notes: list[str]
+
+def fluid(scene: Scene, *, fill: Optional[npt.ArrayLike] = ..., unit: Optional[str] = ...) -> FluidResult: ...
+
 class BalancerStates:
     state: list[str]
     alpha_deg: list[npt.NDArray[np.float64]]

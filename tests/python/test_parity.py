@@ -98,3 +98,30 @@ def test_the_cli_and_python_give_the_same_rows_and_notes(tmp_path, path, analysi
     warned = getattr(result, "warnings", None)
     if warned is not None:
         assert [f"warning: {n}" for n in warned] == [x for x in spelled if x.startswith("warning: ")]
+
+
+FLUID_SCENES = sorted(glob.glob(os.path.join(DATA, "fluid_N*.toml")))
+
+
+@pytest.mark.parametrize("fill", [None, (0.05, 0.55, 11)])
+@pytest.mark.parametrize("path", FLUID_SCENES, ids=os.path.basename)
+def test_the_fluid_study_is_the_same_in_both(tmp_path, path, fill):
+    # gyrokit fluid and gyrokit.fluid run one study (fluid_study): the same tables, bit for bit, and notes.
+    scene = gk.load_scene(path)
+    R = float(tomllib.load(open(path, "rb"))["model"]["R"])
+    args = []
+    if fill is not None:
+        lo, hi, n = fill[0] * R / 0.6, fill[1] * R / 0.6, fill[2]   # inside 0 < R0 < R
+        args = ["--fill", f"{lo!r}:{hi!r}:{n}"]
+        # The CLI's FROM:TO:N points (from + (to - from) i / (N - 1), the last one TO), so that both solve alike.
+        result = gk.fluid(scene, fill=[lo + (hi - lo) * i / (n - 1) for i in range(n - 1)] + [hi])
+    else:
+        result = gk.fluid(scene)
+    run = cli("fluid", path, *args)
+    tables = json.load(open(result.save(tmp_path / "fluid.json")))
+    printed = json.loads(run.stdout)
+    if isinstance(printed, dict):
+        assert printed == {key: tables[key] for key in printed}
+    else:
+        assert len(tables) == 1 and printed == next(iter(tables.values()))
+    assert [f"note: {n}" for n in result.notes] == [x for x in run.stderr.splitlines() if x.startswith("note: ")]
