@@ -884,6 +884,6 @@ def _keeping_inputs(analysis):
 
 # Every analysis of the module, so that no result is saved over what it was computed from.
 for _name in ("eig", "modes", "campbell", "critical_speeds", "stability", "screen", "frf", "critical_speed_map",
-              "static", "summary", "pervasive", "response", "balancer", "sommerfeld", "transient"):
+              "static", "summary", "pervasive", "response", "balancer", "sommerfeld", "transient", "fluid"):
     globals()[_name] = _keeping_inputs(globals()[_name])
 del _name

@@ -843,9 +843,10 @@ def _every_result(tmp_path):
     """One result of each analysis of the module, with the scene (or scene file) it was computed from."""
     import shutil
     for name in ["three_disk_rotor.toml", "centrifuge.toml", "screen_centrifuge.toml", "balancer_bild7.toml",
-                 "sommerfeld_rotor.toml"]:
+                 "sommerfeld_rotor.toml", "fluid_N2.toml"]:
         shutil.copy(os.path.join(DATA, name), tmp_path / name)
     rotor = gk.load_scene(str(tmp_path / "three_disk_rotor.toml"))
+    filled = gk.load_scene(str(tmp_path / "fluid_N2.toml"))
     speeds = np.linspace(0, 1000, 6)
     return [
         (rotor, gk.eig(rotor, 100.0)), (rotor, gk.modes(rotor, 100.0)), (rotor, gk.campbell(rotor, speeds)),
@@ -854,6 +855,7 @@ def _every_result(tmp_path):
         (rotor, gk.frf(rotor, 100.0, "y3", np.linspace(10, 1000, 5))), (rotor, gk.static(rotor)),
         (rotor, gk.critical_speed_map(rotor, stiffness=[1e6, 1e7, 1e8])), (rotor, gk.summary(rotor)),
         (rotor, gk.transient(rotor, 100.0, node=3, duration=0.02, unit="rad/s")),
+        (filled, gk.fluid(filled)),
         (str(tmp_path / "screen_centrifuge.toml"), gk.screen(str(tmp_path / "screen_centrifuge.toml"),
                                                              [{"model.c_G": 150.0}])),
         (str(tmp_path / "balancer_bild7.toml"), gk.balancer(str(tmp_path / "balancer_bild7.toml"))),
