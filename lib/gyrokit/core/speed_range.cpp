@@ -11,7 +11,7 @@
 
 namespace gyrokit {
 
-SpeedRange SpeedRange::parse(const std::string& text, const std::string& option, double unit_factor) {
+SpeedRange SpeedRange::parse(const std::string& text, const std::string& option) {
     std::istringstream in(text);
     std::string a, b, c;
     if (!std::getline(in, a, ':') || !std::getline(in, b, ':') || !std::getline(in, c) || a.empty() ||
@@ -34,8 +34,6 @@ SpeedRange SpeedRange::parse(const std::string& text, const std::string& option,
                                      option, text));
     }
     r.validate(option + " '" + text + "'");   // as written: the message quotes the user's numbers
-    r.from /= unit_factor;
-    r.to /= unit_factor;
     return r;
 }
 

@@ -9,8 +9,9 @@ namespace gyrokit {
 struct SpeedRange {
     double from = 0.0, to = 0.0;
     int count = 0;
-    // Parses "FROM:TO:N" (values in `unit`), e.g. "0:60:601". Throws InputError.
-    static SpeedRange parse(const std::string& text, const std::string& option, double unit_factor = 1.0);
+    // Parses "FROM:TO:N" as written (the caller's unit; resolve_request converts), e.g.
+    // "0:60:601". Throws InputError quoting the text.
+    static SpeedRange parse(const std::string& text, const std::string& option);
     // Throws InputError naming `origin` unless 0 <= from <= to, count >= 2 (or
     // count == 1 with from == to), all finite.
     void validate(const std::string& origin) const;

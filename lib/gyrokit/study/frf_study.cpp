@@ -11,16 +11,6 @@
 
 namespace gyrokit {
 
-namespace {
-
-double in_rad_s(double value, const char* field, const SpeedUnit& u) {
-    if (!(std::isfinite(value) && value >= 0))
-        throw InputError(fmt::format("{} {}: allowed: a finite number >= 0 ({})", option_field(field), value, u.name));
-    return value / u.factor;
-}
-
-}  // namespace
-
 FrfStudy frf_study(const Scene& scene, const RotorRequest& common, const FrfRequest& rq) {
     const GyroscopicSystem& sys = scene.system;
     const StudyOptions so = resolve_request(scene, common, SpeedsNeeded::No);
@@ -38,13 +28,13 @@ FrfStudy frf_study(const Scene& scene, const RotorRequest& common, const FrfRequ
     for (const std::string& d : rq.dofs) list += (list.empty() ? "" : ",") + d;
     std::vector<int> outputs = rq.probes.empty() ? dofs_by_name(list, names, option_field("dofs")) : probe_dofs(rq.probes);
     if (outputs.empty()) outputs.push_back(input);   // the driving point
-    const double spin = in_rad_s(rq.speed.value_or(0.0), "speed", so.unit);
+    const double spin = to_rad_s(rq.speed.value_or(0.0), "speed", "number", so.unit);
     std::vector<double> w;
     if (rq.frequencies) {
         if (rq.frequencies->empty())
             throw InputError(fmt::format("{} (none): allowed: one or more frequencies >= 0 ({})",
                                          option_field("frequencies"), so.unit.name));
-        for (const double f : *rq.frequencies) w.push_back(in_rad_s(f, "frequencies", so.unit));
+        for (const double f : *rq.frequencies) w.push_back(to_rad_s(f, "frequencies", "number", so.unit));
     } else {
         w = so.speeds;   // the scene's [speeds] grid
         if (w.empty())

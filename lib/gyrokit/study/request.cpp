@@ -9,17 +9,12 @@
 
 namespace gyrokit {
 
-namespace {
-
-// A `what` (speed, frequency) in `u`, finite and >= 0 (> 0 where `positive`), in rad/s.
-double in_rad_s(double value, const char* field, const char* what, const SpeedUnit& u, bool positive = false) {
+double to_rad_s(double value, const char* field, const char* what, const SpeedUnit& u, bool positive) {
     if (!(std::isfinite(value) && (positive ? value > 0 : value >= 0)))
         throw InputError(fmt::format("{} {}: allowed: a finite {} {} 0 ({})", option_field(field), value, what,
                                      positive ? ">" : ">=", u.name));
     return value / u.factor;
 }
-
-}  // namespace
 
 SpeedUnit resolve_unit(const Scene& scene, const std::optional<std::string>& unit) {
     return unit ? SpeedUnit::parse(*unit) : scene.speed_unit;
@@ -41,7 +36,7 @@ StudyOptions resolve_request(const Scene& scene, const RotorRequest& r, SpeedsNe
             throw InputError(fmt::format("{} (none): allowed: one or more finite speeds >= 0 ({})",
                                          option_field("speeds"), u.name));
         o.speeds.clear();
-        for (const double w : *r.speeds) o.speeds.push_back(in_rad_s(w, "speeds", "speed", u));
+        for (const double w : *r.speeds) o.speeds.push_back(to_rad_s(w, "speeds", "speed", u));
     } else if (o.speeds.empty() && need == SpeedsNeeded::Yes) {
         throw InputError(fmt::format("{}no speed range; give {} ({}) or a [speeds] table in the scene",
                                      scene.path.empty() ? "" : scene.path + ": ", option_field("speeds"), u.name));
@@ -60,7 +55,7 @@ StudyOptions resolve_request(const Scene& scene, const RotorRequest& r, SpeedsNe
                 throw InputError(fmt::format("{} {}: allowed: whole numbers in [1, 1000]", option_field("harmonics"), h));
         o.harmonics = *r.harmonics;
     }
-    if (r.f_cut) o.f_cut = in_rad_s(*r.f_cut, "f_cut", "frequency", u, true);
+    if (r.f_cut) o.f_cut = to_rad_s(*r.f_cut, "f_cut", "frequency", u, true);
     if (r.solver) o.solver.kind = parse_solver_kind(*r.solver);
     if (r.method) {
         try {
@@ -69,7 +64,7 @@ StudyOptions resolve_request(const Scene& scene, const RotorRequest& r, SpeedsNe
             throw InputError(fmt::format("{} '{}': allowed: qz, qz-classic, state", option_field("method"), *r.method));
         }
     }
-    if (r.target) o.solver.target = in_rad_s(*r.target, "target", "frequency", u);
+    if (r.target) o.solver.target = to_rad_s(*r.target, "target", "frequency", u);
     if (r.target_order) {
         if (!(std::isfinite(*r.target_order) && *r.target_order >= 0))
             throw InputError(fmt::format("{} {}: allowed: a finite number >= 0 (a multiple of the speed)",

@@ -40,6 +40,10 @@ enum class SpeedsNeeded { Yes, No };
 StudyOptions resolve_request(const Scene& scene, const RotorRequest& request, SpeedsNeeded speeds = SpeedsNeeded::Yes,
                              std::vector<std::string>* notes = nullptr);
 
+// A speed or frequency given in `u`, in rad/s: InputError naming `field` unless it is
+// finite and >= 0 (> 0 where `positive`), the range stated for a `what` ("speed", "number").
+double to_rad_s(double value, const char* field, const char* what, const SpeedUnit& u, bool positive = false);
+
 // The unit alone: the request's, else the scene's [speeds] units.
 SpeedUnit resolve_unit(const Scene& scene, const std::optional<std::string>& unit);
 
