@@ -26,14 +26,12 @@ ModelArg::ModelArg(const py::object& model) {
     }
 }
 
-namespace {
-
 py::object given(const py::dict& kw, const char* name) {
     if (!kw.contains(name)) return py::none();
     return kw[name];
 }
 
-std::optional<double> number(const py::dict& kw, const char* name) {
+std::optional<double> given_number(const py::dict& kw, const char* name) {
     const py::object v = given(kw, name);
     if (v.is_none()) return std::nullopt;
     try {
@@ -43,8 +41,7 @@ std::optional<double> number(const py::dict& kw, const char* name) {
     }
 }
 
-// A whole number (an int, or a float with no fraction: 6.0).
-std::optional<int> whole(const py::dict& kw, const char* name, const char* field = nullptr) {
+std::optional<long long> given_count(const py::dict& kw, const char* name, const char* field, double limit) {
     const py::object v = given(kw, name);
     if (v.is_none()) return std::nullopt;
     double x = 0;
@@ -53,13 +50,19 @@ std::optional<int> whole(const py::dict& kw, const char* name, const char* field
     } catch (const py::cast_error&) {
         x = std::nan("");
     }
-    if (!(std::isfinite(x) && x == std::floor(x) && std::abs(x) < 1e9))
+    if (!(std::isfinite(x) && x == std::floor(x) && std::abs(x) < limit))
         throw InputError(fmt::format("{} {}: allowed: a whole number", option_field(field ? field : name),
                                      py::repr(v).cast<std::string>()));
-    return static_cast<int>(x);
+    return static_cast<long long>(x);
 }
 
-std::optional<std::string> text(const py::dict& kw, const char* name) {
+std::optional<int> given_whole(const py::dict& kw, const char* name, const char* field) {
+    const std::optional<long long> n = given_count(kw, name, field, 1e9);
+    if (!n) return std::nullopt;
+    return static_cast<int>(*n);
+}
+
+std::optional<std::string> given_text(const py::dict& kw, const char* name) {
     const py::object v = given(kw, name);
     if (v.is_none()) return std::nullopt;
     if (!py::isinstance<py::str>(v))
@@ -67,11 +70,10 @@ std::optional<std::string> text(const py::dict& kw, const char* name) {
     return v.cast<std::string>();
 }
 
-}  // namespace
 
 RotorRequest rotor_request(const py::dict& kw) {
     RotorRequest r;
-    r.unit = text(kw, "unit");
+    r.unit = given_text(kw, "unit");
     if (const py::object v = given(kw, "speeds"); !v.is_none()) {
         try {
             r.speeds = v.cast<std::vector<double>>();
@@ -79,23 +81,23 @@ RotorRequest rotor_request(const py::dict& kw) {
             throw InputError(option_field("speeds") + ": allowed: a sequence of numbers");
         }
     }
-    r.modes = whole(kw, "modes");
+    r.modes = given_whole(kw, "modes");
     if (const py::object v = given(kw, "harmonics"); !v.is_none()) {
         std::vector<int> h;
         for (const py::handle x : v) {
             py::dict one;
             one["harmonics"] = x;
-            h.push_back(*whole(one, "harmonics"));
+            h.push_back(*given_whole(one, "harmonics"));
         }
         r.harmonics = h;
     }
-    r.f_cut = number(kw, "f_cut");
-    r.solver = text(kw, "solver");
-    r.method = text(kw, "method");
-    r.target = number(kw, "target");
-    r.target_order = number(kw, "target_order");
-    r.lanczos = whole(kw, "lanczos", "lanczos_vectors");
-    r.jobs = whole(kw, "jobs");
+    r.f_cut = given_number(kw, "f_cut");
+    r.solver = given_text(kw, "solver");
+    r.method = given_text(kw, "method");
+    r.target = given_number(kw, "target");
+    r.target_order = given_number(kw, "target_order");
+    r.lanczos = given_whole(kw, "lanczos", "lanczos_vectors");
+    r.jobs = given_whole(kw, "jobs");
     return r;
 }
 

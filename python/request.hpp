@@ -9,6 +9,7 @@
 #include <pybind11/pybind11.h>
 
 #include <optional>
+#include <string>
 
 namespace gyrokit_python {
 
@@ -23,6 +24,15 @@ private:
     std::optional<gyrokit::Scene> owned_;
     const gyrokit::Scene* scene_ = nullptr;
 };
+
+// One keyword of a call (absent or None: not given), InputError naming it where its
+// type is wrong: a number; a whole number (an int, or a float with no fraction: 6.0),
+// |n| < limit, named `field` where given; a name.
+pybind11::object given(const pybind11::dict& keywords, const char* name);
+std::optional<double> given_number(const pybind11::dict& keywords, const char* name);
+std::optional<long long> given_count(const pybind11::dict& keywords, const char* name, const char* field, double limit);
+std::optional<int> given_whole(const pybind11::dict& keywords, const char* name, const char* field = nullptr);
+std::optional<std::string> given_text(const pybind11::dict& keywords, const char* name);
 
 // The keywords unit, speeds, modes, harmonics, f_cut, solver, method, target,
 // target_order, lanczos, jobs (absent or None: not given); InputError naming a

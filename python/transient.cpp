@@ -4,11 +4,19 @@
 #include "transient.hpp"
 
 #include "reports.hpp"
+#include "request.hpp"
 
 #include <gyrokit/reports/transient_reports.hpp>
 
 #include <gyrokit/analysis/transient.hpp>
 #include <gyrokit/analysis/transient_signals.hpp>
+#include <gyrokit/core/error.hpp>
+#include <gyrokit/study/transient_study.hpp>
+
+#include <fmt/format.h>
+
+#include <array>
+#include <optional>
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -45,34 +53,63 @@ struct TransientRun {
     LengthUnit length;
 };
 
-py::dict run(const GyroscopicSystem& s, const SpeedProfile& profile, double duration, double dt,
-             const std::vector<int>& outputs, bool steady, long long max_steps, const std::string& solver,
-             int windows, const std::string& unit, const std::string& length_unit) {
-    const SpeedUnit u = SpeedUnit::parse(unit);
-    const LengthUnit length = LengthUnit::parse(length_unit);
-    TransientOptions o;
-    o.unit = u;
-    o.profile = profile;
-    o.duration = duration;
-    o.dt = dt;
-    o.outputs = outputs;
-    o.start_steady = steady;
-    o.max_steps = max_steps;
-    o.kind = parse_solver_kind(solver);
-    TransientResult r;
+// The keywords of gk.transient (None: not given) as the library's request.
+TransientRequest transient_request(const py::dict& kw) {
+    TransientRequest r;
+    r.speed = given_number(kw, "speed");
+    if (const py::object v = given(kw, "run_up"); !v.is_none()) {
+        std::vector<double> w;
+        try {
+            w = v.cast<std::vector<double>>();
+        } catch (const py::cast_error&) {
+        }
+        if (w.size() != 2)
+            throw InputError(fmt::format("{} {}: allowed: two speeds (W0, W1)", option_field("run_up"),
+                                         py::repr(v).cast<std::string>()));
+        r.run_up = std::array<double, 2>{w[0], w[1]};
+    }
+    r.acceleration = given_number(kw, "acceleration");
+    r.duration = given_number(kw, "duration");
+    r.dt = given_number(kw, "dt");
+    if (const py::object v = given(kw, "dofs"); !v.is_none()) {
+        if (py::isinstance<py::str>(v))
+            throw InputError(fmt::format("{} {}: allowed: a list of DOF names", option_field("dofs"),
+                                         py::repr(v).cast<std::string>()));
+        for (const py::handle d : v) {
+            if (!py::isinstance<py::str>(d))
+                throw InputError(fmt::format("{} {}: allowed: DOF names such as 'x12'", option_field("dofs"),
+                                             py::repr(d).cast<std::string>()));
+            r.dofs.push_back(d.cast<std::string>());
+        }
+    }
+    r.node = given_whole(kw, "node");
+    r.start = given_text(kw, "start");
+    r.max_steps = given_count(kw, "max_steps", nullptr, 1e15);
+    return r;
+}
+
+py::dict run(const ModelArg& model, const RotorRequest& common, const TransientRequest& rq, int windows) {
+    const GyroscopicSystem& s = model.system();
+    std::optional<TransientStudy> run;
     TransientEnvelope e;
     Eigen::MatrixXd at_peaks;
     {
         Released free;   // Ctrl-C stops it within a batch of steps
-        r = transient_response(s, o);
-        e = transient_envelope(r, windows);
-        at_peaks = envelope_steady(s, e, o.kind);
+        run.emplace(transient_study(model.scene(), common, rq));
+        e = transient_envelope(run->result, windows);
+        at_peaks = envelope_steady(s, e, run->options.kind);
     }
+    const TransientStudy& st = *run;
+    const TransientResult& r = st.result;
     py::dict d;
+    d["unit"] = st.unit.name;
+    d["profile"] = py::make_tuple(r.profile.from, r.profile.to, r.profile.acceleration);
     d["t"] = array(r.t);
     d["speed"] = array(r.speed);
     d["z"] = r.z;
-    d["dofs"] = r.dofs;
+    std::vector<std::string> names;
+    for (const int k : r.dofs) names.push_back(s.dof_names[static_cast<std::size_t>(k)]);
+    d["dofs"] = names;
     d["dt"] = r.dt;
     d["notes"] = r.notes;
     d["stats"] = py::dict(py::arg("steps") = r.stats.steps, py::arg("factorizations") = r.stats.factorizations,
@@ -80,9 +117,9 @@ py::dict run(const GyroscopicSystem& s, const SpeedProfile& profile, double dura
                           py::arg("max_corrections") = r.stats.max_corrections,
                           py::arg("max_residual") = r.stats.max_residual);
     d["envelope"] = envelope_dict(e, at_peaks);
-    d["tables"] = tables_list({transient_run_table(s, r, u, steady, o.kind, length)});
+    d["tables"] = tables_list({st.table});
     d["figure"] = py::none();
-    d["run"] = TransientRun{s, r, o.kind, steady, length};
+    d["run"] = TransientRun{s, r, st.options.kind, st.options.start_steady, st.length};
     return d;
 }
 
@@ -102,15 +139,11 @@ void bind_transient(py::module_& m) {
             return figure_dict(
                 transient_waterfall_figure(t.system, t.result, SpeedUnit::parse(unit), t.steady_start, t.length));
         }, py::arg("unit"));
-    m.def("transient", [](const GyroscopicSystem& s, double from, double to, double acceleration, double duration,
-                          double dt, const std::vector<int>& outputs, bool steady, long long max_steps,
-                          const std::string& solver, int windows, const std::string& unit,
-                          const std::string& length_unit) {
-        return run(s, SpeedProfile{from, to, acceleration}, duration, dt, outputs, steady, max_steps, solver, windows,
-                   unit, length_unit);
-    }, py::arg("system"), py::arg("from"), py::arg("to"), py::arg("acceleration"), py::arg("duration"), py::arg("dt"),
-          py::arg("outputs"), py::arg("steady"), py::arg("max_steps"), py::arg("solver"), py::arg("windows"),
-          py::arg("unit") = "rad/s", py::arg("length_unit") = "m");
+    // The study of the library (transient_study): the rotor request's keywords (unit, solver) and the run's.
+    m.def("transient", [](const py::object& model, const py::dict& request, const py::dict& run_keywords, int windows) {
+        const ModelArg a(model);
+        return run(a, rotor_request(request), transient_request(run_keywords), windows);
+    }, py::arg("model"), py::arg("request"), py::arg("run"), py::arg("windows"));
     // The waterfall of one recorded signal x(t) of a run with this speed history and step.
     m.def("transient_waterfall", [](const std::vector<double>& t, const std::vector<double>& speed,
                                     const Eigen::VectorXd& x, double from, double to, double acceleration, double dt,

@@ -13,7 +13,7 @@ sed 's/^units = "rpm"/units = "rad\/s"/' "$data/three_disk_rotor.toml" > "$rotor
 
 expect "--dt -1 s: allowed: (0, 0.001309] s" transient "$rotor" --speed 600 --dt -1
 expect "--dt 0 s: allowed: a finite time step > 0" transient "$rotor" --speed 600 --dt 0
-expect "--dt 'abc': allowed: a finite time step > 0 (s)" transient "$rotor" --speed 600 --dt abc
+expect "--dt 'abc': allowed: a number" transient "$rotor" --speed 600 --dt abc
 expect "--dt 0.5 s: allowed: (0, 0.001309] s" transient "$rotor" --speed 600 --dt 0.5
 expect "--duration -3 s: allowed: a finite time > 0" transient "$rotor" --speed 600 --duration -3
 expect "takes 458366237 steps; allowed: at most --max-steps 2000000 (up to 50000000)" \
@@ -24,9 +24,9 @@ expect "--acceleration -5 rpm/s with a run-up from 0 to 15000 rpm: allowed: a fi
 expect "--acceleration 5 rpm/s with a run-down from 15000 to 0 rpm: allowed: a finite number < 0" \
     transient "$rotor" --run-up 15000:0 --acceleration 5 --units rpm
 expect "--run-up needs --acceleration A (rad/s^2" transient "$rotor" --run-up 0:1500
-expect "--run-up '0:0': allowed: FROM:TO, two different speeds >= 0" transient "$rotor" --run-up 0:0 --acceleration 3
+expect "--run-up 0:0 rad/s: allowed: two different finite speeds >= 0" transient "$rotor" --run-up 0:0 --acceleration 3
 expect "--speed and --run-up: allowed: one of them" transient "$rotor" --speed 600 --run-up 0:5 --acceleration 1
-expect "no speed: allowed: --speed W" transient "$rotor"
+expect "no speed: allowed: --speed (a constant speed), or --run-up (from, to) with --acceleration" transient "$rotor"
 expect "--speed 0 rad/s: allowed: a finite speed > 0" transient "$rotor" --speed 0
 expect "--acceleration: only together with --run-up" transient "$rotor" --speed 600 --acceleration 5
 expect "--node 99: node 99 does not exist; allowed: 0 to 24" transient "$rotor" --speed 600 --node 99

@@ -25,6 +25,14 @@ TEST_CASE("an option field in an error is written by each front end in its own w
     const Error stray(std::string("file 'a\x1e" "b.toml': not found; \x1f") + option_field("jobs") + " 3");
     CHECK(stray.message(flags) == std::string("file 'a\x1e" "b.toml': not found; \x1f") + "--jobs 3");
     CHECK(stray.fields() == std::vector<std::string>{"jobs"});
+    // A field named as a noun: no " =" in the library's and Python's words, the flag in the CLI's.
+    const InputError noun(option_noun("run_up") + " needs " + option_noun("acceleration") + "; " +
+                          option_field("dt") + " 0");
+    CHECK(std::string(noun.what()) == "run_up needs acceleration; dt = 0");
+    CHECK(noun.message(flags) == "--run_up needs --acceleration; --dt 0");
+    CHECK(noun.message([](const std::string& f) { return f == "dt" ? "dt =" : ""; }) ==
+          "run_up needs acceleration; dt = 0");
+    CHECK(noun.fields() == std::vector<std::string>{"run_up", "acceleration", "dt"});
 }
 
 TEST_CASE("the solver choice names its fields structurally, whatever the prose") {

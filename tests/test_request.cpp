@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -236,4 +237,73 @@ TEST_CASE("request: the fluid study checks its model and fill levels in the libr
     CHECK(message(n2, rq).find("allowed: 0 < R0 < R") != std::string::npos);
     const Scene centrifuge = load_scene(std::string(GYROKIT_DATA_DIR) + "/centrifuge.toml");
     CHECK(message(centrifuge, {}).find("needs type = \"fluid_rotor\"") != std::string::npos);
+}
+
+TEST_CASE("request: the transient study takes its speeds in the study's unit and checks its run", "[request][transient]") {
+    const Scene rpm = load_scene(std::string(GYROKIT_DATA_DIR) + "/three_disk_rotor.toml");
+    const double pi = std::acos(-1.0);
+    TransientRequest rq;
+    rq.run_up = std::array<double, 2>{0.0, 6000.0};   // rpm: the scene's [speeds] units
+    rq.acceleration = 3000.0;                        // rpm/s
+    const TransientOptions o = transient_options(rpm, {}, rq);
+    CHECK(o.unit.name == "rpm");
+    CHECK(o.profile.to == Approx(200 * pi).epsilon(1e-15));
+    CHECK(o.profile.acceleration == Approx(100 * pi).epsilon(1e-15));
+    CHECK(o.outputs == transient_outputs(rpm.system));   // the node of the largest unbalance
+    CHECK_FALSE(o.start_steady);
+    CHECK(o.max_steps == defaults::max_steps);
+    // The same run asked in rad/s: the same options.
+    RotorRequest rad;
+    rad.unit = "rad/s";
+    TransientRequest same = rq;
+    same.run_up = std::array<double, 2>{0.0, o.profile.to};
+    same.acceleration = o.profile.acceleration;
+    const TransientOptions r = transient_options(rpm, rad, same);
+    CHECK(r.profile.to == o.profile.to);
+    CHECK(r.profile.acceleration == o.profile.acceleration);
+    TransientRequest node = rq;
+    node.node = 12;
+    CHECK(transient_options(rpm, {}, node).outputs == rpm.system.node_translations(12));
+
+    const auto refused = [&](TransientRequest t, const std::string& start) {
+        try {
+            transient_options(rpm, {}, t);
+            FAIL("accepted");
+        } catch (const InputError& e) {
+            INFO(e.message({}));
+            CHECK(e.message({}).rfind(start, 0) == 0);
+        }
+    };
+    refused({}, "no speed: allowed: speed (a constant speed), or run_up (from, to) with acceleration");
+    TransientRequest bad = rq;
+    bad.speed = 600.0;
+    refused(bad, "speed and run_up: allowed: one of them");
+    bad = rq;
+    bad.acceleration.reset();
+    refused(bad, "run_up needs acceleration A (rpm/s");
+    bad = rq;
+    bad.acceleration = -5.0;
+    refused(bad, "acceleration = -5 rpm/s with a run-up from 0 to 6000 rpm: allowed: a finite number > 0");
+    bad = rq;
+    bad.run_up = std::array<double, 2>{100.0, 100.0};
+    refused(bad, "run_up = 100:100 rpm: allowed: two different finite speeds >= 0");
+    bad = rq;
+    bad.dt = 0.0;
+    refused(bad, "dt = 0 s: allowed: a finite time step > 0 (s)");
+    bad = rq;
+    bad.start = "hot";
+    refused(bad, "start = 'hot': allowed: rest, steady");
+    bad = rq;
+    bad.node = 99;
+    refused(bad, "node = 99: node 99 does not exist");
+    bad = rq;
+    bad.node = 12;
+    bad.dofs = {"x12"};
+    refused(bad, "dofs and node: allowed: one of them");
+    bad = rq;
+    bad.max_steps = 0;
+    refused(bad, "max_steps = 0: allowed: 1 to");
+    TransientRequest constant;
+    constant.speed = 0.0;   // exerts no force
+    refused(constant, "speed = 0 rpm: allowed: a finite speed > 0 (rpm)");
 }

@@ -91,7 +91,8 @@ std::string flag_words(const std::string& field) {
         {"max_steps", "--max-steps"},       {"speed", "--speed"},   {"run_up", "--run-up"},
         {"acceleration", "--acceleration"}, {"gravity", "--gravity"}, {"tolerance", "--tolerance"},
         {"rigid_body", "--rigid-body"}, {"input", "--input"}, {"dofs", "--dofs"}, {"probes", "--probes"},
-        {"frequencies", "--frequencies"}, {"mode", "--mode"}, {"fill", "--fill"}};
+        {"frequencies", "--frequencies"}, {"mode", "--mode"}, {"fill", "--fill"},
+        {"node", "--node"}, {"start", "--start"}};
     for (const auto& [name, flag] : flags)
         if (field == name) return flag;
     return "";
@@ -105,6 +106,18 @@ void require_dense(const Context& c, const std::string& command) {
 }
 
 Scene load_motion_scene(const Common& o) { return load_scene(o.scene, {}, o.motion); }
+
+std::vector<std::string> split_names(const std::string& list) {
+    std::vector<std::string> out;
+    std::size_t start = 0;
+    while (!list.empty() && start <= list.size()) {
+        const std::size_t end = std::min(list.find(',', start), list.size());
+        out.push_back(list.substr(start, end - start));
+        start = end + 1;
+    }
+    return out;
+}
+
 
 RotorRequest request_of(const Common& o) {
     RotorRequest r;

@@ -94,6 +94,8 @@ Context open_scene(const Common& o, bool need_speeds);
 TableFormat parse_format(const Common& o);
 
 double parse_speed(const std::string& text, const std::string& option, const SpeedUnit& u);
+// "x12,y12" as names (empty: none); a name that is no DOF is the library's to refuse.
+std::vector<std::string> split_names(const std::string& list);
 // A number spelled out completely (its range is the library's to check).
 double parse_number(const std::string& text, const std::string& option);
 // Whole numbers in [1, 1000] separated by commas (harmonics, mode numbers); empty: `fallback`.

@@ -19,18 +19,6 @@ struct Options {
     bool polar = false;
 };
 
-// "x12,y12" as names (empty: none); a name that is no DOF is the library's to refuse.
-std::vector<std::string> split_names(const std::string& list) {
-    std::vector<std::string> out;
-    std::size_t start = 0;
-    while (!list.empty() && start <= list.size()) {
-        const std::size_t end = std::min(list.find(',', start), list.size());
-        out.push_back(list.substr(start, end - start));
-        start = end + 1;
-    }
-    return out;
-}
-
 }  // namespace
 
 std::vector<Command> add_frf_commands(CLI::App& app) {

@@ -7,8 +7,10 @@
 #include <gyrokit/core/number_text.hpp>
 #include <gyrokit/io/output_file.hpp>
 #include <gyrokit/reports/transient_reports.hpp>
+#include <gyrokit/study/transient_study.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fmt/format.h>
 #include <optional>
@@ -22,103 +24,65 @@ namespace {
 
 struct Options {
     Common common;
-    std::string speed, run_up, acceleration, duration, dt, dofs, node, start = "rest", out, waterfall;
+    std::string speed, run_up, acceleration, duration, dt, dofs, node, start = defaults::transient_start, out, waterfall;
     long long max_steps = defaults::max_steps;
 };
 
-double number(const std::string& text, const std::string& option, const std::string& allowed) {
-    return parse_decimal(text, option, allowed);
-}
-
-// The speed history from --speed, or --run-up FROM:TO with --acceleration, in rad/s.
-SpeedProfile profile_of(const Options& o, const SpeedUnit& u) {
-    if (!o.speed.empty() && !o.run_up.empty())
-        throw InputError("--speed and --run-up: allowed: one of them (a constant speed, or a run-up or run-down)");
-    if (o.speed.empty() && o.run_up.empty())
-        throw InputError("no speed: allowed: --speed W (a constant speed) or --run-up W0:W1 with --acceleration A");
-    if (!o.speed.empty()) {
-        if (!o.acceleration.empty()) throw InputError("--acceleration: only together with --run-up W0:W1");
-        const double w = parse_speed(o.speed, "--speed", u);
-        return {w, w, 0.0};
-    }
-    const std::size_t colon = o.run_up.find(':');
+// --run-up FROM:TO as two numbers (their range is the study's to check).
+std::array<double, 2> run_up_of(const std::string& text, const SpeedUnit& u) {
+    const std::size_t colon = text.find(':');
     const std::string allowed = fmt::format("FROM:TO, two different speeds >= 0 ({})", u.name);
-    if (colon == std::string::npos) throw InputError(fmt::format("--run-up '{}': allowed: {}", o.run_up, allowed));
-    const double from = number(o.run_up.substr(0, colon), "--run-up", allowed);
-    const double to = number(o.run_up.substr(colon + 1), "--run-up", allowed);
-    if (from < 0.0 || to < 0.0 || from == to)
-        throw InputError(fmt::format("--run-up '{}': allowed: {}", o.run_up, allowed));
-    if (o.acceleration.empty())
-        throw InputError(fmt::format("--run-up needs --acceleration A ({}; > 0 for a run-up, < 0 for a run-down)",
-                                     u.per_second()));
-    const std::string sign = to > from ? "> 0" : "< 0";
-    const double a = number(o.acceleration, "--acceleration", fmt::format("a finite number {} ({})", sign, u.per_second()));
-    if ((to - from) * a <= 0.0)
-        throw InputError(fmt::format("--acceleration {} {} with a {} from {} to {} {}: allowed: a finite number {}",
-                                     o.acceleration, u.per_second(), to > from ? "run-up" : "run-down", from, to, u.name,
-                                     sign));
-    return {from / u.factor, to / u.factor, a / u.factor};
+    if (colon == std::string::npos) throw InputError(fmt::format("--run-up '{}': allowed: {}", text, allowed));
+    return {parse_decimal(text.substr(0, colon), "--run-up", allowed),
+            parse_decimal(text.substr(colon + 1), "--run-up", allowed)};
 }
 
-std::vector<int> outputs_of(const Options& o, const GyroscopicSystem& sys) {
-    if (!o.dofs.empty() && !o.node.empty()) throw InputError("--dofs and --node: allowed: one of them");
-    std::vector<int> out;
+TransientRequest request_of(const Options& o, const SpeedUnit& u) {
+    TransientRequest r;
+    if (!o.speed.empty()) r.speed = parse_number(o.speed, "--speed");
+    if (!o.run_up.empty()) r.run_up = run_up_of(o.run_up, u);
+    if (!o.acceleration.empty()) r.acceleration = parse_number(o.acceleration, "--acceleration");
+    if (!o.duration.empty()) r.duration = parse_number(o.duration, "--duration");
+    if (!o.dt.empty()) r.dt = parse_number(o.dt, "--dt");
+    r.dofs = split_names(o.dofs);
     if (!o.node.empty()) {
-        const int node = static_cast<int>(number(o.node, "--node", "a node number"));
-        if (std::to_string(node) != o.node) throw InputError("--node '" + o.node + "': allowed: a node number");
-        try {
-            out = sys.node_translations(node);
-        } catch (const InputError& e) {
-            throw InputError("--node " + o.node + ": " + e.what());
-        }
-        if (out.empty())
-            throw InputError(fmt::format("--node {}: no free lateral translation (a support holds it, or the model "
-                                         "has no lateral DOFs); allowed: a node with free x or y",
-                                         node));
+        const double node = parse_number(o.node, "--node");
+        if (std::to_string(static_cast<int>(node)) != o.node) throw InputError("--node '" + o.node + "': allowed: a node number");
+        r.node = static_cast<int>(node);
     }
-    if (!o.dofs.empty()) out = dofs_by_name(o.dofs, sys.dof_names, "--dofs");
-    return out.empty() ? transient_outputs(sys) : out;
+    r.start = o.start;
+    r.max_steps = o.max_steps;
+    return r;
 }
 
-void draw(const Options& o, const Context& c, const TransientResult& r, SolverKind kind) {
-    const bool steady = o.start == "steady";
-    if (!o.common.plot.empty()) plot_if(o.common.plot, transient_figure(c.scene.system, r, c.unit, steady, kind, c.scene.length_unit()));
-    if (!o.waterfall.empty()) plot_if(o.waterfall, transient_waterfall_figure(c.scene.system, r, c.unit, steady, c.scene.length_unit()), "--waterfall");
+void draw(const Options& o, const Scene& scene, const TransientStudy& st) {
+    const bool steady = st.options.start_steady;
+    const GyroscopicSystem& sys = scene.system;
+    if (!o.common.plot.empty())
+        plot_if(o.common.plot, transient_figure(sys, st.result, st.unit, steady, st.options.kind, st.length));
+    if (!o.waterfall.empty())
+        plot_if(o.waterfall, transient_waterfall_figure(sys, st.result, st.unit, steady, st.length), "--waterfall");
 }
 
 void run(const Options& o, std::ostream& out) {
     check_plot_path(o.waterfall, "--waterfall");
-    if (o.start != "rest" && o.start != "steady")
-        throw InputError("--start '" + o.start + "': allowed: rest, steady");
     const Context c = open_scene(o.common, false);
-    const GyroscopicSystem& sys = c.scene.system;
-    TransientOptions opt;
-    opt.profile = profile_of(o, c.unit);
-    opt.unit = c.unit;
-    // 0 means the default to the library: given, it is refused here.
-    if (!o.duration.empty() && (opt.duration = number(o.duration, "--duration", "a finite time > 0 (s)")) == 0.0)
-        throw InputError("--duration 0 s: allowed: a finite time > 0 (s); none: the ramp or 100 revolutions");
-    if (!o.dt.empty() && (opt.dt = number(o.dt, "--dt", "a finite time step > 0 (s)")) == 0.0)
-        throw InputError("--dt 0 s: allowed: a finite time step > 0 (s); none: 32 steps per period of the band");
-    opt.outputs = outputs_of(o, sys);
-    opt.start_steady = o.start == "steady";
-    opt.max_steps = o.max_steps;
-    opt.kind = use_sparse(c) ? SolverKind::Sparse : SolverKind::Dense;
+    const TransientRequest rq = request_of(o, c.unit);
+    const TransientOptions opt = transient_options(c.scene, c.request, rq);   // checked before any file is claimed
     if (!o.common.plot.empty() && opt.profile.acceleration == 0.0 && opt.outputs.size() < 2)
         throw InputError("--plot at a constant speed draws an orbit: allowed: two DOFs (--node N, or --dofs X,Y)");
     std::optional<OutputFile> history;
     if (!o.out.empty()) history.emplace(o.out, "--out", "history");   // claimed and opened before the run
-    const TransientResult r = transient_response(sys, opt);
-    for (const std::string& n : r.notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
-    const Table t = transient_run_table(sys, r, c.unit, opt.start_steady, opt.kind, c.scene.length_unit());
-    write_table(out, t, c.format);
+    const TransientStudy st = transient_study(c.scene, c.request, rq);
+    for (const std::string& n : st.result.notes) std::cerr << "note: " << spell_fields(n, flag_words) << "\n";
+    write_table(out, st.table, c.format);
     if (history) {
         std::ostringstream text;
-        write_table(text, transient_history_table(sys.dof_names, r, c.unit), TableFormat::Csv);
+        write_table(text, transient_history_table(c.scene.system.dof_names, st.result, st.unit), TableFormat::Csv);
         history->write(text.str());
         history->commit();
     }
-    draw(o, c, r, opt.kind);
+    draw(o, c.scene, st);
 }
 
 }  // namespace

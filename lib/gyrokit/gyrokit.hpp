@@ -24,6 +24,7 @@
 #include <gyrokit/study/response_study.hpp>
 #include <gyrokit/study/rotor_study.hpp>
 #include <gyrokit/study/static_study.hpp>
+#include <gyrokit/study/transient_study.hpp>
 #include <gyrokit/analysis/transient.hpp>
 #include <gyrokit/analysis/transient_signals.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>

@@ -12,3 +12,4 @@ TOLERANCE = float(_VALUE["tolerance"])
 GRAVITY = float(_VALUE["gravity"])
 MAP_MODES = int(_VALUE["map modes"])
 MAX_STEPS = int(_VALUE["max steps"])
+START = _VALUE["start"]

@@ -1,13 +1,10 @@
 """Transient unbalance response by time integration (gk.transient; docs/transient.md)."""
 from __future__ import annotations
 
-import numpy as _np
-
-from ._core import InputError, Scene, System
+from ._core import InputError
 from . import _core
 from . import _defaults as _D
-from ._results import Result, UNITS as _UNITS, factor as _factor
-_PER_SECOND = {"rad/s": "rad/s^2", "Hz": "Hz/s", "rpm": "rpm/s"}
+from ._results import Result, UNITS as _UNITS
 
 
 class TransientResponse(Result):
@@ -17,20 +14,21 @@ class TransientResponse(Result):
     windows) the peak |z| of each DOF (windows x dofs) and the time, speed and revolution where it occurred, with
     `steady`, the steady unbalance response amplitude at that speed."""
 
-    def __init__(self, d, names, unit, profile):
+    def __init__(self, d):
+        unit = d["unit"]
         factor = _UNITS[unit]
         self.unit = unit
         self.t = d["t"]
         self.speed = d["speed"] * factor
         self.z = d["z"]
-        self.dofs = [names[k] for k in d["dofs"]]
+        self.dofs = list(d["dofs"])
         self.dt = d["dt"]
         self.notes = list(d["notes"])
         self.stats = dict(d["stats"])
         e = d["envelope"]
         self.envelope = {"time": e["t"], "speed": e["speed"] * factor, "revolution": e["revolution"].astype(int),
                          "peak": e["peak"], "steady": e["steady"], "end": e["end"]}
-        self._profile = profile   # rad/s: from, to, acceleration
+        self._profile = tuple(d["profile"])   # rad/s: from, to, acceleration
         self._take_reports(d)     # the CLI's table: the envelope against the steady response
         self._run = d["run"]
 
@@ -80,47 +78,8 @@ class TransientResponse(Result):
         return self._draw_figure(self._run.waterfall_figure(self.unit), path, axes)
 
 
-def _outputs(system, dofs, node):
-    if dofs is not None and node is not None:
-        raise InputError("dofs and node: allowed: one of them")
-    names = system.dof_names
-    if node is not None:
-        return [names.index(n) for n in (f"x{int(node)}", f"y{int(node)}") if n in names] or \
-            _fail(f"node = {node!r}: no DOFs x{node}, y{node}; allowed: a node of the model")
-    out = []
-    for d in dofs or []:
-        if d not in names:
-            raise InputError(f"dofs: {d!r} is not a DOF of the model; allowed: names such as {names[0]!r}")
-        out.append(names.index(d))
-    return out
-
-
-def _fail(message):
-    raise InputError(message)
-
-
-def _profile(speed, run_up, acceleration, unit):
-    """(from, to, acceleration) in rad/s from the keywords in `unit`, checked as the CLI does."""
-    factor = _UNITS[unit]
-    if (speed is None) == (run_up is None):
-        raise InputError("speed, run_up: allowed: one of them (a constant speed, or run_up=(W0, W1) with acceleration)")
-    if speed is not None:
-        if acceleration is not None:
-            raise InputError("acceleration: only together with run_up=(W0, W1)")
-        return float(speed) / factor, float(speed) / factor, 0.0
-    w0, w1 = (float(v) for v in run_up)
-    if acceleration is None:
-        raise InputError(f"run_up needs acceleration ({_PER_SECOND[unit]}; > 0 for a run-up, < 0 for a run-down)")
-    a = float(acceleration)
-    if w0 != w1 and min(w0, w1) >= 0 and not (_np.isfinite(a) and (w1 - w0) * a > 0):
-        kind, sign = ("run-up", ">") if w1 > w0 else ("run-down", "<")
-        raise InputError(f"acceleration = {acceleration} {_PER_SECOND[unit]} with a {kind} from {w0:g} to {w1:g} "
-                         f"{unit}: allowed: a finite number {sign} 0")
-    return w0 / factor, w1 / factor, a / factor
-
-
 def transient(model, speed=None, *, run_up=None, acceleration=None, duration=None, dt=None, dofs=None, node=None,
-              unit=None, start="rest", max_steps=_D.MAX_STEPS, solver=None, windows=20) -> TransientResponse:
+              unit=None, start=_D.START, max_steps=_D.MAX_STEPS, solver=None, windows=20) -> TransientResponse:
     """The unbalance response of `model` (a System or Scene) in time, by Newmark's average-acceleration method:
     at a constant `speed`, or in a run-up / run-down `run_up=(W0, W1)` at `acceleration` (in `unit` per s: rad/s^2,
     Hz/s, rpm/s), for `duration` s (default: the ramp; 100 revolutions at a constant speed; after the ramp the
@@ -128,18 +87,7 @@ def transient(model, speed=None, *, run_up=None, acceleration=None, duration=Non
     or the x, y of `node` (default: the node of the largest unbalance); `start`: "rest" or "steady" (the steady
     response at the first speed). Speeds in `unit` (default the scene's [speeds] units, else rad/s).
     See docs/transient.md."""
-    unit = _core.resolve_unit(model, unit)
-    if start not in ("rest", "steady"):
-        raise InputError(f"start = {start!r}; allowed: rest, steady")
-    system = model.system if isinstance(model, Scene) else model
-    if not isinstance(system, System):
-        raise InputError(f"expected a gyrokit.System or gyrokit.Scene, got {type(model).__name__}")
-    profile = _profile(speed, run_up, acceleration, unit)
-    for key, value in (("duration", duration), ("dt", dt)):   # 0 means the default to the library
-        if value is not None and value == 0:
-            raise InputError(f"{key} = 0 s: allowed: a finite time > 0 (s); None: the default")
-    d = _core.transient(system, *profile, float(0.0 if duration is None else duration),
-                        float(0.0 if dt is None else dt), _outputs(system, dofs, node), start == "steady",
-                        int(max_steps), solver or (model.solver if isinstance(model, Scene) else "auto"),
-                        int(windows), unit, model.length_unit if isinstance(model, Scene) else "m")
-    return TransientResponse(d, system.dof_names, unit, profile)
+    run = dict(speed=speed, run_up=run_up, acceleration=acceleration, duration=duration, dt=dt, dofs=dofs, node=node,
+               start=start, max_steps=max_steps)
+    d = _core.transient(model, dict(unit=unit, solver=solver), run, int(windows))
+    return TransientResponse(d)

@@ -39,10 +39,21 @@ ANALYSES = {
     # A unit force at the first DOF, at half the top speed, over the scene's [speeds] grid.
     "frf": (lambda s, w: gk.frf(s, w, s.system.dof_names[0]),
             lambda s, w: ["--speed", repr(w), "--input", s.system.dof_names[0]], ["frf"]),
+    # 20 revolutions at half the top speed, from rest (an InputError, the same in both, without an unbalance).
+    "transient": (lambda s, w: gk.transient(s, w, duration=_revolutions(s, w, 20)),
+                  lambda s, w: ["--speed", repr(w), "--duration", repr(_revolutions(s, w, 20))], ["transient"]),
     # FE rotors (an InputError, the same in both, for the other models).
     "static": (lambda s, w: gk.static(s), lambda s, w: [], ["deflection", "static", "reactions", "internal_forces"]),
     "critical-map": (lambda s, w: gk.critical_speed_map(s), lambda s, w: [], ["critical_map", "bearing_curves"]),
 }
+PER_RAD_S = {"rad/s": 1.0, "Hz": 0.5 / np.pi, "rpm": 30.0 / np.pi}
+
+
+def _revolutions(scene, w, n):
+    """The time of n revolutions at the speed w in the scene's units, s."""
+    return 2.0 * np.pi * n * PER_RAD_S[scene.speed_unit] / w
+
+
 PERVASIVE_SCENES = {"centrifuge.toml", "friswell_5_9_1.toml", "scene.toml", "three_disk_rotor.toml"}
 
 
@@ -64,7 +75,7 @@ def test_the_cli_and_python_give_the_same_rows_and_notes(tmp_path, path, analysi
         pytest.skip("pervasive: the smaller scenes only")
     call, args, keys = ANALYSES[analysis]
     # The one-speed analyses at half the top speed, in the scene's [speeds] units (both front ends' default).
-    per_rad_s = {"rad/s": 1.0, "Hz": 0.5 / np.pi, "rpm": 30.0 / np.pi}[scene.speed_unit]
+    per_rad_s = PER_RAD_S[scene.speed_unit]
     w = float(np.max(scene.speeds)) / 2.0 * per_rad_s
     try:
         with warnings.catch_warnings():

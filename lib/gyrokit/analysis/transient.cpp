@@ -24,20 +24,20 @@ double SpeedProfile::angle(double t) const {
 double SpeedProfile::angular_acceleration(double t) const { return t < ramp_end() ? acceleration : 0.0; }
 
 void SpeedProfile::validate(const SpeedUnit& u) const {
-    const double f = u.factor;
+    const double f = u.factor;   // speeds named to 12 digits: as given, not the last bit of a conversion
     const std::string& n = u.name;
     if (acceleration == 0.0) {
         if (!(std::isfinite(from) && from > 0.0 && to == from))
-            throw InputError(fmt::format("{} {} {}: allowed: a finite speed > 0 ({}); at 0 the unbalance "
+            throw InputError(fmt::format("{} {:.12g} {}: allowed: a finite speed > 0 ({}); at 0 the unbalance "
                                          "exerts no force",
                                          option_field("speed"), from * f, n, n));
         return;
     }
     if (!(std::isfinite(from) && std::isfinite(to) && from >= 0.0 && to >= 0.0 && from != to))
-        throw InputError(fmt::format("{} {}:{} {}: allowed: two different finite speeds >= 0 (from:to)",
+        throw InputError(fmt::format("{} {:.12g}:{:.12g} {}: allowed: two different finite speeds >= 0 (from:to)",
                                      option_field("run_up"), from * f, to * f, n));
     if (!std::isfinite(acceleration) || (to - from) * acceleration < 0.0)
-        throw InputError(fmt::format("{} {} {} with a {} from {} to {} {}: allowed: a finite number {} 0",
+        throw InputError(fmt::format("{} {:.12g} {} with a {} from {:.12g} to {:.12g} {}: allowed: a finite number {} 0",
                                      option_field("acceleration"), acceleration * f, u.per_second(),
                                      to > from ? "run-up" : "run-down", from * f, to * f, n, to > from ? ">" : "<"));
 }
@@ -330,11 +330,16 @@ void initial_state(const GyroscopicSystem& sys, const TransientOptions& o, Eigen
 
 }  // namespace
 
+void check_transient_options(const GyroscopicSystem& sys, const TransientOptions& o) {
+    if (sys.unbalance.size() == 0) throw InputError("the model defines no unbalance load; the response is zero");
+    check_dof_list(sys, o.outputs.empty() ? transient_outputs(sys) : o.outputs, "transient");
+    plan_run(o);
+}
+
 TransientResult transient_response(const GyroscopicSystem& sys, const TransientOptions& o) {
     TransientResult r;
     r.dofs = o.outputs.empty() ? transient_outputs(sys) : o.outputs;
-    if (sys.unbalance.size() == 0) throw InputError("the model defines no unbalance load; the response is zero");
-    check_dof_list(sys, r.dofs, "transient");
+    check_transient_options(sys, o);
     const Plan plan = plan_run(o);
     const SpeedProfile& p = o.profile;
     r.profile = p;

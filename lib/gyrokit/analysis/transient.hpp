@@ -116,6 +116,11 @@ struct TransientResult {
 // unbalance entry (a model with nodes), else the whirl pair holding it, else that DOF.
 std::vector<int> transient_outputs(const GyroscopicSystem& sys);
 
+// The checks transient_response makes before any work, alone: InputError naming the
+// field (dt, duration, max_steps, speed, run_up, acceleration), an output DOF out of
+// range, no unbalance.
+void check_transient_options(const GyroscopicSystem& sys, const TransientOptions& opt);
+
 // InputError (a field named: dt, duration, max_steps, speed, run_up, acceleration, an
 // output DOF out of range, no unbalance) before any work; SolverError where the
 // integration fails (see NewmarkIntegrator).

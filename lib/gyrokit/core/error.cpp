@@ -5,6 +5,8 @@ namespace gyrokit {
 namespace {
 
 constexpr char kOpen = '\x1e', kClose = '\x1f';
+// Marks a field named as a noun ("run_up needs acceleration"): no " =" after it.
+constexpr char kNoun = '~';
 
 // Calls out(text piece) and field(name) in order; a mark is a field only when it
 // closes and holds a snake_case name (a stray byte in a quoted path stays text).
@@ -15,8 +17,9 @@ void scan(const std::string& s, Text out, Field field) {
         const std::size_t open = s.find(kOpen, at);
         if (open == std::string::npos) break;
         const std::size_t close = s.find(kClose, open + 1);
-        bool name = close != std::string::npos && close > open + 1;
-        for (std::size_t i = open + 1; name && i < close; ++i)
+        const std::size_t first = open + 1 < s.size() && s[open + 1] == kNoun ? open + 2 : open + 1;
+        bool name = close != std::string::npos && close > first;
+        for (std::size_t i = first; name && i < close; ++i)
             name = (s[i] >= 'a' && s[i] <= 'z') || s[i] == '_';
         if (!name) {
             out(s.substr(at, open + 1 - at));
@@ -24,7 +27,7 @@ void scan(const std::string& s, Text out, Field field) {
             continue;
         }
         out(s.substr(at, open - at));
-        field(s.substr(open + 1, close - open - 1));
+        field(s.substr(open + 1, close - open - 1));   // a noun keeps its mark
         at = close + 1;
     }
     out(s.substr(at));
@@ -36,14 +39,20 @@ std::string spell_fields(const std::string& text, const FieldSpelling& spell) {
     std::string r;
     scan(
         text, [&](const std::string& piece) { r += piece; },
-        [&](const std::string& name) {
-            const std::string words = spell ? spell(name) : std::string();
-            r += words.empty() ? name + " =" : words;
+        [&](const std::string& marked) {
+            const bool noun = marked[0] == kNoun;
+            const std::string name = noun ? marked.substr(1) : marked;
+            std::string words = spell ? spell(name) : std::string();
+            if (words.empty()) words = name + " =";
+            if (noun && words.size() > 2 && words.compare(words.size() - 2, 2, " =") == 0) words.resize(words.size() - 2);
+            r += words;
         });
     return r;
 }
 
 std::string option_field(const std::string& name) { return kOpen + name + kClose; }
+
+std::string option_noun(const std::string& name) { return std::string(1, kOpen) + kNoun + name + kClose; }
 
 Error::Error(const std::string& text) : std::runtime_error(spell_fields(text, {})), text_(text) {}
 
@@ -51,7 +60,9 @@ std::string Error::message(const FieldSpelling& spell) const { return spell_fiel
 
 std::vector<std::string> Error::fields() const {
     std::vector<std::string> names;
-    scan(text_, [](const std::string&) {}, [&](const std::string& name) { names.push_back(name); });
+    scan(text_, [](const std::string&) {}, [&](const std::string& name) {
+        names.push_back(name[0] == kNoun ? name.substr(1) : name);
+    });
     return names;
 }
 

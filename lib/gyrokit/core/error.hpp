@@ -14,6 +14,9 @@ namespace gyrokit {
 // words through Error::message (the CLI "--modes", Python "modes ="), from one
 // table of its own; no front end rewrites the library's prose.
 std::string option_field(const std::string& name);
+// The same field named as a noun ("run_up needs acceleration"): Python writes it
+// without " =", the CLI as its flag.
+std::string option_noun(const std::string& name);
 
 // How a front end writes an option field (name -> words); empty words keep the
 // library's "name =".

@@ -51,6 +51,8 @@ const std::vector<Entry>& table() {
          "gravity", "static", "static"},
         {"max steps", fmt::format("{}", max_steps), "transient: the largest number of time steps of a run",
          "--max-steps", "max_steps", "transient", "transient"},
+        {"start", transient_start, "transient: the initial state (rest, or steady: the steady response at the first "
+         "speed)", "--start", "start", "transient", "transient"},
     };
     return rows;
 }

@@ -47,6 +47,8 @@ inline constexpr int critical_map_points = kMapStiffnessPoints;
 inline constexpr double gravity = kStandardGravity;
 // Transient response: the largest number of time steps a run may take.
 inline constexpr long long max_steps = kTransientMaxSteps;
+// Transient response: the initial state, at rest (or steady: the steady response at the first speed).
+inline constexpr const char* transient_start = "rest";
 
 // One row of the table: its name, the value as written on a command line or in
 // Python ("" where the default is a rule, stated in `meaning`), and where a user
