@@ -6,6 +6,16 @@
 #include <gyrokit/gyrokit.hpp>
 
 #include "common.hpp"
+#include "reports.hpp"
+#include "request.hpp"
+
+#include <gyrokit/reports/balancer_reports.hpp>
+#include <gyrokit/reports/sommerfeld_reports.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <optional>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -20,14 +30,53 @@ using namespace gyrokit_python;
 
 namespace {
 
-// gk.balancer: the synchronous states and their stability per speed range, and each range's verdict.
-py::dict py_balancer(const std::string& path) {
+py::array_t<double> arr(const std::vector<double>& v) {
+    return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+BalancerRequest balancer_request(const py::dict& kw) {
+    BalancerRequest r;
+    r.simulate = kw.contains("simulate") && kw["simulate"].cast<bool>();
+    r.averaged = kw.contains("averaged") && kw["averaged"].cast<bool>();
+    r.speed = given_number(kw, "speed");
+    r.duration = given_number(kw, "duration");
+    r.integrator = given_text(kw, "integrator");
+    r.abs_tol = given_number(kw, "abs_tol");
+    r.rel_tol = given_number(kw, "rel_tol");
+    return r;
+}
+
+// A run of the equations of motion: the histories, the final state and the tables and figure of the CLI.
+py::dict simulation_dict(const BalancerStudy& st, bool averaged, const std::string& title) {
+    const SimulationResult& r = *st.simulation;
+    py::dict d;
+    d["t"] = arr(r.t);
+    d["speed"] = arr(r.speed);
+    d["radius"] = arr(r.radius);
+    py::list alpha;
+    for (const auto& a : r.alpha) alpha.append(arr(a));
+    d["alpha"] = alpha;
+    d["final_alpha"] = r.final_alpha;
+    d["final_speed"] = r.final_speed;
+    d["residual_rms"] = r.residual_rms;
+    d["residual_max"] = r.residual_max;
+    d["tables"] = tables_list(st.tables);
+    d["figure"] = figure_dict(simulation_figure(r, averaged, title));
+    return d;
+}
+
+// gk.balancer: the synchronous states and their stability per speed range, and each range's verdict;
+// or a run of the equations of motion (simulate).
+py::dict py_balancer(const std::string& path, const py::dict& request) {
     const BalancerScene sc = load_balancer_scene(path);
-    std::vector<StateStability> t;
+    const BalancerRequest rq = balancer_request(request);
+    std::optional<BalancerStudy> study;
     {
         Released free;
-        t = stability_table(sc.params);
+        study.emplace(balancer_study(sc, rq));
     }
+    if (rq.simulate) return simulation_dict(*study, rq.averaged, sc.title);
+    const std::vector<StateStability>& t = study->stability;
     py::list state, alpha, range, stable, stable_eigen;
     std::vector<double> from, to, re;
     std::vector<int> compensating;
@@ -42,7 +91,6 @@ py::dict py_balancer(const std::string& path) {
         re.push_back(r.max_real_eigenvalue);
         compensating.push_back(r.state.compensating);
     }
-    const auto arr = [](const std::vector<double>& v) { return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data()); };
     py::dict d;
     d["state"] = state;
     d["alpha"] = alpha;
@@ -54,7 +102,7 @@ py::dict py_balancer(const std::string& path) {
     d["max_real_eigenvalue"] = arr(re);
     d["compensating"] = compensating;
     py::list ranges;
-    for (const auto& v : range_verdicts(t)) {
+    for (const auto& v : study->verdicts) {
         py::dict x;
         x["range"] = v.range.name;
         x["from"] = v.range.from;
@@ -66,17 +114,57 @@ py::dict py_balancer(const std::string& path) {
         ranges.append(x);
     }
     d["ranges"] = ranges;
+    d["tables"] = tables_list(study->tables);
     return d;
 }
 
-// gk.sommerfeld: the limit speed estimate, the folds of the stationary curve and its jumps.
-py::dict py_sommerfeld(const std::string& path) {
+SommerfeldRequest sommerfeld_request(const py::dict& kw) {
+    SommerfeldRequest r;
+    r.runup = kw.contains("runup") && kw["runup"].cast<bool>();
+    if (const py::object v = given(kw, "speeds"); !v.is_none()) {
+        std::vector<double> w;
+        try {
+            w = v.cast<std::vector<double>>();
+        } catch (const py::cast_error&) {
+        }
+        if (w.size() != 3 || w[2] != std::floor(w[2]))
+            throw InputError(fmt::format("{} {}: allowed: (FROM, TO, N), nominal speeds in rad/s and a count",
+                                         option_noun("speeds"), py::repr(v).cast<std::string>()));
+        r.speeds = SpeedRange{w[0], w[1], static_cast<int>(w[2])};
+    }
+    r.integrator = given_text(kw, "integrator");
+    r.abs_tol = given_number(kw, "abs_tol");
+    r.rel_tol = given_number(kw, "rel_tol");
+    r.max_speed = given_number(kw, "max_speed");
+    return r;
+}
+
+py::dict runup_dict(const SommerfeldStudy& st, const AutobalancerParameters& p, const std::string& title) {
+    const RunupResult& r = *st.runup;
+    py::dict d;
+    d["t"] = arr(r.t);
+    d["nominal"] = arr(r.nominal);
+    d["rotor_speed"] = arr(r.rotor_speed);
+    d["amplitude"] = arr(r.amplitude);
+    d["held_rotor_speed"] = r.held_rotor_speed;
+    d["held_amplitude"] = r.held_amplitude;
+    d["final_rotor_speed"] = r.final_rotor_speed;
+    d["tables"] = tables_list(st.tables);
+    d["figure"] = figure_dict(runup_figure(p, r, title));
+    return d;
+}
+
+// gk.sommerfeld: the limit speed estimate, the folds of the stationary curve and its jumps; or a run-up.
+py::dict py_sommerfeld(const std::string& path, const py::dict& request) {
     const BalancerScene sc = load_balancer_scene(path);
-    SommerfeldAnalysis a;
+    const SommerfeldRequest rq = sommerfeld_request(request);
+    std::optional<SommerfeldStudy> study;
     {
         Released free;
-        a = analyse_sommerfeld(sc.params);
+        study.emplace(sommerfeld_study(sc, rq));
     }
+    if (rq.runup) return runup_dict(*study, sc.params, sc.title);
+    const SommerfeldAnalysis& a = study->analysis;
     py::dict d;
     d["limit_speed_estimate"] = a.estimate;
     d["has_jump"] = a.has_jump;
@@ -96,13 +184,15 @@ py::dict py_sommerfeld(const std::string& path) {
         d["jump_down"] = a.jump_down.point.nominal;
         d["jump_down_rotor_speed"] = a.jump_down.point.rotor_speed;
     }
+    d["tables"] = tables_list(study->tables);
+    d["figure"] = figure_dict(stationary_figure(a, study->speeds, sc.title));
     return d;
 }
 
 }  // namespace
 
 void bind_balancing(py::module_& m) {
-    m.def("balancer", &py_balancer, py::arg("path"));
+    m.def("balancer", &py_balancer, py::arg("path"), py::arg("request"));
 
-    m.def("sommerfeld", &py_sommerfeld, py::arg("path"));
+    m.def("sommerfeld", &py_sommerfeld, py::arg("path"), py::arg("request"));
 }

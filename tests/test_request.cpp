@@ -307,3 +307,52 @@ TEST_CASE("request: the transient study takes its speeds in the study's unit and
     constant.speed = 0.0;   // exerts no force
     refused(constant, "speed = 0 rpm: allowed: a finite speed > 0 (rpm)");
 }
+
+TEST_CASE("request: the balancer and Sommerfeld studies check their runs in the library", "[request][balancer]") {
+    const BalancerScene table1 = load_balancer_scene(std::string(GYROKIT_DATA_DIR) + "/balancer_table1.toml");
+    const BalancerStudy states = balancer_study(table1, {});
+    CHECK(states.tables.size() == 2);
+    CHECK(states.verdicts.size() == range_verdicts(stability_table(table1.params)).size());
+    const auto refused = [](auto study, const std::string& start) {
+        try {
+            study();
+            FAIL("accepted");
+        } catch (const InputError& e) {
+            INFO(e.message({}));
+            CHECK(e.message({}).rfind(start, 0) == 0);
+        }
+    };
+    BalancerRequest b;
+    b.speed = 40.0;
+    refused([&] { balancer_plan(table1, b); }, "averaged, speed, duration, integrator, abs_tol and rel_tol need simulate");
+    b.simulate = true;
+    b.speed = -1.0;
+    refused([&] { balancer_plan(table1, b); }, "speed = -1: allowed: a finite number > 0 (rad/s)");
+    const BalancerScene bild7 = load_balancer_scene(std::string(GYROKIT_DATA_DIR) + "/balancer_bild7.toml");
+    b.speed.reset();
+    b.integrator = "euler";
+    refused([&] { balancer_plan(bild7, b); }, "integrator = ODE method 'euler': allowed:");
+    b.integrator.reset();
+    b.abs_tol = 2.0;
+    refused([&] { balancer_plan(bild7, b); }, "abs_tol = 2 / rel_tol = ");
+    b.abs_tol.reset();
+    b.duration = 0.0;
+    refused([&] { balancer_plan(bild7, b); }, "duration = 0: allowed: a finite number > 0 (s)");
+
+    const BalancerScene rotor = load_balancer_scene(std::string(GYROKIT_DATA_DIR) + "/sommerfeld_rotor.toml");
+    SommerfeldRequest s;
+    s.speeds = SpeedRange{0.0, 400.0, 5};
+    const SommerfeldStudy curves = sommerfeld_study(rotor, s);
+    CHECK(curves.tables.size() == 3);
+    CHECK(curves.speeds.count == 5);
+    s.max_speed = 100.0;
+    refused([&] { sommerfeld_plan(rotor, s); }, "integrator, abs_tol, rel_tol and max_speed need runup");
+    s.runup = true;
+    refused([&] { sommerfeld_plan(rotor, s); }, "speeds sets the stationary curves; not with runup");
+    s.speeds.reset();
+    s.max_speed = -3.0;
+    if (rotor.has_runup) refused([&] { sommerfeld_plan(rotor, s); }, "max_speed = -3: allowed: a finite number > 0");
+    SommerfeldRequest bad;
+    bad.speeds = SpeedRange{10.0, 5.0, 3};
+    refused([&] { sommerfeld_plan(rotor, bad); }, "speeds: FROM = 10 is greater than TO = 5");
+}

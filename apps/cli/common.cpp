@@ -92,7 +92,9 @@ std::string flag_words(const std::string& field) {
         {"acceleration", "--acceleration"}, {"gravity", "--gravity"}, {"tolerance", "--tolerance"},
         {"rigid_body", "--rigid-body"}, {"input", "--input"}, {"dofs", "--dofs"}, {"probes", "--probes"},
         {"frequencies", "--frequencies"}, {"mode", "--mode"}, {"fill", "--fill"},
-        {"node", "--node"}, {"start", "--start"}};
+        {"node", "--node"}, {"start", "--start"}, {"simulate", "--simulate"}, {"averaged", "--averaged"},
+        {"integrator", "--integrator"}, {"abs_tol", "--abs-tol"}, {"rel_tol", "--rel-tol"}, {"runup", "--runup"},
+        {"max_speed", "--max-speed"}};
     for (const auto& [name, flag] : flags)
         if (field == name) return flag;
     return "";

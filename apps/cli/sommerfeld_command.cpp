@@ -1,10 +1,8 @@
 // sommerfeld: stationary speed curves of the motor-driven rotor / auto-balancer
 // with their branches, stability, limit speed estimates and exact folds; or
 // (--runup) a run-up through the full equations of motion with a summary.
-#include <gyrokit/balancing/balancer_scene.hpp>
-#include <gyrokit/balancing/runup.hpp>
-#include <gyrokit/balancing/sommerfeld.hpp>
 #include <gyrokit/reports/sommerfeld_reports.hpp>
+#include <gyrokit/study/sommerfeld_study.hpp>
 #include "cli/common.hpp"
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/speed_range.hpp>
@@ -24,44 +22,34 @@ struct Options {
     bool runup = false, rows = false;
 };
 
-void run_stationary(const Options& o, const BalancerScene& sc, TableFormat fmt, std::ostream& out) {
-    const SommerfeldAnalysis a = analyse_sommerfeld(sc.params);
-    // --speeds was checked before the scene was read.
-    const SpeedRange range = o.speeds.empty() ? stationary_speeds(sc.params, a)
-                                              : SpeedRange::parse(o.speeds, "--speeds");
-    const Table curves = stationary_states_table(a, range), folds = folds_table(a);
-    Table sum = sommerfeld_summary_table(sc.params, a);
-    // The first screen (table format): the summary and the folds; the rows on request.
-    if (fmt == TableFormat::Text && !o.rows && o.table.empty()) {
-        sum.title = fmt::format("Sommerfeld effect: summary (the {} stationary states: --rows, or --format csv|json)",
-                                curves.rows());
-        write_result(out, {sum, folds}, fmt, "");
-    } else {
-        write_result(out, {curves, folds, sum}, fmt, o.table);
-    }
-    if (!o.plot.empty()) plot_if(o.plot, stationary_figure(a, range, sc.title));
+SommerfeldRequest request_of(const Options& o) {
+    SommerfeldRequest r;
+    r.runup = o.runup;
+    if (!o.speeds.empty()) r.speeds = SpeedRange::parse(o.speeds, "--speeds");
+    if (!o.method.empty()) r.integrator = o.method;
+    if (o.abs_opt->count()) r.abs_tol = o.abs_tol;
+    if (o.rel_opt->count()) r.rel_tol = o.rel_tol;
+    if (o.max_opt->count()) r.max_speed = o.max_speed;
+    return r;
 }
 
-void run_runup(const Options& o, const BalancerScene& sc, TableFormat fmt, std::ostream& out) {
-    if (!sc.has_runup)
-        throw InputError(sc.file + ": --runup needs a [runup] table (max_speed, rise, hold, fall)");
-    const AutobalancerParameters& p = sc.params;
-    sommerfeld_system(p);   // the summary's analysis: reject unsuitable scenes before the run
-    RunupSettings s = sc.runup;
-    if (!o.method.empty()) s.ode.method = parse_ode_method(o.method);
-    if (o.abs_opt->count()) s.ode.abs_tol = o.abs_tol;
-    if (o.rel_opt->count()) s.ode.rel_tol = o.rel_tol;
-    if (o.max_opt->count()) s.max_speed = o.max_speed;
-    if (!(s.ode.abs_tol > 0.0 && s.ode.abs_tol < 1.0) || !(s.ode.rel_tol > 0.0 && s.ode.rel_tol < 1.0))
-        throw InputError(fmt::format("--abs-tol {} / --rel-tol {}: allowed: 0 < tolerance < 1", s.ode.abs_tol,
-                                     s.ode.rel_tol));
-    if (!(s.max_speed > 0.0) || !std::isfinite(s.max_speed))
-        throw InputError(fmt::format("--max-speed {}: allowed: a finite number > 0 (rad/s)", s.max_speed));
-    s.ode.progress = fraction_bar("run-up");
-    const RunupResult r = simulate_runup(p, s);
-    const RunupSummary sm = summarize_runup(p, r);
-    write_result(out, {runup_history_table(r), runup_summary_table(s, r, sm)}, fmt, o.table);
-    if (!o.plot.empty()) plot_if(o.plot, runup_figure(p, r, sc.title));
+void run(const Options& o, const BalancerScene& sc, TableFormat fmt, std::ostream& out) {
+    SommerfeldStudy st = sommerfeld_study(sc, request_of(o), o.runup ? fraction_bar("run-up") : nullptr);
+    if (o.runup) {
+        write_result(out, st.tables, fmt, o.table);
+        if (!o.plot.empty()) plot_if(o.plot, runup_figure(sc.params, *st.runup, sc.title));
+        return;
+    }
+    // The first screen (table format): the summary and the folds; the rows on request.
+    if (fmt == TableFormat::Text && !o.rows && o.table.empty()) {
+        Table sum = st.tables[2];
+        sum.title = fmt::format("Sommerfeld effect: summary (the {} stationary states: --rows, or --format csv|json)",
+                                st.tables[0].rows());
+        write_result(out, {sum, st.tables[1]}, fmt, "");
+    } else {
+        write_result(out, st.tables, fmt, o.table);
+    }
+    if (!o.plot.empty()) plot_if(o.plot, stationary_figure(st.analysis, st.speeds, sc.title));
 }
 
 }  // namespace
@@ -86,17 +74,10 @@ std::vector<Command> add_sommerfeld_commands(CLI::App& app) {
     return {{c, [o](std::ostream& out) {
         const TableFormat fmt = parse_table_format(o->format);
         check_plot_path(o->plot);
-        if (!o->runup && (!o->method.empty() || o->abs_opt->count() || o->rel_opt->count() || o->max_opt->count()))
-            throw InputError("--integrator, --abs-tol, --rel-tol and --max-speed need --runup");
-        if (o->runup && !o->speeds.empty()) throw InputError("--speeds sets the stationary curves; not with --runup");
         if (o->runup && o->rows) throw InputError("--rows prints the stationary states; not with --runup");
-        if (!o->speeds.empty()) SpeedRange::parse(o->speeds, "--speeds").validate("--speeds");
-        if (!o->method.empty()) parse_ode_method(o->method);
         const BalancerScene sc = load_balancer_scene(o->scene);
-        if (o->runup)
-            run_runup(*o, sc, fmt, out);
-        else
-            run_stationary(*o, sc, fmt, out);
+        sommerfeld_plan(sc, request_of(*o));   // checked before any file is claimed
+        run(*o, sc, fmt, out);
     }}};
 }
 

@@ -16,6 +16,7 @@
 #include <gyrokit/analysis/spectrum_solver.hpp>
 #include <gyrokit/analysis/workers.hpp>
 #include <gyrokit/core/diagnostics.hpp>
+#include <gyrokit/study/balancer_study.hpp>
 #include <gyrokit/study/critical_map_study.hpp>
 #include <gyrokit/study/defaults.hpp>
 #include <gyrokit/study/fluid_study.hpp>
@@ -23,6 +24,7 @@
 #include <gyrokit/study/request.hpp>
 #include <gyrokit/study/response_study.hpp>
 #include <gyrokit/study/rotor_study.hpp>
+#include <gyrokit/study/sommerfeld_study.hpp>
 #include <gyrokit/study/static_study.hpp>
 #include <gyrokit/study/transient_study.hpp>
 #include <gyrokit/analysis/transient.hpp>

@@ -26,7 +26,7 @@ from ._transient import TransientResponse, transient
 __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene", "eig", "campbell",
            "critical_speeds", "stability", "screen", "EigResult", "CampbellResult", "CriticalSpeeds",
            "StabilityChanges", "ScreenResult", "pervasive", "response", "PervasiveLosses", "Response", "gyrostat",
-           "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "Sommerfeld",
+           "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "BalancerRun", "Sommerfeld", "SommerfeldRunup",
            "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
            "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap", "frf",
            "FrequencyResponse", "Table", "load_tables", "draw", "summary", "ModelSummary", "transient",
@@ -823,6 +823,7 @@ class BalancerStates(_Result):
         self.compensating = [bool(c) for c in d["compensating"]]
         # Per speed range: does a compensating state stay stable (as the CLI's first screen)?
         self.ranges = [dict(r) for r in d["ranges"]]
+        self._take_reports(d)   # the CLI's tables: synchronous_states, balancing_ranges
 
     def to_pandas(self):
         return self._frame({"state": self.state, "range": self.range, "from_rad_s": self.range_from, "to_rad_s": self.range_to,
@@ -830,8 +831,43 @@ class BalancerStates(_Result):
                             "max_re_lambda_1_s": self.max_real_eigenvalue, "compensating": self.compensating})
 
 
+class BalancerRun(_Result):
+    """A run of the auto-balancer's equations of motion (`gyrokit balancer --simulate`): the histories `t` (s),
+    `speed` (rad/s), `radius` (|r|, m) and `alpha` (the rollers' relative phases, rad, unwrapped), the final
+    phases (rad) and speed (rad/s) and the residual vibration over the final window (m); `tables` (history,
+    final_state) and `plot()` (the phase histories)."""
+
+    def __init__(self, d):
+        for key in ("t", "speed", "radius", "final_speed", "residual_rms", "residual_max"):
+            setattr(self, key, d[key])
+        self.alpha = list(d["alpha"])
+        self.final_alpha = list(d["final_alpha"])
+        self._take_reports(d)
+
+    def to_pandas(self):
+        return self._frame({"t_s": self.t, "speed_rad_s": self.speed, "radius_m": self.radius,
+                            **{f"alpha{i + 1}_rad": a for i, a in enumerate(self.alpha)}})
+
+
+class SommerfeldRunup(_Result):
+    """A run-up through the full equations of motion (`gyrokit sommerfeld --runup`): the histories `t` (s),
+    `nominal` and `rotor_speed` (rad/s), `amplitude` (|r|, m), the held rotor speed and amplitude and the final
+    rotor speed; `tables` (runup_history, summary) and `plot()`."""
+
+    def __init__(self, d):
+        for key in ("t", "nominal", "rotor_speed", "amplitude", "held_rotor_speed", "held_amplitude",
+                    "final_rotor_speed"):
+            setattr(self, key, d[key])
+        self._take_reports(d)
+
+    def to_pandas(self):
+        return self._frame({"t_s": self.t, "nominal_rad_s": self.nominal, "rotor_speed_rad_s": self.rotor_speed,
+                            "amplitude_m": self.amplitude})
+
+
 class Sommerfeld(_Result):
-    """Sommerfeld effect of a rotor driven by a limited motor: limit speed estimate, folds, jump speeds (rad/s)."""
+    """Sommerfeld effect of a rotor driven by a limited motor: limit speed estimate, folds, jump speeds (rad/s);
+    `tables` (stationary_states, folds, summary) and `plot()` (the stationary speed curves)."""
 
     def __init__(self, d):
         self.limit_speed_estimate = d["limit_speed_estimate"]
@@ -841,19 +877,31 @@ class Sommerfeld(_Result):
         self.jump_up_rotor_speed = d.get("jump_up_rotor_speed")
         self.jump_down = d.get("jump_down")
         self.jump_down_rotor_speed = d.get("jump_down_rotor_speed")
+        self._take_reports(d)
 
     def to_pandas(self):
         return self._frame(self.folds)
 
 
-def balancer(scene) -> BalancerStates:
-    """The auto-balancer scene's synchronous states and their stability (as `gyrokit balancer`)."""
-    return BalancerStates(_core.balancer(str(scene)))
+def balancer(scene, *, simulate=False, averaged=False, speed=None, duration=None, integrator=None, abs_tol=None,
+             rel_tol=None):
+    """The auto-balancer scene's synchronous states and their stability (as `gyrokit balancer`); `simulate`: a
+    run of the equations of motion with the scene's [simulation] (`averaged`: the slow-phase equations; `speed`
+    a prescribed speed in rad/s, `duration` s, the ODE `integrator` and tolerances override the scene), as
+    `gyrokit balancer --simulate`."""
+    d = _core.balancer(str(scene), dict(simulate=bool(simulate), averaged=bool(averaged), speed=speed,
+                                        duration=duration, integrator=integrator, abs_tol=abs_tol, rel_tol=rel_tol))
+    return BalancerRun(d) if simulate else BalancerStates(d)
 
 
-def sommerfeld(scene) -> Sommerfeld:
-    """The Sommerfeld analysis of an auto-balancer scene with a motor (as `gyrokit sommerfeld`)."""
-    return Sommerfeld(_core.sommerfeld(str(scene)))
+def sommerfeld(scene, *, speeds=None, runup=False, integrator=None, abs_tol=None, rel_tol=None, max_speed=None):
+    """The Sommerfeld analysis of an auto-balancer scene with a motor (as `gyrokit sommerfeld`): the stationary
+    curves over `speeds` (FROM, TO, N) nominal speeds in rad/s (default: the range the curves need); `runup`: the
+    scene's [runup] through the full equations of motion (`max_speed` rad/s, the ODE `integrator` and tolerances
+    override the scene), as `gyrokit sommerfeld --runup`."""
+    d = _core.sommerfeld(str(scene), dict(runup=bool(runup), speeds=speeds, integrator=integrator, abs_tol=abs_tol,
+                                          rel_tol=rel_tol, max_speed=max_speed))
+    return SommerfeldRunup(d) if runup else Sommerfeld(d)
 
 
 def _inputs_of(model):

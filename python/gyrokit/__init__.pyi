@@ -1,6 +1,6 @@
 # Type hints of the package gyrokit (see docs/python.md).
 from os import PathLike
-from typing import Any, Mapping, Optional, Sequence, Union
+from typing import Any, Literal, Mapping, Optional, Sequence, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -321,7 +321,7 @@ class FluidResult(_Result):
 
 def fluid(scene: Scene, *, fill: Optional[npt.ArrayLike] = ..., unit: Optional[str] = ...) -> FluidResult: ...
 
-class BalancerStates:
+class BalancerStates(_Result):
     state: list[str]
     alpha_deg: list[npt.NDArray[np.float64]]
     range: list[str]
@@ -334,7 +334,28 @@ class BalancerStates:
     ranges: list[dict[str, Any]]   # range, from, to, balances, stable_compensating, stable_other, disputed
     def to_pandas(self) -> Any: ...
 
-class Sommerfeld:
+class BalancerRun(_Result):
+    t: npt.NDArray[np.float64]
+    speed: npt.NDArray[np.float64]
+    radius: npt.NDArray[np.float64]
+    alpha: list[npt.NDArray[np.float64]]
+    final_alpha: list[float]
+    final_speed: float
+    residual_rms: float
+    residual_max: float
+    def to_pandas(self) -> Any: ...
+
+class SommerfeldRunup(_Result):
+    t: npt.NDArray[np.float64]
+    nominal: npt.NDArray[np.float64]
+    rotor_speed: npt.NDArray[np.float64]
+    amplitude: npt.NDArray[np.float64]
+    held_rotor_speed: float
+    held_amplitude: float
+    final_rotor_speed: float
+    def to_pandas(self) -> Any: ...
+
+class Sommerfeld(_Result):
     limit_speed_estimate: float
     has_jump: bool
     folds: list[dict[str, Any]]
@@ -344,8 +365,22 @@ class Sommerfeld:
     jump_down_rotor_speed: Optional[float]
     def to_pandas(self) -> Any: ...
 
-def balancer(scene: Union[str, PathLike[str]]) -> BalancerStates: ...
-def sommerfeld(scene: Union[str, PathLike[str]]) -> Sommerfeld: ...
+@overload
+def balancer(scene: Union[str, PathLike[str]], *, simulate: Literal[False] = ..., averaged: bool = ...,
+             speed: Optional[float] = ..., duration: Optional[float] = ..., integrator: Optional[str] = ...,
+             abs_tol: Optional[float] = ..., rel_tol: Optional[float] = ...) -> BalancerStates: ...
+@overload
+def balancer(scene: Union[str, PathLike[str]], *, simulate: Literal[True], averaged: bool = ...,
+             speed: Optional[float] = ..., duration: Optional[float] = ..., integrator: Optional[str] = ...,
+             abs_tol: Optional[float] = ..., rel_tol: Optional[float] = ...) -> BalancerRun: ...
+@overload
+def sommerfeld(scene: Union[str, PathLike[str]], *, speeds: Optional[tuple[float, float, int]] = ...,
+               runup: Literal[False] = ..., integrator: Optional[str] = ..., abs_tol: Optional[float] = ...,
+               rel_tol: Optional[float] = ..., max_speed: Optional[float] = ...) -> Sommerfeld: ...
+@overload
+def sommerfeld(scene: Union[str, PathLike[str]], *, speeds: Optional[tuple[float, float, int]] = ...,
+               runup: Literal[True], integrator: Optional[str] = ..., abs_tol: Optional[float] = ...,
+               rel_tol: Optional[float] = ..., max_speed: Optional[float] = ...) -> SommerfeldRunup: ...
 
 class FrequencyResponse(_Result):
     speed: float

@@ -860,6 +860,10 @@ def _every_result(tmp_path):
                                                              [{"model.c_G": 150.0}])),
         (str(tmp_path / "balancer_bild7.toml"), gk.balancer(str(tmp_path / "balancer_bild7.toml"))),
         (str(tmp_path / "sommerfeld_rotor.toml"), gk.sommerfeld(str(tmp_path / "sommerfeld_rotor.toml"))),
+        (str(tmp_path / "balancer_bild7.toml"), gk.balancer(str(tmp_path / "balancer_bild7.toml"), simulate=True,
+                                                           duration=0.2)),
+        (str(tmp_path / "sommerfeld_rotor.toml"), gk.sommerfeld(str(tmp_path / "sommerfeld_rotor.toml"), runup=True,
+                                                                max_speed=50.0)),
     ]
 
 
