@@ -412,6 +412,28 @@ TEST_CASE("the study identity covers min_log_dec and the probes: a changed crite
             CHECK(std::string(e.what()).find("written by another study") != std::string::npos);
         }
     }
+    // A file judged by an older revision of the rules says so.
+    d.file("study.toml", text(0.1, 30.0));
+    const Sweep same = read_sweep(path);
+    const std::string identity = study_identity_line(same);
+    const std::string old_rules = identity.substr(0, identity.rfind("rules ")) + "rules 1)";
+    std::ifstream rows(ro.out);
+    std::stringstream rest;
+    std::string first_line;
+    std::getline(rows, first_line);
+    rest << rows.rdbuf();
+    rows.close();
+    std::ofstream(ro.out, std::ios::trunc) << old_rules << '\n' << rest.str();
+    try {
+        run_screening(same, ro);
+        FAIL("a result file of older rules resumed");
+    } catch (const InputError& e) {
+        INFO(e.what());
+        const std::string ours = identity.substr(identity.rfind("gyrokit "));   // "gyrokit V, rules N)"
+        const std::string version = ours.substr(0, ours.find(','));
+        CHECK(std::string(e.what()).find("were judged by " + version + ", rules 1 where this run judges by " + version +
+                                         ", rules " + std::to_string(kScreeningRules) + ";") != std::string::npos);
+    }
 }
 
 TEST_CASE("amplification factor limit: the largest AF of the scan, 1/(2 zeta) for a Jeffcott rotor, and its verdict",

@@ -1,7 +1,8 @@
 """One study behind every front end: for each rotor scene of data/ and each analysis, the CLI's JSON output and
 the Python result's tables (saved as JSON, full precision) are the same rows, bit for bit, and so are the notes
 and warnings (the CLI's stderr, Python's `notes` and `warnings`). The screening's critical speed and
-instability onset are the same study's (test_gyrokit.py: test_screening_judges_the_critical_speeds_...)."""
+instability onset are the same study's (test_gyrokit.py: test_screening_judges_the_critical_speeds_...), and so
+are its critical speed, instability onset and largest response on an FE rotor (below)."""
 import glob
 import json
 import tomllib
@@ -156,3 +157,52 @@ def test_the_balancer_studies_are_the_same_in_both(tmp_path, path, analysis):
         return
     printed = json.loads(cli(analysis, path).stdout)
     assert printed == json.load(open(result.save(tmp_path / "result.json")))
+
+
+def _points(lo, hi, n):
+    """The library's grid FROM:TO:N (SpeedRange::points): lo + (hi - lo) i / (n - 1), the last one hi."""
+    return [lo + (hi - lo) * i / (n - 1) for i in range(n - 1)] + [hi]
+
+
+def test_screening_judges_with_the_quantities_of_the_studies(tmp_path):
+    # One design of data/fe_rotor.toml (the first disk's mass as given) screened for separation, stability
+    # and response: the screening's critical speed, instability onset and largest response are those of
+    # gk.critical_speeds, gk.stability and gk.response on the same scene over each criterion's speeds (the
+    # separation scan 0 to 1.05 (1 + margin) x the top operating speed in 121 speeds, the stability scan 0 to
+    # up_to in `count` speeds, the response the operating speeds: grids built as the library builds them).
+    # Tolerance: the result file's 12 digits.
+    sweep = tmp_path / "sweep.toml"
+    sweep.write_text(f"""scene = "{os.path.join(DATA, 'fe_rotor.toml')}"
+units = "rad/s"
+[[parameter]]
+name = "model.disk[0].mass"
+values = [33.657]
+[operating]
+from = 100.0
+to = 300.0
+count = 21
+[criteria.separation]
+margin_percent = 5.0
+[criteria.stability]
+up_to = 400.0
+count = 41
+[criteria.response]
+max_amplitude = 1e-3
+dofs = ["x8", "y8"]
+""")
+    r = gk.screen(str(sweep), jobs=1)
+    q = {k: v[0] for k, v in r.quantities.items()}
+    scene = gk.load_scene(os.path.join(DATA, "fe_rotor.toml"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")   # the response's unstable range: the stability criterion's concern
+        critical = gk.critical_speeds(scene, _points(0.0, 300.0 * (1.0 + 5.0 / 100.0) * 1.05, 121))
+        stability = gk.stability(scene, _points(0.0, 400.0, 41))
+        response = gk.response(scene, _points(100.0, 300.0, 21), dofs=["x8", "y8"])
+    assert min(abs(critical.speeds - q["critical_speed_rad_s"])) <= 1e-11 * q["critical_speed_rad_s"]
+    onset = min(w for w, up in zip(stability.speeds, stability.becomes_unstable) if up)
+    assert q["instability_onset_rad_s"] == pytest.approx(onset, rel=1e-11)
+    peaks = response.table("response_maxima")
+    largest = max(peaks.rows, key=lambda row: row[peaks.columns.index("max_amplitude")])
+    assert q["max_amplitude"] == pytest.approx(largest[peaks.columns.index("max_amplitude")], rel=1e-11)
+    assert q["max_amplitude_speed_rad_s"] == pytest.approx(largest[peaks.columns.index("speed_rad_s")], rel=1e-11)
+    assert r.verdict[0] == "fail" and "stability: mode" in r.reason[0] and "response:" in r.reason[0]

@@ -12,6 +12,7 @@
 #include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/screening/detail/probes.hpp>
 #include <gyrokit/screening/screening.hpp>
+#include <gyrokit/study/response_study.hpp>
 #include <gyrokit/study/rotor_study.hpp>
 
 #include <algorithm>
@@ -363,22 +364,21 @@ ResponseOutputs response_outputs(const GyroscopicSystem& sys, const ResponseCrit
 void check_response(const Sweep& s, const Scene& sc, const ResponseCriterion& c, Row& row) {
     const GyroscopicSystem& sys = sc.system;
     const ResponseOutputs out = response_outputs(sys, c);
-    // The largest amplitude of the chosen DOFs or probes, peaks refined between grid
-    // speeds (as `gyrokit response`); an undamped resonance is unbounded (+inf) and fails.
-    // A probe's reading is one more output: its peak is refined on its own amplitude.
-    const ResponseSolver solve = [&](double w) -> Eigen::VectorXcd {
-        const Eigen::VectorXcd Z = unbalance_response(sys, w);
-        if (out.probes.empty()) return Z;
-        Eigen::VectorXcd reading(static_cast<Eigen::Index>(out.probes.size()));
-        for (std::size_t k = 0; k < out.probes.size(); ++k)
-            reading(static_cast<Eigen::Index>(k)) = probe_response(out.probes[k], Z);
-        return reading;
-    };
-    const int size = out.probes.empty() ? sys.size() : static_cast<int>(out.probes.size());
-    const ResponseCurve rc = unbalance_response(solve, size, s.operating_speeds(), out.dofs);
+    // The largest amplitude of the chosen DOFs or probes, in SI, peaks refined between
+    // grid speeds: the study of `gyrokit response` over the operating speeds (without its
+    // stability warning, the stability criterion's concern); an undamped resonance is
+    // unbounded (+inf) and fails. A probe's peak is refined on its own reading.
+    StudyOptions so = study_options(sc);
+    so.workers = 1;   // the designs run in parallel, each on one worker
+    so.speeds = s.operating_speeds();
+    ResponseRequest rq;
+    rq.outputs = out.dofs;
+    rq.probes = out.probes;
+    rq.stability_check = false;
+    const ResponseStudy st = response_study(sys, so, rq);
     double amax = -1, wmax = 0;
     int kmax = 0;
-    for (const auto& m : response_maxima(rc, response_extrema(solve, rc, true)))
+    for (const auto& m : st.maxima)
         if (m.amplitude > amax) amax = m.amplitude, wmax = m.speed, kmax = m.dof;
     row.set("max_amplitude", amax);
     row.set(s.unit.column("max_amplitude_speed"), wmax * s.unit.factor);

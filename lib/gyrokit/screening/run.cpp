@@ -192,6 +192,16 @@ ParsedFile parse_result_file(const Sweep& s, const std::string& path, const Shar
                                              "or not a result file); allowed: a result file of this study ({}), or "
                                              "a new file",
                                              path, s.path));
+            // Another gyrokit or revision of the verdicts' rules: said as such (the fingerprint differs too).
+            const std::string ours = identity.substr(identity.rfind("; gyrokit ") + 2);
+            const std::size_t theirs_at = line.rfind("; gyrokit ");
+            const std::string theirs = theirs_at == std::string::npos ? std::string() : line.substr(theirs_at + 2);
+            if (line != identity && !theirs.empty() && theirs != ours)
+                throw InputError(fmt::format("{}: written by another study: its rows were judged by {} where this run "
+                                             "judges by {}; rows of other rules or versions are not resumed or merged "
+                                             "with this run's; allowed: a result file of this gyrokit, or a new file",
+                                             path, theirs.substr(0, std::min<std::size_t>(theirs.size() - 1, 80)),
+                                             ours.substr(0, ours.size() - 1)));
             if (line != identity)
                 throw InputError(fmt::format("{}: written by another study: its scene, a file the scene names, its "
                                              "sweep or criteria, the gyrokit version or the revision of the verdicts' rules (a file judged "
