@@ -75,7 +75,11 @@ py::dict py_balancer(const std::string& path, const py::dict& request) {
         Released free;
         study.emplace(balancer_study(sc, rq));
     }
-    if (rq.simulate) return simulation_dict(*study, rq.averaged, sc.title);
+    if (rq.simulate) {
+        // The phase histories' table on request, as the CLI's --history (the arrays are always there).
+        if (!(request.contains("history") && request["history"].cast<bool>())) study->tables.erase(study->tables.begin());
+        return simulation_dict(*study, rq.averaged, sc.title);
+    }
     const std::vector<StateStability>& t = study->stability;
     py::list state, alpha, range, stable, stable_eigen;
     std::vector<double> from, to, re;
@@ -118,6 +122,9 @@ py::dict py_balancer(const std::string& path, const py::dict& request) {
     return d;
 }
 
+// More points than any curve needs (and than an int holds).
+constexpr double kMaxSpeedPoints = 1e7;
+
 SommerfeldRequest sommerfeld_request(const py::dict& kw) {
     SommerfeldRequest r;
     r.runup = kw.contains("runup") && kw["runup"].cast<bool>();
@@ -127,9 +134,9 @@ SommerfeldRequest sommerfeld_request(const py::dict& kw) {
             w = v.cast<std::vector<double>>();
         } catch (const py::cast_error&) {
         }
-        if (w.size() != 3 || w[2] != std::floor(w[2]))
-            throw InputError(fmt::format("{} {}: allowed: (FROM, TO, N), nominal speeds in rad/s and a count",
-                                         option_noun("speeds"), py::repr(v).cast<std::string>()));
+        if (w.size() != 3 || w[2] != std::floor(w[2]) || !(std::abs(w[2]) <= kMaxSpeedPoints))
+            throw InputError(fmt::format("{} {}: allowed: (FROM, TO, N), nominal speeds in rad/s and a count of at most {:g}",
+                                         option_noun("speeds"), py::repr(v).cast<std::string>(), kMaxSpeedPoints));
         r.speeds = SpeedRange{w[0], w[1], static_cast<int>(w[2])};
     }
     r.integrator = given_text(kw, "integrator");

@@ -84,7 +84,7 @@ TransientRequest transient_request(const py::dict& kw) {
     }
     r.node = given_whole(kw, "node");
     r.start = given_text(kw, "start");
-    r.max_steps = given_count(kw, "max_steps", nullptr, 1e15);
+    r.max_steps = given_count(kw, "max_steps", nullptr, 9e18);   // its range is the library's to state
     return r;
 }
 

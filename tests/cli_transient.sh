@@ -23,7 +23,7 @@ expect "--acceleration -5 rpm/s with a run-up from 0 to 15000 rpm: allowed: a fi
     transient "$rotor" --run-up 0:15000 --acceleration -5 --units rpm
 expect "--acceleration 5 rpm/s with a run-down from 15000 to 0 rpm: allowed: a finite number < 0" \
     transient "$rotor" --run-up 15000:0 --acceleration 5 --units rpm
-expect "--run-up needs --acceleration A (rad/s^2" transient "$rotor" --run-up 0:1500
+expect "--run-up needs --acceleration (rad/s^2" transient "$rotor" --run-up 0:1500
 expect "--run-up 0:0 rad/s: allowed: two different finite speeds >= 0" transient "$rotor" --run-up 0:0 --acceleration 3
 expect "--speed and --run-up: allowed: one of them" transient "$rotor" --speed 600 --run-up 0:5 --acceleration 1
 expect "no speed: allowed: --speed (a constant speed), or --run-up (from, to) with --acceleration" transient "$rotor"

@@ -280,7 +280,7 @@ TEST_CASE("request: the transient study takes its speeds in the study's unit and
     refused(bad, "speed and run_up: allowed: one of them");
     bad = rq;
     bad.acceleration.reset();
-    refused(bad, "run_up needs acceleration A (rpm/s");
+    refused(bad, "run_up needs acceleration (rpm/s; > 0 for a run-up");
     bad = rq;
     bad.acceleration = -5.0;
     refused(bad, "acceleration = -5 rpm/s with a run-up from 0 to 6000 rpm: allowed: a finite number > 0");
@@ -331,7 +331,7 @@ TEST_CASE("request: the balancer and Sommerfeld studies check their runs in the 
     const BalancerScene bild7 = load_balancer_scene(std::string(GYROKIT_DATA_DIR) + "/balancer_bild7.toml");
     b.speed.reset();
     b.integrator = "euler";
-    refused([&] { balancer_plan(bild7, b); }, "integrator = ODE method 'euler': allowed:");
+    refused([&] { balancer_plan(bild7, b); }, "integrator = 'euler': allowed: rk2, rk4");
     b.integrator.reset();
     b.abs_tol = 2.0;
     refused([&] { balancer_plan(bild7, b); }, "abs_tol = 2 / rel_tol = ");
@@ -355,4 +355,15 @@ TEST_CASE("request: the balancer and Sommerfeld studies check their runs in the 
     SommerfeldRequest bad;
     bad.speeds = SpeedRange{10.0, 5.0, 3};
     refused([&] { sommerfeld_plan(rotor, bad); }, "speeds: FROM = 10 is greater than TO = 5");
+}
+
+TEST_CASE("request: DOFs given one by one are checked one by one", "[request][errors]") {
+    const std::vector<std::string> names = {"x0", "y0", "x1"};
+    CHECK(dofs_by_name(std::vector<std::string>{"y0", "x1"}, names, "dofs") == std::vector<int>{1, 2});
+    CHECK(dofs_by_name(std::vector<std::string>{}, names, "dofs").empty());
+    for (const auto& bad : {std::vector<std::string>{""}, std::vector<std::string>{"x0,y0"},
+                            std::vector<std::string>{"x0", ""}, std::vector<std::string>{"x0", "x0"}}) {
+        CAPTURE(bad);
+        CHECK_THROWS_AS(dofs_by_name(bad, names, "dofs"), InputError);
+    }
 }

@@ -835,7 +835,7 @@ class BalancerRun(_Result):
     """A run of the auto-balancer's equations of motion (`gyrokit balancer --simulate`): the histories `t` (s),
     `speed` (rad/s), `radius` (|r|, m) and `alpha` (the rollers' relative phases, rad, unwrapped), the final
     phases (rad) and speed (rad/s) and the residual vibration over the final window (m); `tables` (history,
-    final_state) and `plot()` (the phase histories)."""
+    final_state; history with history=True) and `plot()` (the phase histories)."""
 
     def __init__(self, d):
         for key in ("t", "speed", "radius", "final_speed", "residual_rms", "residual_max"):
@@ -884,13 +884,16 @@ class Sommerfeld(_Result):
 
 
 def balancer(scene, *, simulate=False, averaged=False, speed=None, duration=None, integrator=None, abs_tol=None,
-             rel_tol=None):
+             rel_tol=None, history=False):
     """The auto-balancer scene's synchronous states and their stability (as `gyrokit balancer`); `simulate`: a
     run of the equations of motion with the scene's [simulation] (`averaged`: the slow-phase equations; `speed`
     a prescribed speed in rad/s, `duration` s, the ODE `integrator` and tolerances override the scene), as
-    `gyrokit balancer --simulate`."""
+    `gyrokit balancer --simulate`; `history`: its tables hold the phase histories too (as --history)."""
+    if history and not simulate:
+        raise InputError("history: the phase histories of a run; allowed only with simulate=True")
     d = _core.balancer(str(scene), dict(simulate=bool(simulate), averaged=bool(averaged), speed=speed,
-                                        duration=duration, integrator=integrator, abs_tol=abs_tol, rel_tol=rel_tol))
+                                        duration=duration, integrator=integrator, abs_tol=abs_tol, rel_tol=rel_tol,
+                                        history=bool(history)))
     return BalancerRun(d) if simulate else BalancerStates(d)
 
 

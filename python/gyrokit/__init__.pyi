@@ -368,11 +368,11 @@ class Sommerfeld(_Result):
 @overload
 def balancer(scene: Union[str, PathLike[str]], *, simulate: Literal[False] = ..., averaged: bool = ...,
              speed: Optional[float] = ..., duration: Optional[float] = ..., integrator: Optional[str] = ...,
-             abs_tol: Optional[float] = ..., rel_tol: Optional[float] = ...) -> BalancerStates: ...
+             abs_tol: Optional[float] = ..., rel_tol: Optional[float] = ..., history: bool = ...) -> BalancerStates: ...
 @overload
 def balancer(scene: Union[str, PathLike[str]], *, simulate: Literal[True], averaged: bool = ...,
              speed: Optional[float] = ..., duration: Optional[float] = ..., integrator: Optional[str] = ...,
-             abs_tol: Optional[float] = ..., rel_tol: Optional[float] = ...) -> BalancerRun: ...
+             abs_tol: Optional[float] = ..., rel_tol: Optional[float] = ..., history: bool = ...) -> BalancerRun: ...
 @overload
 def sommerfeld(scene: Union[str, PathLike[str]], *, speeds: Optional[tuple[float, float, int]] = ...,
                runup: Literal[False] = ..., integrator: Optional[str] = ..., abs_tol: Optional[float] = ...,

@@ -328,6 +328,17 @@ std::vector<int> dofs_by_name(const std::string& list, const std::vector<std::st
     return out;
 }
 
+std::vector<int> dofs_by_name(const std::vector<std::string>& list, const std::vector<std::string>& names,
+                              const std::string& option) {
+    std::string joined;
+    for (std::size_t i = 0; i < list.size(); ++i) joined += (i ? "," : "") + list[i];
+    for (const std::string& name : list)   // a name that the joined text would read as none, or as two
+        if (name.empty() || name.find(',') != std::string::npos)
+            throw InputError(fmt::format("{} '{}': '{}' is not a DOF of the model; allowed: names such as {}", option,
+                                         joined, name, names.empty() ? std::string("-") : names.front()));
+    return dofs_by_name(joined, names, option);
+}
+
 void check_dof_list(const GyroscopicSystem& sys, const std::vector<int>& dofs, const std::string& what) {
     for (std::size_t i = 0; i < dofs.size(); ++i) {
         if (dofs[i] < 0 || dofs[i] >= sys.size())

@@ -154,6 +154,9 @@ public:
 // DOF indices of a comma-separated list of names ("x12,y12"; empty: none): InputError
 // naming `option` for a name that is no DOF of `names` or one listed twice.
 std::vector<int> dofs_by_name(const std::string& list, const std::vector<std::string>& names, const std::string& option);
+// The same of names given one by one (an empty name, or one with a comma, is no DOF).
+std::vector<int> dofs_by_name(const std::vector<std::string>& list, const std::vector<std::string>& names,
+                              const std::string& option);
 // InputError naming `what` for an index out of range or listed twice (an output would
 // be printed twice).
 void check_dof_list(const GyroscopicSystem& sys, const std::vector<int>& dofs, const std::string& what);

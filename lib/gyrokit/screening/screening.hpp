@@ -77,9 +77,10 @@ constexpr const char* kInputsChangedTrailer = "# inputs changed during the run:"
 
 // The revision of the verdicts' rules: raised where a criterion judges the same
 // design differently (2: a separation criterion skips the crossings `critical` calls
-// heavily damped, unless heavily_damped = "count"), so that rows judged by the old
+// heavily damped, unless heavily_damped = "count"; 3: the response criterion is the
+// study of `gyrokit response`, on the scene's solver), so that rows judged by the old
 // rules are not resumed or merged with new ones.
-constexpr int kScreeningRules = 2;
+constexpr int kScreeningRules = 3;
 
 // The first line of a result file: "# study <16 hex digits> (…; gyrokit VERSION,
 // rules N)", a 64-bit FNV-1a fingerprint of the sweep file (parameters and

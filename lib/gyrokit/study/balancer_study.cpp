@@ -22,8 +22,11 @@ void check_tolerances(const OdeOptions& ode) {
 OdeMethod integrator_of(const std::string& name) {
     try {
         return parse_ode_method(name);
-    } catch (const InputError& e) {
-        throw InputError(option_field("integrator") + " " + e.what());
+    } catch (const InputError& e) {   // its range, under the field's name
+        const std::string text = e.what();
+        const std::size_t allowed = text.find("allowed: ");
+        throw InputError(fmt::format("{} '{}': {}", option_field("integrator"), name,
+                                     allowed == std::string::npos ? text : text.substr(allowed)));
     }
 }
 

@@ -24,9 +24,7 @@ FrfStudy frf_study(const Scene& scene, const RotorRequest& common, const FrfRequ
     const int input = static_cast<int>(in - names.begin());
     if (!rq.dofs.empty() && !rq.probes.empty())
         throw InputError(option_field("dofs") + " and " + option_field("probes") + ": allowed: one of them");
-    std::string list;
-    for (const std::string& d : rq.dofs) list += (list.empty() ? "" : ",") + d;
-    std::vector<int> outputs = rq.probes.empty() ? dofs_by_name(list, names, option_field("dofs")) : probe_dofs(rq.probes);
+    std::vector<int> outputs = rq.probes.empty() ? dofs_by_name(rq.dofs, names, option_field("dofs")) : probe_dofs(rq.probes);
     if (outputs.empty()) outputs.push_back(input);   // the driving point
     const double spin = to_rad_s(rq.speed.value_or(0.0), "speed", "number", so.unit);
     std::vector<double> w;

@@ -23,17 +23,18 @@ SpeedProfile profile_of(const TransientRequest& rq, const SpeedUnit& u) {
         throw InputError(fmt::format("no speed: allowed: {} (a constant speed), or {} (from, to) with {}", speed,
                                      run_up, acceleration));
     if (rq.speed) {
-        if (rq.acceleration) throw InputError(fmt::format("{}: only together with {} W0:W1", acceleration, run_up));
+        if (rq.acceleration) throw InputError(fmt::format("{}: only together with {}", acceleration, run_up));
         const double w = *rq.speed / u.factor;
         return {w, w, 0.0};
     }
     const auto [from, to] = *rq.run_up;
     if (!rq.acceleration)
-        throw InputError(fmt::format("{} needs {} A ({}; > 0 for a run-up, < 0 for a run-down)", run_up, acceleration,
+        throw InputError(fmt::format("{} needs {} ({}; > 0 for a run-up, < 0 for a run-down)", run_up, acceleration,
                                      u.per_second()));
     if (*rq.acceleration == 0.0)
-        throw InputError(fmt::format("{} 0 {}: allowed: a finite number > 0 for a run-up, < 0 for a run-down",
-                                     option_field("acceleration"), u.per_second()));
+        throw InputError(fmt::format("{} 0 {} with a {} from {:.12g} to {:.12g} {}: allowed: a finite number {} 0",
+                                     option_field("acceleration"), u.per_second(), to > from ? "run-up" : "run-down",
+                                     from, to, u.name, to > from ? ">" : "<"));
     SpeedProfile p{from / u.factor, to / u.factor, *rq.acceleration / u.factor};
     if (p.from == p.to)   // as a run: validate would take it for a constant speed
         throw InputError(fmt::format("{} {}:{} {}: allowed: two different finite speeds >= 0 (from:to)", option_field("run_up"), from,
@@ -57,9 +58,7 @@ std::vector<int> outputs_of(const TransientRequest& rq, const GyroscopicSystem& 
                                     "DOFs); allowed: a node with free x or y");
         return out;
     }
-    std::string list;
-    for (const std::string& d : rq.dofs) list += (list.empty() ? "" : ",") + d;
-    const std::vector<int> out = dofs_by_name(list, sys.dof_names, option_field("dofs"));
+    const std::vector<int> out = dofs_by_name(rq.dofs, sys.dof_names, option_field("dofs"));
     return out.empty() ? transient_outputs(sys) : out;
 }
 
