@@ -2,7 +2,7 @@
 
 #include <gyrokit/analysis/scalar_search.hpp>
 #include <gyrokit/core/error.hpp>
-#include "gyrokit/eig/detail/lapack.hpp"
+#include "gyrokit/eig/lapack.hpp"
 
 #include <algorithm>
 #include <cmath>

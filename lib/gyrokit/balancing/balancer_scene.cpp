@@ -1,7 +1,7 @@
 #include <gyrokit/balancing/balancer_scene.hpp>
 
 #include <gyrokit/core/error.hpp>
-#include "gyrokit/io/detail/toml_keys.hpp"
+#include "gyrokit/io/toml_keys.hpp"
 #include <gyrokit/core/input_file.hpp>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "gyrokit/eig/detail/lapack.hpp"
+#include "gyrokit/eig/lapack.hpp"
 
 #include <gyrokit/core/error.hpp>
 

@@ -1,7 +1,7 @@
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 
 #include <gyrokit/core/error.hpp>
-#include "gyrokit/eig/detail/lapack.hpp"
+#include "gyrokit/eig/lapack.hpp"
 #include <gyrokit/eig/sparse_eigensolver.hpp>
 
 #include <Eigen/Eigenvalues>

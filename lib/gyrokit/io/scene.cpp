@@ -9,7 +9,7 @@
 #include "gyrokit/io/detail/fe_scene.hpp"
 #include "gyrokit/io/detail/fluid_scene.hpp"
 #include <gyrokit/io/matrix_market.hpp>
-#include "gyrokit/io/detail/toml_keys.hpp"
+#include "gyrokit/io/toml_keys.hpp"
 #include <gyrokit/models/gyrostat.hpp>
 
 #include <cmath>

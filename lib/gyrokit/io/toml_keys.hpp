@@ -1,6 +1,7 @@
 // Typed, range-checked access to the keys of one TOML table. Every error is an
 // InputError naming the file, the table, the key, the value and what is allowed.
-// Shared by all scene readers.
+// Shared by all readers of the library (scenes, balancer scenes, sweeps); it holds
+// toml++, so it is not installed (lib/CMakeLists.txt).
 #pragma once
 
 #include <gyrokit/core/error.hpp>
