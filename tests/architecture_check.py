@@ -23,10 +23,6 @@ MAX_FUNCTION_LINES = 100
 
 # Not yet moved (issue: a model the code can see): key -> why it is still here.
 KNOWN = {
-    "include lib/gyrokit/io/scene.hpp -> gyrokit/analysis/solver_choice.hpp":
-        "Scene holds SolverOptions until the scene's model is a variant with its settings beside it",
-    "include lib/gyrokit/io/scene.cpp -> gyrokit/analysis/solver_choice.hpp": "as scene.hpp",
-    "include lib/gyrokit/io/scene_writer.cpp -> gyrokit/analysis/solver_choice.hpp": "as scene.hpp",
     "length lib/gyrokit/analysis/campbell.cpp": "to be split with the solver pipeline",
     "length lib/gyrokit/screening/evaluate.cpp": "one file per criterion, with the criteria as types",
     "length lib/gyrokit/eig/quadratic_eigensolver.cpp": "the dense solve as a pipeline of named stages",

@@ -8,22 +8,6 @@
 
 namespace gyrokit {
 
-SolverKind parse_solver_kind(const std::string& name) {
-    if (name == "auto") return SolverKind::Auto;
-    if (name == "dense") return SolverKind::Dense;
-    if (name == "sparse") return SolverKind::Sparse;
-    throw InputError(fmt::format("{} '{}': allowed: auto, dense, sparse", option_field("solver"), name));
-}
-
-std::string to_string(SolverKind k) {
-    switch (k) {
-    case SolverKind::Auto: return "auto";
-    case SolverKind::Dense: return "dense";
-    case SolverKind::Sparse: return "sparse";
-    }
-    return "auto";
-}
-
 SolverKind resolve_solver_kind(int dofs, SolverKind requested, int modes) {
     if (requested != SolverKind::Auto) return requested;
     return dofs > (modes == kModesInRange ? kAutoDenseInRangeDofs : kAutoSparseDofs) ? SolverKind::Sparse

@@ -4,16 +4,13 @@
 #pragma once
 
 #include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/core/solver_kind.hpp>
 
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace gyrokit {
-
-enum class SolverKind { Auto, Dense, Sparse };
-SolverKind parse_solver_kind(const std::string& name);   // "auto" | "dense" | "sparse"
-std::string to_string(SolverKind k);
 
 // Auto: the sparse solver above this many DOFs, the dense one up to it.
 constexpr int kAutoSparseDofs = 200;
@@ -23,13 +20,6 @@ constexpr int kAutoSparseDofs = 200;
 // (stability, 151 speeds, 2 threads: dense 5.7 s, every mode in range; a sparse
 // window 1.0 s) and on the same rotor in 168 elements (672 DOFs: 32 s and 2.4 s).
 constexpr int kAutoDenseInRangeDofs = 400;
-// Modes the sparse solver computes when none are asked for.
-constexpr int kDefaultSparseModes = 6;
-
-// `modes` not given: the modes in the range the speeds excite (tracking_options);
-// to a solver it means every mode (dense) or kDefaultSparseModes (sparse).
-constexpr int kModesInRange = -1;
-
 // The fields carry the names of the scene's [analysis] keys (and the CLI's options).
 struct SolverOptions {
     SolverKind kind = SolverKind::Auto;   // solver

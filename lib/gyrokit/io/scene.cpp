@@ -1,4 +1,3 @@
-#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/io/scene.hpp>
 
 #include <gyrokit/core/input_file.hpp>
@@ -398,15 +397,6 @@ std::vector<double> Scene::speed_points() const {
     std::vector<double> w = speeds ? speeds->points() : std::vector<double>{};
     for (double& x : w) x /= speed_unit.factor;
     return w;
-}
-
-SolverOptions Scene::solver_options() const {
-    SolverOptions o;
-    o.kind = solver;
-    o.modes = modes;
-    o.target = target;
-    o.target_order = target_order;
-    return o;
 }
 
 }  // namespace gyrokit

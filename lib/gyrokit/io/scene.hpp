@@ -1,8 +1,8 @@
 // Scene files (TOML): a model and the analysis settings. See docs/scene_format.md.
 #pragma once
 
-#include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
+#include <gyrokit/core/solver_kind.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/core/length_unit.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
@@ -48,8 +48,6 @@ struct Scene {
     // unit, each converted (speed_unit), so that a range written in rpm is the same
     // grid however it reaches a study.
     std::vector<double> speed_points() const;
-    // [analysis] solver, modes, target and target_order as solver options.
-    SolverOptions solver_options() const;
     const std::vector<std::string>& dof_names() const { return system.dof_names; }
 };
 

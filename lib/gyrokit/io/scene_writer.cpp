@@ -3,7 +3,7 @@
 #include <gyrokit/io/output_file.hpp>
 #include <gyrokit/core/run_files.hpp>
 
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/core/solver_kind.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <cmath>

@@ -12,6 +12,7 @@
 #include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/screening/detail/probes.hpp>
 #include <gyrokit/screening/screening.hpp>
+#include <gyrokit/study/request.hpp>
 #include <gyrokit/study/response_study.hpp>
 #include <gyrokit/study/rotor_study.hpp>
 
@@ -320,7 +321,7 @@ void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& 
         PervasiveOptions po;
         po.tolerance = c.tolerance;
         po.modes = sc.modes;
-        po.solver = sc.solver_options();   // the scene's choice, as for the other criteria
+        po.solver = solver_options(sc);   // the scene's choice, as for the other criteria
         const PervasiveReport rep = pervasive_damping(one, s.operating_speeds(), po);
         for (const auto& l : rep.losses)
             if (l.damping == "total" && l.speed < first) first = l.speed, lost_set = name, lost_mode = l.mode;

@@ -5,6 +5,7 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/reports/campbell_reports.hpp>
 #include <gyrokit/reports/spectrum_reports.hpp>
+#include <gyrokit/study/request.hpp>
 
 #include <fmt/format.h>
 
@@ -38,7 +39,7 @@ void diagram_diagnostics(const CampbellDiagram& cd, const SpeedUnit& u, Diagnost
 
 StudyOptions study_options(const Scene& scene) {
     StudyOptions o;
-    o.solver = scene.solver_options();
+    o.solver = solver_options(scene);
     o.solver.modes = scene.modes;
     o.harmonics = scene.harmonics;
     o.f_cut = scene.f_cut;

@@ -1,0 +1,25 @@
+#include <gyrokit/core/solver_kind.hpp>
+
+#include <gyrokit/core/error.hpp>
+
+#include <fmt/format.h>
+
+namespace gyrokit {
+
+SolverKind parse_solver_kind(const std::string& name) {
+    if (name == "auto") return SolverKind::Auto;
+    if (name == "dense") return SolverKind::Dense;
+    if (name == "sparse") return SolverKind::Sparse;
+    throw InputError(fmt::format("{} '{}': allowed: auto, dense, sparse", option_field("solver"), name));
+}
+
+std::string to_string(SolverKind k) {
+    switch (k) {
+    case SolverKind::Auto: return "auto";
+    case SolverKind::Dense: return "dense";
+    case SolverKind::Sparse: return "sparse";
+    }
+    return "auto";
+}
+
+}  // namespace gyrokit
