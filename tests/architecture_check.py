@@ -24,7 +24,6 @@ MAX_FUNCTION_LINES = 100
 # Not yet moved (issue: a model the code can see): key -> why it is still here.
 KNOWN = {
     "length lib/gyrokit/analysis/campbell.cpp": "to be split with the solver pipeline",
-    "length lib/gyrokit/screening/evaluate.cpp": "one file per criterion, with the criteria as types",
     "length lib/gyrokit/eig/quadratic_eigensolver.cpp": "the dense solve as a pipeline of named stages",
     "function lib/gyrokit/analysis/continuation_anchors.cpp solve_anchors": "the dense solve's stages",
     "function lib/gyrokit/analysis/continuation_steps.cpp branch_solve": "the continuation step's stages",
