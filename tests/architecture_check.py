@@ -27,7 +27,6 @@ KNOWN = {
     "length lib/gyrokit/eig/quadratic_eigensolver.cpp": "the dense solve as a pipeline of named stages",
     "function lib/gyrokit/analysis/continuation_anchors.cpp solve_anchors": "the dense solve's stages",
     "function lib/gyrokit/analysis/continuation_steps.cpp branch_solve": "the continuation step's stages",
-    "function lib/gyrokit/screening/sweep.cpp finalize_sweep": "one check per sweep section",
     "function lib/gyrokit/screening/run.cpp run_screening": "resume, run and merge as steps",
 }
 

@@ -215,11 +215,10 @@ std::map<std::string, double> design_overrides(const Sweep& s, const std::vector
     return o;
 }
 
-void finalize_sweep(Sweep& s, bool check_parameters) {
-    if (!s.loader) {
-        const std::string scene = s.scene;
-        s.loader = [scene](const std::map<std::string, double>& o) { return load_scene(scene, o); };
-    }
+namespace {
+
+// The parameters' names: each once, a CSV column name, a tie's name one of its paths.
+std::set<std::string> check_parameter_names(const Sweep& s) {
     std::set<std::string> names;
     for (const auto& p : s.parameters) {
         if (!names.insert(p.name).second)
@@ -238,6 +237,12 @@ void finalize_sweep(Sweep& s, bool check_parameters) {
                                          "allowed: one of its paths, or a label that is no path (e.g. 'kxx')",
                                          s.path, p.name, fmt::join(p.paths, ", ")));
     }
+    return names;
+}
+
+// The designs the sampling makes: no path set twice, the list's rows whole and finite,
+// a grid within max_designs; the operating range.
+void check_designs(Sweep& s) {
     design_overrides(s, std::vector<double>(s.parameters.size(), 0.0));   // no path set twice
     if (s.sampling == Sampling::LatinHypercube && s.parameters.empty())
         throw InputError(s.path + ": Latin hypercube sampling needs at least one [[parameter]]");
@@ -262,6 +267,10 @@ void finalize_sweep(Sweep& s, bool check_parameters) {
     if (!(s.op_from >= 0 && s.op_to >= s.op_from && std::isfinite(s.op_to)))
         throw InputError(fmt::format("{}: [operating] from = {}, to = {}; allowed: 0 <= from <= to", s.path,
                                      s.op_from * s.unit.factor, s.op_to * s.unit.factor));
+}
+
+// The criteria alone: at least one, each within its range.
+void check_criteria(const Sweep& s) {
     const Criteria& c = s.criteria;
     if (!c.separation && !c.stability && !c.pervasive && !c.response)
         throw InputError(s.path + ": no criteria; required: at least one of [criteria.separation], "
@@ -273,6 +282,11 @@ void finalize_sweep(Sweep& s, bool check_parameters) {
     if (c.separation && !(s.op_from > 0))
         throw InputError(s.path + ": [criteria.separation] needs [operating] from > 0 (the margin is relative to it)");
 
+}
+
+// The criteria against the base scene: its DOFs, unbalance, damping components and harmonics.
+void check_against_base(Sweep& s) {
+    const Criteria& c = s.criteria;
     const Scene base = s.loader({});
     s.dof_names = base.system.dof_names;
     if (c.separation && c.separation->harmonics.empty()) s.criteria.separation->harmonics = base.harmonics;
@@ -305,6 +319,19 @@ void finalize_sweep(Sweep& s, bool check_parameters) {
                                              s.path, d, s.scene));
         }
     }
+}
+
+}  // namespace
+
+void finalize_sweep(Sweep& s, bool check_parameters) {
+    if (!s.loader) {
+        const std::string scene = s.scene;
+        s.loader = [scene](const std::map<std::string, double>& o) { return load_scene(scene, o); };
+    }
+    const std::set<std::string> names = check_parameter_names(s);
+    check_designs(s);
+    check_criteria(s);
+    check_against_base(s);
     // A parameter named as another column of the result (verdict, a quantity) would give two columns of one name.
     const std::vector<std::string> columns = result_columns(s);
     for (const auto& p : s.parameters)
