@@ -67,19 +67,11 @@ int main(int argc, char** argv) {
                  "of gyroscopic systems"};
     app.require_subcommand(1);
     set_field_spelling(cli::flag_words);   // tables name the options as flags
-    std::vector<cli::Command> commands = cli::add_spectrum_commands(app);
-    for (auto& c : cli::add_tracking_commands(app)) commands.push_back(std::move(c));
-    for (auto& c : cli::add_response_commands(app)) commands.push_back(std::move(c));
-    for (auto& c : cli::add_frf_commands(app)) commands.push_back(std::move(c));
-    for (auto& c : cli::add_transient_commands(app)) commands.push_back(std::move(c));
-    for (auto& c : cli::add_static_commands(app)) commands.push_back(std::move(c));
-    for (auto& c : cli::add_critical_map_commands(app)) commands.push_back(std::move(c));
-    // Further command groups register here, one line each.
-    for (auto& c : cli::add_balancer_commands(app)) commands.push_back(std::move(c));
-    for (auto& c : cli::add_fluid_commands(app)) commands.push_back(std::move(c));
-    for (auto& c : cli::add_screen_commands(app)) commands.push_back(std::move(c));
-    for (auto& c : cli::add_sommerfeld_commands(app)) commands.push_back(std::move(c));
-    for (auto& c : cli::add_defaults_commands(app)) commands.push_back(std::move(c));
+    std::vector<cli::Command> commands;
+#define GYROKIT_ADD_COMMAND_GROUP(name) \
+    for (auto& c : cli::add_##name##_commands(app)) commands.push_back(std::move(c));
+    GYROKIT_COMMAND_GROUPS(GYROKIT_ADD_COMMAND_GROUP)
+#undef GYROKIT_ADD_COMMAND_GROUP
 
     app.name("gyrokit");
     app.set_version_flag("--version", std::string("gyrokit ") + GYROKIT_VERSION);

@@ -1,7 +1,7 @@
 // The rotor analyses of a System (eig, mode_shapes, campbell, critical_speeds, stability,
 // pervasive, response), one named function per binding: NumPy arrays and dicts out,
 // the GIL released while the library solves.
-#include "analyses.hpp"
+#include "binding_table.hpp"
 
 #include <gyrokit/study/response_study.hpp>
 

@@ -1,6 +1,6 @@
 // The two-roller auto-balancer (balancer) and the Sommerfeld effect (sommerfeld) of a
 // balancer scene file.
-#include "balancing.hpp"
+#include "binding_table.hpp"
 
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/gyrokit.hpp>

@@ -1,6 +1,6 @@
 // The undamped critical speed map of an FE rotor scene (critical_speed_map) as NumPy arrays.
 #include "common.hpp"
-#include "critical_map.hpp"
+#include "binding_table.hpp"
 
 #include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/core/error.hpp>

@@ -1,5 +1,6 @@
 // Frequency response functions (frequency_response) as NumPy arrays, with the CLI's table
 // and Bode and polar figures in the call's unit.
+#include "binding_table.hpp"
 #include "common.hpp"
 #include "frf.hpp"
 #include "request.hpp"

@@ -1,9 +1,5 @@
-// Frequency response functions at a fixed spin speed.
+// Probes given from Python, for the frequency and unbalance responses.
 #pragma once
-
-#include <pybind11/pybind11.h>
-
-void bind_frf(pybind11::module_& m);
 
 #include <gyrokit/analysis/probe.hpp>
 

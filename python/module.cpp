@@ -5,17 +5,12 @@
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/gyrokit.hpp>
 
-#include "analyses.hpp"
-#include "balancing.hpp"
+#include "binding_table.hpp"
 #include "common.hpp"
-#include "critical_map.hpp"
 #include "frf.hpp"
 #include "models.hpp"
 #include "reports.hpp"
-#include "screening.hpp"
-#include "statics.hpp"
 #include "system.hpp"
-#include "transient.hpp"
 
 #include <pybind11/pybind11.h>
 
@@ -77,14 +72,9 @@ PYBIND11_MODULE(_core, m) {
 
     py::class_<Scene> scene = bind_system(m);
     bind_models(m, scene);
-    bind_statics(m);
-    bind_critical_map(m);
-    bind_frf(m);
-    bind_reports(m);
-    bind_transient(m);
-    bind_analyses(m);
-    bind_screening(m);
-    bind_balancing(m);
+#define GYROKIT_ADD_BINDING(name) bind_##name(m);
+    GYROKIT_BINDINGS(GYROKIT_ADD_BINDING)
+#undef GYROKIT_ADD_BINDING
 
     // The table of defaults (study/defaults.hpp): the package's signatures take their values from it.
     m.def("defaults", [] {

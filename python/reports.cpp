@@ -1,6 +1,7 @@
 // Tables and figures between the library and Python (reports.hpp).
 #include "reports.hpp"
 
+#include "binding_table.hpp"
 #include "common.hpp"
 
 #include <gyrokit/core/error.hpp>
@@ -158,6 +159,8 @@ py::dict figure_dict(const Figure& f) {
 
 }  // namespace gyrokit_python
 
+// _core.write_tables(tables, path, format), _core.format_tables(tables, format),
+// _core.render_figure(figure, path).
 void bind_reports(py::module_& m) {
     using namespace gyrokit_python;
     m.def("format_tables", [](const py::list& tables, const std::string& format) {

@@ -21,7 +21,3 @@ pybind11::dict figure_dict(const gyrokit::Figure& figure);
 void put_diagnostics(pybind11::dict& d, const gyrokit::Diagnostics& diagnostics);
 
 }  // namespace gyrokit_python
-
-// _core.write_tables(tables, path, format), _core.format_tables(tables, format),
-// _core.render_figure(figure, path).
-void bind_reports(pybind11::module_& m);

@@ -1,6 +1,6 @@
 // Design screening from Python: the whole study (screen), or one design at a time for a
 // caller's executor (screen_design, screen_plan, screen_error_row).
-#include "screening.hpp"
+#include "binding_table.hpp"
 
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/gyrokit.hpp>

@@ -1,5 +1,5 @@
 // The static analysis of an FE rotor scene (static_study) as NumPy arrays.
-#include "statics.hpp"
+#include "binding_table.hpp"
 
 #include <gyrokit/reports/static_reports.hpp>
 #include <gyrokit/study/static_study.hpp>

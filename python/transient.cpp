@@ -1,7 +1,7 @@
 // Transient response by time integration (transient_response, transient_envelope,
 // envelope_steady, transient_waterfall) as NumPy arrays.
 #include "common.hpp"
-#include "transient.hpp"
+#include "binding_table.hpp"
 
 #include "reports.hpp"
 #include "request.hpp"

@@ -2,6 +2,8 @@
 // parsing of speeds and harmonics, plotting.
 #pragma once
 
+#include "cli/command_table.hpp"
+
 #include <gyrokit/analysis/probe.hpp>
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/core/speed_range.hpp>
@@ -120,38 +122,9 @@ std::function<void(size_t, size_t)> progress_bar(const std::string& what);
 // The same bar for a fraction of a time span (an ODE run), in percent.
 std::function<void(double)> fraction_bar(const std::string& what);
 
-// The commands of the rotor analyses at one speed: eig, model, modes, export.
-std::vector<Command> add_spectrum_commands(CLI::App& app);
-// Over speed: campbell, critical, stability, pervasive.
-std::vector<Command> add_tracking_commands(CLI::App& app);
-// The unbalance response: response.
-std::vector<Command> add_response_commands(CLI::App& app);
-
-// The auto-balancer command: balancer (synchronous states, --simulate).
-std::vector<Command> add_balancer_commands(CLI::App& app);
-
-// The liquid-filled rotor command: fluid.
-std::vector<Command> add_fluid_commands(CLI::App& app);
-
-// The design study: screen (sweep file, --jobs, --shard, --resume, --merge).
-std::vector<Command> add_screen_commands(CLI::App& app);
-
-// Frequency response functions at a fixed spin speed: frf.
-std::vector<Command> add_frf_commands(CLI::App& app);
-
-// Transient response by time integration: transient.
-std::vector<Command> add_transient_commands(CLI::App& app);
-
-// FE rotors: critical-map (undamped critical speeds against bearing stiffness).
-std::vector<Command> add_critical_map_commands(CLI::App& app);
-
-// FE rotors at standstill: static.
-std::vector<Command> add_static_commands(CLI::App& app);
-
-// The table of defaults: defaults.
-std::vector<Command> add_defaults_commands(CLI::App& app);
-
-// The Sommerfeld effect: sommerfeld (stationary speed curves, limit speeds, folds; --runup).
-std::vector<Command> add_sommerfeld_commands(CLI::App& app);
+// Each command group's subcommands (apps/cli/command_table.hpp lists them).
+#define GYROKIT_DECLARE_COMMAND_GROUP(name) std::vector<Command> add_##name##_commands(CLI::App& app);
+GYROKIT_COMMAND_GROUPS(GYROKIT_DECLARE_COMMAND_GROUP)
+#undef GYROKIT_DECLARE_COMMAND_GROUP
 
 }  // namespace gyrokit::cli

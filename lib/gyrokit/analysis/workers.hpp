@@ -12,7 +12,7 @@
 
 namespace gyrokit {
 
-struct SolverFactory;
+class SolverFactory;
 
 // How parallel work runs, apart from what is solved: `count` workers as
 // threads or as forked worker processes (results through temporary files, a
