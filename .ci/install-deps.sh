@@ -11,7 +11,7 @@ $sudo apt-get install -y -qq --no-install-recommends \
     libtomlplusplus-dev nlohmann-json3-dev libcli11-dev libfmt-dev \
     catch2 gnuplot-nox \
     python3-dev python3-pybind11 python3-numpy python3-scipy python3-pytest python3-pandas python3-matplotlib \
-    python3-distributed \
+    python3-distributed python3-mypy \
     clang libclang-rt-14-dev \
     procps util-linux \
     > /dev/null

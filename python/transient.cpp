@@ -169,6 +169,6 @@ void bind_transient(py::module_& m) {
         d["amplitude"] = w.amplitude;
         d["window"] = w.window;
         return d;
-    }, py::arg("t"), py::arg("speed"), py::arg("x"), py::arg("from"), py::arg("to"), py::arg("acceleration"),
+    }, py::arg("t"), py::arg("speed"), py::arg("x"), py::arg("start_speed"), py::arg("end_speed"), py::arg("acceleration"),
           py::arg("dt"), py::arg("windows"), py::arg("frequencies"));
 }

@@ -11,6 +11,7 @@ from __future__ import annotations
 import functools as _functools
 import inspect as _inspect
 import os as _os
+import typing as _typing
 import warnings as _warnings
 
 import numpy as _np
@@ -22,6 +23,10 @@ from . import _defaults as _D
 from ._results import Result as _Result, Table, draw, load_tables
 from ._results import UNITS as _UNITS, factor as _factor
 from ._transient import TransientResponse, transient
+
+# For annotations in scripts: what the analyses take as a model and as a file name.
+Model = _typing.Union[System, Scene]
+Path = _typing.Union[str, _os.PathLike[str]]
 
 __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene", "eig", "campbell",
            "critical_speeds", "stability", "screen", "EigResult", "CampbellResult", "CriticalSpeeds",

@@ -5,60 +5,11 @@ from typing import Any, Literal, Mapping, Optional, Sequence, Union, overload
 import numpy as np
 import numpy.typing as npt
 
-__version__: str
-
-class Error(Exception): ...
-class InputError(Error): ...
-class SolverError(Error): ...
-
-Matrix = Any  # a 2-D NumPy array (or anything np.asarray takes) or a SciPy sparse matrix
-
-class System:
-    def __init__(self, M: Matrix, K: Matrix, D: Optional[Matrix] = ..., G: Optional[Matrix] = ...,
-                 N: Optional[Matrix] = ..., K2: Optional[Matrix] = ..., damping: Mapping[str, Matrix] = ...,
-                 unbalance: Optional[npt.ArrayLike] = ..., dof_names: Optional[Sequence[str]] = ...,
-                 whirl_pairs: Optional[Sequence[tuple[int, int]]] = ...) -> None: ...
-    @property
-    def size(self) -> int: ...
-    @property
-    def dof_names(self) -> list[str]: ...
-    @property
-    def whirl_pairs(self) -> list[tuple[int, int]]: ...
-    @property
-    def damping_names(self) -> list[str]: ...
-    @property
-    def M(self) -> Any: ...  # scipy.sparse.csc_matrix
-    @property
-    def K(self) -> Any: ...
-    @property
-    def G(self) -> Any: ...
-    @property
-    def unbalance(self) -> npt.NDArray[np.complex128]: ...
-    def damping_matrix(self, speed: float = ...) -> Any: ...
-
-class Scene:
-    path: str
-    title: str
-    inputs: list[str]   # the files read to build it: no result of it is saved over one
-    length_unit: str   # "m" or "mm": how the scene states lengths (tables print them so)
-    speed_unit: str    # [speeds] units: the unit results are given in unless a call names one
-    model_type: str
-    system: System
-    modes: int
-    harmonics: list[int]
-    target_order: float
-    @property
-    def target(self) -> Optional[float]: ...
-    @property
-    def f_cut(self) -> Optional[float]: ...   # rad/s: [analysis] f_cut
-    @property
-    def solver(self) -> str: ...
-    @property
-    def rotor(self) -> Optional[Rotor]: ...
-    def to_toml(self) -> str: ...
-    def write(self, path: str) -> None: ...
-    @property
-    def speeds(self) -> Optional[npt.NDArray[np.float64]]: ...
+# The bound classes: their stubs are generated from the bindings (_core.pyi).
+from ._core import Bearing as Bearing, Disk as Disk, Error as Error, InputError as InputError
+from ._core import Pedestal as Pedestal, Rotor as Rotor, Scene as Scene, Section as Section
+from ._core import SolverError as SolverError, Support as Support, System as System
+from ._core import __version__ as __version__, coupling as coupling
 
 Model = Union[System, Scene]
 Path = Union[str, PathLike[str]]
@@ -76,7 +27,8 @@ def load_tables(path: Path) -> list[Table]: ...
 def draw(figure: Mapping[str, Any], axes: Any = ...) -> Any: ...
 
 class _Result:
-    tables: list[Table]
+    tables: Sequence[Table]
+    def __init__(self, d: dict[str, Any]) -> None: ...   # made by the analysis functions, from _core's result
     def table(self, key: str) -> Table: ...
     def save(self, path: Path, table: Optional[str] = ...) -> Path: ...
     def plot(self, path: Optional[Path] = ..., axes: Any = ...) -> Any: ...
@@ -162,7 +114,8 @@ class StabilityChanges(_Result):
 
 def defaults() -> list[dict[str, str]]: ...
 
-def load_scene(path: Union[str, PathLike[str]], overrides: Optional[Mapping[str, float]] = ...) -> Scene: ...
+def load_scene(path: Union[str, PathLike[str]], overrides: Optional[Mapping[str, float]] = ...,
+               motion: Optional[str] = ...) -> Scene: ...
 def modes(model: Model, speed: float, *, solver: Optional[str] = ..., modes: Optional[int] = ...,
           target: Optional[float] = ..., target_order: Optional[float] = ..., method: str = ...,
           lanczos: int = ..., unit: Optional[str] = ...) -> ModeShapes: ...
@@ -185,6 +138,7 @@ def stability(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, harmonics:
               f_cut: Optional[float] = ...) -> StabilityChanges: ...
 
 class ScreenResult:
+    def __init__(self, d: dict[str, Any]) -> None: ...
     columns: list[str]
     design: npt.NDArray[np.int_]
     parameters: dict[str, npt.NDArray[np.float64]]
@@ -216,6 +170,8 @@ class PervasiveLosses(_Result):
     def to_pandas(self) -> Any: ...
 
 class Response(_Result):
+    def __init__(self, speeds: npt.ArrayLike, dofs: Sequence[str], Z: npt.ArrayLike,
+                 d: Optional[dict[str, Any]] = ..., unit: str = ...) -> None: ...
     unit: str
     speeds: npt.NDArray[np.float64]
     dofs: list[str]
@@ -241,68 +197,6 @@ def gyrostat(*, speeds: Optional[Mapping[str, Union[float, str]]] = ..., analysi
              **keys: Any) -> Scene: ...
 def fe_rotor(*, speeds: Optional[Mapping[str, Union[float, str]]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
              directory: str = ..., **keys: Any) -> Scene: ...
-class Section:
-    def __init__(self, *, length: float, outer_diameter: float, E: Optional[float] = ...,
-                 density: Optional[float] = ..., elements: int = ..., inner_diameter: float = ...,
-                 outer_diameter_end: Optional[float] = ..., inner_diameter_end: Optional[float] = ...,
-                 poisson: float = ..., G: float = ...) -> None: ...
-    length: float
-    elements: int
-    outer_diameter: float
-    is_coupling: bool
-
-def coupling(*, length: float, k_lateral: float = ..., k_bending: float = ..., k_axial: float = ...,
-             k_torsion: float = ..., c_lateral: float = ..., c_bending: float = ..., c_axial: float = ...,
-             c_torsion: float = ..., mass: float = ..., Id: float = ..., Ip: float = ...) -> Section: ...
-
-class Disk:
-    def __init__(self, *, z: float, mass: Optional[float] = ..., Id: float = ..., Ip: float = ...,
-                 outer_diameter: Optional[float] = ..., inner_diameter: float = ..., width: Optional[float] = ...,
-                 density: Optional[float] = ..., unbalance: float = ..., phase: float = ...) -> None: ...
-    z: float
-    unbalance: float
-    phase: float
-
-class Bearing:
-    def __init__(self, *, z: float, k: float = ..., c: float = ..., kxx: Optional[float] = ...,
-                 kxy: Optional[float] = ..., kyx: Optional[float] = ..., kyy: Optional[float] = ...,
-                 cxx: Optional[float] = ..., cxy: Optional[float] = ..., cyx: Optional[float] = ...,
-                 cyy: Optional[float] = ..., kzz: float = ..., czz: float = ...) -> None: ...
-    @staticmethod
-    def table(*, z: float, speeds: Sequence[float], k: Optional[Sequence[float]] = ...,
-              c: Optional[Sequence[float]] = ..., kxx: Optional[Sequence[float]] = ...,
-              kxy: Optional[Sequence[float]] = ..., kyx: Optional[Sequence[float]] = ...,
-              kyy: Optional[Sequence[float]] = ..., cxx: Optional[Sequence[float]] = ...,
-              cxy: Optional[Sequence[float]] = ..., cyx: Optional[Sequence[float]] = ...,
-              cyy: Optional[Sequence[float]] = ...) -> Bearing: ...
-    @staticmethod
-    def fluid_film(*, z: float, diameter: float, length: float, clearance: float, viscosity: float,
-                   load: Union[float, str] = ..., load_angle: float = ..., max_eccentricity: float = ...,
-                   solution: str = ..., grid_circumferential: int = ..., grid_axial: int = ...) -> Bearing: ...
-    z: float
-    kind: str
-
-class Support:
-    def __init__(self, *, z: float, type: str = ..., axial: bool = ..., torsion: bool = ...) -> None: ...
-    z: float
-
-class Pedestal:
-    def __init__(self, *, z: float, mass: float, k: float = ..., c: float = ..., kxx: Optional[float] = ...,
-                 kyy: Optional[float] = ..., cxx: Optional[float] = ..., cyy: Optional[float] = ...) -> None: ...
-    z: float
-
-class Rotor:
-    def __init__(self, *, sections: Sequence[Section], disks: Sequence[Disk] = ..., bearings: Sequence[Bearing] = ...,
-                 supports: Sequence[Support] = ..., pedestals: Sequence[Pedestal] = ..., motion: str = ...,
-                 shear_deformation: bool = ..., rotary_inertia: bool = ..., damping_alpha: float = ...,
-                 damping_beta: float = ..., damping_zeta: Union[float, Sequence[float], None] = ...) -> None: ...
-    sections: list[Section]
-    disks: list[Disk]
-    bearings: list[Bearing]
-    supports: list[Support]
-    pedestals: list[Pedestal]
-    motion: str
-
 def rotor_scene(rotor: Rotor, *, title: str = ..., speeds: Optional[Mapping[str, Union[float, str]]] = ...,
                 analysis: Optional[Mapping[str, Any]] = ...) -> Scene: ...
 
@@ -414,6 +308,7 @@ class StaticDeflection(_Result):
 def static(model: Scene, *, gravity: float = ..., loads: Optional[Sequence[Mapping[str, float]]] = ...) -> StaticDeflection: ...
 
 class CriticalSpeedMap(_Result):
+    def __init__(self, d: dict[str, Any], unit: str) -> None: ...
     unit: str
     stiffness: npt.NDArray[np.float64]
     points: dict[str, Any]

@@ -155,7 +155,7 @@ def draw(figure, axes=None):
 class Result:
     """Base of the result objects: `tables` (what the CLI prints), `save()`, `plot()`."""
 
-    tables = ()
+    tables: tuple = ()   # a result's own tables replace it (a list)
     _figure = None
     _inputs = ()   # the files the result was computed from: save() and plot(path) never write onto one
 
