@@ -2,6 +2,7 @@
 // time, and the averaged slow-phase equations vs the full equations of motion,
 // on the scenes of Bilder 9 (compensating state) and 10 (damped offset).
 #include "bench_common.hpp"
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/table.hpp>
 
@@ -14,7 +15,6 @@ using namespace gyrokit::bench;
 
 int main(int argc, char** argv) {
     const std::string fmt = argc > 1 ? argv[1] : "table";
-    const double kPi = 3.14159265358979323846;
     Table t({"scene", "equations", "method", "tol", "steps", "seconds", "alpha1_deg", "alpha2_deg", "phase_error_deg"});
     t.title = "Auto-balancer: final-phase error vs reference (full equations, rk8pd, tol 1e-13)";
     for (const std::string name : {"bild9", "bild10"}) {

@@ -6,6 +6,7 @@
 // at a few eccentricities and L/D (docs/benchmarks.md).
 // Exit status: 0 success, 2 bad input, 1 anything else.
 #include "bench_common.hpp"
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/io/table.hpp>
 #include <gyrokit/models/journal_bearing.hpp>
 #include <gyrokit/models/reynolds_bearing.hpp>
@@ -24,8 +25,6 @@ using namespace gyrokit;
 using namespace gyrokit::bench;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 struct Grid {
     int n, a;

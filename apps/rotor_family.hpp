@@ -10,6 +10,7 @@
 
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/materials.hpp>
@@ -96,7 +97,7 @@ inline RotorCase random_rotor(unsigned seed, bool refined) {
         used.push_back(node);
         FeDisk disk;
         disk.node = node;
-        disk.mass = steel.density * M_PI * (r_out * r_out - r_in * r_in) * width;
+        disk.mass = steel.density * kPi * (r_out * r_out - r_in * r_in) * width;
         disk.polar_inertia = 0.5 * disk.mass * (r_out * r_out + r_in * r_in);
         disk.diametral_inertia = 0.25 * disk.mass * (r_out * r_out + r_in * r_in) + disk.mass * width * width / 12.0;
         c.rotor.disks.push_back(disk);

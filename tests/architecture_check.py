@@ -8,6 +8,9 @@
    declaration to its closing brace: a brace block opened at namespace (or class) level by anything but
    namespace, struct, class, enum or union, with everything nested in it (lambdas included).
 4. Every source of lib/gyrokit is in lib/CMakeLists.txt's explicit lists, and every listed file exists.
+5. One of each: π is defined in lib/gyrokit/core/constants.hpp alone (no M_PI, no 3.14159 literal in lib/,
+   apps/ or python/); std::thread is used by lib/gyrokit/core/parallel.cpp alone (the kept pool behind
+   for_each_index; std::thread::hardware_concurrency aside); CSV fields are quoted by lib/gyrokit/io/csv.cpp alone.
 
 KNOWN lists what the layout work has not reached yet, each with its reason: the check fails for anything
 else, and for an entry that no longer applies (so that the list only shrinks).
@@ -27,7 +30,6 @@ KNOWN = {
     "length lib/gyrokit/eig/quadratic_eigensolver.cpp": "the dense solve as a pipeline of named stages",
     "function lib/gyrokit/analysis/continuation_anchors.cpp solve_anchors": "the dense solve's stages",
     "function lib/gyrokit/analysis/continuation_steps.cpp branch_solve": "the continuation step's stages",
-    "function lib/gyrokit/screening/run.cpp run_screening": "resume, run and merge as steps",
 }
 
 
@@ -161,6 +163,21 @@ def main(root):
             if last - first + 1 > MAX_FUNCTION_LINES:
                 findings.append(f"function {rel} {name}")
                 print(f"note: {rel}:{first}: {name} has {last - first + 1} lines (at most {MAX_FUNCTION_LINES})")
+    # Rule 5: one of each, searched in the code (comments and literals aside).
+    one_of = [("pi", re.compile(r"\bM_PI\b|3\.14159"), "lib/gyrokit/core/constants.hpp", True),
+              ("thread", re.compile(r"std::j?thread\b(?!::)"),
+               "lib/gyrokit/core/parallel.cpp", False),
+              ("csv quoting", re.compile(r'find_first_of\(",\\"'), "lib/gyrokit/io/csv.cpp", True)]
+    for path in sorted(p for d in ("lib", "apps", "python") for p in (root / d).rglob("*.[ch]pp")):
+        rel = path.relative_to(root).as_posix()
+        in_block = False
+        for number, raw in enumerate(path.read_text().split("\n"), 1):
+            code, in_block = code_only(raw, in_block)
+            for what, pattern, home, literal in one_of:
+                if rel != home and pattern.search(raw if literal else code):
+                    if literal and raw.lstrip().startswith("//"):
+                        continue
+                    findings.append(f"one {what}: {rel}:{number} (its one place: {home})")
     cmake = (root / "lib" / "CMakeLists.txt").read_text()
     listed = set(re.findall(r"\bgyrokit/[\w/]+\.cpp\b", cmake))
     present = {p.relative_to(root / "lib").as_posix() for p in lib.rglob("*.cpp")}

@@ -5,6 +5,7 @@
 #include "tradeoffs.hpp"
 
 #include <gyrokit/balancing/sommerfeld.hpp>
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <algorithm>

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "bench_common.hpp"
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/io/table.hpp>
 
 #include <exception>
@@ -14,7 +15,8 @@
 
 namespace tradeoffs {
 
-constexpr double kPi = 3.14159265358979323846;
+using gyrokit::kPi;
+
 
 struct Settings {
     bool quick = false;

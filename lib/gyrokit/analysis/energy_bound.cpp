@@ -1,6 +1,8 @@
 // The energy bound on the growth rate of every mode (energy_bound.hpp).
 #include <gyrokit/analysis/energy_bound.hpp>
 
+#include <gyrokit/core/constants.hpp>
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -115,7 +117,7 @@ GrowthRateBound growth_rate_bound(const GyroscopicSystem& sys, const std::vector
     return out;
 }
 
-double neutral_rate(double band) { return kNeutralLogDec * band / (2.0 * M_PI); }
+double neutral_rate(double band) { return kNeutralLogDec * band / (2.0 * kPi); }
 
 std::optional<GrowthRateBound> modes_above_band_decay(const GyroscopicSystem& sys, const std::vector<double>& speeds,
                                                       double band) {

@@ -1,5 +1,6 @@
 #include <gyrokit/analysis/probe.hpp>
 
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <algorithm>
@@ -19,7 +20,7 @@ std::pair<double, double> cos_sin_degrees(double degrees) {
     if (r == 90.0) return {0.0, 1.0};
     if (r == 180.0) return {-1.0, 0.0};
     if (r == 270.0) return {0.0, -1.0};
-    const double a = r * M_PI / 180.0;
+    const double a = r * kPi / 180.0;
     return {std::cos(a), std::sin(a)};
 }
 

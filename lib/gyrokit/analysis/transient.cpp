@@ -2,6 +2,7 @@
 
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>
 
@@ -51,7 +52,7 @@ Eigen::VectorXd unbalance_force_at(const Eigen::VectorXcd& u, const SpeedProfile
 
 double transient_time_step(const SpeedProfile& p) {
     p.validate();
-    return 2.0 * M_PI / (kStepsPerPeriod * kBandMargin * p.top());
+    return 2.0 * kPi / (kStepsPerPeriod * kBandMargin * p.top());
 }
 
 // ---------------------------------------------------------------------------
@@ -280,8 +281,8 @@ Plan plan_run(const TransientOptions& o) {
         throw InputError(fmt::format("{} {}: allowed: 1 to {}", option_field("max_steps"), o.max_steps,
                                      kTransientStepLimit));
     Plan plan;
-    const double top = p.top(), policy = transient_time_step(p), coarsest = 2.0 * M_PI / (8.0 * top);
-    plan.duration = o.duration != 0.0 ? o.duration : p.acceleration != 0.0 ? p.ramp_end() : 200.0 * M_PI / p.from;
+    const double top = p.top(), policy = transient_time_step(p), coarsest = 2.0 * kPi / (8.0 * top);
+    plan.duration = o.duration != 0.0 ? o.duration : p.acceleration != 0.0 ? p.ramp_end() : 200.0 * kPi / p.from;
     if (!(std::isfinite(o.duration) && o.duration >= 0.0))
         throw InputError(fmt::format("{} {} s: allowed: a finite time > 0 (s); none: the ramp (a run-up) or 100 "
                                      "revolutions (constant speed)",
@@ -313,8 +314,8 @@ std::string step_note(const SpeedProfile& p, const Plan& plan, const SpeedUnit& 
     return fmt::format("Newmark average acceleration, {} steps of {:.4g} s over {:.6g} s: {:.1f} steps per period at "
                        "the band edge {:.6g} {} ({} x the top speed), {:.1f} per revolution at the top speed; "
                        "period error (w dt)^2/12 there {:.2g} %",
-                       plan.steps, plan.dt, plan.duration, 2.0 * M_PI / wdt, band * u.factor, u.name, kBandMargin,
-                       2.0 * M_PI / (p.top() * plan.dt), 100.0 * wdt * wdt / 12.0);
+                       plan.steps, plan.dt, plan.duration, 2.0 * kPi / wdt, band * u.factor, u.name, kBandMargin,
+                       2.0 * kPi / (p.top() * plan.dt), 100.0 * wdt * wdt / 12.0);
 }
 
 // The initial state: at rest, or the steady response to the force at t = 0 held harmonic.

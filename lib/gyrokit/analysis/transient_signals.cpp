@@ -2,6 +2,7 @@
 
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>
 
@@ -22,7 +23,7 @@ TransientEnvelope transient_envelope(const TransientResult& r, int max_windows) 
     // The revolution each sample lies in; the last one, unfinished, is left out.
     std::vector<long long> rev(samples);
     for (std::size_t n = 0; n < samples; ++n)
-        rev[n] = static_cast<long long>(std::floor(r.profile.angle(r.t[n]) / (2.0 * M_PI)));
+        rev[n] = static_cast<long long>(std::floor(r.profile.angle(r.t[n]) / (2.0 * kPi)));
     const long long whole = rev.back();
     const double span = r.t.back() / max_windows;
     const auto cols = static_cast<Eigen::Index>(r.dofs.size());
@@ -94,7 +95,7 @@ Eigen::VectorXd window_spectrum(const TransientResult& r, int column, std::size_
     std::vector<double> hx;   // the weighted samples
     double weights = 0.0;
     for (std::size_t n = i0; n <= i1; ++n) {
-        const double h = std::pow(std::sin(M_PI * static_cast<double>(n - i0) / span), 2);
+        const double h = std::pow(std::sin(kPi * static_cast<double>(n - i0) / span), 2);
         weights += h;
         hx.push_back(h * r.z(static_cast<Eigen::Index>(n), column));
     }
@@ -131,7 +132,7 @@ Waterfall transient_waterfall(const TransientResult& r, int column, int windows,
     // Windows of 2 T / windows, at least kWaterfallPeriods periods of the top speed (the
     // resolution), at most the run; centres evenly spaced from the first to the last half window.
     const std::size_t last = samples - 1;
-    const double periods = kWaterfallPeriods * 2.0 * M_PI / r.profile.top();
+    const double periods = kWaterfallPeriods * 2.0 * kPi / r.profile.top();
     const auto shortest = static_cast<std::size_t>(std::ceil(periods / r.dt));
     const std::size_t length =
         std::min(last, std::max<std::size_t>({3, shortest, 2 * last / static_cast<std::size_t>(windows)}));

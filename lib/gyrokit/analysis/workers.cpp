@@ -2,6 +2,7 @@
 
 #include <gyrokit/analysis/spectrum_solver.hpp>
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/parallel.hpp>
 #include <gyrokit/core/interrupt.hpp>
 
 #include <algorithm>
@@ -339,13 +340,8 @@ std::vector<QuadraticSpectrum> run_on_workers(const SolverFactory& make, size_t 
     const bool processes = workers.kind == WorkerKind::Processes ||
                            (workers.kind == WorkerKind::Auto && !make.thread_safe());
     if (t > 1 && processes) return run_in_processes(make, n, t, task, progress);
-    if (t == 1) {
-        work(0, n);
-    } else {
-        std::vector<std::thread> pool;
-        for (size_t k = 0; k < t; ++k) pool.emplace_back(work, k * n / t, (k + 1) * n / t);
-        for (auto& th : pool) th.join();
-    }
+    // One contiguous block of speeds per thread: each thread makes one solver.
+    for_each_index(t, static_cast<int>(t), [&](size_t k) { work(k * n / t, (k + 1) * n / t); });
     if (failure) std::rethrow_exception(failure);
     return out;
 }

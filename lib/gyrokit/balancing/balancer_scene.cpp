@@ -1,5 +1,6 @@
 #include <gyrokit/balancing/balancer_scene.hpp>
 
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 #include "gyrokit/io/toml_keys.hpp"
 #include <gyrokit/core/input_file.hpp>
@@ -12,8 +13,6 @@
 namespace gyrokit {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 toml::table parse(const std::string& path) {
     const std::string text = read_toml_text(path, "scene file");

@@ -2,6 +2,7 @@
 
 #include <gyrokit/balancing/sommerfeld.hpp>
 #include <gyrokit/balancing/synchronous_states.hpp>
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <algorithm>
@@ -12,8 +13,6 @@
 namespace gyrokit {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 double circular_mean(const std::vector<double>& a) {
     std::complex<double> z = 0.0;

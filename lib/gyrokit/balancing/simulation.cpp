@@ -1,6 +1,7 @@
 #include <gyrokit/balancing/simulation.hpp>
 
 #include <gyrokit/balancing/synchronous_states.hpp>
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>
 
@@ -16,8 +17,6 @@
 namespace gyrokit {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 struct Method {
     OdeMethod m;

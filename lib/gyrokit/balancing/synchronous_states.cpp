@@ -1,5 +1,6 @@
 #include <gyrokit/balancing/synchronous_states.hpp>
 
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <Eigen/Dense>
@@ -10,8 +11,6 @@
 namespace gyrokit {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Phases with the rotor's unbalance prepended (alpha_0 = 0) and the f_k.
 void forces(const AutobalancerParameters& p, double Omega, std::vector<double>& f) {

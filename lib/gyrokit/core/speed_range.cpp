@@ -1,5 +1,6 @@
 #include <gyrokit/core/speed_range.hpp>
 
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/number_text.hpp>
 
@@ -69,8 +70,8 @@ SpeedUnit SpeedUnit::parse(const std::string& name) {
     std::string lower = name;
     std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
     if (lower == "rad/s") return {"rad/s", 1.0};
-    if (lower == "hz") return {"Hz", 1.0 / (2.0 * M_PI)};
-    if (lower == "rpm") return {"rpm", 60.0 / (2.0 * M_PI)};
+    if (lower == "hz") return {"Hz", 1.0 / (2.0 * kPi)};
+    if (lower == "rpm") return {"rpm", 60.0 / (2.0 * kPi)};
     throw InputError(fmt::format("{} '{}' is unknown; allowed: rad/s, Hz, rpm", option_field("units"), name));
 }
 

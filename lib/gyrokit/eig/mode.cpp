@@ -1,5 +1,6 @@
 #include <gyrokit/eig/mode.hpp>
 
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/parallel.hpp>
 
 #include <Eigen/Eigenvalues>
@@ -103,7 +104,7 @@ double Mode::damping_ratio() const {
 
 double Mode::log_decrement() const {
     const double re = real_part();
-    if (lambda.imag() > 0.0) return 0.0 - 2.0 * M_PI * re / lambda.imag();   // no negative zero
+    if (lambda.imag() > 0.0) return 0.0 - 2.0 * kPi * re / lambda.imag();   // no negative zero
     if (re == 0.0) return 0.0;
     return re < 0.0 ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
 }

@@ -1,5 +1,6 @@
 #include <gyrokit/eig/sparse_eigensolver.hpp>
 
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/detail/arpack_ritz.hpp>
 #include <gyrokit/eig/detail/pencil_lu.hpp>
@@ -170,7 +171,7 @@ double refine_eigenpair(const SparsePencil& p, const PencilAction& action, Mode&
         action.apply(m.right, Mx, Cx, Kx);
         raw = error_of(m.lambda, Mx, Cx, Kx, m.right.norm());
     }
-    const cd off = 1e-12 * std::max(std::abs(m.lambda), kRigidBodyTolerance * scale) * std::polar(1.0, M_PI / 4);
+    const cd off = 1e-12 * std::max(std::abs(m.lambda), kRigidBodyTolerance * scale) * std::polar(1.0, kPi / 4);
     detail::PencilLU lu;
     if (!lu.compute(p, m.lambda + off)) return raw;   // no left vector: an infinite error bound
     // The left iteration starts from the mode's left vector where it has one (a

@@ -4,6 +4,7 @@
 #include <gyrokit/core/run_files.hpp>
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/io/csv.hpp>
 
 #include <array>
 #include <cmath>
@@ -21,12 +22,14 @@ std::string trim(const std::string& s) {
     return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
 }
 
-std::vector<std::string> split(const std::string& line) {
+std::vector<std::string> split(const std::string& line, const std::string& path, size_t line_no) {
     std::vector<std::string> out;
-    std::stringstream ss(line);
-    std::string item;
-    while (std::getline(ss, item, ',')) out.push_back(trim(item));
-    if (!line.empty() && line.back() == ',') out.emplace_back();
+    try {
+        out = parse_csv_line(line);
+    } catch (const Error& e) {
+        throw InputError(fmt::format("{}: line {}: {}; allowed: a quote closed on its line", path, line_no, e.what()));
+    }
+    for (std::string& f : out) f = trim(f);
     return out;
 }
 
@@ -49,7 +52,7 @@ BearingTable read_bearing_csv(const std::string& path, int dofs, int dof_x, int 
         ++line_no;
         const std::string s = trim(line);
         if (s.empty() || s[0] == '#') continue;
-        const std::vector<std::string> f = split(s);
+        const std::vector<std::string> f = split(s, path, line_no);
         if (!header) {
             for (size_t j = 0; j < f.size(); ++j)
                 for (size_t r = 0; r < required.size(); ++r)

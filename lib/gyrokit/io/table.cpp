@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/io/csv.hpp>
 
 namespace gyrokit {
 
@@ -86,17 +87,6 @@ std::string render_text(const Table& t) {
     for (std::size_t i = 0; i < t.rows(); ++i)
         out += line([&](std::size_t j) { return pad(cells[i][j], width[j], is_number(t.row(i)[j])); });
     return out;
-}
-
-// RFC 4180: quote only fields holding a comma, quote or line break; double the quotes.
-std::string csv_field(const std::string& s) {
-    if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-    std::string q = "\"";
-    for (char ch : s) {
-        if (ch == '"') q += '"';
-        q += ch;
-    }
-    return q + '"';
 }
 
 std::string render_csv(const Table& t) {

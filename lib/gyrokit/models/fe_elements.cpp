@@ -1,5 +1,6 @@
 // Element matrices of the finite-element rotor: the Timoshenko beam (uniform and tapered),
 // the axial and torsion bars, couplings, and the section properties they integrate.
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 
 #include <Eigen/Dense>
@@ -10,8 +11,6 @@
 namespace gyrokit {
 
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 using Mat4 = Eigen::Matrix4d;
 
@@ -135,8 +134,8 @@ FeSection fe_section(const FeShaftElement& e, double xi) {
     const double o = e.outer_diameter + xi * (e.outer_diameter_end.value_or(e.outer_diameter) - e.outer_diameter);
     const double i0 = e.inner_diameter, i1 = e.inner_diameter_end.value_or(e.inner_diameter);
     const double i = i0 + xi * (i1 - i0);
-    s.area = pi * (o * o - i * i) / 4;
-    s.second_moment = pi * (o * o * o * o - i * i * i * i) / 64;
+    s.area = kPi * (o * o - i * i) / 4;
+    s.second_moment = kPi * (o * o * o * o - i * i * i * i) / 64;
     s.shear_coefficient = cowper_shear_coefficient(e.poisson_ratio, i / o);
     s.shear_modulus = e.shear_modulus > 0 ? e.shear_modulus : e.youngs_modulus / (2 * (1 + e.poisson_ratio));
     return s;

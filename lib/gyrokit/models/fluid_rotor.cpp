@@ -1,5 +1,6 @@
 #include <gyrokit/models/fluid_rotor.hpp>
 
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <algorithm>
@@ -15,8 +16,6 @@
 namespace gyrokit {
 
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 void need(bool ok, const std::string& origin, const char* key, double v, const char* allowed) {
     if (!ok) throw InputError(fmt::format("{}: {} = {}: out of range; allowed: {}", origin, key, v, allowed));
@@ -200,8 +199,8 @@ LiquidCoefficients liquid_coefficients(const FluidRotorParameters& p) {
     const double R = p.R, R0 = p.R0, a = p.a, rho = p.rho;
     const double dR2 = (R - R0) * (R + R0);        // R^2 - R0^2 without cancellation
     const double dR4 = dR2 * (R * R + R0 * R0);
-    c.m_star = rho * pi * a * dR2;
-    c.I_star = 0.5 * rho * pi * a * dR4;
+    c.m_star = rho * kPi * a * dR2;
+    c.I_star = 0.5 * rho * kPi * a * dR4;
     c.J_rigid = c.m_star * ((R * R + R0 * R0) / 4.0 + a * a / 12.0);
     if (rho == 0.0) return c;
 
@@ -211,9 +210,9 @@ LiquidCoefficients liquid_coefficients(const FluidRotorParameters& p) {
     double sum = 0.0, t_prev = 0.0, t_last = 0.0;
     for (int j = NJ - 1; j >= 0; --j) {   // smallest terms first
         const int n = 2 * j + 1;
-        const double kappa = n * pi / a;
+        const double kappa = n * kPi / a;
         const auto g = detail::radial(kappa, R0, R, -1.0, -1.0);
-        const double term = 16.0 * rho * a * g.P / (pi * double(n) * n);
+        const double term = 16.0 * rho * a * g.P / (kPi * double(n) * n);
         if (j == NJ - 1) t_last = term;
         if (j == NJ - 2) t_prev = term;
         sum += term;
@@ -241,14 +240,14 @@ LiquidCoefficients liquid_coefficients(const FluidRotorParameters& p) {
     for (int j = 0; j < cap; ++j) {
         SloshingMode m;
         m.n = 2 * j + 1;
-        m.kappa = m.n * pi / a;
+        m.kappa = m.n * kPi / a;
         const auto h = detail::radial(m.kappa, R0, R, -1.0, 0.0);
         const double sgn = (m.n % 4 == 1) ? 1.0 : -1.0;   // sin(n pi / 2)
         m.detuning = h.ratio_m1;
         m.ratio = h.thin ? R0 / h.h_R0 : 1.0 + h.ratio_m1;
-        m.mu = rho * pi * a * R0 * h.h_R0 / 2.0;
-        m.lambda = 2.0 * pi * rho * sgn * h.P;
-        m.wall_integral = 0.5 * pi * a * h.h_R * h.h_R * (1.0 / R + m.kappa * m.kappa * R) + 2.0 * pi * h.wall_end;
+        m.mu = rho * kPi * a * R0 * h.h_R0 / 2.0;
+        m.lambda = 2.0 * kPi * rho * sgn * h.P;
+        m.wall_integral = 0.5 * kPi * a * h.h_R * h.h_R * (1.0 / R + m.kappa * m.kappa * R) + 2.0 * kPi * h.wall_end;
         m.tau_coeff = rho * std::sqrt(p.nu * std::sqrt(m.ratio) / 2.0) * m.wall_integral / m.mu;
         if (!(std::isfinite(m.mu) && std::isfinite(m.lambda) && std::isfinite(m.ratio) && std::isfinite(m.tau_coeff) &&
               m.mu > 0 && m.ratio > 0))

@@ -1,6 +1,7 @@
 #include <gyrokit/models/journal_bearing.hpp>
 
 #include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/models/reynolds_bearing.hpp>
 #include <gyrokit/core/error.hpp>
 
@@ -10,8 +11,6 @@
 namespace gyrokit {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // eta R L^3 / (4 W c^2): S_s per unit speed.
 double sommerfeld_per_speed(const JournalBearing& b) {

@@ -1,5 +1,6 @@
 #include <gyrokit/models/reynolds_bearing.hpp>
 
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <algorithm>
@@ -11,8 +12,6 @@
 namespace gyrokit {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Relative step of the central differences in position and velocity, times
 // s = min(e, 1 - e), the distance over which the film force changes by its own

@@ -1,5 +1,6 @@
 #include <gyrokit/reports/mode_shape_reports.hpp>
 
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/reports/detail/cells.hpp>
 
 #include <fmt/format.h>
@@ -14,8 +15,6 @@ namespace gyrokit {
 using detail::ll;
 
 namespace {
-
-constexpr double kDegrees = 180.0 / M_PI;
 
 std::string mode_title(const std::vector<ModeShape>& shapes, double speed, const SpeedUnit& u) {
     return fmt::format("mode shapes at {:.6g} {} ({} mode{})", u.factor * speed, u.name, shapes.size(),
@@ -58,8 +57,8 @@ Table mode_orbit_table(const std::vector<ModeShape>& shapes, double speed, const
         for (const auto& p : s.orbits) {
             std::vector<Cell> row{u.factor * speed, ll(s.number), u.factor * s.mode.frequency(), p.name};
             if (nodes) row.insert(row.end(), {ll(p.node), length.in_unit(p.z)});
-            row.insert(row.end(), {p.unit, p.orbit.major, p.orbit.minor, p.orbit.angle * kDegrees,
-                                   p.orbit.phase * kDegrees, to_string(p.orbit.whirl)});
+            row.insert(row.end(), {p.unit, p.orbit.major, p.orbit.minor, p.orbit.angle * kDegreesPerRadian,
+                                   p.orbit.phase * kDegreesPerRadian, to_string(p.orbit.whirl)});
             t.add_row(std::move(row));
         }
     }
@@ -76,7 +75,7 @@ Table mode_dof_table(const std::vector<ModeShape>& shapes, const std::vector<std
             const auto x = s.shape(i);
             t.add_row({u.factor * speed, ll(s.number), u.factor * s.mode.frequency(), names[static_cast<size_t>(i)],
                        units.empty() ? std::string() : units[static_cast<size_t>(i)], x.real(), x.imag(),
-                       std::abs(x), std::abs(x) == 0.0 ? 0.0 : std::arg(x) * kDegrees});
+                       std::abs(x), std::abs(x) == 0.0 ? 0.0 : std::arg(x) * kDegreesPerRadian});
         }
     }
     return t;
@@ -146,7 +145,7 @@ Figure mode_shape_figure(const std::vector<ModeShape>& shapes, double speed, con
             e.color = start.color = colors[c++ % 10];
             start.style = "points";
             for (int i = 0; i <= 72; ++i) {
-                const std::complex<double> phase = std::polar(1.0, 2.0 * M_PI * i / 72.0);
+                const std::complex<double> phase = std::polar(1.0, 2.0 * kPi * i / 72.0);
                 e.x.push_back((shapes[k].shape(p->u) * phase).real());
                 e.y.push_back((shapes[k].shape(p->v) * phase).real());
                 if (i <= 9) start.x.push_back(e.x.back()), start.y.push_back(e.y.back());

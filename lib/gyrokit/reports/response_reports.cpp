@@ -1,5 +1,6 @@
 #include <gyrokit/reports/response_reports.hpp>
 
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/reports/detail/cells.hpp>
 
 #include <fmt/format.h>
@@ -32,7 +33,7 @@ Table response_table(const std::vector<std::string>& names, const std::vector<st
         for (size_t k = 0; k < c.dofs.size(); ++k) {
             const auto z = c.Z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k));
             t.add_row({u.factor * c.speeds[i], names[static_cast<size_t>(c.dofs[k])], unit_of(units, c.dofs[k]),
-                       std::abs(z), std::abs(z) == 0.0 ? 0.0 : std::arg(z) * 180.0 / M_PI});
+                       std::abs(z), std::abs(z) == 0.0 ? 0.0 : std::arg(z) * 180.0 / kPi});
         }
     return t;
 }
@@ -162,7 +163,7 @@ Figure response_figure(const std::vector<std::string>& names, const std::vector<
                 a.x.push_back(u.factor * c.speeds[i]);
                 a.y.push_back(std::abs(z));
                 p.x.push_back(a.x.back());
-                p.y.push_back(std::abs(z) == 0.0 ? 0.0 : std::arg(z) * 180.0 / M_PI);
+                p.y.push_back(std::abs(z) == 0.0 ? 0.0 : std::arg(z) * 180.0 / kPi);
             }
             amp.series.push_back(std::move(a));
             ph.series.push_back(std::move(p));

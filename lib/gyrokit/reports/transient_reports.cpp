@@ -1,5 +1,6 @@
 #include <gyrokit/reports/transient_reports.hpp>
 
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/reports/detail/cells.hpp>
 
 #include <gyrokit/analysis/unbalance_response.hpp>
@@ -70,7 +71,7 @@ Figure transient_orbit_figure(const std::vector<std::string>& names, const std::
     steady.style = "dashed";
     steady.color = "#000000";
     for (int i = 0; i <= 180; ++i) {
-        const std::complex<double> turn = std::polar(1.0, 2.0 * M_PI * i / 180.0);
+        const std::complex<double> turn = std::polar(1.0, 2.0 * kPi * i / 180.0);
         steady.x.push_back((Zx * turn).real());
         steady.y.push_back((Zy * turn).real());
     }

@@ -1,5 +1,6 @@
 // Result rows as written (CSV cells), tables, the summary and the safe-region figure.
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/io/csv.hpp>
 #include <gyrokit/screening/screening.hpp>
 
 #include <algorithm>
@@ -22,47 +23,6 @@ bool is_label_column(const Sweep& s, std::size_t c) {
 }
 
 }  // namespace
-
-std::string csv_line(const std::vector<std::string>& cells) {
-    std::string out;
-    for (std::size_t i = 0; i < cells.size(); ++i) {
-        if (i) out += ',';
-        const std::string& c = cells[i];
-        if (c.find_first_of(",\"\n\r") == std::string::npos) {
-            out += c;
-        } else {
-            out += '"';
-            for (char ch : c) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-            out += '"';
-        }
-    }
-    out += '\n';
-    return out;
-}
-
-std::vector<std::string> parse_csv_line(const std::string& line) {
-    std::vector<std::string> cells(1);
-    bool quoted = false;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-        const char ch = line[i];
-        if (quoted) {
-            if (ch == '"') {
-                if (i + 1 < line.size() && line[i + 1] == '"') cells.back() += '"', ++i;
-                else quoted = false;
-            } else {
-                cells.back() += ch;
-            }
-        } else if (ch == '"') {
-            quoted = true;
-        } else if (ch == ',') {
-            cells.emplace_back();
-        } else {
-            cells.back() += ch;
-        }
-    }
-    if (quoted) throw Error("unterminated quoted field");
-    return cells;
-}
 
 ResultRow format_row(const Sweep& s, const DesignResult& r) {
     ResultRow row;

@@ -2,15 +2,16 @@
 // the rows, tables and figure of the results are in results.cpp.
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>
+#include <gyrokit/core/parallel.hpp>
 #include <gyrokit/core/input_file.hpp>
 #include <gyrokit/core/run_files.hpp>
+#include <gyrokit/io/csv.hpp>
 #include <gyrokit/io/output_file.hpp>
 #include <gyrokit/screening/screening.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <atomic>
-#include <condition_variable>
 #include <exception>
 #include <filesystem>
 #include <fmt/format.h>
@@ -21,7 +22,6 @@
 #include <mutex>
 #include <set>
 #include <sstream>
-#include <thread>
 #include <utility>
 #include <vector>
 #include <toml++/toml.h>
@@ -313,24 +313,30 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
 
     gsl_set_error_handler_off();   // global GSL state: set once before the workers start
     std::mutex mu;
-    std::condition_variable cv;
     std::map<std::size_t, DesignResult> ready;   // results not yet written, by issue number
-    std::size_t cursor = first, issued = 0;
-    int running = 0;
-    bool stop = false;
-    std::exception_ptr failure;   // an interrupt (a design's own errors are its row)
-    const auto worker = [&] {
+    std::size_t cursor = first, issued = 0, written = 0;
+    bool stop = false;   // a failure (an interrupt, a write: a design's own errors are its row)
+    std::vector<ResultRow> fresh;
+    // Rows in issue order, each as soon as it and every row before it are done (under mu).
+    const auto write_ready = [&] {
+        for (auto it = ready.find(written); it != ready.end(); it = ready.find(written)) {
+            ResultRow row = format_row(s, it->second);
+            ready.erase(it);
+            if (out) out->write(csv_line(row.cells));
+            fresh.push_back(std::move(row));
+            ++written;
+            ++res.computed;
+            if (opt.progress) opt.progress(res.resumed + res.computed, res.shard_designs);
+        }
+    };
+    const auto worker = [&](std::size_t) {
         RunScope in_run(run.files());   // the designs read the study's files from the run's copies
         for (;;) {
             std::size_t k = 0, design = 0;
             {
                 std::lock_guard<std::mutex> lock(mu);
                 while (cursor < n && done.count(cursor)) cursor += step;
-                if (stop || cursor >= n || issued >= remaining) {
-                    --running;
-                    cv.notify_all();
-                    return;
-                }
+                if (stop || cursor >= n || issued >= remaining) return;
                 k = issued++;
                 design = cursor;
                 cursor += step;
@@ -340,49 +346,17 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
                 DesignResult r = evaluate_design(s, design);
                 std::lock_guard<std::mutex> lock(mu);
                 ready.emplace(k, std::move(r));
+                write_ready();
             } catch (...) {
                 std::lock_guard<std::mutex> lock(mu);
-                if (!failure) failure = std::current_exception();
-                stop = true;
-                --running;
-                cv.notify_all();
-                return;
+                stop = true;   // the others stop after their current design
+                throw;
             }
-            cv.notify_all();
         }
     };
     const int jobs = std::max(1, static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(1, opt.jobs)),
                                                                         std::max<std::size_t>(remaining, 1))));
-    running = jobs;
-    std::vector<std::thread> threads;
-    for (int t = 0; t < jobs; ++t) threads.emplace_back(worker);
-    std::vector<ResultRow> fresh;
-    try {
-        for (std::size_t k = 0;; ++k) {
-            DesignResult r;
-            {
-                std::unique_lock<std::mutex> lock(mu);
-                cv.wait(lock, [&] { return ready.count(k) || failure || (running == 0 && k >= issued); });
-                if (!ready.count(k) && failure) std::rethrow_exception(failure);
-                if (!ready.count(k)) break;   // every worker has stopped and every issued design is written
-                r = std::move(ready.at(k));
-                ready.erase(k);
-            }
-            ResultRow row = format_row(s, r);
-            if (out) out->write(csv_line(row.cells));
-            fresh.push_back(std::move(row));
-            ++res.computed;
-            if (opt.progress) opt.progress(res.resumed + res.computed, res.shard_designs);
-        }
-    } catch (...) {
-        {
-            std::lock_guard<std::mutex> lock(mu);
-            stop = true;   // workers stop after their current design
-        }
-        for (auto& t : threads) t.join();
-        throw;
-    }
-    for (auto& t : threads) t.join();
+    for_each_index(static_cast<std::size_t>(jobs), jobs, worker);
     // An input edited while the run read it: the file says so, and --resume and --merge refuse it.
     if (const std::string changed = run.files().changed_inputs(); !changed.empty()) {
         if (out) {

@@ -50,8 +50,6 @@ struct ResultRow {
     std::vector<std::string> cells;
 };
 ResultRow format_row(const Sweep& s, const DesignResult& r);
-std::string csv_line(const std::vector<std::string>& cells);             // with '\n'
-std::vector<std::string> parse_csv_line(const std::string& line);        // throws Error on bad quoting
 
 struct RunOptions {
     int jobs = 1;

@@ -2,6 +2,7 @@
 
 #include <gyrokit/analysis/energy_bound.hpp>
 #include <gyrokit/core/bearing_table.hpp>
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/reports/campbell_reports.hpp>
 #include <gyrokit/reports/spectrum_reports.hpp>
@@ -178,7 +179,7 @@ StabilityStudy stability_study(const GyroscopicSystem& sys, const StudyOptions& 
                                      "stiffness, damping that dissipates) gives Re lambda <= {:.2g} 1/s for every "
                                      "mode at every speed, a log decrement of at least {:.2g} up there",
                                      opt.unit.factor * s.tracked.diagram.band, opt.unit.name, b->rate,
-                                     0.0 - 2.0 * M_PI * b->rate / s.tracked.diagram.band)});   // 0, not -0
+                                     0.0 - 2.0 * kPi * b->rate / s.tracked.diagram.band)});   // 0, not -0
     return s;
 }
 

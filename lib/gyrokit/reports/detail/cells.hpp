@@ -1,6 +1,7 @@
 // Cells and labels every report family shares.
 #pragma once
 
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/eig/mode.hpp>
 #include <gyrokit/io/table.hpp>
@@ -14,7 +15,7 @@ namespace gyrokit::detail {
 
 inline long long ll(int i) { return static_cast<long long>(i); }
 
-inline double degrees(double rad) { return rad * 180.0 / M_PI; }
+inline double degrees(double rad) { return rad * 180.0 / kPi; }
 
 inline std::vector<Cell> mode_cells(const Mode& m, const SpeedUnit& u) {
     // A real part within its error bound is neutral and shown as 0 (Mode::real_part).
