@@ -55,7 +55,7 @@ GyroscopicSystem make_multi_disk_rotor(int disks) {
         M.diagonal().segment(b, 4) << mass / disks, mass / disks, I_d / disks, I_d / disks;
         G(b + 2, b + 3) = I_p / disks;
         G(b + 3, b + 2) = -I_p / disks;
-        for (const char* dof : {"x", "y", "tilt_x", "tilt_y"}) sys.dof_names.push_back(fmt::format("{}{}", dof, i + 1));
+        for (const char* dof : {"x", "y", "tilt_x", "tilt_y"}) sys.dofs.names.push_back(fmt::format("{}{}", dof, i + 1));
         sys.whirl_pairs.emplace_back(b, b + 1);
         sys.whirl_pairs.emplace_back(b + 2, b + 3);
     }

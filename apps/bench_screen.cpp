@@ -43,7 +43,7 @@ Scene multi_disk_rotor(int disks, double k_bearing, double c_bearing) {
         M(b + 2, b + 2) = M(b + 3, b + 3) = Id;
         G(b + 2, b + 3) = Ip;
         G(b + 3, b + 2) = -Ip;
-        for (const char* nm : {"x", "y", "tilt_x", "tilt_y"}) s.dof_names.push_back(fmt::format("{}{}", nm, i + 1));
+        for (const char* nm : {"x", "y", "tilt_x", "tilt_y"}) s.dofs.names.push_back(fmt::format("{}{}", nm, i + 1));
         s.whirl_pairs.emplace_back(b, b + 1);
         s.whirl_pairs.emplace_back(b + 2, b + 3);
     }

@@ -12,7 +12,7 @@
 int main() {
     const double m = 5.0, Id = 0.02, Ip = 0.04, k = 2e5, kt = 4e3;
     gyrokit::GyroscopicSystem sys;
-    sys.dof_names = {"x", "y", "theta_x", "theta_y"};
+    sys.dofs.names = {"x", "y", "theta_x", "theta_y"};
     sys.M = Eigen::Vector4d(m, m, Id, Id).asDiagonal();
     sys.K = Eigen::Vector4d(k, k, kt, kt).asDiagonal();
     Eigen::Matrix4d G = Eigen::Matrix4d::Zero();

@@ -189,7 +189,7 @@ py::dict py_mode_shapes(const py::object& model, double speed, const py::dict& r
     py::dict d;
     d["speed"] = speed;
     d["unit"] = u.name;
-    d["dof_names"] = s.dof_names;
+    d["dof_names"] = s.dofs.names;
     d["eigenvalues"] = lambda;
     d["shapes"] = vectors;
     d["numbers"] = number;
@@ -209,8 +209,8 @@ py::dict py_mode_shapes(const py::object& model, double speed, const py::dict& r
     orbits["whirl"] = orbit_whirl;
     d["orbits"] = orbits;
     put_reports(d,
-                {mode_list_table(shapes, s.dof_names, speed, u), mode_orbit_table(shapes, speed, u, length),
-                 mode_dof_table(shapes, s.dof_names, s.dof_units, speed, u)},
+                {mode_list_table(shapes, s.dofs.names, speed, u), mode_orbit_table(shapes, speed, u, length),
+                 mode_dof_table(shapes, s.dofs.names, s.dofs.units, speed, u)},
                 mode_shape_figure(shapes, speed, u, m.scene().title, length, marks));
     return d;
 }

@@ -87,9 +87,9 @@ GyroscopicSystem make_from_arrays(const py::object& M, const py::object& K, cons
     if (!unbalance.is_none()) s.unbalance = unbalance.cast<Eigen::VectorXcd>();
     const int n = s.size();
     if (!dof_names.is_none()) {
-        s.dof_names = dof_names.cast<std::vector<std::string>>();
+        s.dofs.names = dof_names.cast<std::vector<std::string>>();
     } else {
-        for (int i = 0; i < n; ++i) s.dof_names.push_back("q" + std::to_string(i));
+        for (int i = 0; i < n; ++i) s.dofs.names.push_back("q" + std::to_string(i));
     }
     if (!whirl_pairs.is_none()) {
         try {
@@ -115,7 +115,7 @@ py::class_<Scene> bind_system(py::module_& m) {
              py::arg("damping") = py::dict(), py::arg("unbalance") = py::none(), py::arg("dof_names") = py::none(),
              py::arg("whirl_pairs") = py::none())
         .def_property_readonly("size", &GyroscopicSystem::size)
-        .def_property_readonly("dof_names", [](const GyroscopicSystem& s) { return s.dof_names; })
+        .def_property_readonly("dof_names", [](const GyroscopicSystem& s) { return s.dofs.names; })
         .def_property_readonly("whirl_pairs", [](const GyroscopicSystem& s) { return s.whirl_pairs; })
         .def_property_readonly("damping_names", &GyroscopicSystem::damping_names)
         .def_property_readonly("M", [](const GyroscopicSystem& s) { return SparseMatrix(s.M); })

@@ -108,7 +108,7 @@ py::dict run(const ModelArg& model, const RotorRequest& common, const TransientR
     d["speed"] = array(r.speed);
     d["z"] = r.z;
     std::vector<std::string> names;
-    for (const int k : r.dofs) names.push_back(s.dof_names[static_cast<std::size_t>(k)]);
+    for (const int k : r.dofs) names.push_back(s.dofs.names[static_cast<std::size_t>(k)]);
     d["dofs"] = names;
     d["dt"] = r.dt;
     d["notes"] = r.notes;

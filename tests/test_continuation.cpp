@@ -167,8 +167,8 @@ GyroscopicSystem jeffcott(double zeta) {
     s.damping.push_back({"c", Eigen::MatrixXd(c * Eigen::MatrixXd::Identity(2, 2))});
     s.unbalance = Eigen::VectorXcd(2);
     s.unbalance << std::complex<double>(m * e, 0.0), std::complex<double>(0.0, -m * e);
-    s.dof_names = {"x", "y"};
-    s.dof_units = {"m", "m"};
+    s.dofs.names = {"x", "y"};
+    s.dofs.units = {"m", "m"};
     s.whirl_pairs = {{0, 1}};
     return s;
 }
@@ -525,8 +525,8 @@ TEST_CASE("damped modes meet on the real axis and part there, or leave it: the c
         s.K = Eigen::MatrixXd(k0 * Eigen::MatrixXd::Identity(2, 2));
         s.K2 = Eigen::MatrixXd((sign * Eigen::Vector2d(0.01, 0.012)).asDiagonal());
         s.damping.push_back({"c", Eigen::MatrixXd(2.0 * Eigen::MatrixXd::Identity(2, 2))});
-        s.dof_names = {"x", "y"};
-        s.dof_units = {"m", "m"};
+        s.dofs.names = {"x", "y"};
+        s.dofs.units = {"m", "m"};
         s.whirl_pairs = {{0, 1}};
         const std::vector<double> grid = SpeedRange{0.0, 10.0, 101}.points();
         ContinuationOptions o;

@@ -41,7 +41,7 @@ GyroscopicSystem random_gyroscopic(std::mt19937& g, int n, bool definite) {
     s.K = B + B.transpose() + (definite ? 3.0 * n : 0.0) * Eigen::MatrixXd::Identity(n, n);
     Eigen::MatrixXd C = Eigen::MatrixXd::NullaryExpr(n, n, [&] { return test::uniform(g, -1, 1); });
     s.G = C - C.transpose();
-    for (int i = 0; i < n; ++i) s.dof_names.push_back("q" + std::to_string(i));
+    for (int i = 0; i < n; ++i) s.dofs.names.push_back("q" + std::to_string(i));
     return s;
 }
 
@@ -148,7 +148,7 @@ TEST_CASE("state-matrix path: agrees on ordinary cases, refuses singular M", "[e
     t.M = Eigen::Vector3d(1.0, 2.0, 0.0).asDiagonal();
     t.K = (Eigen::Matrix3d() << 4, -1, -1, -1, 5, -2, -1, -2, 6).finished();
     t.damping.push_back({"D", 0.1 * Eigen::Matrix3d::Identity()});
-    t.dof_names = {"a", "b", "c"};
+    t.dofs.names = {"a", "b", "c"};
     const auto q = solve_at_speed(t, 0.0);
     CHECK(q.infinite_count >= 1);
     for (const auto& m : q.modes) {
@@ -165,7 +165,7 @@ TEST_CASE("zero or non-finite pencils are refused before LAPACK sees them", "[ei
     GyroscopicSystem z;
     z.M = Eigen::Matrix2d::Zero();
     z.K = Eigen::Matrix2d::Zero();
-    z.dof_names = {"a", "b"};
+    z.dofs.names = {"a", "b"};
     CHECK_THROWS_WITH(solve_at_speed(z, 0.0), Catch::Contains("mass matrix M is zero"));
     z.K = Eigen::Matrix2d::Identity();
     CHECK_THROWS_WITH(solve_at_speed(z, 1.0), Catch::Contains("mass matrix M is zero"));

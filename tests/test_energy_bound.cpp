@@ -29,7 +29,7 @@ GyroscopicSystem isotropic(double m, double k, double c, double kxy) {
     g.M = m * Eigen::Matrix2d::Identity();
     g.K = (k * Eigen::Matrix2d::Identity() + kxy * J).eval();
     g.damping.push_back({"c", c * Eigen::Matrix2d::Identity()});
-    g.dof_names = {"x", "y"};
+    g.dofs.names = {"x", "y"};
     g.whirl_pairs = {{0, 1}};
     return g;
 }
@@ -131,7 +131,7 @@ Scene two_rotors(double c_high, double kxy, double kxy_per_speed = 0.0) {
         N.bottomRightCorner(2, 2) = kxy_per_speed * J;
         g.N = N;
     }
-    g.dof_names = {"x1", "y1", "x2", "y2"};
+    g.dofs.names = {"x1", "y1", "x2", "y2"};
     g.whirl_pairs = {{0, 1}, {2, 3}};
     return sc;
 }

@@ -122,10 +122,10 @@ TEST_CASE("fe rotor 6 DOF: the ROSS example rotor from its geometry equals the e
     compare(Eigen::MatrixXd(sc.system.M), read_matrix_market(dir + "M.mtx"), "M");
     compare(Eigen::MatrixXd(sc.system.K), read_matrix_market(dir + "K.mtx"), "K");
     compare(Eigen::MatrixXd(sc.system.G), read_matrix_market(dir + "G.mtx"), "G");
-    CHECK(sc.system.dof_names[4] == "z0");
-    CHECK(sc.system.dof_names[5] == "tz0");
-    CHECK(sc.system.dof_units[4] == "m");
-    CHECK(sc.system.dof_units[5] == "rad");
+    CHECK(sc.system.dofs.names[4] == "z0");
+    CHECK(sc.system.dofs.names[5] == "tz0");
+    CHECK(sc.system.dofs.units[4] == "m");
+    CHECK(sc.system.dofs.units[5] == "rad");
     CHECK(sc.system.whirl_pairs.size() == 14);
 
     // The spectrum: the exporter's reference values at 500 rad/s (README of the model,
@@ -161,7 +161,7 @@ TEST_CASE("fe rotor 6 DOF: axial and torsional modes of a fixed-free shaft equal
     for (const char* kind : {"z", "tz"}) {
         std::vector<int> idx;
         for (int i = 0; i < m.size(); ++i)
-            if (m.dof_names[i].rfind(kind, 0) == 0 && std::isdigit(static_cast<unsigned char>(m.dof_names[i][std::string(kind).size()])))
+            if (m.dofs.names[i].rfind(kind, 0) == 0 && std::isdigit(static_cast<unsigned char>(m.dofs.names[i][std::string(kind).size()])))
                 idx.push_back(i);
         REQUIRE(idx.size() == count);
         const Eigen::MatrixXd M = Eigen::MatrixXd(m.M)(idx, idx), K = Eigen::MatrixXd(m.K)(idx, idx);
@@ -181,8 +181,8 @@ TEST_CASE("fe rotor 6 DOF: axial and torsional modes of a fixed-free shaft equal
     const Eigen::MatrixXd K = Eigen::MatrixXd(m.K), M = Eigen::MatrixXd(m.M), Gy = Eigen::MatrixXd(m.G);
     for (int i = 0; i < m.size(); ++i)
         for (int j = 0; j < m.size(); ++j) {
-            const bool ai = m.dof_names[i][0] == 'z' || m.dof_names[i].rfind("tz", 0) == 0;
-            const bool aj = m.dof_names[j][0] == 'z' || m.dof_names[j].rfind("tz", 0) == 0;
+            const bool ai = m.dofs.names[i][0] == 'z' || m.dofs.names[i].rfind("tz", 0) == 0;
+            const bool aj = m.dofs.names[j][0] == 'z' || m.dofs.names[j].rfind("tz", 0) == 0;
             if (ai != aj) CHECK((K(i, j) == 0 && M(i, j) == 0 && Gy(i, j) == 0));
         }
 }
@@ -221,7 +221,7 @@ TEST_CASE("fe rotor 6 DOF: torsion of two disks on a shaft against the closed fo
     const auto torsion_frequency = [](const FeRotorMatrices& m) {
         std::vector<int> idx;
         for (int i = 0; i < m.size(); ++i)
-            if (m.dof_names[i].rfind("tz", 0) == 0) idx.push_back(i);
+            if (m.dofs.names[i].rfind("tz", 0) == 0) idx.push_back(i);
         Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(m.K)(idx, idx),
                                                                     Eigen::MatrixXd(m.M)(idx, idx));
         // The rigid-body rotation first (0 up to rounding of k), then the first torsional mode.
@@ -323,7 +323,7 @@ TEST_CASE("fe rotor tapered element: a conical shaft converges to fine meshes of
         for (const char* kind : {"x", "z", "tz"}) {
             std::vector<int> idx;
             for (int i = 0; i < m.size(); ++i) {
-                const std::string& n = m.dof_names[i];
+                const std::string& n = m.dofs.names[i];
                 const bool bending = std::string(kind) == "x" && (n[0] == 'x' || n.rfind("ty", 0) == 0);
                 const std::size_t len = std::string(kind).size();
                 if (bending || (std::string(kind) != "x" && n.compare(0, len, kind) == 0 &&
@@ -383,7 +383,7 @@ czz = 30
 )",
                                      "six.toml");
         CHECK(sc.dofs() == 18 - 6 - 3);
-        const auto& n = sc.system.dof_names;
+        const auto& n = sc.system.dofs.names;
         CHECK(std::find(n.begin(), n.end(), "z2") != n.end());
         CHECK(std::find(n.begin(), n.end(), "tz2") == n.end());
         CHECK(std::find(n.begin(), n.end(), "x2") == n.end());
@@ -480,9 +480,9 @@ TEST_CASE("fe rotor pedestals: a rigid rotor on bearings on pedestal masses agai
     r.pedestals.push_back({1, mp, kp, kp, cp, cp});
     const FeRotorMatrices m = r.assemble();
     REQUIRE(m.size() == 12);
-    CHECK(m.dof_names[8] == "px0");
-    CHECK(m.dof_names[11] == "py1");
-    CHECK(m.node_of_dof[8] == -1);
+    CHECK(m.dofs.names[8] == "px0");
+    CHECK(m.dofs.names[11] == "py1");
+    CHECK(m.dofs.nodes[8] == -1);
     const double ms = 7800 * pi * 0.01 / 4 * 0.5;
     // det([2kb - ms w2, -2kb; -2kb, 2kb + 2kp - 2mp w2]) = 0, a quadratic in w2.
     const double a = ms * 2 * mp, b = -(ms * (2 * kb + 2 * kp) + 2 * mp * 2 * kb), c = 2 * kb * 2 * kp;
@@ -695,7 +695,7 @@ kzz = {}
     const auto pair_frequencies = [&](const char* kind) {
         std::vector<int> idx;
         for (int i = 0; i < sc.dofs(); ++i)
-            if (sc.system.dof_names[i] == std::string(kind) + "0" || sc.system.dof_names[i] == std::string(kind) + "1")
+            if (sc.system.dofs.names[i] == std::string(kind) + "0" || sc.system.dofs.names[i] == std::string(kind) + "1")
                 idx.push_back(i);
         REQUIRE(idx.size() == 2);
         Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(sc.system.K)(idx, idx),

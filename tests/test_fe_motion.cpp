@@ -96,7 +96,7 @@ TEST_CASE("fe rotor motion: scene keys and bad input", "[fe_rotor][motion]") {
             CHECK(sc.fe_rotor->motion == FeMotion::torsional);
             CHECK(sc.dofs() == 4);   // five nodes, the clamped end holds tz4
             CHECK(sc.dof_names() == std::vector<std::string>{"tz0", "tz1", "tz2", "tz3"});
-            CHECK(sc.system.dof_units == std::vector<std::string>(4, "rad"));
+            CHECK(sc.system.dofs.units == std::vector<std::string>(4, "rad"));
         }
         // Axial: the thrust bearing (kzz) acts, its lateral k does not exist here.
         const Scene ax = parse_scene(head + "motion = \"axial\"\n" + shaft, "a.toml");
@@ -105,7 +105,7 @@ TEST_CASE("fe rotor motion: scene keys and bad input", "[fe_rotor][motion]") {
         const Scene ax0 = parse_scene(head + "motion = \"axial\"\n" + no_thrust, "a0.toml");
         CHECK(ax.dofs() == 4);
         CHECK(ax.system.K.coeff(0, 0) - ax0.system.K.coeff(0, 0) == Approx(1e8).epsilon(1e-12));
-        CHECK(ax.system.dof_units == std::vector<std::string>(4, "m"));
+        CHECK(ax.system.dofs.units == std::vector<std::string>(4, "m"));
     }
     SECTION("bad input") {
         CHECK_THAT(test::scene_error(head + "dofs_per_node = 1\n" + shaft),

@@ -109,8 +109,8 @@ double asym(const Eigen::SparseMatrix<double>& A, double sign) {
 TEST_CASE("fe rotor: matrix structure, DOF names and whirl pairs", "[fe_rotor]") {
     const FeRotorMatrices m = machine(30, 0.0, 0.0).assemble();
     REQUIRE(m.size() == 4 * 31);
-    CHECK(m.dof_names[0] == "x0");
-    CHECK(m.dof_names[4 * 7 + 3] == "ty7");
+    CHECK(m.dofs.names[0] == "x0");
+    CHECK(m.dofs.names[4 * 7 + 3] == "ty7");
     CHECK(m.whirl_pairs.size() == 2 * 31);
     CHECK(asym(m.M, 1.0) < 1e-14);
     CHECK(asym(m.K, 1.0) < 1e-14);
@@ -696,11 +696,11 @@ TEST_CASE("fe rotor: a DOF whose response is zero by symmetry shows no peak, bou
     const ResponseCurve rc = unbalance_response(sc.system, SpeedRange{10.0, 600.0, 119}.points());
     const auto maxima = response_maxima(rc, response_extrema(sc.system, rc));
     for (const auto& m : maxima) {
-        CAPTURE(sc.system.dof_names[static_cast<size_t>(m.dof)]);
+        CAPTURE(sc.system.dofs.names[static_cast<size_t>(m.dof)]);
         CHECK(m.bounded);
         CHECK(std::isfinite(m.amplitude));
     }
     // The midspan translation peaks at the first critical speed.
-    const auto x2 = std::find(sc.system.dof_names.begin(), sc.system.dof_names.end(), "x2") - sc.system.dof_names.begin();
+    const auto x2 = std::find(sc.system.dofs.names.begin(), sc.system.dofs.names.end(), "x2") - sc.system.dofs.names.begin();
     CHECK(maxima[static_cast<size_t>(x2)].refined);
 }

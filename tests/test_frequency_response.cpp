@@ -14,7 +14,7 @@ using namespace gyrokit;
 TEST_CASE("frequency response: a damped Jeffcott rotor, H_xx = 1 / (k - m w^2 + i c w)") {
     const double m = 10.0, k = 1e6, c = 200.0;
     GyroscopicSystem s;
-    s.dof_names = {"x", "y"};
+    s.dofs.names = {"x", "y"};
     s.M = SystemMatrix(Eigen::MatrixXd(Eigen::Matrix2d::Identity() * m).sparseView());
     s.K = SystemMatrix(Eigen::MatrixXd(Eigen::Matrix2d::Identity() * k).sparseView());
     s.damping.push_back({"d", SystemMatrix(Eigen::MatrixXd(Eigen::Matrix2d::Identity() * c).sparseView())});
@@ -38,7 +38,7 @@ TEST_CASE("frequency response: an FE rotor's FRF equals the modal superposition 
     const GyroscopicSystem& sys = sc.system;
     const double spin = 600.0;
     const int n = sys.size();
-    const auto names = sys.dof_names;
+    const auto names = sys.dofs.names;
     const int input = static_cast<int>(std::find(names.begin(), names.end(), "y12") - names.begin());
     std::vector<double> w;
     for (int i = 0; i <= 40; ++i) w.push_back(75.0 * i);

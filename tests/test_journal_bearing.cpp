@@ -171,7 +171,7 @@ TEST_CASE("journal bearing: oil whip of a point mass at the exact 2-DOF stabilit
     GyroscopicSystem s;
     s.M = m * Eigen::Matrix2d::Identity();
     s.K = Eigen::Matrix2d::Zero();
-    s.dof_names = {"x", "y"};
+    s.dofs.names = {"x", "y"};
     s.whirl_pairs = {{0, 1}};
     s.bearings.push_back(journal_bearing_table(b, "journal", 0, 1));
     const auto max_re = [&](double w) {

@@ -97,7 +97,7 @@ TEST_CASE("gyrostat mode shapes match an independent eigensolver (MAC >= 0.9999)
                 CHECK(std::abs(values(best) - s.mode.lambda) <= 1e-8 * std::abs(s.mode.lambda));
                 CHECK(mac(s.shape, vectors.col(best)) >= 0.9999);
                 CHECK(std::abs(s.shape(s.reference) - 1.0) <= 1e-14);
-                CHECK(sys.dof_units[static_cast<size_t>(s.reference)] == "m");
+                CHECK(sys.dofs.units[static_cast<size_t>(s.reference)] == "m");
                 // Each orbit's whirl from the independent vector: Im(x_u conj(x_v)) > 0 is forward.
                 for (const auto& o : s.orbits) {
                     const cd xu = vectors(o.u, best), xv = vectors(o.v, best);
@@ -162,7 +162,7 @@ TEST_CASE("a pure tilt mode (s = 0: translation and tilt uncoupled) is scaled by
         const double x = std::max(std::abs(m.mode.right(2)), std::abs(m.mode.right(3)));
         if (x < 1e-10 * m.mode.right.cwiseAbs().maxCoeff()) {
             ++tilt_modes;
-            CHECK(sys.dof_units[static_cast<size_t>(m.reference)] == "rad");
+            CHECK(sys.dofs.units[static_cast<size_t>(m.reference)] == "rad");
             CHECK(m.shape.cwiseAbs().maxCoeff() == Approx(1.0).epsilon(1e-14));
         }
     }
@@ -171,8 +171,8 @@ TEST_CASE("a pure tilt mode (s = 0: translation and tilt uncoupled) is scaled by
 
 TEST_CASE("mode shapes of a model without units or nodes: every DOF counts, no axis", "[modes]") {
     GyroscopicSystem sys = make_system(test::centrifuge());
-    sys.dof_units.clear();
-    sys.node_of_dof.clear();
+    sys.dofs.units.clear();
+    sys.dofs.nodes.clear();
     const ModeShape s = mode_shapes(sys, 50.0).front();
     // The reference is the first entry tied (to kTieTolerance) with the largest: a rule, not rounding.
     const double top = s.shape.cwiseAbs().maxCoeff();
@@ -183,6 +183,6 @@ TEST_CASE("mode shapes of a model without units or nodes: every DOF counts, no a
     for (const auto& o : s.orbits) CHECK(o.node == -1);
     CHECK_THROWS_AS(mode_shapes(sys, -1.0), InputError);
     // Units and nodes of a wrong length are refused by validate.
-    sys.dof_units = {"m"};
+    sys.dofs.units = {"m"};
     CHECK_THROWS_AS(sys.validate("test"), InputError);
 }

@@ -43,7 +43,7 @@ TEST_CASE("the response study: the same response with or without the stability t
           "[response]") {
     const GyroscopicSystem& sys = three_disk().system;
     ResponseRequest r;
-    r.outputs = dofs_by_name("x12,y12", sys.dof_names, "dofs");
+    r.outputs = dofs_by_name("x12,y12", sys.dofs.names, "dofs");
     const ResponseStudy checked = response_study(sys, speeds(16), r);
     r.stability_check = false;
     const ResponseStudy quick = response_study(sys, speeds(16), r);

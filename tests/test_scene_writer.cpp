@@ -38,7 +38,7 @@ void check_same(const Scene& a, const Scene& b) {
     REQUIRE(s.unbalance.size() == t.unbalance.size());
     for (Eigen::Index i = 0; i < s.unbalance.size(); ++i)
         CHECK(std::abs(s.unbalance(i) - t.unbalance(i)) <= 4 * 2.3e-16 * std::abs(s.unbalance(i)));
-    CHECK(s.dof_names == t.dof_names);
+    CHECK(s.dofs.names == t.dofs.names);
     CHECK(s.whirl_pairs == t.whirl_pairs);
     REQUIRE(s.bearings.size() == t.bearings.size());
     for (std::size_t i = 0; i < s.bearings.size(); ++i) {
@@ -230,7 +230,7 @@ TEST_CASE("scenes of other models are written as read: overrides applied, file n
         CHECK(Eigen::MatrixXd(SparseMatrix(b.system.M)) == Eigen::MatrixXd(SparseMatrix(a.system.M)));
         CHECK(Eigen::MatrixXd(SparseMatrix(b.system.K)) == Eigen::MatrixXd(SparseMatrix(a.system.K)));
         CHECK(Eigen::MatrixXd(b.system.damping_matrix(30.0)) == Eigen::MatrixXd(a.system.damping_matrix(30.0)));
-        CHECK(b.system.dof_names == a.system.dof_names);
+        CHECK(b.system.dofs.names == a.system.dofs.names);
         CHECK(b.speeds.has_value() == a.speeds.has_value());
         CHECK(b.modes == a.modes);
     }
@@ -247,7 +247,7 @@ TEST_CASE("a scene document keeps strings that only happen to name a file: type,
     const Scene a = load_scene((dir / "scene.toml").string());
     const Scene b = parse_scene(scene_text(a), "written", "/");
     CHECK(b.model_type == "matrices");
-    CHECK(b.system.dof_names == a.system.dof_names);
+    CHECK(b.system.dofs.names == a.system.dofs.names);
     CHECK(Eigen::MatrixXd(SparseMatrix(b.system.K)) == Eigen::MatrixXd(SparseMatrix(a.system.K)));
     fs::remove_all(dir);
 }

@@ -94,7 +94,7 @@ Sweep rigid_rotor_sweep(double margin, bool forward_only) {
         sc.system.M = It * Eigen::Matrix2d::Identity();
         sc.system.K = kt * Eigen::Matrix2d::Identity();
         sc.system.G = Ip * J;
-        sc.system.dof_names = {"tilt_x", "tilt_y"};
+        sc.system.dofs.names = {"tilt_x", "tilt_y"};
         sc.system.whirl_pairs = {{0, 1}};
         return sc;
     };
@@ -137,7 +137,7 @@ Sweep jeffcott_sweep(const std::string& varied, double from, double to, int coun
             g.N = ci * J;
         }
         g.unbalance = Eigen::Vector2cd(m * eps, std::complex<double>(0, -m * eps));
-        g.dof_names = {"x", "y"};
+        g.dofs.names = {"x", "y"};
         g.whirl_pairs = {{0, 1}};
         return sc;
     };

@@ -64,8 +64,8 @@ Scene jeffcott(double kx, double ky, double ce, double ci) {
         g.N = ci * J;
     }
     g.unbalance = Eigen::Vector2cd(jm * jeps, cd(0, -jm * jeps));
-    g.dof_names = {"x", "y"};
-    g.dof_units = {"m", "m"};
+    g.dofs.names = {"x", "y"};
+    g.dofs.units = {"m", "m"};
     g.whirl_pairs = {{0, 1}};
     return sc;
 }
@@ -157,8 +157,8 @@ TEST_CASE("probe at a node: the node's x and y, errors naming the node and the a
     const Scene sc = load_scene(std::string(GYROKIT_DATA_DIR) + "/three_disk_rotor.toml");
     const GyroscopicSystem& sys = sc.system;
     const Probe p = probe_at_node(sys, "NDE", 23, 45.0);
-    CHECK(sys.dof_names.at(p.dof_x) == "x23");
-    CHECK(sys.dof_names.at(p.dof_y) == "y23");
+    CHECK(sys.dofs.names.at(p.dof_x) == "x23");
+    CHECK(sys.dofs.names.at(p.dof_y) == "y23");
     CHECK(p.angle_degrees == 45.0);
     try {
         probe_at_node(sys, "far", 99, 0.0);

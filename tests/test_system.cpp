@@ -35,7 +35,7 @@ TEST_CASE("system: every analysis validates before it solves", "[system][validat
     GyroscopicSystem bad;
     bad.M = Eigen::Matrix2d::Identity();
     bad.K = Eigen::Matrix3d::Identity();   // 3x3 against a 2x2 M
-    bad.dof_names = {"x", "y"};
+    bad.dofs.names = {"x", "y"};
     const std::vector<double> speeds{0.0, 1.0, 2.0};
     const auto message = [&](const std::function<void()>& f) {
         try {

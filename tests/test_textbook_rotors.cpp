@@ -28,7 +28,7 @@ GyroscopicSystem jeffcott(double m, double k, double ce, double ci, double eps) 
         s.N = ci * J;   // rotating damping is circulatory in the fixed frame
     }
     s.unbalance = Eigen::Vector2cd(m * eps, std::complex<double>(0, -m * eps));   // (cos wt, sin wt)
-    s.dof_names = {"x", "y"};
+    s.dofs.names = {"x", "y"};
     s.whirl_pairs = {{0, 1}};
     return s;
 }
@@ -39,7 +39,7 @@ GyroscopicSystem rigid_rotor(double It, double Ip, double kt) {
     s.M = It * Eigen::Matrix2d::Identity();
     s.K = kt * Eigen::Matrix2d::Identity();
     s.G = Ip * J;
-    s.dof_names = {"tilt_x", "tilt_y"};
+    s.dofs.names = {"tilt_x", "tilt_y"};
     s.whirl_pairs = {{0, 1}};
     return s;
 }
@@ -182,7 +182,7 @@ TEST_CASE("Campbell tracking follows crossing branches without swapping", "[camp
     Eigen::Matrix4d G = Eigen::Matrix4d::Zero();
     G.bottomRightCorner<2, 2>() = 0.4 * J;
     s.G = G;
-    s.dof_names = {"x", "y", "ax", "ay"};
+    s.dofs.names = {"x", "y", "ax", "ay"};
     s.whirl_pairs = {{0, 1}, {2, 3}};
     const CampbellDiagram cd = campbell(s, SpeedRange{0.0, 300.0, 31}.points());
     int constant = 0;
@@ -200,7 +200,7 @@ TEST_CASE("degenerate speed lists are refused, never a hang, and matching refuse
     s.K = Eigen::Vector2d(900.0, 900.0).asDiagonal();
     s.G = 0.4 * J;
     s.whirl_pairs = {{0, 1}};
-    s.dof_names = {"x", "y"};
+    s.dofs.names = {"x", "y"};
     CHECK_THROWS_AS(campbell(s, {1.0, 1.0, 2.0}), InputError);            // repeated
     CHECK_THROWS_AS(campbell(s, {2.0, 1.0}), InputError);                 // decreasing
     CHECK_THROWS_AS(campbell(s, {0.0, std::nan("")}), InputError);        // NaN

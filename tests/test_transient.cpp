@@ -26,7 +26,7 @@ struct Jeffcott {
     double m = 10.0, k = 1e6, c = 200.0, me = 1e-4;
     GyroscopicSystem system() const {
         GyroscopicSystem s;
-        s.dof_names = {"x", "y"};
+        s.dofs.names = {"x", "y"};
         s.M = Eigen::Matrix2d(Eigen::Matrix2d::Identity() * m);
         s.K = Eigen::Matrix2d(Eigen::Matrix2d::Identity() * k);
         if (c > 0) s.damping.push_back({"d", Eigen::Matrix2d(Eigen::Matrix2d::Identity() * c)});
@@ -104,7 +104,7 @@ TEST_CASE("transient: Newmark is second order on a free oscillator and follows i
     // (W - w) / w = -(w dt)^2 / 12 + O(dt^4), so halving dt divides the error by 4.
     const double w = 2.0 * M_PI;
     GyroscopicSystem s;
-    s.dof_names = {"x"};
+    s.dofs.names = {"x"};
     s.M = Eigen::MatrixXd::Identity(1, 1);
     s.K = Eigen::MatrixXd::Constant(1, 1, w * w);
     std::array<double, 3> error{};
@@ -221,7 +221,7 @@ TEST_CASE("transient: the three-disk rotor at constant speed stays on its steady
     o.start_steady = true;
     const TransientResult r = transient_response(sys, o);
     REQUIRE(r.dofs.size() == 2);   // x and y of the unbalanced disk's node
-    CHECK(sys.dof_names[static_cast<std::size_t>(r.dofs[0])] == "x12");
+    CHECK(sys.dofs.names[static_cast<std::size_t>(r.dofs[0])] == "x12");
     const Eigen::VectorXcd Z = unbalance_response(sys, w);
     const Eigen::VectorXcd Zhat = dynamic_response(sys, w, newmark_frequency(w, r.dt), w * w * sys.unbalance);
     const double scale = std::max(std::abs(Z(r.dofs[0])), std::abs(Z(r.dofs[1])));
@@ -408,7 +408,7 @@ TEST_CASE("transient: bad input names the option, the value and the allowed rang
     CHECK_THROWS_WITH(transient_response(none, o), Catch::Contains("no unbalance"));
     // A singular effective matrix: k = -4 m / dt^2 cancels the mass term.
     GyroscopicSystem neg;
-    neg.dof_names = {"x"};
+    neg.dofs.names = {"x"};
     neg.M = Eigen::MatrixXd::Identity(1, 1);
     neg.K = Eigen::MatrixXd::Constant(1, 1, -4.0 / (1e-3 * 1e-3));
     NewmarkIntegrator integ(neg, 1e-3, 1.0);

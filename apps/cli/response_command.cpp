@@ -39,7 +39,7 @@ std::vector<std::string> split_list(const std::string& text) {
 std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys, const LengthUnit& length);
 
 std::vector<int> response_outputs(const Options& o, const GyroscopicSystem& sys, const LengthUnit& length) {
-    std::vector<int> out = dofs_by_name(o.dofs, sys.dof_names, "--dofs");
+    std::vector<int> out = dofs_by_name(o.dofs, sys.dofs.names, "--dofs");
     const auto add_node = [&](int node) {
         const std::vector<int> dofs = sys.node_translations(node);
         // Nothing would mean every DOF: a node held by a support is an error, not "all".

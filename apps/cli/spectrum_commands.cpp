@@ -98,11 +98,11 @@ Command modes_command(CLI::App& app, const std::shared_ptr<Options>& o) {
         const std::vector<ModeShape>& shapes = st.shapes;
         const auto& sys = c.scene.system;
         const bool per_dof = o->per == "dof" || sys.whirl_pairs.empty();
-        Table detail = per_dof ? mode_dof_table(shapes, sys.dof_names, sys.dof_units, w, c.unit)
+        Table detail = per_dof ? mode_dof_table(shapes, sys.dofs.names, sys.dofs.units, w, c.unit)
                                : mode_orbit_table(shapes, w, c.unit, c.scene.length_unit());
         // A person reads the list first; a script gets one table.
         if (c.format == TableFormat::Text)
-            write_tables(out, {mode_list_table(shapes, sys.dof_names, w, c.unit), detail}, c.format);
+            write_tables(out, {mode_list_table(shapes, sys.dofs.names, w, c.unit), detail}, c.format);
         else
             write_table(out, detail, c.format);
         plot_if(o->common.plot,

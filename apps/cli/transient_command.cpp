@@ -78,7 +78,7 @@ void run(const Options& o, std::ostream& out) {
     write_table(out, st.table, c.format);
     if (history) {
         std::ostringstream text;
-        write_table(text, transient_history_table(c.scene.system.dof_names, st.result, st.unit), TableFormat::Csv);
+        write_table(text, transient_history_table(c.scene.system.dofs.names, st.result, st.unit), TableFormat::Csv);
         history->write(text.str());
         history->commit();
     }

@@ -56,7 +56,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (shape & 8) sys.damping.push_back({"d", D});
     if (shape & 16) sys.G = G;
     if (shape & 32) sys.N = N;
-    for (int i = 0; i < n; ++i) sys.dof_names.push_back("q" + std::to_string(i));
+    for (int i = 0; i < n; ++i) sys.dofs.names.push_back("q" + std::to_string(i));
     if ((shape & 64) && n >= 2) sys.whirl_pairs.push_back({0, 1});
     if (shape & 128) {
         sys.unbalance = Eigen::VectorXcd::Zero(n);

@@ -31,7 +31,7 @@ int probe_dof(const GyroscopicSystem& sys, const Mode& m) {
     int best = -1;
     double largest = -1.0;
     for (int i = 0; i < static_cast<int>(m.right.size()); ++i) {
-        if (!sys.dof_units.empty() && sys.dof_units[static_cast<size_t>(i)] != "m") continue;
+        if (!sys.dofs.units.empty() && sys.dofs.units[static_cast<size_t>(i)] != "m") continue;
         if (std::abs(m.right(i)) > largest) largest = std::abs(m.right(i)), best = i;
     }
     return best;

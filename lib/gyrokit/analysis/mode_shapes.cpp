@@ -48,7 +48,7 @@ ModeShape mode_shape(const Mode& m, const GyroscopicSystem& sys) {
     // (x and y of a circular orbit) are a tie: the first DOF wins, not the rounding.
     const double top = m.right.size() ? m.right.cwiseAbs().maxCoeff() : 0.0;
     const auto largest_of = [&](bool metres_only) {
-        const auto counts = [&](int i) { return !metres_only || sys.dof_units[static_cast<size_t>(i)] == "m"; };
+        const auto counts = [&](int i) { return !metres_only || sys.dofs.units[static_cast<size_t>(i)] == "m"; };
         double largest = -1.0;
         for (int i = 0; i < n; ++i)
             if (counts(i)) largest = std::max(largest, std::abs(m.right(i)));
@@ -60,14 +60,14 @@ ModeShape mode_shape(const Mode& m, const GyroscopicSystem& sys) {
         return largest;
     };
     double largest = -1.0;
-    if (static_cast<int>(sys.dof_units.size()) == n) largest = largest_of(true);
+    if (static_cast<int>(sys.dofs.units.size()) == n) largest = largest_of(true);
     if (largest < kWhirlTolerance * top) largest = largest_of(false);
     s.shape = largest > 0.0 ? Eigen::VectorXcd(m.right / m.right(s.reference)) : m.right;
-    const bool has_nodes = static_cast<int>(sys.node_of_dof.size()) == n;
+    const bool has_nodes = static_cast<int>(sys.dofs.nodes.size()) == n;
     // A pair whose entries are below 1e-9 of the largest entry of its unit is at rest (a node
     // of the mode, zero by symmetry): its computed orbit is rounding, and its angle
     // and phase would be noise. It is given as no motion.
-    const auto unit_of = [&](int i) { return sys.dof_units.empty() ? std::string() : sys.dof_units[static_cast<size_t>(i)]; };
+    const auto unit_of = [&](int i) { return sys.dofs.units.empty() ? std::string() : sys.dofs.units[static_cast<size_t>(i)]; };
     std::map<std::string, double> largest_in;   // over every DOF of the unit, paired or not
     for (int i = 0; i < n; ++i) {
         double& l = largest_in[unit_of(i)];
@@ -77,10 +77,10 @@ ModeShape mode_shape(const Mode& m, const GyroscopicSystem& sys) {
         PairOrbit p;
         p.u = u;
         p.v = v;
-        p.name = sys.dof_names[static_cast<size_t>(u)] + "/" + sys.dof_names[static_cast<size_t>(v)];
-        if (!sys.dof_units.empty()) p.unit = sys.dof_units[static_cast<size_t>(u)];
+        p.name = sys.dofs.names[static_cast<size_t>(u)] + "/" + sys.dofs.names[static_cast<size_t>(v)];
+        if (!sys.dofs.units.empty()) p.unit = sys.dofs.units[static_cast<size_t>(u)];
         if (has_nodes) {
-            p.node = sys.node_of_dof[static_cast<size_t>(u)];
+            p.node = sys.dofs.nodes[static_cast<size_t>(u)];
             if (p.node >= 0) p.z = sys.node_z[static_cast<size_t>(p.node)];
         }
         const bool at_rest =

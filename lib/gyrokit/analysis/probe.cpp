@@ -82,8 +82,8 @@ Eigen::MatrixXcd probe_readings(const std::vector<Probe>& probes, const std::vec
 
 ProbeOutputs probe_outputs(const GyroscopicSystem& sys, const std::vector<Probe>& probes) {
     ProbeOutputs o;
-    o.names = sys.dof_names;
-    o.units = sys.dof_units;
+    o.names = sys.dofs.names;
+    o.units = sys.dofs.units;
     o.units.resize(o.names.size());
     for (const Probe& p : probes) {
         o.outputs.push_back(static_cast<int>(o.names.size()));

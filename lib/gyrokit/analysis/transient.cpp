@@ -257,8 +257,8 @@ std::vector<int> transient_outputs(const GyroscopicSystem& sys) {
     Eigen::Index k = 0;
     sys.unbalance.cwiseAbs().maxCoeff(&k);
     const int dof = static_cast<int>(k);
-    if (!sys.node_of_dof.empty() && sys.node_of_dof[static_cast<std::size_t>(dof)] >= 0) {
-        const std::vector<int> d = sys.node_translations(sys.node_of_dof[static_cast<std::size_t>(dof)]);
+    if (!sys.dofs.nodes.empty() && sys.dofs.nodes[static_cast<std::size_t>(dof)] >= 0) {
+        const std::vector<int> d = sys.node_translations(sys.dofs.nodes[static_cast<std::size_t>(dof)]);
         if (!d.empty()) return d;
     }
     for (const auto& [x, y] : sys.whirl_pairs)

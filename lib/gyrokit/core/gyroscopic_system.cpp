@@ -157,15 +157,13 @@ std::vector<int> GyroscopicSystem::node_dofs(int node, const std::string& unit) 
                                         : fmt::format("node {} does not exist; allowed: 0 to {}", node,
                                                       static_cast<int>(node_z.size()) - 1));
     std::vector<int> out;
-    for (int i = 0; i < static_cast<int>(node_of_dof.size()); ++i)
-        if (node_of_dof[static_cast<size_t>(i)] == node &&
-            (unit.empty() || (!dof_units.empty() && dof_units[static_cast<size_t>(i)] == unit)))
-            out.push_back(i);
+    for (int i = 0; i < static_cast<int>(dofs.nodes.size()); ++i)
+        if (dofs.nodes[static_cast<size_t>(i)] == node && (unit.empty() || dofs.unit(i) == unit)) out.push_back(i);
     return out;
 }
 
 std::vector<int> GyroscopicSystem::node_translations(int node) const {
-    std::vector<int> out = node_dofs(node, dof_units.empty() ? "" : "m");
+    std::vector<int> out = node_dofs(node, dofs.units.empty() ? "" : "m");
     if (whirl_pairs.empty()) return out;
     const auto paired = [&](int i) {
         return std::any_of(whirl_pairs.begin(), whirl_pairs.end(),
@@ -239,8 +237,8 @@ void GyroscopicSystem::validate(const std::string& origin) const {
                 throw InputError(fmt::format("{}: M has the diagonal entry {} at DOF {}{}; a mass matrix is positive "
                                              "semidefinite; allowed: diagonal entries >= 0",
                                              origin, it.value(), it.row(),
-                                             static_cast<std::size_t>(it.row()) < dof_names.size()
-                                                 ? " (" + dof_names[static_cast<std::size_t>(it.row())] + ")"
+                                             static_cast<std::size_t>(it.row()) < dofs.names.size()
+                                                 ? " (" + dofs.names[static_cast<std::size_t>(it.row())] + ")"
                                                  : std::string()));
     if (asymmetry(M, 1.0) > tol)
         throw InputError(fmt::format("{}: M is not symmetric (relative asymmetry {:.3g})", origin, asymmetry(M, 1.0)));
@@ -251,8 +249,7 @@ void GyroscopicSystem::validate(const std::string& origin) const {
         throw InputError(fmt::format("{}: unbalance has {} entries, expected {}", origin, unbalance.size(), n));
     if (unbalance.size() != 0 && !unbalance.allFinite())
         throw InputError(fmt::format("{}: unbalance has a NaN or infinite entry", origin));
-    if (static_cast<int>(dof_names.size()) != n)
-        throw InputError(fmt::format("{}: {} DOF names for {} DOFs", origin, dof_names.size(), n));
+    dofs.check(n, static_cast<int>(node_z.size()), origin);
     for (const auto& b : bearings) b.validate(n);
     // A DOF that no matrix touches (no mass, stiffness, damping or coupling) makes
     // P(lambda) singular for every lambda: every number is an "eigenvalue", and the
@@ -276,7 +273,7 @@ void GyroscopicSystem::validate(const std::string& origin) const {
             if (!touched[static_cast<size_t>(i)])
                 throw InputError(fmt::format("{}: DOF {} ({}) has no mass, stiffness, damping or coupling: the pencil "
                                              "is singular at every eigenvalue; allowed: every DOF in some matrix",
-                                             origin, i, static_cast<int>(dof_names.size()) == n ? dof_names[static_cast<size_t>(i)]
+                                             origin, i, static_cast<int>(dofs.names.size()) == n ? dofs.names[static_cast<size_t>(i)]
                                                                                              : std::to_string(i)));
     }
     std::vector<int> pair_of(static_cast<size_t>(std::max(n, 0)), -1);
@@ -297,14 +294,6 @@ void GyroscopicSystem::validate(const std::string& origin) const {
             pair_of[static_cast<size_t>(d)] = static_cast<int>(k);
         }
     }
-    if (!dof_units.empty() && static_cast<int>(dof_units.size()) != n)
-        throw InputError(fmt::format("{}: {} DOF units for {} DOFs", origin, dof_units.size(), n));
-    if (!node_of_dof.empty() && static_cast<int>(node_of_dof.size()) != n)
-        throw InputError(fmt::format("{}: {} DOF nodes for {} DOFs", origin, node_of_dof.size(), n));
-    for (const int k : node_of_dof)
-        if (k < -1 || k >= static_cast<int>(node_z.size()))
-            throw InputError(fmt::format("{}: DOF node {} is out of range; allowed: -1 (none) or a node in [0, {}]",
-                                         origin, k, static_cast<int>(node_z.size()) - 1));
     for (const double z : node_z)
         if (!std::isfinite(z)) throw InputError(fmt::format("{}: a node position is NaN or infinite", origin));
 }
@@ -346,8 +335,8 @@ void check_dof_list(const GyroscopicSystem& sys, const std::vector<int>& dofs, c
         for (std::size_t j = 0; j < i; ++j)
             if (dofs[j] == dofs[i])
                 throw InputError(fmt::format("{}: output DOF {} ({}) is listed twice; allowed: each DOF once", what,
-                                             dofs[i], static_cast<std::size_t>(dofs[i]) < sys.dof_names.size()
-                                                          ? sys.dof_names[static_cast<std::size_t>(dofs[i])]
+                                             dofs[i], static_cast<std::size_t>(dofs[i]) < sys.dofs.names.size()
+                                                          ? sys.dofs.names[static_cast<std::size_t>(dofs[i])]
                                                           : std::string("?")));
     }
 }

@@ -7,6 +7,7 @@
 
 #include <gyrokit/core/band_order.hpp>
 #include <gyrokit/core/bearing_table.hpp>
+#include <gyrokit/core/dof_layout.hpp>
 #include <gyrokit/core/length_unit.hpp>
 
 #include <Eigen/Dense>
@@ -93,7 +94,7 @@ constexpr double kMaxMatrixEntry = 1e150;
 
 class GyroscopicSystem {
 public:
-    std::vector<std::string> dof_names;
+    DofLayout dofs;                           // names always; units, nodes, motions where the model knows them
     SystemMatrix M;                           // mass, symmetric
     SystemMatrix K;                           // stiffness (any structure: cross-coupled bearings)
     SystemMatrix G;                           // gyroscopic per unit speed, skew (0 x 0: none)
@@ -107,10 +108,6 @@ public:
     // DOF pairs (u, v) whose complex coordinate u + i v turns forward when the
     // motion turns in the sense of the spin; used to classify whirl.
     std::vector<std::pair<int, int>> whirl_pairs;
-    // Optional description of the DOFs for reading results (mode shapes, response
-    // by position, plots per unit); empty: not known.
-    std::vector<std::string> dof_units;       // physical unit of each DOF: "m", "rad", ...
-    std::vector<int> node_of_dof;             // node of each DOF on the rotor's axis (-1: none)
     std::vector<double> node_z;               // axial position of each node (m)
 
     int size() const { return static_cast<int>(M.rows()); }

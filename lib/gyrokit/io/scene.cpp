@@ -76,14 +76,14 @@ GyroscopicSystem matrices_from(const TomlKeys& k, const fs::path& dir) {
         for (const auto& e : *names) {
             auto s = e.value<std::string>();
             if (!s) throw InputError(k.where("dof_names") + ": every entry must be a string");
-            sys.dof_names.push_back(*s);
+            sys.dofs.names.push_back(*s);
         }
-        if (static_cast<int>(sys.dof_names.size()) != n)
+        if (static_cast<int>(sys.dofs.names.size()) != n)
             throw InputError(fmt::format("{} has {} names for {} DOFs; allowed: exactly one name per DOF",
-                                         k.where("dof_names"), sys.dof_names.size(), n));
+                                         k.where("dof_names"), sys.dofs.names.size(), n));
     } else {
         if (k.has("dof_names")) throw InputError(k.where("dof_names") + " must be an array of strings");
-        for (int i = 0; i < n; ++i) sys.dof_names.push_back("q" + std::to_string(i));
+        for (int i = 0; i < n; ++i) sys.dofs.names.push_back("q" + std::to_string(i));
     }
     if (const toml::array* pairs = k.table().get_as<toml::array>("whirl_pairs")) {
         for (const auto& e : *pairs) {

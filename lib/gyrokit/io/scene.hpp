@@ -48,7 +48,7 @@ struct Scene {
     // unit, each converted (speed_unit), so that a range written in rpm is the same
     // grid however it reaches a study.
     std::vector<double> speed_points() const;
-    const std::vector<std::string>& dof_names() const { return system.dof_names; }
+    const std::vector<std::string>& dof_names() const { return system.dofs.names; }
 };
 
 // Reads and validates a scene. Every error is an InputError of one line naming

@@ -144,6 +144,8 @@ DofNumbering number_dofs(const FeRotor& rotor, FeRotorMatrices& r) {
     }
     d.map.assign(full, -1);
     static const char* prefix[6] = {"x", "y", "tx", "ty", "z", "tz"};
+    static const DofMotion motion[6] = {DofMotion::x,     DofMotion::y, DofMotion::rot_x,
+                                        DofMotion::rot_y, DofMotion::z, DofMotion::rot_z};
     int kind_of_slot[6] = {};
     for (int kind = 0; kind < 6; ++kind)
         if (d.slot[kind] >= 0) kind_of_slot[d.slot[kind]] = kind;
@@ -151,19 +153,17 @@ DofNumbering number_dofs(const FeRotor& rotor, FeRotorMatrices& r) {
     for (int j = 0; j < full; ++j)
         if (!fixed[j]) {
             d.map[j] = n++;
-            r.dof_names.push_back(prefix[kind_of_slot[j % per]] + std::to_string(j / per));
-            r.node_of_dof.push_back(j / per);
+            const int kind = kind_of_slot[j % per];
+            r.dofs.add(prefix[kind] + std::to_string(j / per), j / per, motion[kind]);
         }
     // Pedestal DOFs after the node DOFs (not on the shaft's axis: node -1); lateral only.
     d.pedestal_of.assign(nodes, -1);
     if (rotor.has_lateral())
         for (const FePedestal& p : rotor.pedestals) {
             d.pedestal_of[p.node] = n;
-            for (const char* name : {"px", "py"}) {
-                r.dof_names.push_back(name + std::to_string(p.node));
-                r.node_of_dof.push_back(-1);
-                ++n;
-            }
+            r.dofs.add("px" + std::to_string(p.node), -1, DofMotion::x, p.node);
+            r.dofs.add("py" + std::to_string(p.node), -1, DofMotion::y, p.node);
+            n += 2;
         }
     if (n == 0)
         throw InputError(fmt::format("fe rotor: supports: every DOF of the {} model is constrained; allowed: at least "
@@ -332,7 +332,7 @@ SparsePencil FeRotorMatrices::at_speed(double w) const {
 
 GyroscopicSystem FeRotorMatrices::to_system() const {
     GyroscopicSystem s;
-    s.dof_names = dof_names;
+    s.dofs = dofs;
     s.M = M;
     s.K = K;
     s.G = G;
@@ -341,9 +341,7 @@ GyroscopicSystem FeRotorMatrices::to_system() const {
     if (N.nonZeros() > 0) s.N = N;
     if (unbalance.size() > 0 && unbalance.cwiseAbs().maxCoeff() > 0) s.unbalance = unbalance;
     s.whirl_pairs = whirl_pairs;
-    s.node_of_dof = node_of_dof;
     s.node_z = node_z;
-    for (const auto& name : dof_names) s.dof_units.push_back(name[0] == 't' ? "rad" : "m");   // tx, ty: rotations
     return s;
 }
 

@@ -23,6 +23,7 @@
 // see docs/fe_rotor.md for the equations as implemented.
 #pragma once
 
+#include <gyrokit/core/dof_layout.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/eig/sparse_eigensolver.hpp>
 
@@ -125,9 +126,8 @@ struct FeRotorMatrices {
     Eigen::SparseMatrix<double> D_couplings;   // coupling damping, symmetric
     Eigen::SparseMatrix<double> N;   // circulatory per unit speed (rotating coupling dampers), skew
     Eigen::VectorXcd unbalance;      // force amplitude per w^2 (forward-turning disk unbalance)
-    std::vector<std::string> dof_names;            // "x3", "y3", "tx3", "ty3" (and "z3", "tz3")
+    DofLayout dofs;                                // "x3", "y3", "tx3", "ty3" (and "z3", "tz3"; pedestals "px3", "py3")
     std::vector<std::pair<int, int>> whirl_pairs;  // (x, y) and (theta_x, theta_y) of each node, when both are free
-    std::vector<int> node_of_dof;                  // node of each assembled DOF
     std::vector<double> node_z;                    // axial position of each node (m), z_0 = 0
 
     int size() const { return static_cast<int>(M.rows()); }

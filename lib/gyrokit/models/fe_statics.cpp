@@ -80,7 +80,7 @@ Eigen::VectorXd loads_of(const FeRotor& r, const StaticOptions& o, const FreeBod
     const int n = b.m.size();
     Eigen::VectorXd lift = Eigen::VectorXd::Zero(n);
     for (int i = 0; i < n; ++i)
-        if (b.m.dof_names[i][0] == 'y' || b.m.dof_names[i].rfind("py", 0) == 0) lift(i) = 1.0;
+        if (b.m.dofs.vertical_translation(i)) lift(i) = 1.0;
     const Eigen::VectorXd Mr = b.m.M * lift;
     weight = o.gravity * lift.dot(Mr);
     Eigen::VectorXd f = -o.gravity * Mr;
@@ -173,14 +173,10 @@ std::vector<double> fe_gravity_reactions(const FeRotor& r, const std::vector<int
     FeRotor lateral = r;
     lateral.motion = FeMotion::lateral;   // the weight moves no axial or torsional DOF
     const FeRotorMatrices m = lateral.assemble();
-    const auto index_of = [&](const std::string& name) {
-        const auto it = std::find(m.dof_names.begin(), m.dof_names.end(), name);
-        return it == m.dof_names.end() ? -1 : static_cast<int>(it - m.dof_names.begin());
-    };
     // The vertical plane's DOFs; the held ones (y at `nodes`) and the free ones.
     std::vector<int> held, free, plane_of(m.size(), -1);
     for (const int node : nodes) {
-        const int i = index_of("y" + std::to_string(node));
+        const int i = m.dofs.find(node, DofMotion::y);
         if (i < 0)
             throw InputError(fmt::format("fe rotor: gravity reaction at node {}: its y is held by a support; allowed: "
                                          "a node whose y is free",
@@ -188,14 +184,12 @@ std::vector<double> fe_gravity_reactions(const FeRotor& r, const std::vector<int
         if (std::find(held.begin(), held.end(), i) == held.end()) held.push_back(i);
     }
     for (int i = 0; i < m.size(); ++i) {
-        const std::string& n = m.dof_names[i];
-        const bool vertical = n[0] == 'y' || n.rfind("tx", 0) == 0 || n.rfind("py", 0) == 0;
-        if (vertical && std::find(held.begin(), held.end(), i) == held.end()) free.push_back(i);
+        if (m.dofs.in_vertical_plane(i) && std::find(held.begin(), held.end(), i) == held.end()) free.push_back(i);
     }
     // Consistent weight: f = -g M r, r = 1 on every vertical translation (a rigid lift).
     Eigen::VectorXd lift = Eigen::VectorXd::Zero(m.size());
     for (int i = 0; i < m.size(); ++i)
-        if (m.dof_names[i][0] == 'y' || m.dof_names[i].rfind("py", 0) == 0) lift(i) = 1.0;
+        if (m.dofs.vertical_translation(i)) lift(i) = 1.0;
     const Eigen::VectorXd weight = -g * (m.M * lift);
     const auto sub = [&](const std::vector<int>& rows, const std::vector<int>& cols) { return block(m.K, rows, cols); };
     Eigen::VectorXd u = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(free.size()));
@@ -215,7 +209,7 @@ std::vector<double> fe_gravity_reactions(const FeRotor& r, const std::vector<int
     const Eigen::VectorXd R = sub(held, free) * u - weight(held);
     std::vector<double> out;
     for (const int node : nodes) {
-        const auto at = std::find(held.begin(), held.end(), index_of("y" + std::to_string(node)));
+        const auto at = std::find(held.begin(), held.end(), m.dofs.find(node, DofMotion::y));
         out.push_back(R(at - held.begin()));
     }
     return out;
@@ -235,7 +229,7 @@ StaticResult fe_static(const FeRotor& rotor, const StaticOptions& o) {
     q.motion = FeMotion::lateral;   // the weight moves no axial or torsional DOF
     q.supports.clear();
     FreeBody b{q.assemble(), {}};
-    for (int i = 0; i < b.m.size(); ++i) b.index[b.m.dof_names[i]] = i;
+    for (int i = 0; i < b.m.size(); ++i) b.index[b.m.dofs.names[i]] = i;
     Holds h = holds_of(rotor, o, b);
     StaticResult out;
     const Eigen::VectorXd f = loads_of(rotor, o, b, out.weight);

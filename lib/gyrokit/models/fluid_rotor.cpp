@@ -319,7 +319,7 @@ GyroscopicSystem make_system(const FluidRotor& f) {
     GyroscopicSystem s;
     using T = Eigen::Triplet<double>;
     std::vector<T> M, K, G, K2, D;   // D per sqrt(w)
-    s.dof_names = {"x", "y", "alpha", "beta"};
+    s.dofs.names = {"x", "y", "alpha", "beta"};
     M.insert(M.end(), {T(0, 0, f.m), T(1, 1, f.m), T(2, 2, f.J), T(3, 3, f.J)});
     K.insert(K.end(), {T(0, 0, f.k.gamma), T(1, 1, f.k.gamma), T(2, 2, f.k.tilt), T(3, 3, f.k.tilt)});
     for (const auto& [i, j] : {std::pair{0, 2}, std::pair{2, 0}, std::pair{1, 3}, std::pair{3, 1}})
@@ -330,8 +330,8 @@ GyroscopicSystem make_system(const FluidRotor& f) {
     for (int j = 0; j < ns; ++j) {
         const auto& m = f.liquid.modes[static_cast<size_t>(j)];
         const int q = 4 + 2 * j, r = q + 1;
-        s.dof_names.push_back("q" + std::to_string(m.n));
-        s.dof_names.push_back("s" + std::to_string(m.n));
+        s.dofs.names.push_back("q" + std::to_string(m.n));
+        s.dofs.names.push_back("s" + std::to_string(m.n));
         M.insert(M.end(), {T(q, q, m.mu), T(r, r, m.mu), T(2, q, m.lambda), T(q, 2, m.lambda), T(3, r, m.lambda),
                            T(r, 3, m.lambda)});
         K2.insert(K2.end(), {T(q, q, m.mu * m.ratio), T(r, r, m.mu * m.ratio)});   // mu_n (sigma_n/w)^2 w^2

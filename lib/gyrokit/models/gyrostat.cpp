@@ -73,8 +73,8 @@ GyroscopicSystem make_system(const GyrostatParameters& p) {
     sys.unbalance.resize(static_cast<int>(dofs.size()));
     for (size_t i = 0; i < dofs.size(); ++i) {
         sys.unbalance(static_cast<int>(i)) = u(dofs[i]);
-        sys.dof_names.push_back(names[dofs[i]]);
-        sys.dof_units.push_back(dofs[i] == x || dofs[i] == y ? "m" : "rad");   // cage and rotor tilts: rad
+        sys.dofs.names.push_back(names[dofs[i]]);
+        sys.dofs.units.push_back(dofs[i] == x || dofs[i] == y ? "m" : "rad");   // cage and rotor tilts: rad
     }
     // Forward whirl: alpha -> beta, x -> y, psi -> theta turn with the spin.
     for (size_t i = 0; i + 1 < dofs.size(); i += 2)

@@ -189,7 +189,7 @@ void place_pedestals(const RotorModel& model, const std::vector<double>& z, cons
 }
 
 // The speed-dependent bearings as the system's bearing tables, on the DOFs the assembly
-// numbered (m.dof_names), between shaft and pedestal where one stands.
+// numbered (m.dofs.names), between shaft and pedestal where one stands.
 void attach_speed_dependent(const FeRotor& r, const FeRotorMatrices& m, const SpeedDependentBearings& sd,
                             GyroscopicSystem& sys) {
     for (std::size_t i = 0; i < sd.bearings.size(); ++i) {
@@ -198,21 +198,18 @@ void attach_speed_dependent(const FeRotor& r, const FeRotorMatrices& m, const Sp
         const std::string origin = t.origin.empty() ? fmt::format("bearing at node {}", node) : t.origin;
         const bool on_pedestal =
             std::any_of(r.pedestals.begin(), r.pedestals.end(), [&](const FePedestal& p) { return p.node == node; });
-        const auto has = [&](const std::string& name) {
-            return std::find(m.dof_names.begin(), m.dof_names.end(), name) != m.dof_names.end();
-        };
         // A shaft held at a pedestal: the bearing acts between the pedestal and the held
         // shaft, i.e. from the pedestal to the ground (as a constant bearing does there).
-        const bool pedestal_only = on_pedestal && !has("x" + std::to_string(node)) && !has("y" + std::to_string(node));
-        const auto dof = [&](std::string prefix) {
-            if (pedestal_only && (prefix == "x" || prefix == "y")) prefix = "p" + prefix;
-            const std::string name = prefix + std::to_string(node);
-            const auto it = std::find(m.dof_names.begin(), m.dof_names.end(), name);
-            if (it == m.dof_names.end())
-                throw InputError(fmt::format("{}: the bearing at node {} acts on DOF {}, which a support holds; "
+        const bool pedestal_only =
+            on_pedestal && m.dofs.find(node, DofMotion::x) < 0 && m.dofs.find(node, DofMotion::y) < 0;
+        const auto dof = [&](DofMotion motion, bool pedestal) {
+            const int i = m.dofs.find(node, motion, pedestal || pedestal_only);
+            if (i < 0)
+                throw InputError(fmt::format("{}: the bearing at node {} acts on DOF {}{}{}, which a support holds; "
                                              "allowed: a bearing at a node whose x and y are free",
-                                             origin, node, name));
-            return static_cast<int>(it - m.dof_names.begin());
+                                             origin, node, pedestal || pedestal_only ? "p" : "",
+                                             motion == DofMotion::x ? "x" : "y", node));
+            return i;
         };
         // Named by kind and node; a second one at the same node gets a suffix (damping
         // components need unique names).
@@ -226,12 +223,12 @@ void attach_speed_dependent(const FeRotor& r, const FeRotorMatrices& m, const Sp
         };
         if (t.kind == RotorBearing::Kind::fluid_film) {
             const std::string name = unique_name("fluid_film");
-            const int dx = dof("x"), dy = dof("y");
+            const int dx = dof(DofMotion::x, false), dy = dof(DofMotion::y, false);
             sys.bearings.push_back(journal_bearing_table(sd.films[i], name, dx, dy));
         } else {
             BearingTable b = t.table;
-            b.dof_x = dof("x");
-            b.dof_y = dof("y");
+            b.dof_x = dof(DofMotion::x, false);
+            b.dof_y = dof(DofMotion::y, false);
             b.pedestal_x = b.pedestal_y = -1;
             b.name = t.table_file.empty() ? origin : t.table_file;   // errors name the table
             b.validate(sys.size());
@@ -240,8 +237,8 @@ void attach_speed_dependent(const FeRotor& r, const FeRotorMatrices& m, const Sp
         }
         // On a pedestal: the bearing acts between the shaft and the pedestal.
         if (on_pedestal && !pedestal_only) {
-            sys.bearings.back().pedestal_x = dof("px");
-            sys.bearings.back().pedestal_y = dof("py");
+            sys.bearings.back().pedestal_x = dof(DofMotion::x, true);
+            sys.bearings.back().pedestal_y = dof(DofMotion::y, true);
         }
     }
 }

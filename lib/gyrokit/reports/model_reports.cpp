@@ -32,11 +32,9 @@ namespace {
 // The shaft node a speed-dependent bearing stands at (-1: none): its x DOF's node, or
 // the node of the pedestal it acts on (a held shaft: px<node>).
 int bearing_node(const GyroscopicSystem& s, const BearingTable& b) {
-    if (s.node_of_dof.empty()) return -1;
-    const int node = s.node_of_dof[static_cast<size_t>(b.dof_x)];
-    const std::string& name = s.dof_names[static_cast<size_t>(b.dof_x)];
-    if (node < 0 && name.rfind("px", 0) == 0) return std::stoi(name.substr(2));
-    return node;
+    if (s.dofs.nodes.empty()) return -1;
+    const int node = s.dofs.nodes[static_cast<size_t>(b.dof_x)];
+    return node >= 0 ? node : s.dofs.pedestal_node(b.dof_x);
 }
 
 // Circulatory forces: a speed-proportional N, or a skew part of the stiffness (cross-coupled
@@ -133,12 +131,12 @@ Table model_summary(const Scene& sc) {
     };
     add("type", sc.model_type);
     add("dofs", ll(s.size()));
-    if (!s.dof_units.empty()) {
+    if (!s.dofs.units.empty()) {
         std::vector<std::string> seen;
-        for (const auto& u : s.dof_units)
+        for (const auto& u : s.dofs.units)
             if (std::find(seen.begin(), seen.end(), u) == seen.end()) seen.push_back(u);
         for (const auto& u : seen)
-            add("dofs_in_" + u, ll(static_cast<int>(std::count(s.dof_units.begin(), s.dof_units.end(), u))));
+            add("dofs_in_" + u, ll(static_cast<int>(std::count(s.dofs.units.begin(), s.dofs.units.end(), u))));
     }
     add("whirl_pairs", ll(static_cast<int>(s.whirl_pairs.size())));
     if (!s.node_z.empty()) {
@@ -148,10 +146,10 @@ Table model_summary(const Scene& sc) {
     }
     // Mass that a unit translation along u of every free translational pair moves: r^T M r
     // (nodes a support holds are not in the system, so their share is not either).
-    if (!s.dof_units.empty()) {
+    if (!s.dofs.units.empty()) {
         Eigen::VectorXd r = Eigen::VectorXd::Zero(s.size());
         for (const auto& [u, v] : s.whirl_pairs)
-            if (s.dof_units[static_cast<size_t>(u)] == "m") r(u) = 1.0;
+            if (s.dofs.units[static_cast<size_t>(u)] == "m") r(u) = 1.0;
         if (r.sum() > 0) add("translating_mass", r.dot(SparseMatrix(s.M) * r), "kg");
     }
     add("nonzeros_M_K", ll(static_cast<int>(s.M.nonZeros() + s.K.nonZeros())));

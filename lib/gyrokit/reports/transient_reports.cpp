@@ -174,10 +174,10 @@ struct ShownRun {
 };
 
 ShownRun shown(const GyroscopicSystem& sys, const TransientResult& r, const LengthUnit& length) {
-    ShownRun out{r, length.display_units(sys.dof_units), Eigen::VectorXd::Ones(static_cast<Eigen::Index>(r.dofs.size()))};
-    if (sys.dof_units.empty()) return out;
+    ShownRun out{r, length.display_units(sys.dofs.units), Eigen::VectorXd::Ones(static_cast<Eigen::Index>(r.dofs.size()))};
+    if (sys.dofs.units.empty()) return out;
     for (std::size_t k = 0; k < r.dofs.size(); ++k) {
-        const double f = length.display_factor(sys.dof_units.at(static_cast<std::size_t>(r.dofs[k])));
+        const double f = length.display_factor(sys.dofs.units.at(static_cast<std::size_t>(r.dofs[k])));
         out.factor(static_cast<Eigen::Index>(k)) = f;
         if (f != 1.0) out.run.z.col(static_cast<Eigen::Index>(k)) *= f;
     }
@@ -191,7 +191,7 @@ Table transient_run_table(const GyroscopicSystem& sys, const TransientResult& r,
     const ShownRun s = shown(sys, r, length);
     const TransientEnvelope e = transient_envelope(s.run, kTransientTableWindows);
     const Eigen::MatrixXd steady = envelope_steady(sys, e, kind) * s.factor.asDiagonal();
-    Table t = transient_table(sys.dof_names, s.units, e, steady, u);
+    Table t = transient_table(sys.dofs.names, s.units, e, steady, u);
     t.title = fmt::format("transient unbalance response {}: peak |z| over the whole revolutions of each 1/{} of the "
                           "run, where it occurred; steady: the steady response at that speed",
                           transient_description(r.profile, u, steady_start), kTransientTableWindows);
@@ -209,7 +209,7 @@ Figure transient_figure(const GyroscopicSystem& sys, const TransientResult& run,
                                          "allowed: a node, or two DOFs",
                                          r.dofs.size()));
         const Eigen::VectorXcd Z = unbalance_response(sys, r.profile.from, kind);
-        return transient_orbit_figure(sys.dof_names, s.units, r, 0, 1, s.factor(0) * Z(r.dofs[0]),
+        return transient_orbit_figure(sys.dofs.names, s.units, r, 0, 1, s.factor(0) * Z(r.dofs[0]),
                                       s.factor(1) * Z(r.dofs[1]), "Orbit " + what);
     }
     std::vector<double> speeds;
@@ -217,7 +217,7 @@ Figure transient_figure(const GyroscopicSystem& sys, const TransientResult& run,
     for (int i = 0; i <= 1000; ++i) speeds.push_back(lo + (hi - lo) * i / 1000.0);
     const TransientEnvelope fine = transient_envelope(r, 400);
     const Eigen::MatrixXd steady = steady_amplitudes(sys, speeds, r.dofs, kind) * s.factor.asDiagonal();
-    return transient_runup_figure(sys.dof_names, s.units, fine, speeds, steady, u, "Unbalance response, " + what);
+    return transient_runup_figure(sys.dofs.names, s.units, fine, speeds, steady, u, "Unbalance response, " + what);
 }
 
 Figure transient_waterfall_figure(const GyroscopicSystem& sys, const TransientResult& run, const SpeedUnit& u,
@@ -226,7 +226,7 @@ Figure transient_waterfall_figure(const GyroscopicSystem& sys, const TransientRe
     const TransientResult& r = s.run;
     std::vector<Waterfall> ws;
     for (int k = 0; k < std::min<int>(2, static_cast<int>(r.dofs.size())); ++k) ws.push_back(transient_waterfall(r, k));
-    return waterfall_figure(sys.dof_names, s.units, ws, u, r.profile.acceleration != 0.0,
+    return waterfall_figure(sys.dofs.names, s.units, ws, u, r.profile.acceleration != 0.0,
                             "Waterfall, " + transient_description(r.profile, u, steady_start));
 }
 

@@ -82,7 +82,7 @@ struct ResponseOutputs {
     std::vector<int> dofs;
     std::vector<Probe> probes;
     std::string name(const GyroscopicSystem& sys, int k) const {
-        return probes.empty() ? "|" + sys.dof_names.at(static_cast<std::size_t>(k)) + "|"
+        return probes.empty() ? "|" + sys.dofs.names.at(static_cast<std::size_t>(k)) + "|"
                               : "probe " + probes.at(static_cast<std::size_t>(k)).name;
     }
 };
@@ -98,7 +98,7 @@ ResponseOutputs response_outputs(const GyroscopicSystem& sys, const ResponseCrit
     }
     if (!o.probes.empty()) return o;
     for (int k = 0; k < sys.size(); ++k)
-        if (c.dofs.empty() || std::find(c.dofs.begin(), c.dofs.end(), sys.dof_names.at(k)) != c.dofs.end())
+        if (c.dofs.empty() || std::find(c.dofs.begin(), c.dofs.end(), sys.dofs.names.at(k)) != c.dofs.end())
             o.dofs.push_back(k);
     if (o.dofs.empty()) throw InputError("[criteria.response] dofs: none of them is a DOF of this design");
     return o;

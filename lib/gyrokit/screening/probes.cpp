@@ -58,10 +58,7 @@ std::string dof_list(const std::vector<std::string>& names) {
     return fmt::format("{}, {}, ... {} ({} DOFs)", names[0], names[1], names.back(), names.size());
 }
 
-int dof_index(const GyroscopicSystem& sys, const std::string& name) {
-    const auto it = std::find(sys.dof_names.begin(), sys.dof_names.end(), name);
-    return it == sys.dof_names.end() ? -1 : static_cast<int>(it - sys.dof_names.begin());
-}
+int dof_index(const GyroscopicSystem& sys, const std::string& name) { return sys.dofs.find(name); }
 
 }  // namespace
 
@@ -101,11 +98,11 @@ Probe resolve_probe(const ResponseProbe& p, const GyroscopicSystem& sys) {
     const auto require = [&](const char* key, const std::string& name, int index) {
         if (index < 0)
             throw InputError(fmt::format("{} = '{}': not a DOF of the model; allowed: {}", key, name,
-                                         dof_list(sys.dof_names)));
+                                         dof_list(sys.dofs.names)));
     };
     require("dof_x", p.dof_x, out.dof_x);
     require("dof_y", p.dof_y, out.dof_y);
-    const std::vector<std::string>& u = sys.dof_units;
+    const std::vector<std::string>& u = sys.dofs.units;
     if (!u.empty() && u.at(static_cast<std::size_t>(out.dof_x)) != u.at(static_cast<std::size_t>(out.dof_y)))
         throw InputError(fmt::format("dof_x = '{}' ({}) and dof_y = '{}' ({}): allowed: two DOFs of one unit",
                                      p.dof_x, u[static_cast<std::size_t>(out.dof_x)], p.dof_y,

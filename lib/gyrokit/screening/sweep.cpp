@@ -288,14 +288,14 @@ void check_criteria(const Sweep& s) {
 void check_against_base(Sweep& s) {
     const Criteria& c = s.criteria;
     const Scene base = s.loader({});
-    s.dof_names = base.system.dof_names;
+    s.dofs.names = base.system.dofs.names;
     if (c.separation && c.separation->harmonics.empty()) s.criteria.separation->harmonics = base.harmonics;
     if (c.response) {
         if (base.system.unbalance.size() == 0 || base.system.unbalance.norm() == 0.0)
             throw InputError(fmt::format("{}: [criteria.response] needs an unbalance, but scene {} has none", s.path,
                                          s.scene));
         for (const auto& d : c.response->dofs)
-            if (std::find(s.dof_names.begin(), s.dof_names.end(), d) == s.dof_names.end())
+            if (s.dofs.find(d) < 0)
                 throw InputError(fmt::format("{}: [criteria.response] dofs: '{}' is not a DOF of scene {}", s.path, d,
                                              s.scene));
         if (!c.response->dofs.empty() && !c.response->probes.empty())

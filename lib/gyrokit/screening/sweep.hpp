@@ -108,7 +108,7 @@ struct Sweep {
     int op_count = 41;                // operating speeds checked (pervasive, response)
     Criteria criteria;
     std::vector<std::string> plot_axes;   // two parameter names (default: the first two)
-    std::vector<std::string> dof_names;   // of the base scene
+    DofLayout dofs;                   // of the base scene
     SceneLoader loader;               // default: load_scene(scene, overrides)
     std::vector<double> lhs;          // Latin hypercube points, samples x parameters
     std::vector<std::vector<double>> designs;   // List: each design's values, in the order of `parameters`

@@ -16,7 +16,7 @@ FrfStudy frf_study(const Scene& scene, const RotorRequest& common, const FrfRequ
     const StudyOptions so = resolve_request(scene, common, SpeedsNeeded::No);
     FrfStudy st;
     st.unit = so.unit;
-    const std::vector<std::string>& names = sys.dof_names;
+    const std::vector<std::string>& names = sys.dofs.names;
     const auto in = std::find(names.begin(), names.end(), rq.input);
     if (in == names.end())
         throw InputError(fmt::format("{} '{}': not a DOF of the model; allowed: names such as {}",
@@ -43,7 +43,7 @@ FrfStudy frf_study(const Scene& scene, const RotorRequest& common, const FrfRequ
     add_notes(st.diagnostics, Diagnostic::Topic::Extrapolation, extrapolation_notes(sys.bearings, spin, spin));
     FrequencyResponse r = frequency_response(sys, spin, w, input, outputs, so.solver.kind);
     // Probes: their readings are the outputs, named as given.
-    st.named = ProbeOutputs{sys.dof_names, sys.dof_units, {}};
+    st.named = ProbeOutputs{sys.dofs.names, sys.dofs.units, {}};
     if (!rq.probes.empty()) {
         st.named = probe_outputs(sys, rq.probes);
         r.H = probe_readings(rq.probes, r.outputs, r.H);

@@ -29,8 +29,8 @@ ResponseStudy response_study(const GyroscopicSystem& sys, const StudyOptions& op
     if (probed) {
         for (const Probe& p : r.probes) s.names.push_back(p.name), si_units.push_back("m");
     } else {
-        s.names = sys.dof_names;
-        si_units = sys.dof_units;
+        s.names = sys.dofs.names;
+        si_units = sys.dofs.units;
     }
     const int count = probed ? static_cast<int>(r.probes.size()) : sys.size();
     // Lengths as the scene states them (an mm scene prints mm); models without DOF units as they are.

@@ -62,7 +62,7 @@ SpectrumStudy spectrum_study(const GyroscopicSystem& sys, double speed, const So
     add_notes(s.diagnostics, Topic::Solver, s.spectrum.notes);
     if (!s.spectrum.rigid_body.empty())
         s.diagnostics.push_back({Level::Note, Topic::RigidBody,
-                                 rigid_body_note(s.spectrum.rigid_body, sys.dof_names) + " (" +
+                                 rigid_body_note(s.spectrum.rigid_body, sys.dofs.names) + " (" +
                                      option_field("rigid_body") + " lists them)"});
     // The dense solver gives every mode: the K lowest by frequency where K are asked for.
     if (s.plan.kind == SolverKind::Dense)

@@ -12,11 +12,11 @@ StaticResult static_study(const Scene& scene, StaticOptions options) {
                                      scene.path, scene.model_type));
     const GyroscopicSystem& sys = scene.system;
     for (const BearingTable& b : sys.bearings) {
-        if (b.pedestal_x >= 0 || sys.dof_names[static_cast<std::size_t>(b.dof_x)][0] == 'p')
+        if (b.pedestal_x >= 0 || sys.dofs.on_pedestal(b.dof_x))
             throw InputError(fmt::format("{}: bearing {} is speed-dependent and stands on a pedestal; allowed in a "
                                          "static analysis: constant bearings on pedestals",
                                          scene.path, b.name));
-        options.rigid.push_back({sys.node_of_dof[static_cast<std::size_t>(b.dof_x)], b.label()});
+        options.rigid.push_back({sys.dofs.nodes[static_cast<std::size_t>(b.dof_x)], b.label()});
     }
     return fe_static(*scene.fe_rotor, options);
 }

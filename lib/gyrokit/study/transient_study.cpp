@@ -58,7 +58,7 @@ std::vector<int> outputs_of(const TransientRequest& rq, const GyroscopicSystem& 
                                     "DOFs); allowed: a node with free x or y");
         return out;
     }
-    const std::vector<int> out = dofs_by_name(rq.dofs, sys.dof_names, option_field("dofs"));
+    const std::vector<int> out = dofs_by_name(rq.dofs, sys.dofs.names, option_field("dofs"));
     return out.empty() ? transient_outputs(sys) : out;
 }
 
