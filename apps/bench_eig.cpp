@@ -89,7 +89,7 @@ GyroscopicSystem make_multi_disk_rotor(int disks) {
 // The gyrostat parameters of a scene's [model] (already checked by load_scene),
 // so that the extreme variants start from the same centrifuge.
 GyrostatParameters gyrostat_parameters(const Scene& scene) {
-    if (scene.model_type != "gyrostat" || scene.system.size() != 6)
+    if (scene.model_type() != "gyrostat" || scene.system.size() != 6)
         throw InputError(scene.path + ": the extreme cases need a gyrostat with elastic shaft and housing");
     const toml::table doc = toml::parse_file(scene.path);
     const auto num = [&](const char* key, double fallback) {

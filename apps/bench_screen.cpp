@@ -29,7 +29,6 @@ Scene multi_disk_rotor(int disks, double k_bearing, double c_bearing) {
     const double l = L / (disks - 1), EI = E * std::acos(-1.0) * std::pow(d, 4) / 64.0;
     const int n = 4 * disks;
     Scene sc;
-    sc.model_type = "matrices";
     GyroscopicSystem& s = sc.system;
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), K = M, G = M;
     Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, n);

@@ -303,7 +303,9 @@ void bind_models(py::module_& m, py::class_<Scene>& scene) {
     m.def("rotor_scene", &scene_of, py::arg("rotor"), py::arg("title"), py::arg("speeds"), py::arg("modes"),
           py::arg("harmonics"), py::arg("solver"), py::arg("target"), py::arg("target_order"),
           py::arg("f_cut") = py::none());
-    scene.def_property_readonly("rotor", [](const Scene& s) { return s.rotor_model; })
+    scene.def_property_readonly("rotor", [](const Scene& s) {
+        return s.rotor_model() ? std::optional<RotorModel>(*s.rotor_model()) : std::nullopt;
+    })
         .def("to_toml", &scene_text, "The scene as TOML that load_scene reads back to the same model and settings")
         .def("write", &write_scene, py::arg("path"), "Writes the scene to `path` (to_toml)")
         .def(py::pickle([](const Scene& s) { return py::make_tuple(scene_text(s), s.path); },

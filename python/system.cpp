@@ -133,7 +133,7 @@ py::class_<Scene> bind_system(py::module_& m) {
         .def_readonly("title", &Scene::title)
         .def_readonly("inputs", &Scene::inputs, "the files read to build it: what no result of it may be saved over")
         .def_property_readonly("length_unit", [](const Scene& s) { return s.length_unit().name; })
-        .def_readonly("model_type", &Scene::model_type)
+        .def_property_readonly("model_type", &Scene::model_type)
         .def_readonly("system", &Scene::system)
         .def_readonly("modes", &Scene::modes)
         .def_readonly("harmonics", &Scene::harmonics)
@@ -153,7 +153,7 @@ py::class_<Scene> bind_system(py::module_& m) {
     m.def("model_summary", [](const Scene& scene) {
         py::dict d;
         d["tables"] = tables_list({model_summary(scene)});
-        d["figure"] = scene.fe_rotor ? py::object(figure_dict(fe_rotor_figure(*scene.fe_rotor, scene.system, scene.title, scene.length_unit())))
+        d["figure"] = scene.fe_rotor() ? py::object(figure_dict(fe_rotor_figure(*scene.fe_rotor(), scene.system, scene.title, scene.length_unit())))
                                      : py::object(py::none());
         return d;
     }, py::arg("scene"));

@@ -388,7 +388,7 @@ czz = 30
         CHECK(std::find(n.begin(), n.end(), "tz2") == n.end());
         CHECK(std::find(n.begin(), n.end(), "x2") == n.end());
         const int z1 = static_cast<int>(std::find(n.begin(), n.end(), "z1") - n.begin());
-        const FeRotorMatrices m = sc.fe_rotor->assemble();
+        const FeRotorMatrices m = sc.fe_rotor()->assemble();
         CHECK(m.D.coeff(z1, z1) == 30.0);
     }
     SECTION("lengths in mm give the same model as in m") {
@@ -436,11 +436,11 @@ k = 1e7
         CHECK((Ma - Mb).cwiseAbs().maxCoeff() <= 1e-13 * Ma.cwiseAbs().maxCoeff());
         CHECK((Ka - Kb).cwiseAbs().maxCoeff() <= 1e-13 * Ka.cwiseAbs().maxCoeff());
         // The section's elements are tapered, end to end.
-        REQUIRE(a.fe_rotor->elements.size() == 4);
-        CHECK(a.fe_rotor->elements[1].outer_diameter == Approx(0.055).epsilon(1e-14));
-        CHECK(*a.fe_rotor->elements[1].outer_diameter_end == Approx(0.05).epsilon(1e-14));
-        CHECK(*a.fe_rotor->elements[3].outer_diameter_end == Approx(0.04).epsilon(1e-14));
-        CHECK(*a.fe_rotor->elements[3].inner_diameter_end == Approx(0.01).epsilon(1e-14));
+        REQUIRE(a.fe_rotor()->elements.size() == 4);
+        CHECK(a.fe_rotor()->elements[1].outer_diameter == Approx(0.055).epsilon(1e-14));
+        CHECK(*a.fe_rotor()->elements[1].outer_diameter_end == Approx(0.05).epsilon(1e-14));
+        CHECK(*a.fe_rotor()->elements[3].outer_diameter_end == Approx(0.04).epsilon(1e-14));
+        CHECK(*a.fe_rotor()->elements[3].inner_diameter_end == Approx(0.01).epsilon(1e-14));
     }
     SECTION("bad input: one line naming key, value and range") {
         const std::string shaft = "[[model.shaft]]\nlength = 1.0\nouter_diameter = 0.05\n";

@@ -39,13 +39,13 @@ std::vector<int> block(const std::vector<std::string>& names, const std::string&
 TEST_CASE("fe rotor motion: an axial or torsional model is that block of the 6-DOF model",
           "[fe_rotor][motion][validation]") {
     const Scene all = load_scene(data("drive_train.toml"));
-    REQUIRE(all.fe_rotor->motion == FeMotion::all);
+    REQUIRE(all.fe_rotor()->motion == FeMotion::all);
     for (const auto& [motion, prefix] : {std::pair{"axial", "z"}, std::pair{"torsional", "tz"}}) {
         INFO(motion);
         const Scene one = load_scene(data("drive_train.toml"), {}, motion);
         const std::vector<int> idx = block(all.dof_names(), prefix);
         REQUIRE(one.dofs() == static_cast<int>(idx.size()));
-        REQUIRE(one.dofs() == all.fe_rotor->node_count());   // nothing holds z or tz in this train
+        REQUIRE(one.dofs() == all.fe_rotor()->node_count());   // nothing holds z or tz in this train
         for (int i = 0; i < one.dofs(); ++i) CHECK(one.dof_names()[i] == all.dof_names()[idx[i]]);
         const Eigen::MatrixXd M(all.system.M), K(all.system.K), D(all.system.damping_matrix());
         CHECK(Eigen::MatrixXd(one.system.M) == M(idx, idx));
@@ -69,7 +69,7 @@ TEST_CASE("fe rotor motion: an axial or torsional model is that block of the 6-D
     }
     SECTION("the scene keys: motion, dofs_per_node = 1, and a lateral model from the same description") {
         const Scene lateral = load_scene(data("drive_train.toml"), {}, "lateral");
-        CHECK(lateral.fe_rotor->motion == FeMotion::lateral);
+        CHECK(lateral.fe_rotor()->motion == FeMotion::lateral);
         CHECK(lateral.dofs() == 4 * 16 + 2);   // 16 nodes, the pedestal's px, py
         const std::vector<int> idx = [&] {
             std::vector<int> v;
@@ -93,7 +93,7 @@ TEST_CASE("fe rotor motion: scene keys and bad input", "[fe_rotor][motion]") {
     SECTION("motion = torsional, or dofs_per_node = 1 with it") {
         for (const char* keys : {"motion = \"torsional\"\n", "motion = \"torsional\"\ndofs_per_node = 1\n"}) {
             const Scene sc = parse_scene(head + keys + shaft, "t.toml");
-            CHECK(sc.fe_rotor->motion == FeMotion::torsional);
+            CHECK(sc.fe_rotor()->motion == FeMotion::torsional);
             CHECK(sc.dofs() == 4);   // five nodes, the clamped end holds tz4
             CHECK(sc.dof_names() == std::vector<std::string>{"tz0", "tz1", "tz2", "tz3"});
             CHECK(sc.system.dofs.units == std::vector<std::string>(4, "rad"));

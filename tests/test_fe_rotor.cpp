@@ -511,7 +511,7 @@ TEST_CASE("fe rotor: Friswell et al. Examples 5.9.1 and 5.9.2 (published natural
 
 TEST_CASE("fe rotor: the scene data/friswell_5_9_1.toml reproduces Example 5.9.1", "[fe_rotor][validation][published]") {
     const Scene sc = load_scene(std::string(GYROKIT_DATA_DIR) + "/friswell_5_9_1.toml");
-    REQUIRE(sc.model_type == "fe_rotor");
+    REQUIRE(sc.model_type() == "fe_rotor");
     CHECK(sc.dofs() == 28);
     REQUIRE(sc.speeds);
     CHECK(sc.speed_points().back() == Approx(4000 * pi / 30).epsilon(1e-15));

@@ -517,9 +517,9 @@ TEST_CASE("fluid: scenes of Tabelle 2 and bad input", "[fluid]") {
     for (int N = 1; N <= 4; ++N) {
         CAPTURE(N);
         const Scene s = load_scene(std::string(GYROKIT_DATA_DIR) + "/fluid_N" + std::to_string(N) + ".toml");
-        REQUIRE(s.fluid);
+        REQUIRE(s.fluid());
         CHECK(s.system.size() == 14);
-        CHECK(s.fluid->a == table_case(N).a);
+        CHECK(s.fluid()->a == table_case(N).a);
     }
     const std::string path = "fluid_bad_test.toml";
     const auto bad = [&](const std::string& extra, const std::string& needle) {

@@ -72,8 +72,8 @@ TEST_CASE("material = steel equals its E, poisson and density, a section's and t
         "[model]\ntype = \"fe_rotor\"\nmaterial = \"steel\"\n[[model.shaft]]\nlength = 1.2\nelements = 12\n"
         "outer_diameter = 0.06\nmaterial = \"aluminium\"\n[[model.support]]\nz = 0.0\n[[model.support]]\nz = 1.2\n",
         "alu.toml");
-    CHECK(alu.fe_rotor->elements.front().density == 2700.0);
-    CHECK(alu.fe_rotor->elements.front().youngs_modulus == 68.9e9);
+    CHECK(alu.fe_rotor()->elements.front().density == 2700.0);
+    CHECK(alu.fe_rotor()->elements.front().youngs_modulus == 68.9e9);
 }
 
 TEST_CASE("a disk from outer_diameter, inner_diameter, width and material equals its m, Id, Ip", "[materials]") {
@@ -88,7 +88,7 @@ TEST_CASE("a disk from outer_diameter, inner_diameter, width and material equals
     // The disk's own material.
     const Scene alu = parse_scene(
         rotor("material = \"steel\"", "outer_diameter = 0.28\nwidth = 0.07\nmaterial = \"aluminium\""), "a.toml");
-    CHECK(alu.fe_rotor->disks.front().mass == Approx(disk_inertia(0.28, 0.0, 0.07, 2700.0).mass).epsilon(1e-15));
+    CHECK(alu.fe_rotor()->disks.front().mass == Approx(disk_inertia(0.28, 0.0, 0.07, 2700.0).mass).epsilon(1e-15));
 }
 
 TEST_CASE("[speeds] in rpm or Hz are converted to rad/s", "[materials][speeds]") {

@@ -36,7 +36,7 @@ TEST_CASE("model summary of the FE rotor: translating mass = shaft + disks, rigi
     // The disks of 280 mm diameter and 70 mm width come back from their m, Id, Ip (given to
     // five digits). The width comes from w^2 = 12 Id/m - 3 r^2 = 0.0636 - 0.0588, a difference
     // that turns the data's 1e-4 rounding into about 1 % of w.
-    const Figure f = fe_rotor_figure(*sc.fe_rotor, sc.system, sc.title);
+    const Figure f = fe_rotor_figure(*sc.fe_rotor(), sc.system, sc.title);
     for (const auto& s : f.panels.front().series)
         if (s.label.rfind("disks", 0) == 0) {
             CHECK(s.y[1] == Approx(0.14).epsilon(2e-4));

@@ -215,7 +215,7 @@ TEST_CASE("request: the fluid study checks its model and fill levels in the libr
     REQUIRE(one.critical);
     CHECK_FALSE(one.sweep);
     CHECK(one.unit.name == "rad/s");
-    CHECK(one.critical->moving_undamped == fluid_critical_speeds(build_fluid_rotor(*n2.fluid)).moving_undamped);
+    CHECK(one.critical->moving_undamped == fluid_critical_speeds(build_fluid_rotor(*n2.fluid())).moving_undamped);
     FluidRequest rq;
     rq.unit = "rpm";
     rq.fill = std::vector<double>{0.1, 0.3};
@@ -233,7 +233,7 @@ TEST_CASE("request: the fluid study checks its model and fill levels in the libr
     };
     rq.fill = std::vector<double>{0.0};
     CHECK(message(n2, rq).rfind("fill = R0 = 0: allowed: 0 < R0 < R", 0) == 0);
-    rq.fill = std::vector<double>{n2.fluid->R};
+    rq.fill = std::vector<double>{n2.fluid()->R};
     CHECK(message(n2, rq).find("allowed: 0 < R0 < R") != std::string::npos);
     const Scene centrifuge = load_scene(std::string(GYROKIT_DATA_DIR) + "/centrifuge.toml");
     CHECK(message(centrifuge, {}).find("needs type = \"fluid_rotor\"") != std::string::npos);

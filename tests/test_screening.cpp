@@ -90,7 +90,6 @@ Sweep rigid_rotor_sweep(double margin, bool forward_only) {
         const double kt = it == o.end() ? 800.0 : it->second;
         if (!(kt > 0)) throw InputError("model.kt must be > 0");
         Scene sc;
-        sc.model_type = "matrices";
         sc.system.M = It * Eigen::Matrix2d::Identity();
         sc.system.K = kt * Eigen::Matrix2d::Identity();
         sc.system.G = Ip * J;

@@ -177,7 +177,7 @@ TEST_CASE("a sweep on a scene built in code (its written text) judges as the swe
     // The three-disk rotor as a RotorModel read from its file and written back: the sweep file
     // names no scene, read_sweep takes the text, and every design's row equals the file's.
     const std::string sweep_file = std::string(GYROKIT_DATA_DIR) + "/screen_three_disk.toml";
-    const Scene built = rotor_scene(*load_scene(kScene).rotor_model);
+    const Scene built = rotor_scene(*load_scene(kScene).rotor_model());
     const Sweep by_file = read_sweep(sweep_file);
     const Sweep by_text = read_sweep(sweep_file, scene_text(built), "three-disk rotor built in code");
     for (const std::size_t i : {std::size_t{0}, std::size_t{8}}) {

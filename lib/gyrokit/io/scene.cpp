@@ -18,6 +18,8 @@
 #include <functional>
 #include <map>
 #include <set>
+#include <type_traits>
+#include <variant>
 #include <sstream>
 #include <toml++/toml.h>
 
@@ -121,18 +123,27 @@ const std::map<std::string, ModelReader>& model_readers() {
     static const std::map<std::string, ModelReader> readers = {
         {"fe_rotor",
          [](const TomlKeys& k, const fs::path& dir, Scene& sc) {
-             sc.rotor_model = rotor_model_from(k, dir.string());
-             BuiltRotor built = build(*sc.rotor_model);
+             RotorModel model = rotor_model_from(k, dir.string());
+             BuiltRotor built = build(model);
              sc.system = std::move(built.system);
-             sc.fe_rotor = std::move(built.rotor);
+             sc.model = FeRotorScene{std::move(model), std::move(built.rotor)};
          }},
         {"fluid_rotor",
          [](const TomlKeys& k, const fs::path&, Scene& sc) {
-             sc.fluid = fluid_rotor_from(k);
-             sc.system = make_system(build_fluid_rotor(*sc.fluid));
+             FluidRotorParameters p = fluid_rotor_from(k);
+             sc.system = make_system(build_fluid_rotor(p));
+             sc.model = FluidRotorScene{std::move(p), {}};
          }},
-        {"gyrostat", [](const TomlKeys& k, const fs::path&, Scene& sc) { sc.system = gyrostat_from(k); }},
-        {"matrices", [](const TomlKeys& k, const fs::path& dir, Scene& sc) { sc.system = matrices_from(k, dir); }},
+        {"gyrostat",
+         [](const TomlKeys& k, const fs::path&, Scene& sc) {
+             sc.system = gyrostat_from(k);
+             sc.model = GyrostatScene{};
+         }},
+        {"matrices",
+         [](const TomlKeys& k, const fs::path& dir, Scene& sc) {
+             sc.system = matrices_from(k, dir);
+             sc.model = MatricesScene{};
+         }},
     };
     return readers;
 }
@@ -297,11 +308,16 @@ Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
     const std::string types = fmt::format("{}", fmt::join(model_types(), ", "));
     if (!model) throw InputError(path + ": table [model] is missing; required: [model] with type = one of " + types);
     TomlKeys mk(path, "model", *model);
-    sc.model_type = mk.choice("type", "", model_types());
-    if (sc.model_type.empty()) throw InputError(mk.where("type") + " is missing; allowed: " + types);
-    model_readers().at(sc.model_type)(mk, dir, sc);
+    const std::string type = mk.choice("type", "", model_types());
+    if (type.empty()) throw InputError(mk.where("type") + " is missing; allowed: " + types);
+    model_readers().at(type)(mk, dir, sc);
     sc.system.validate(path);
-    if (!sc.rotor_model) sc.document = portable_document(root, dir);
+    // The models written back as read keep their document.
+    std::visit(
+        [&](auto& m) {
+            if constexpr (!std::is_same_v<std::decay_t<decltype(m)>, FeRotorScene>) m.document = portable_document(root, dir);
+        },
+        sc.model);
 
     if (const toml::table* sp = root.get_as<toml::table>("speeds")) {
         TomlKeys k(path, "speeds", *sp);
@@ -391,6 +407,27 @@ void validate_settings(const Scene& sc) {
                                      sc.path, sc.target_order));
     if (sc.f_cut && !(std::isfinite(*sc.f_cut) && *sc.f_cut > 0))
         throw InputError(fmt::format("{}: f_cut = {}; allowed: a finite frequency > 0 (rad/s)", sc.path, *sc.f_cut));
+}
+
+std::string Scene::model_type() const {
+    static const char* const names[] = {"matrices", "gyrostat", "fluid_rotor", "fe_rotor"};
+    static_assert(std::variant_size_v<SceneModel> == 4, "a name for each model type");
+    return names[model.index()];
+}
+
+const RotorModel* Scene::rotor_model() const {
+    const auto* fe = std::get_if<FeRotorScene>(&model);
+    return fe ? &fe->model : nullptr;
+}
+
+const FeRotor* Scene::fe_rotor() const {
+    const auto* fe = std::get_if<FeRotorScene>(&model);
+    return fe ? &fe->mesh : nullptr;
+}
+
+const FluidRotorParameters* Scene::fluid() const {
+    const auto* f = std::get_if<FluidRotorScene>(&model);
+    return f ? &f->parameters : nullptr;
 }
 
 std::vector<double> Scene::speed_points() const {

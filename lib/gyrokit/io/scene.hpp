@@ -12,15 +12,36 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace gyrokit {
 
+// The model a scene describes, as described (its assembled matrices are Scene::system). The
+// models without a writer of their own keep their document: the [model] as read, overrides
+// applied and relative file names made absolute, so that scene_text writes it back from anywhere.
+struct MatricesScene {
+    std::string document;
+};
+struct GyrostatScene {
+    std::string document;
+};
+struct FluidRotorScene {
+    FluidRotorParameters parameters;
+    std::string document;
+};
+struct FeRotorScene {
+    RotorModel model;   // the rotor as described (written back by scene_text)
+    FeRotor mesh;       // and its mesh (speed-dependent bearings in Scene::system)
+};
+// A system built in code is a MatricesScene (the default).
+using SceneModel = std::variant<MatricesScene, GyrostatScene, FluidRotorScene, FeRotorScene>;
+
 struct Scene {
     std::string path;                  // the file it was read from
     std::string title;
-    std::string model_type;            // "gyrostat" | "matrices" | "fluid_rotor" | "fe_rotor"
-    GyroscopicSystem system;           // the model, validated
+    SceneModel model;                  // what the [model] describes
+    GyroscopicSystem system;           // the model's matrices, validated
     SolverKind solver = SolverKind::Auto;   // [analysis] solver: auto | dense | sparse
     std::optional<double> target;      // [analysis] target: frequency (rad/s) the sparse search centres on
     double target_order = 0.0;         // [analysis] target_order: the centre moves as target + order * speed
@@ -31,19 +52,19 @@ struct Scene {
     SpeedUnit speed_unit;
     int modes = kModesInRange;         // [analysis] modes (0 = all; absent: those in range)
     std::vector<int> harmonics{1};     // [analysis] harmonics
-    std::optional<FluidRotorParameters> fluid;   // set for [model] type = "fluid_rotor"
-    std::optional<RotorModel> rotor_model;   // set for [model] type = "fe_rotor": the rotor as described
-    std::optional<FeRotor> fe_rotor;   // and its mesh (speed-dependent bearings in system)
-    // The document of any other model as read, overrides applied and relative file names
-    // made absolute, so that scene_text can write it back from anywhere.
-    std::string document;
     // Every file read to build it (absolute paths: the scene file, the matrices and
     // tables it names): what no output of a run on it may overwrite.
     std::vector<std::string> inputs;
 
     int dofs() const { return system.size(); }
+    // The [model] type: "matrices" | "gyrostat" | "fluid_rotor" | "fe_rotor".
+    std::string model_type() const;
+    // The model's description where it is of that type, else nullptr.
+    const RotorModel* rotor_model() const;
+    const FeRotor* fe_rotor() const;
+    const FluidRotorParameters* fluid() const;
     // The unit the scene states lengths in (an FE rotor's length_unit; else metres).
-    LengthUnit length_unit() const { return rotor_model ? LengthUnit::parse(rotor_model->length_unit) : LengthUnit{}; }
+    LengthUnit length_unit() const { return rotor_model() ? LengthUnit::parse(rotor_model()->length_unit) : LengthUnit{}; }
     // The [speeds] grid in rad/s (empty without [speeds]): the points in the scene's
     // unit, each converted (speed_unit), so that a range written in rpm is the same
     // grid however it reaches a study.

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
+#include <type_traits>
+#include <variant>
 
 namespace gyrokit {
 
@@ -217,22 +219,25 @@ Scene rotor_scene(const RotorModel& model, const std::string& title) {
     Scene sc;
     sc.path = title.empty() ? "fe_rotor" : title;
     sc.title = title;
-    sc.model_type = "fe_rotor";
     BuiltRotor built = build(model);
     built.system.validate(sc.path);
     sc.system = std::move(built.system);
-    sc.fe_rotor = std::move(built.rotor);
-    sc.rotor_model = model;
+    sc.model = FeRotorScene{model, std::move(built.rotor)};
     return sc;
 }
 
 std::string scene_text(const Scene& sc) {
-    if (!sc.rotor_model && !sc.document.empty()) return sc.document;   // read from a document: as read
-    if (!sc.rotor_model)
+    const std::string document =
+        std::visit([](const auto& m) -> std::string {
+            if constexpr (std::is_same_v<std::decay_t<decltype(m)>, FeRotorScene>) return {};
+            else return m.document;
+        }, sc.model);
+    if (!document.empty()) return document;   // read from a document: as read
+    if (!sc.rotor_model())
         throw InputError(fmt::format("{}: a [model] of type {} cannot be written; allowed: an fe_rotor model "
                                      "(read from a scene or built as a RotorModel), or any model read from a scene",
-                                     sc.path, sc.model_type.empty() ? "(none)" : sc.model_type));
-    const RotorModel& m = *sc.rotor_model;
+                                     sc.path, sc.model_type()));
+    const RotorModel& m = *sc.rotor_model();
     Writer w;
     if (!sc.title.empty()) w.key("title", sc.title);
     w.table("[model]");

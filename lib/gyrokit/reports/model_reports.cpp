@@ -129,7 +129,7 @@ Table model_summary(const Scene& sc) {
     const auto add = [&](const std::string& q, const Cell& v, const std::string& unit = "") {
         add_row(t, length, q, v, unit);
     };
-    add("type", sc.model_type);
+    add("type", sc.model_type());
     add("dofs", ll(s.size()));
     if (!s.dofs.units.empty()) {
         std::vector<std::string> seen;
@@ -159,8 +159,8 @@ Table model_summary(const Scene& sc) {
     std::string damping;
     for (const auto& n : s.damping_names()) damping += (damping.empty() ? "" : ", ") + n;
     add("damping", damping.empty() ? std::string("none") : damping);
-    if (sc.rotor_model) {   // the shaft's own damping as the scene gives it
-        const ShaftDamping& d = sc.rotor_model->shaft_damping;
+    if (sc.rotor_model()) {   // the shaft's own damping as the scene gives it
+        const ShaftDamping& d = sc.rotor_model()->shaft_damping;
         if (d.alpha > 0.0) add("shaft_damping_alpha", d.alpha, "1/s");
         if (d.beta > 0.0) add("shaft_damping_beta", d.beta, "s");
         if (!d.modal.empty()) {
@@ -178,14 +178,14 @@ Table model_summary(const Scene& sc) {
     } else {
         add("rigid_body_eigenvalues_at_rest", std::string("not computed (sparse model)"));
     }
-    if (sc.fe_rotor) add_fe_rotor_rows(t, *sc.fe_rotor, s, length);
+    if (sc.fe_rotor()) add_fe_rotor_rows(t, *sc.fe_rotor(), s, length);
     return t;
 }
 
 AxisMarks axis_marks(const Scene& scene) {
     AxisMarks m;
-    if (!scene.fe_rotor || scene.system.node_z.empty()) return m;
-    const FeRotor& r = *scene.fe_rotor;
+    if (!scene.fe_rotor() || scene.system.node_z.empty()) return m;
+    const FeRotor& r = *scene.fe_rotor();
     const std::vector<double>& z = scene.system.node_z;
     const auto at = [&](int node) { return z.at(static_cast<std::size_t>(node)); };
     for (const auto& d : r.disks) m.disks.push_back(at(d.node));

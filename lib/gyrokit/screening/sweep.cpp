@@ -74,7 +74,7 @@ void check_parameter(const Sweep& s, const SweepParameter& p) {
     // A key the model reads but does not use (c_T of a rigid shaft): every design would be the same.
     // Compared at every operating speed and up to the stability criterion's reach, with the
     // scene's settings. (A fluid rotor's fill enters its own analysis, not the matrices: not judged here.)
-    if (models.size() >= 2 && !models.front().second.fluid) {
+    if (models.size() >= 2 && !models.front().second.fluid()) {
         std::vector<double> speeds = s.operating_speeds();
         if (s.criteria.stability) speeds.push_back(s.criteria.stability->up_to);
         const Scene& a = models.front().second;

@@ -10,12 +10,12 @@
 namespace gyrokit {
 
 FluidStudy fluid_study(const Scene& scene, const FluidRequest& rq) {
-    if (!scene.fluid)
+    if (!scene.fluid())
         throw InputError(fmt::format("{}: [model] type = '{}'; the fluid analysis needs type = \"fluid_rotor\"",
-                                     scene.path, scene.model_type));
+                                     scene.path, scene.model_type()));
     FluidStudy st;
     st.unit = resolve_unit(scene, rq.unit);
-    const FluidRotorParameters& p = *scene.fluid;
+    const FluidRotorParameters& p = *scene.fluid();
     st.rotor = build_fluid_rotor(p);
     if (!rq.fill) {
         st.critical = fluid_critical_speeds(st.rotor);

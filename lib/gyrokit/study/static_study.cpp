@@ -7,9 +7,9 @@
 namespace gyrokit {
 
 StaticResult static_study(const Scene& scene, StaticOptions options) {
-    if (!scene.fe_rotor)
+    if (!scene.fe_rotor())
         throw InputError(fmt::format("{}: static analysis of a [model] of type {}; allowed: an fe_rotor model",
-                                     scene.path, scene.model_type));
+                                     scene.path, scene.model_type()));
     const GyroscopicSystem& sys = scene.system;
     for (const BearingTable& b : sys.bearings) {
         if (b.pedestal_x >= 0 || sys.dofs.on_pedestal(b.dof_x))
@@ -18,7 +18,7 @@ StaticResult static_study(const Scene& scene, StaticOptions options) {
                                          scene.path, b.name));
         options.rigid.push_back({sys.dofs.nodes[static_cast<std::size_t>(b.dof_x)], b.label()});
     }
-    return fe_static(*scene.fe_rotor, options);
+    return fe_static(*scene.fe_rotor(), options);
 }
 
 }  // namespace gyrokit
