@@ -26,7 +26,7 @@ using Verdicts = std::map<std::string, std::vector<int>>;
 
 void check_table(const std::string& name, const Verdicts& expected) {
     const BalancerScene sc = load_balancer_scene(scene(name));
-    const auto tab = stability_table(sc.params);
+    const auto tab = state_stability_ranges(sc.params);
     REQUIRE(tab.size() == 4 * expected.size());
     for (std::size_t k = 0; k < tab.size(); ++k) {
         const auto& e = tab[k];
@@ -90,7 +90,7 @@ TEST_CASE("Tabelle 3: the printed rows (pi, 0) and (0, pi) are interchanged", "[
     const BalancerScene sc = load_balancer_scene(scene("table3"));
     const auto ranges = speed_intervals(sc.params);
     int disagreements = 0;
-    for (const auto& e : stability_table(sc.params)) {
+    for (const auto& e : state_stability_ranges(sc.params)) {
         CAPTURE(e);
         std::size_t idx = 0;
         while (ranges[idx].name != e.range.name) ++idx;
@@ -247,7 +247,7 @@ TEST_CASE("Scene errors are one-line InputErrors", "[autobalancer]") {
 
 TEST_CASE("Range verdicts: Tabelle 1 balances above omega_x and above omega_y, Tabelle 2 nowhere",
           "[autobalancer]") {
-    const auto v1 = range_verdicts(stability_table(load_balancer_scene(scene("table1")).params));
+    const auto v1 = range_verdicts(state_stability_ranges(load_balancer_scene(scene("table1")).params));
     REQUIRE(v1.size() == 4);
     const std::vector<std::vector<std::string>> comp{{}, {"43", "44"}, {}, {"43", "44"}}, other{{"45"}, {}, {"45"}, {}};
     for (std::size_t k = 0; k < 4; ++k) {
@@ -256,7 +256,7 @@ TEST_CASE("Range verdicts: Tabelle 1 balances above omega_x and above omega_y, T
         CHECK(v1[k].other == other[k]);
         CHECK(v1[k].disputed.empty());
     }
-    for (const auto& v : range_verdicts(stability_table(load_balancer_scene(scene("table2")).params)))
+    for (const auto& v : range_verdicts(state_stability_ranges(load_balancer_scene(scene("table2")).params)))
         CHECK(v.compensating.empty());
     // A state whose criterion and eigenvalues disagree is neither stable nor unstable.
     StateStability a, b;

@@ -312,7 +312,7 @@ TEST_CASE("request: the balancer and Sommerfeld studies check their runs in the 
     const BalancerScene table1 = load_balancer_scene(std::string(GYROKIT_DATA_DIR) + "/balancer_table1.toml");
     const BalancerStudy states = balancer_study(table1, {});
     CHECK(states.tables.size() == 2);
-    CHECK(states.verdicts.size() == range_verdicts(stability_table(table1.params)).size());
+    CHECK(states.verdicts.size() == range_verdicts(state_stability_ranges(table1.params)).size());
     const auto refused = [](auto study, const std::string& start) {
         try {
             study();

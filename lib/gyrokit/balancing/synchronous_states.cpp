@@ -168,7 +168,7 @@ bool stable_by_eigenvalues(const std::vector<std::complex<double>>& ev) {
     return !ev.empty() && mr < -1e-10 * mx;
 }
 
-std::vector<StateStability> stability_table(const AutobalancerParameters& p) {
+std::vector<StateStability> state_stability_ranges(const AutobalancerParameters& p) {
     std::vector<StateStability> out;
     const auto ranges = speed_intervals(p);
     for (const auto& s : synchronous_states(p))

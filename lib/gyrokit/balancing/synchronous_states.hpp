@@ -77,7 +77,7 @@ struct StateStability {
 };
 
 // One entry per state and speed range (the paper's Tabellen 1-3), undamped model.
-std::vector<StateStability> stability_table(const AutobalancerParameters& p);
+std::vector<StateStability> state_stability_ranges(const AutobalancerParameters& p);
 
 // Per speed range, which synchronous states are stable (criterion (52) and the
 // eigenvalues agree): the engineer's question is whether a compensating one is.

@@ -13,7 +13,7 @@
 
 namespace gyrokit {
 
-// One row per state and speed range (stability_table); the unbounded top range ends at "inf".
+// One row per state and speed range (state_stability_ranges); the unbounded top range ends at "inf".
 Table synchronous_states_table(const AutobalancerParameters& p, const std::vector<StateStability>& states);
 // Per speed range, whether a compensating state is stable and which states are (range_verdicts).
 Table balancing_ranges_table(const std::vector<RangeVerdict>& verdicts);

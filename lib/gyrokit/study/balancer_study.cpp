@@ -74,7 +74,7 @@ BalancerStudy balancer_plan(const BalancerScene& sc, const BalancerRequest& rq) 
 BalancerStudy balancer_study(const BalancerScene& sc, const BalancerRequest& rq, std::function<void(double)> progress) {
     BalancerStudy st = balancer_plan(sc, rq);
     if (!rq.simulate) {
-        st.stability = stability_table(st.params);
+        st.stability = state_stability_ranges(st.params);
         st.verdicts = range_verdicts(st.stability);
         st.tables = {synchronous_states_table(st.params, st.stability), balancing_ranges_table(st.verdicts)};
         return st;
