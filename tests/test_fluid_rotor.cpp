@@ -4,7 +4,7 @@
 // problem, asymptotic limits), critical speeds against the roots of Delta(w) and
 // the coupled gyroscopic system, Tabelle 2 of the paper, extremes, bad input.
 #include <gyrokit/analysis/fluid_critical_speeds.hpp>
-#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 #include <gyrokit/io/scene.hpp>

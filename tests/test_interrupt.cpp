@@ -1,7 +1,7 @@
 // A requested interrupt stops the long computations at their next safe point with
 // gyrokit::Interrupted (Python raises it as KeyboardInterrupt), in threads and in
 // worker processes alike, and leaves nothing behind: the next call runs normally.
-#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/analysis/spectrum_solver.hpp>
 #include <gyrokit/balancing/simulation.hpp>
 #include <gyrokit/core/interrupt.hpp>

@@ -5,7 +5,7 @@
 // and its 8 coefficients by central differences; and the oil-whip threshold of
 // a point mass on the bearing against the exact 2-DOF stability boundary.
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
-#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/io/scene.hpp>

@@ -7,7 +7,7 @@
 #include <gyrokit/study/static_study.hpp>
 #include <fmt/format.h>
 #include <gyrokit/models/fe_rotor.hpp>
-#include <gyrokit/models/fe_statics.hpp>
+#include <gyrokit/analysis/static_deflection.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/scene.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
-#include <gyrokit/models/fe_statics.hpp>
+#include <gyrokit/models/gravity_loads.hpp>
 #include <gyrokit/models/journal_bearing.hpp>
 
 #include "test_helpers.hpp"

@@ -1,7 +1,7 @@
 // Textbook rotors with closed forms: the Jeffcott rotor (unbalance response,
 // stability threshold of rotating internal damping) and a rigid rotor on
 // isotropic tilt springs (Campbell diagram and critical speed).
-#include <gyrokit/analysis/assignment.hpp>
+#include <gyrokit/numerics/assignment.hpp>
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>

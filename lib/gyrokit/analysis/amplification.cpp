@@ -1,7 +1,7 @@
 // API 684 amplification factors of critical speeds: half-power on the unbalance
 // response where it shows the peak, else 1/(2 zeta).
 #include <gyrokit/analysis/critical_speeds.hpp>
-#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/core/error.hpp>
 

@@ -1,7 +1,7 @@
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/campbell.hpp>
 
-#include <gyrokit/analysis/assignment.hpp>
+#include <gyrokit/numerics/assignment.hpp>
 #include <gyrokit/analysis/continuation.hpp>
 #include <gyrokit/core/error.hpp>
 

@@ -1,6 +1,6 @@
 #include <gyrokit/analysis/critical_speeds.hpp>
 
-#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/core/error.hpp>
 #include "gyrokit/eig/lapack.hpp"
 

@@ -2,7 +2,7 @@
 #include <gyrokit/analysis/pervasive_damping.hpp>
 
 #include <gyrokit/analysis/campbell.hpp>
-#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 

@@ -1,7 +1,7 @@
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 
-#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/core/error.hpp>
 

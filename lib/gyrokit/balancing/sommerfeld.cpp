@@ -1,6 +1,6 @@
 #include <gyrokit/balancing/sommerfeld.hpp>
 
-#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #include <gyrokit/models/journal_bearing.hpp>
 
-#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/core/constants.hpp>
 #include <gyrokit/models/reynolds_bearing.hpp>
 #include <gyrokit/core/error.hpp>

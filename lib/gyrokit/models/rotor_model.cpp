@@ -2,7 +2,7 @@
 
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/length_unit.hpp>
-#include <gyrokit/models/fe_statics.hpp>
+#include <gyrokit/models/gravity_loads.hpp>
 #include <gyrokit/models/materials.hpp>
 
 #include <Eigen/Eigenvalues>

@@ -6,7 +6,7 @@
 #include <gyrokit/core/length_unit.hpp>
 #include <gyrokit/io/plot.hpp>
 #include <gyrokit/io/table.hpp>
-#include <gyrokit/models/fe_statics.hpp>
+#include <gyrokit/analysis/static_deflection.hpp>
 
 #include <string>
 

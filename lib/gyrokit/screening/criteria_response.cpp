@@ -6,7 +6,7 @@
 #include <gyrokit/analysis/energy_bound.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
 #include <gyrokit/analysis/probe.hpp>
-#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>

@@ -11,7 +11,7 @@
 #include <gyrokit/analysis/pervasive_damping.hpp>
 #include <gyrokit/analysis/solver_choice.hpp>
 #include <gyrokit/analysis/transient.hpp>
-#include <gyrokit/models/fe_statics.hpp>
+#include <gyrokit/analysis/static_deflection.hpp>
 
 #include <string>
 #include <vector>

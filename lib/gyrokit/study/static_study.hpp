@@ -5,7 +5,7 @@
 #pragma once
 
 #include <gyrokit/io/scene.hpp>
-#include <gyrokit/models/fe_statics.hpp>
+#include <gyrokit/analysis/static_deflection.hpp>
 
 namespace gyrokit {
 

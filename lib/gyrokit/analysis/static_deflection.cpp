@@ -1,6 +1,7 @@
-#include <gyrokit/models/fe_statics.hpp>
+#include <gyrokit/analysis/static_deflection.hpp>
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/numerics/sparse_block.hpp>
 
 #include <Eigen/SparseLU>
 #include <algorithm>
@@ -14,21 +15,6 @@ namespace gyrokit {
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
-
-// The block of A with the given rows and columns.
-SpMat block(const SpMat& A, const std::vector<int>& rows, const std::vector<int>& cols) {
-    std::vector<int> row_of(static_cast<std::size_t>(A.rows()), -1), col_of(static_cast<std::size_t>(A.cols()), -1);
-    for (std::size_t k = 0; k < rows.size(); ++k) row_of[rows[k]] = static_cast<int>(k);
-    for (std::size_t k = 0; k < cols.size(); ++k) col_of[cols[k]] = static_cast<int>(k);
-    std::vector<Eigen::Triplet<double>> t;
-    for (int c = 0; c < A.outerSize(); ++c)
-        for (SpMat::InnerIterator it(A, c); it; ++it)
-            if (row_of[it.row()] >= 0 && col_of[it.col()] >= 0)
-                t.emplace_back(row_of[it.row()], col_of[it.col()], it.value());
-    SpMat B(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
-    B.setFromTriplets(t.begin(), t.end());
-    return B;
-}
 
 // The lateral DOFs of the rotor without its supports: every node's x, y, tx, ty, then the pedestals'.
 struct FreeBody {
@@ -135,7 +121,7 @@ Eigen::VectorXd solve_displacements(const FreeBody& b, const Holds& h, const Eig
     }
     Eigen::VectorXd u = Eigen::VectorXd::Zero(b.m.size());
     if (!free.empty()) {
-        const SpMat Kff = block(b.m.K, free, free);
+        const SpMat Kff = submatrix(b.m.K, free, free);
         const Eigen::VectorXd ff = f(free);
         Eigen::SparseLU<SpMat> lu;
         lu.compute(Kff);
@@ -168,52 +154,6 @@ Eigen::VectorXd solve_displacements(const FreeBody& b, const Holds& h, const Eig
 }
 
 }  // namespace
-
-std::vector<double> fe_gravity_reactions(const FeRotor& r, const std::vector<int>& nodes, double g) {
-    FeRotor lateral = r;
-    lateral.motion = FeMotion::lateral;   // the weight moves no axial or torsional DOF
-    const FeRotorMatrices m = lateral.assemble();
-    // The vertical plane's DOFs; the held ones (y at `nodes`) and the free ones.
-    std::vector<int> held, free, plane_of(m.size(), -1);
-    for (const int node : nodes) {
-        const int i = m.dofs.find(node, DofMotion::y);
-        if (i < 0)
-            throw InputError(fmt::format("fe rotor: gravity reaction at node {}: its y is held by a support; allowed: "
-                                         "a node whose y is free",
-                                         node));
-        if (std::find(held.begin(), held.end(), i) == held.end()) held.push_back(i);
-    }
-    for (int i = 0; i < m.size(); ++i) {
-        if (m.dofs.in_vertical_plane(i) && std::find(held.begin(), held.end(), i) == held.end()) free.push_back(i);
-    }
-    // Consistent weight: f = -g M r, r = 1 on every vertical translation (a rigid lift).
-    Eigen::VectorXd lift = Eigen::VectorXd::Zero(m.size());
-    for (int i = 0; i < m.size(); ++i)
-        if (m.dofs.vertical_translation(i)) lift(i) = 1.0;
-    const Eigen::VectorXd weight = -g * (m.M * lift);
-    const auto sub = [&](const std::vector<int>& rows, const std::vector<int>& cols) { return block(m.K, rows, cols); };
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(free.size()));
-    if (!free.empty()) {
-        Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-        const Eigen::SparseMatrix<double> Kff = sub(free, free);
-        lu.compute(Kff);
-        const Eigen::VectorXd f = weight(free);
-        if (lu.info() == Eigen::Success) u = lu.solve(f);
-        // A rotor free to fall or tip in the vertical plane has no static solution.
-        const double residual = lu.info() == Eigen::Success ? (Kff * u - f).norm() : INFINITY;
-        if (!(residual <= 1e-8 * std::max(f.norm(), 1e-300)) || !u.allFinite())
-            throw InputError("fe rotor: the static bearing loads need the rotor held in the vertical plane by its "
-                             "bearings and supports; it is free to fall or tip there; allowed: load = a number (N) "
-                             "for each fluid-film bearing, or more bearings or supports");
-    }
-    const Eigen::VectorXd R = sub(held, free) * u - weight(held);
-    std::vector<double> out;
-    for (const int node : nodes) {
-        const auto at = std::find(held.begin(), held.end(), m.dofs.find(node, DofMotion::y));
-        out.push_back(R(at - held.begin()));
-    }
-    return out;
-}
 
 StaticResult fe_static(const FeRotor& rotor, const StaticOptions& o) {
     if (!rotor.has_lateral())

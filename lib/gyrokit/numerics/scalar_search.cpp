@@ -1,4 +1,4 @@
-#include <gyrokit/analysis/scalar_search.hpp>
+#include <gyrokit/numerics/scalar_search.hpp>
 
 #include <gyrokit/core/error.hpp>
 

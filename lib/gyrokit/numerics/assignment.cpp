@@ -1,4 +1,4 @@
-#include <gyrokit/analysis/assignment.hpp>
+#include <gyrokit/numerics/assignment.hpp>
 
 #include <gyrokit/core/error.hpp>
 

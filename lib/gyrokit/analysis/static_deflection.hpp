@@ -9,6 +9,7 @@
 #pragma once
 
 #include <gyrokit/models/fe_rotor.hpp>
+#include <gyrokit/models/gravity_loads.hpp>
 
 #include <string>
 #include <vector>
@@ -30,9 +31,6 @@ struct RigidHold {
     int node = 0;
     std::string name;                 // its reaction's name ("" : "rigid <index>")
 };
-
-// Standard gravity (m/s^2), the static load unless asked otherwise.
-constexpr double kStandardGravity = 9.80665;
 
 struct StaticOptions {
     double gravity = kStandardGravity;       // m/s^2 along -y (0: no weight)
@@ -86,13 +84,5 @@ struct StaticResult {
 // InputError if the rotor is not held in both planes (free to fall or tip), if a node
 // is out of range, or if its DOFs have no lateral motion.
 StaticResult fe_static(const FeRotor& rotor, const StaticOptions& options);
-
-// Static bearing loads from the rotor's weight: the vertical reactions (N, > 0 upwards)
-// at `nodes` when the rotor rests there on rigid supports (y held) besides its other
-// bearings and supports, under gravity g along -y. The vertical plane alone (y,
-// theta_x and the pedestals' py; constant bearings' kyy, no cross-coupling), with
-// consistent loads (the mass matrix times the rigid lift), so a statically determinate
-// rotor gets its exact reactions. InputError if the rotor is not held in that plane.
-std::vector<double> fe_gravity_reactions(const FeRotor& r, const std::vector<int>& nodes, double g = kStandardGravity);
 
 }  // namespace gyrokit
