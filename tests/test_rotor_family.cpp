@@ -1,5 +1,5 @@
 // The fast path on rotors as engineers write them: a seeded subset of the
-// random FE rotor family (apps/rotor_family.hpp; the whole family, with timed
+// random FE rotor family (apps/bench/rotor_family.hpp; the whole family, with timed
 // costs, is gyrokit-bench-family). Each rotor on the default dense path: a few
 // full solves (the solver's own count), no ambiguous step, every 1x crossing
 // inside the range found in its bracket of an independent count on a grid of

@@ -8,7 +8,7 @@ time per design, ratio to the CLI on 2 jobs, and whether every row (verdict, rea
 equals the CLI's to the last printed digit (every run, the Python module included: the same numbers).
 It exits 1 if one does not.
 
-    PYTHONPATH=build/python /usr/bin/python3 apps/bench_screen_family.py --cli build/apps/gyrokit [--quick]
+    PYTHONPATH=build/python /usr/bin/python3 apps/bench/bench_screen_family.py --cli build/apps/gyrokit [--quick]
 """
 import argparse
 import csv
@@ -58,7 +58,7 @@ def same(a, b, rel=0.0):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--cli", required=True)
-    ap.add_argument("--data", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data"))
+    ap.add_argument("--data", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data"))
     ap.add_argument("--quick", action="store_true", help="the CLI on 2 jobs and gk.screen with threads only")
     a = ap.parse_args()
     sweep = os.path.join(a.data, "screen_three_disk.toml")

@@ -15,7 +15,7 @@ verified: must be 0), the pairs gyrokit vouches for (error bound <= 1e-6 of the 
 relative to its modulus, over the modes below 10 times the top speed (the program exits 1 where
 that exceeds 1e-6 or a pair is not verified).
 
-    PYTHONPATH=build/python /usr/bin/python3 apps/bench_dense_python.py [--quick] [--repeat 2]
+    PYTHONPATH=build/python /usr/bin/python3 apps/bench/bench_dense_python.py [--quick] [--repeat 2]
 """
 import argparse
 import os
@@ -28,7 +28,7 @@ import numpy as np
 import gyrokit as gk
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-DATA = os.path.join(HERE, "..", "data")
+DATA = os.path.join(HERE, "..", "..", "data")
 
 
 def refined_scene(factor, directory):

@@ -3,7 +3,7 @@ three-disk rotor (data/three_disk_rotor.toml) with its defaults, best of `--runs
 command vouches for its numbers, and the time as a ratio to `gyrokit campbell` (the core job) run in the
 same sitting.
 
-    /usr/bin/python3 apps/bench_analyses.py --cli build/apps/gyrokit [--runs 3] [--quick]
+    /usr/bin/python3 apps/bench/bench_analyses.py --cli build/apps/gyrokit [--runs 3] [--quick]
 
 --quick: one run each (the ctest smoke run). Exits 1 if a command fails.
 """
@@ -14,7 +14,7 @@ import subprocess
 import sys
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))   # apps/bench/ -> the root
 SCENE = os.path.join(ROOT, "data", "three_disk_rotor.toml")
 
 

@@ -7,7 +7,7 @@ Columns: wall time, time per design, ratio to the CLI on the same cores, and whe
 verdict equals the CLI's. The loop's overhead per design is its time per design minus that of
 one gk.screen call of all designs on one core (the same process, the same work).
 
-    PYTHONPATH=build/python /usr/bin/python3 apps/bench_screen_python.py --cli build/apps/gyrokit [--designs 1000]
+    PYTHONPATH=build/python /usr/bin/python3 apps/bench/bench_screen_python.py --cli build/apps/gyrokit [--designs 1000]
 """
 import argparse
 import csv
@@ -40,7 +40,7 @@ def timed(f):
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--cli", required=True)
-    p.add_argument("--data", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data"))
+    p.add_argument("--data", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "data"))
     p.add_argument("--designs", type=int, default=1000, help="40 x 25 = 1000 by default; any multiple of 25")
     a = p.parse_args()
     cores = os.cpu_count() or 1

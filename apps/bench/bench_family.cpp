@@ -1,5 +1,5 @@
 // gyrokit-bench-family: the default Campbell path on a seeded family of random FE
-// rotors as engineers write them (apps/rotor_family.hpp), coarse meshes and the
+// rotors as engineers write them (apps/bench/rotor_family.hpp), coarse meshes and the
 // same rotors meshed four times finer: per rotor the cost (Campbell time over
 // one full dense solve's, measured in the same run), the solver's own counts,
 // ambiguous steps, the 1x crossings found against an independent count on a grid

@@ -1,5 +1,5 @@
-// Helpers shared by the benchmark programs (apps/bench_*.cpp and the files of
-// apps/bench_tradeoffs/): speed grids, wall-time measurement, eigenvalue
+// Helpers shared by the benchmark programs (apps/bench/bench_*.cpp and the files of
+// apps/bench/bench_tradeoffs/): speed grids, wall-time measurement, eigenvalue
 // matching, and the cases and runs of the liquid-filled rotor, auto-balancer
 // and Sommerfeld benchmarks, so that every program measures them the same way.
 // Header-only.

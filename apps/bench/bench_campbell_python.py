@@ -10,7 +10,7 @@ gyrokit eigenvalue to the nearest SciPy eigenvalue at the same speed, relative t
 (both solve the same model; differences are rounding, of the order of the eigenvalue's
 condition times 1e-16; the program exits 1 above 1e-6).
 
-    PYTHONPATH=build/python /usr/bin/python3 apps/bench_campbell_python.py [--quick] [--repeat 3]
+    PYTHONPATH=build/python /usr/bin/python3 apps/bench/bench_campbell_python.py [--quick] [--repeat 3]
 """
 import argparse
 import os
@@ -22,7 +22,7 @@ import scipy.linalg as sl
 import gyrokit as gk
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-DATA = os.path.join(HERE, "..", "data")
+DATA = os.path.join(HERE, "..", "..", "data")
 
 # Models whose matrices do not depend on speed (the state matrix above is then exact).
 CASES = [
