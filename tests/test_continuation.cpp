@@ -3,9 +3,9 @@
 // band at every speed, eigenvalues within the two error bounds each path reports;
 // the tracking along slopes without ambiguity on the three-disk rotor.
 #include "test_helpers.hpp"
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/analysis/campbell.hpp>
-#include <gyrokit/analysis/continuation.hpp>
+#include <gyrokit/solve/continuation.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/io/scene.hpp>

@@ -1,7 +1,7 @@
 // Errors name option fields structurally: the library writes "modes =", each
 // front end its own words, and nothing depends on the wording of the prose.
-#include <gyrokit/analysis/solver_choice.hpp>
-#include <gyrokit/analysis/workers.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
+#include <gyrokit/solve/workers.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <catch2/catch.hpp>

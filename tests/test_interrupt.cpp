@@ -2,7 +2,7 @@
 // gyrokit::Interrupted (Python raises it as KeyboardInterrupt), in threads and in
 // worker processes alike, and leaves nothing behind: the next call runs normally.
 #include <gyrokit/numerics/scalar_search.hpp>
-#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/solve/spectrum_solver.hpp>
 #include <gyrokit/balancing/simulation.hpp>
 #include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/models/gyrostat.hpp>

@@ -3,8 +3,8 @@
 // (agreement with dense QZ, worker processes, start-vector reuse).
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
-#include <gyrokit/analysis/solver_choice.hpp>
-#include <gyrokit/analysis/workers.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
+#include <gyrokit/solve/workers.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/bearing_csv.hpp>

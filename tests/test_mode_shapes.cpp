@@ -3,7 +3,7 @@
 // pinned-pinned beam's shapes sin(k pi z / L).
 #include "test_helpers.hpp"
 
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/analysis/mode_shapes.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/gyrostat.hpp>

@@ -2,7 +2,7 @@
 // validation before any analysis, solvers that own their system.
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/gyrostat.hpp>

@@ -4,7 +4,7 @@
 #include "test_helpers.hpp"
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 #include <gyrokit/io/scene.hpp>
 #include <gyrokit/models/fe_rotor.hpp>

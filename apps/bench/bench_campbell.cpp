@@ -7,9 +7,9 @@
 // Exit status: 0 success, 2 bad input, 1 anything else.
 #include "bench_clock.hpp"
 #include "bench_common.hpp"
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/analysis/campbell.hpp>
-#include <gyrokit/analysis/continuation.hpp>
+#include <gyrokit/solve/continuation.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/io/scene.hpp>
 #include <gyrokit/io/table.hpp>

@@ -9,7 +9,7 @@
 #include "bench_clock.hpp"
 
 #include <gyrokit/analysis/critical_speeds.hpp>
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/core/constants.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 #include <gyrokit/models/fe_rotor.hpp>

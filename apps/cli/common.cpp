@@ -1,6 +1,6 @@
 #include "cli/common.hpp"
 
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/core/bearing_table.hpp>
 #include <gyrokit/core/error.hpp>
 

@@ -5,7 +5,7 @@
 #include "cli/command_table.hpp"
 
 #include <gyrokit/analysis/probe.hpp>
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 #include <gyrokit/io/plot.hpp>

@@ -10,13 +10,10 @@
 #include <gyrokit/analysis/mode_shapes.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
 #include <gyrokit/analysis/probe.hpp>
-#include <gyrokit/analysis/solver_choice.hpp>
-#include <gyrokit/analysis/spectrum_solver.hpp>
 #include <gyrokit/analysis/static_deflection.hpp>
 #include <gyrokit/analysis/transient.hpp>
 #include <gyrokit/analysis/transient_signals.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
-#include <gyrokit/analysis/workers.hpp>
 #include <gyrokit/balancing/autobalancer.hpp>
 #include <gyrokit/balancing/balancer_scene.hpp>
 #include <gyrokit/balancing/runup.hpp>
@@ -55,6 +52,9 @@
 #include <gyrokit/reports/reports.hpp>
 #include <gyrokit/screening/screening.hpp>
 #include <gyrokit/screening/sweep.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
+#include <gyrokit/solve/spectrum_solver.hpp>
+#include <gyrokit/solve/workers.hpp>
 #include <gyrokit/study/balancer_study.hpp>
 #include <gyrokit/study/critical_map_study.hpp>
 #include <gyrokit/study/defaults.hpp>

@@ -5,7 +5,7 @@
 
 #include <gyrokit/study/response_study.hpp>
 
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/gyrokit.hpp>
 
 #include "common.hpp"

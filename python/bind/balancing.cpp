@@ -2,7 +2,7 @@
 // balancer scene file.
 #include "binding_table.hpp"
 
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/gyrokit.hpp>
 
 #include "common.hpp"

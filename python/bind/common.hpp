@@ -3,7 +3,7 @@
 // threads, and the GIL released for a long call that Ctrl-C can stop.
 #pragma once
 
-#include <gyrokit/analysis/workers.hpp>
+#include <gyrokit/solve/workers.hpp>
 #include <gyrokit/core/interrupt.hpp>
 
 #include <pybind11/pybind11.h>

@@ -2,7 +2,7 @@
 // library's system, scene and analyses with NumPy/SciPy arrays in and out.
 // The Python layer (gyrokit/__init__.py) adds keyword defaults from scenes,
 // result classes with to_pandas() and plot().
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/gyrokit.hpp>
 
 #include "binding_table.hpp"

@@ -2,7 +2,7 @@
 // caller's executor (screen_design, screen_plan, screen_error_row).
 #include "binding_table.hpp"
 
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/gyrokit.hpp>
 
 #include "common.hpp"

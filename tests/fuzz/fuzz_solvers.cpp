@@ -9,7 +9,7 @@
 
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
-#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/solve/spectrum_solver.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/eig/sparse_eigensolver.hpp>
 

@@ -6,7 +6,7 @@
 #include "reference.hpp"
 #include "tradeoffs.hpp"
 
-#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/solve/spectrum_solver.hpp>
 #include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/scene.hpp>

@@ -1,8 +1,8 @@
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/analysis/campbell.hpp>
 
 #include <gyrokit/numerics/assignment.hpp>
-#include <gyrokit/analysis/continuation.hpp>
+#include <gyrokit/solve/continuation.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <fmt/format.h>

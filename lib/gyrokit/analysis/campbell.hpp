@@ -5,7 +5,7 @@
 // (a veering the step does not resolve) the speed step is bisected.
 #pragma once
 
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 

@@ -3,7 +3,7 @@
 // amplitude at one DOF, over excitation frequency (docs/frf.md).
 #pragma once
 
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
 
 #include <vector>

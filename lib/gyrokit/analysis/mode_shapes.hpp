@@ -3,7 +3,7 @@
 // orbits of the translational pairs, in axial order, are the deflected shape.
 #pragma once
 
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/eig/mode.hpp>
 

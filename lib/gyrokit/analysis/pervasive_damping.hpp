@@ -6,7 +6,7 @@
 // speed is located by golden section to near machine precision.
 #pragma once
 
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/eig/mode.hpp>
 

@@ -6,7 +6,7 @@
 // energy of an undamped linear system is conserved).
 #pragma once
 
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/core/speed_range.hpp>
 

@@ -1,4 +1,4 @@
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 
 #include <gyrokit/numerics/scalar_search.hpp>

@@ -2,7 +2,7 @@
 // M z'' + (D + w G) z' + (K + w N) z = Re(w^2 u e^{i w t}).
 #pragma once
 
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
 
 #include <functional>

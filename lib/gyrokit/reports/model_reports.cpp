@@ -1,7 +1,7 @@
 #include <gyrokit/reports/model_reports.hpp>
 
 #include <gyrokit/reports/detail/cells.hpp>
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 
 #include <fmt/format.h>
 

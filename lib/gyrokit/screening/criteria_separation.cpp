@@ -1,7 +1,7 @@
 // The separation criterion: margins of the critical speeds from the operating range.
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/analysis/campbell.hpp>
-#include <gyrokit/analysis/continuation.hpp>
+#include <gyrokit/solve/continuation.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/energy_bound.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>

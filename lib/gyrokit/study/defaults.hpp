@@ -9,7 +9,7 @@
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/analysis/transient.hpp>
 #include <gyrokit/analysis/static_deflection.hpp>
 

@@ -10,8 +10,8 @@
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/analysis/mode_shapes.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
-#include <gyrokit/analysis/solver_choice.hpp>
-#include <gyrokit/analysis/workers.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
+#include <gyrokit/solve/workers.hpp>
 #include <gyrokit/core/diagnostics.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/io/scene.hpp>

@@ -1,7 +1,7 @@
 // The continuation over a grid of speeds: its shared state, the walk from an
 // anchor over the grid speeds, and the factory (continuation_solver). The parts:
 // detail/continuation_parts.hpp. docs/numerics.md ("Continuation").
-#include <gyrokit/analysis/detail/continuation_parts.hpp>
+#include <gyrokit/solve/detail/continuation_parts.hpp>
 
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>

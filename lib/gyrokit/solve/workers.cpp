@@ -1,6 +1,6 @@
-#include <gyrokit/analysis/workers.hpp>
+#include <gyrokit/solve/workers.hpp>
 
-#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/solve/spectrum_solver.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/parallel.hpp>
 #include <gyrokit/core/interrupt.hpp>

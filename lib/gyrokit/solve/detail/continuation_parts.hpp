@@ -5,7 +5,7 @@
 // together (continuation.cpp).
 #pragma once
 
-#include <gyrokit/analysis/continuation.hpp>
+#include <gyrokit/solve/continuation.hpp>
 
 #include <complex>
 #include <functional>

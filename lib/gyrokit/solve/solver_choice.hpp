@@ -3,7 +3,7 @@
 // resolves `auto` and validates them.
 #pragma once
 
-#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/solve/spectrum_solver.hpp>
 #include <gyrokit/core/solver_kind.hpp>
 
 #include <optional>

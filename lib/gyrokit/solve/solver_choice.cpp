@@ -1,4 +1,4 @@
-#include <gyrokit/analysis/solver_choice.hpp>
+#include <gyrokit/solve/solver_choice.hpp>
 
 #include <gyrokit/core/error.hpp>
 

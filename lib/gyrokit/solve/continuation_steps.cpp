@@ -2,7 +2,7 @@
 // by inverse iteration on the full pencil, verified, in parts where a whole step
 // fails; one mode followed alone (follow_mode), a sparse window continued
 // (continue_window). docs/numerics.md ("Continuation").
-#include <gyrokit/analysis/detail/continuation_parts.hpp>
+#include <gyrokit/solve/detail/continuation_parts.hpp>
 
 #include <gyrokit/core/parallel.hpp>
 

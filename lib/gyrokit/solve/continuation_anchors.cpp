@@ -1,7 +1,7 @@
 // The continuation's anchors (full solves) and checks (the eigenvalues alone),
 // solved before any step, in one parallel loop; the band of the lowest modes and
 // the projection basis from them. docs/numerics.md ("Continuation").
-#include <gyrokit/analysis/detail/continuation_parts.hpp>
+#include <gyrokit/solve/detail/continuation_parts.hpp>
 
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>

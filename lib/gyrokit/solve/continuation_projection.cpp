@@ -1,7 +1,7 @@
 // The projected pencil Q^T P(w) Q on a basis of the anchors' vectors, each pair
 // lifted to the full model, refined and verified (ContinuationOptions::along_branches
 // false). docs/numerics.md ("Continuation").
-#include <gyrokit/analysis/detail/continuation_parts.hpp>
+#include <gyrokit/solve/detail/continuation_parts.hpp>
 
 #include <fmt/format.h>
 

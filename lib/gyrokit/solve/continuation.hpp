@@ -5,7 +5,7 @@
 // ("Continuation") gives the rules.
 #pragma once
 
-#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/solve/spectrum_solver.hpp>
 
 #include <complex>
 #include <functional>

@@ -1,6 +1,6 @@
-#include <gyrokit/analysis/spectrum_solver.hpp>
+#include <gyrokit/solve/spectrum_solver.hpp>
 
-#include <gyrokit/analysis/continuation.hpp>
+#include <gyrokit/solve/continuation.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/core/parallel.hpp>

@@ -10,7 +10,7 @@
 #include <gyrokit/core/gyroscopic_system.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 #include <gyrokit/eig/sparse_eigensolver.hpp>
-#include <gyrokit/analysis/workers.hpp>
+#include <gyrokit/solve/workers.hpp>
 
 #include <atomic>
 #include <functional>
