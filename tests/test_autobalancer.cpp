@@ -1,7 +1,7 @@
 // Two-roller auto-balancer: the paper's Tabellen 1-3, the synchronous angles,
 // simulations of Bilder 7-10 and the damped slow-phase offsets.
 #include <gyrokit/balancing/autobalancer.hpp>
-#include <gyrokit/balancing/balancer_scene.hpp>
+#include <gyrokit/scene/balancer_scene.hpp>
 #include <gyrokit/balancing/simulation.hpp>
 #include <gyrokit/balancing/synchronous_states.hpp>
 #include <gyrokit/core/error.hpp>

@@ -8,7 +8,7 @@
 #include <gyrokit/solve/continuation.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/core/speed_range.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/study/rotor_study.hpp>
 
 #include <catch2/catch.hpp>

@@ -4,7 +4,7 @@
 // rigid rotor on springs (cylindrical and conical modes) and, above it, the free-free beam.
 #include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/study/critical_map_study.hpp>
 #include <gyrokit/study/defaults.hpp>
 

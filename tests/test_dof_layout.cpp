@@ -2,7 +2,7 @@
 // the spelling of its name (the one place names and layout must agree).
 #include <gyrokit/core/dof_layout.hpp>
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 #include <catch2/catch.hpp>
 #include <string>

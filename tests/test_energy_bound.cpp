@@ -6,7 +6,7 @@
 #include <gyrokit/analysis/energy_bound.hpp>
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/screening/screening.hpp>
 
 #include <catch2/catch.hpp>

@@ -4,7 +4,7 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 #include <gyrokit/reports/reports.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 
 #include "test_helpers.hpp"

@@ -9,7 +9,7 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 #include <gyrokit/eig/sparse_eigensolver.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 
 #include <Eigen/Dense>

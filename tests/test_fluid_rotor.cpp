@@ -7,7 +7,7 @@
 #include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/models/fluid_rotor.hpp>
 
 #include <Eigen/Sparse>

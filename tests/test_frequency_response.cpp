@@ -2,7 +2,7 @@
 // superposition of the same model (the state matrix's eigenvectors).
 #include <gyrokit/analysis/frequency_response.hpp>
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>

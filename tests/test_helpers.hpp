@@ -3,7 +3,7 @@
 #pragma once
 
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/models/gyrostat.hpp>
 
 #include <random>

@@ -8,7 +8,7 @@
 #include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/gyroscopic_system.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/models/journal_bearing.hpp>
 
 #include <catch2/catch.hpp>

@@ -9,7 +9,7 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/bearing_csv.hpp>
 #include <gyrokit/io/matrix_market.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Materials by name, disks from their geometry and speeds in rpm or Hz in a
 // scene: each equal to the explicit form it stands for.
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/models/materials.hpp>
 
 #include <catch2/catch.hpp>

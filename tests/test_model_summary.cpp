@@ -1,6 +1,6 @@
 // The model summary: its numbers against the model's own description.
 #include <gyrokit/reports/reports.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 #include <catch2/catch.hpp>
 

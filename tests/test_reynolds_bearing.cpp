@@ -7,7 +7,7 @@
 // the equilibrium and the (x, y) coefficients against central differences of
 // the dimensional film force; failures; and the option in an fe_rotor scene.
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/models/journal_bearing.hpp>
 #include <gyrokit/models/reynolds_bearing.hpp>
 

@@ -7,7 +7,7 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 #include <gyrokit/eig/sparse_eigensolver.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -2,8 +2,8 @@
 // same matrices bit for bit (the writer prints each number in its shortest round-trip
 // form), the same bearings and settings; a model built in code equals its scene.
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
-#include <gyrokit/io/scene_writer.hpp>
+#include <gyrokit/scene/scene.hpp>
+#include <gyrokit/scene/scene_writer.hpp>
 
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -1,8 +1,8 @@
 // Proportional shaft damping: on a shaft alone every mode has zeta = alpha / (2 w) + beta w / 2.
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
-#include <gyrokit/io/scene.hpp>
-#include <gyrokit/io/scene_writer.hpp>
+#include <gyrokit/scene/scene.hpp>
+#include <gyrokit/scene/scene_writer.hpp>
 #include <gyrokit/models/rotor_model.hpp>
 
 #include <catch2/catch.hpp>

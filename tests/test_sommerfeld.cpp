@@ -2,7 +2,7 @@
 // (critical speeds and limit speed estimates that follow from the listed
 // parameters), exact folds of the stationary curves against an independent scan
 // of eqs. (16)/(25)/(36)/(42), and run-ups below and above the limit speed.
-#include <gyrokit/balancing/balancer_scene.hpp>
+#include <gyrokit/scene/balancer_scene.hpp>
 #include <gyrokit/balancing/runup.hpp>
 #include <gyrokit/balancing/sommerfeld.hpp>
 #include <gyrokit/balancing/synchronous_states.hpp>

@@ -2,7 +2,7 @@
 // shaft with a central disk under gravity (Euler-Bernoulli and Timoshenko), a
 // horizontal point load, reactions and internal forces, and a rotor not held.
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/reports/static_reports.hpp>
 #include <gyrokit/study/static_study.hpp>
 #include <fmt/format.h>

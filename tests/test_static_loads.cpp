@@ -2,7 +2,7 @@
 // load = "auto") against the statics of beams: the lever rule of a statically
 // determinate rotor and the three-moment result of a continuous beam on three supports.
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/gravity_loads.hpp>
 #include <gyrokit/models/journal_bearing.hpp>

@@ -2,8 +2,8 @@
 // arrays of tables (model.bearing[1].kxx, model.shaft[*].outer_diameter): each
 // swept value changes exactly the element it names, as a hand-edited scene does.
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
-#include <gyrokit/io/scene_writer.hpp>
+#include <gyrokit/scene/scene.hpp>
+#include <gyrokit/scene/scene_writer.hpp>
 #include <gyrokit/screening/screening.hpp>
 #include <gyrokit/screening/sweep.hpp>
 #include <gyrokit/study/rotor_study.hpp>

@@ -6,7 +6,7 @@
 #include <gyrokit/analysis/transient_signals.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 #include <Eigen/SVD>
 #include <array>

@@ -6,7 +6,7 @@
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 
 #include <catch2/catch.hpp>

@@ -11,7 +11,7 @@
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/solve/continuation.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/io/table.hpp>
 
 #include <CLI/CLI.hpp>

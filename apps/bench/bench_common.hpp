@@ -6,7 +6,7 @@
 #pragma once
 
 #include <gyrokit/analysis/fluid_critical_speeds.hpp>
-#include <gyrokit/balancing/balancer_scene.hpp>
+#include <gyrokit/scene/balancer_scene.hpp>
 #include <gyrokit/balancing/runup.hpp>
 #include <gyrokit/balancing/simulation.hpp>
 #include <gyrokit/balancing/synchronous_states.hpp>

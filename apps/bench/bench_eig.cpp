@@ -6,7 +6,7 @@
 #include "bench_common.hpp"
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/io/table.hpp>
 #include <gyrokit/models/gyrostat.hpp>
 

@@ -6,7 +6,7 @@
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
 #include "bench_common.hpp"
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/io/table.hpp>
 
 #include <iostream>

@@ -9,7 +9,7 @@
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
 #include <gyrokit/io/plot.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/io/table.hpp>
 #include <gyrokit/study/defaults.hpp>
 #include <gyrokit/study/request.hpp>

@@ -15,7 +15,6 @@
 #include <gyrokit/analysis/transient_signals.hpp>
 #include <gyrokit/analysis/unbalance_response.hpp>
 #include <gyrokit/balancing/autobalancer.hpp>
-#include <gyrokit/balancing/balancer_scene.hpp>
 #include <gyrokit/balancing/runup.hpp>
 #include <gyrokit/balancing/simulation.hpp>
 #include <gyrokit/balancing/sommerfeld.hpp>
@@ -37,8 +36,6 @@
 #include <gyrokit/io/matrix_market.hpp>
 #include <gyrokit/io/output_file.hpp>
 #include <gyrokit/io/plot.hpp>
-#include <gyrokit/io/scene.hpp>
-#include <gyrokit/io/scene_writer.hpp>
 #include <gyrokit/io/table.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/fluid_rotor.hpp>
@@ -50,6 +47,9 @@
 #include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/numerics/sparse_block.hpp>
 #include <gyrokit/reports/reports.hpp>
+#include <gyrokit/scene/balancer_scene.hpp>
+#include <gyrokit/scene/scene.hpp>
+#include <gyrokit/scene/scene_writer.hpp>
 #include <gyrokit/screening/screening.hpp>
 #include <gyrokit/screening/sweep.hpp>
 #include <gyrokit/solve/solver_choice.hpp>

@@ -4,7 +4,7 @@
 
 #include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/reports/critical_map_reports.hpp>
 #include <gyrokit/study/critical_map_study.hpp>
 

@@ -4,8 +4,8 @@
 #include "models.hpp"
 
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
-#include <gyrokit/io/scene_writer.hpp>
+#include <gyrokit/scene/scene.hpp>
+#include <gyrokit/scene/scene_writer.hpp>
 #include <gyrokit/models/rotor_model.hpp>
 
 #include <pybind11/stl.h>

@@ -2,7 +2,7 @@
 // rotor_scene) and scenes written back (Scene.to_toml, write, pickle).
 #pragma once
 
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 #include <pybind11/pybind11.h>
 

@@ -3,7 +3,7 @@
 // (resolve_request then takes the scene's value, else the default).
 #pragma once
 
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/study/request.hpp>
 
 #include <pybind11/pybind11.h>

@@ -1,7 +1,7 @@
 // System and Scene, load_scene and parse_scene; returns the Scene class for bind_models.
 #pragma once
 
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 #include <pybind11/pybind11.h>
 

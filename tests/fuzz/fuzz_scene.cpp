@@ -2,7 +2,7 @@
 // parse_scene on arbitrary text, files resolved against data/.
 #include "fuzz_common.hpp"
 
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);

@@ -9,7 +9,7 @@
 #include <gyrokit/solve/spectrum_solver.hpp>
 #include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 #include <algorithm>
 #include <cmath>

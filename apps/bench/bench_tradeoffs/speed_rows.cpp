@@ -7,7 +7,7 @@
 
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speeds.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 #include <algorithm>
 #include <cmath>

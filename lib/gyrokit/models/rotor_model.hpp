@@ -2,7 +2,7 @@
 // bearings of every kind, rigid supports and pedestals at axial positions z. build()
 // meshes it into an FeRotor (elements and nodes), assembles it and attaches the
 // speed-dependent bearings (tables and fluid films, load = "auto" from the rotor's
-// weight). Scene files map their [model] keys to this value (io/scene.hpp) and
+// weight). Scene files map their [model] keys to this value (scene/scene.hpp) and
 // write_scene writes it back; C++ and Python build it directly.
 //
 // Every value in SI units (m, kg, N, Pa, rad/s). `length_unit` only says how messages

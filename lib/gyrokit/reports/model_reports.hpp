@@ -3,7 +3,7 @@
 #pragma once
 
 #include <gyrokit/io/plot.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/io/table.hpp>
 #include <gyrokit/reports/mode_shape_reports.hpp>
 #include <gyrokit/models/fe_rotor.hpp>

@@ -2,7 +2,7 @@
 // probe of each design.
 #include <gyrokit/screening/detail/probes.hpp>
 
-#include "gyrokit/io/toml_keys.hpp"
+#include "gyrokit/scene/toml_keys.hpp"
 #include <gyrokit/core/error.hpp>
 
 #include <algorithm>

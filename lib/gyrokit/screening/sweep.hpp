@@ -4,7 +4,7 @@
 #pragma once
 
 #include <gyrokit/core/speed_range.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 #include <cstdint>
 #include <functional>

@@ -6,7 +6,7 @@
 
 #include <gyrokit/analysis/pervasive_damping.hpp>
 #include <gyrokit/core/error.hpp>
-#include "gyrokit/io/toml_keys.hpp"
+#include "gyrokit/scene/toml_keys.hpp"
 #include <gyrokit/core/input_file.hpp>
 
 #include <cmath>

@@ -5,7 +5,7 @@
 // scene's own unit).
 #pragma once
 
-#include <gyrokit/balancing/balancer_scene.hpp>
+#include <gyrokit/scene/balancer_scene.hpp>
 #include <gyrokit/balancing/simulation.hpp>
 #include <gyrokit/balancing/synchronous_states.hpp>
 #include <gyrokit/io/table.hpp>

@@ -3,7 +3,7 @@
 #pragma once
 
 #include <gyrokit/analysis/critical_speed_map.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 namespace gyrokit {
 

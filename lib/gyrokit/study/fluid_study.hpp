@@ -6,7 +6,7 @@
 
 #include <gyrokit/analysis/fluid_critical_speeds.hpp>
 #include <gyrokit/core/diagnostics.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 #include <optional>
 #include <string>

@@ -6,7 +6,7 @@
 // the scene's [speeds] units unless the call names one: the results come back in it.
 #pragma once
 
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/study/rotor_study.hpp>
 
 #include <optional>

@@ -14,7 +14,7 @@
 #include <gyrokit/solve/workers.hpp>
 #include <gyrokit/core/diagnostics.hpp>
 #include <gyrokit/core/speed_range.hpp>
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/study/defaults.hpp>
 
 #include <cstddef>

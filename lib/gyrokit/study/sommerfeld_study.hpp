@@ -5,7 +5,7 @@
 // the request's overrides, each checked here with its field named. Speeds in rad/s.
 #pragma once
 
-#include <gyrokit/balancing/balancer_scene.hpp>
+#include <gyrokit/scene/balancer_scene.hpp>
 #include <gyrokit/balancing/runup.hpp>
 #include <gyrokit/balancing/sommerfeld.hpp>
 #include <gyrokit/core/speed_range.hpp>

@@ -4,7 +4,7 @@
 // constant bearings act as their springs (docs/static.md).
 #pragma once
 
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/analysis/static_deflection.hpp>
 
 namespace gyrokit {

@@ -3,7 +3,7 @@
 // criteria_response.cpp). Not installed.
 #pragma once
 
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/screening/screening.hpp>
 
 #include <algorithm>

@@ -2,7 +2,7 @@
 // to the CLI, a cluster or a colleague. See docs/scene_format.md, "Writing scenes".
 #pragma once
 
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 #include <gyrokit/models/rotor_model.hpp>
 
 #include <string>

@@ -1,7 +1,7 @@
 // Reader of [model] type = "fluid_rotor" (liquid-filled rotor) scene tables.
 #pragma once
 
-#include "gyrokit/io/toml_keys.hpp"
+#include "gyrokit/scene/toml_keys.hpp"
 #include <gyrokit/models/fluid_rotor.hpp>
 
 namespace gyrokit {

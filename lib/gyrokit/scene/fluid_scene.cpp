@@ -1,4 +1,4 @@
-#include "gyrokit/io/detail/fluid_scene.hpp"
+#include "gyrokit/scene/detail/fluid_scene.hpp"
 
 #include <gyrokit/core/error.hpp>
 

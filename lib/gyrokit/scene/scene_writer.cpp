@@ -1,4 +1,4 @@
-#include <gyrokit/io/scene_writer.hpp>
+#include <gyrokit/scene/scene_writer.hpp>
 
 #include <gyrokit/io/output_file.hpp>
 #include <gyrokit/core/run_files.hpp>

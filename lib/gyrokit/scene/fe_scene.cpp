@@ -1,4 +1,4 @@
-#include "gyrokit/io/detail/fe_scene.hpp"
+#include "gyrokit/scene/detail/fe_scene.hpp"
 
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/speed_range.hpp>

@@ -1,8 +1,8 @@
-#include <gyrokit/balancing/balancer_scene.hpp>
+#include <gyrokit/scene/balancer_scene.hpp>
 
 #include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
-#include "gyrokit/io/toml_keys.hpp"
+#include "gyrokit/scene/toml_keys.hpp"
 #include <gyrokit/core/input_file.hpp>
 
 #include <cmath>

@@ -1,14 +1,14 @@
-#include <gyrokit/io/scene.hpp>
+#include <gyrokit/scene/scene.hpp>
 
 #include <gyrokit/core/input_file.hpp>
 #include <gyrokit/core/run_files.hpp>
 
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/bearing_csv.hpp>
-#include "gyrokit/io/detail/fe_scene.hpp"
-#include "gyrokit/io/detail/fluid_scene.hpp"
+#include "gyrokit/scene/detail/fe_scene.hpp"
+#include "gyrokit/scene/detail/fluid_scene.hpp"
 #include <gyrokit/io/matrix_market.hpp>
-#include "gyrokit/io/toml_keys.hpp"
+#include "gyrokit/scene/toml_keys.hpp"
 #include <gyrokit/models/gyrostat.hpp>
 
 #include <cmath>

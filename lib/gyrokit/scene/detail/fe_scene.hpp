@@ -4,7 +4,7 @@
 
 #include <gyrokit/models/rotor_model.hpp>
 
-#include "gyrokit/io/toml_keys.hpp"
+#include "gyrokit/scene/toml_keys.hpp"
 
 #include <string>
 
