@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <chrono>
 #include <numeric>
 #include <stdexcept>
 #include <thread>
@@ -52,4 +53,53 @@ TEST_CASE("for_each_index inside a loop and from several threads at once", "[par
     for (std::thread& t : callers) t.join();
     // sum over i < 50, j < 20 of i j = (49 * 50 / 2) (19 * 20 / 2)
     for (long s : sums) CHECK(s == 1225L * 190L);
+}
+
+TEST_CASE("a loop gets helpers while another caller's long loop holds the kept threads", "[parallel]") {
+    // A: two indices that wait until B is done, holding a kept thread (and A's caller).
+    // B, from another thread: its two indices must run at once, one on a helper, which the
+    // pool starts because its threads are busy (before, B's helper sat queued behind A).
+    std::atomic<bool> b_done{false};
+    std::atomic<int> a_running{0};
+    std::thread a([&] {
+        for_each_index(2, 2, [&](std::size_t) {
+            ++a_running;
+            while (!b_done) std::this_thread::yield();
+        });
+    });
+    while (a_running < 2) std::this_thread::yield();   // A holds its caller and a kept thread
+    std::atomic<int> arrived{0};
+    bool together = true;
+    for_each_index(2, 2, [&](std::size_t) {
+        ++arrived;
+        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+        while (arrived < 2 && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+        if (arrived < 2) together = false;
+    });
+    b_done = true;
+    a.join();
+    CHECK(together);
+}
+
+TEST_CASE("run_beside: workers on threads of their own beside the caller, joined before it returns", "[parallel]") {
+    std::atomic<int> ran{0};
+    std::vector<int> seen;
+    run_beside(3, [&] { ++ran; }, [&] { seen.push_back(1); });
+    CHECK(ran == 3);
+    CHECK(seen.size() == 1);
+    // The caller's exception after every worker has finished.
+    std::atomic<bool> stop{false};
+    std::atomic<int> finished{0};
+    CHECK_THROWS_WITH(run_beside(
+                          2,
+                          [&] {
+                              while (!stop) std::this_thread::yield();
+                              ++finished;
+                          },
+                          [&] {
+                              stop = true;
+                              throw std::runtime_error("writer failed");
+                          }),
+                      "writer failed");
+    CHECK(finished == 2);
 }

@@ -207,7 +207,7 @@ TEST_CASE("scene writer: what a scene cannot say is refused with the item named"
     CHECK_THROWS_WITH(scene_text(sc), Catch::Contains("support 0: holds x = true, y = false") &&
                                           Catch::Contains("allowed in a scene: pinned"));
     Scene in_code;
-    CHECK_THROWS_WITH(scene_text(in_code), Catch::Contains("a [model] of type matrices cannot be written"));
+    CHECK_THROWS_WITH(scene_text(in_code), Catch::Contains("a [model] of type matrices built in code cannot be written"));
     // Positions that are not nodes name the item in a model built in code.
     m.supports[0].z = 0.3;
     CHECK_THROWS_WITH(rotor_scene(m), Catch::Contains("support 0 z = 0.3 m is not a node of the mesh") &&

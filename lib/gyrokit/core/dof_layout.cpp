@@ -13,7 +13,10 @@ int DofLayout::find(const std::string& name) const {
 }
 
 int DofLayout::find(int node, DofMotion motion, bool on_pedestal_) const {
-    for (int i = 0; i < size() && i < static_cast<int>(motions.size()); ++i) {
+    // Only where the layout knows motions and places (each list empty or one entry per DOF).
+    if (motions.size() != names.size() || (on_pedestal_ ? pedestal_nodes.size() : nodes.size()) != names.size())
+        return -1;
+    for (int i = 0; i < size(); ++i) {
         const bool here = on_pedestal_ ? pedestal_node(i) == node : nodes[static_cast<std::size_t>(i)] == node;
         if (here && motions[static_cast<std::size_t>(i)] == motion) return i;
     }

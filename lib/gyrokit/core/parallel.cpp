@@ -1,5 +1,7 @@
 #include <gyrokit/core/parallel.hpp>
 
+#include <gyrokit/core/error.hpp>
+
 #include <algorithm>
 #include <atomic>
 #include <condition_variable>
@@ -7,6 +9,7 @@
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -71,10 +74,15 @@ public:
     void offer(const std::shared_ptr<Loop>& loop, std::size_t helpers) {
         {
             const std::lock_guard<std::mutex> g(lock_);
+            // Enough threads for the loops queued and this one: a thread busy with a long
+            // loop (another caller's) is not one this loop can count on.
+            const std::size_t idle = idle_.load(), queued = waiting_.load();
+            std::size_t free = idle > queued ? idle - queued : 0;
             try {
-                while (started_ < helpers && started_ < kMaxThreads) {
+                while (free < helpers && started_ < kMaxThreads) {
                     std::thread(&Pool::serve, this).detach();
                     ++started_;
+                    ++free;
                 }
             } catch (...) {   // no more threads: those there and the caller do the work
             }
@@ -89,6 +97,7 @@ private:
 
     void serve() {
         in_pool = true;
+        ++idle_;
         for (;;) {
             // A loop often follows the last within microseconds (the steps of a walk):
             // look for one for a while before sleeping, since waking a thread costs
@@ -105,12 +114,15 @@ private:
                 loop = std::move(queue_.front());
                 queue_.pop_front();
                 --waiting_;
+                --idle_;
             }
             loop->work();
+            ++idle_;
         }
     }
     static constexpr int kSpins = 2000;
     std::atomic<std::size_t> waiting_{0};
+    std::atomic<std::size_t> idle_{0};   // threads not in a loop's work (waiting, or looking for one)
 
     const pid_t owner_ = ::getpid();
     std::mutex lock_;
@@ -156,3 +168,24 @@ void run_parallel(std::size_t n, int threads, const std::function<void(std::size
 }
 
 }  // namespace gyrokit::detail
+
+namespace gyrokit {
+
+void run_beside(int threads, const std::function<void()>& f, const std::function<void()>& on_caller) {
+    std::vector<std::thread> own;
+    try {
+        for (int k = 0; k < std::max(1, threads); ++k) own.emplace_back(f);
+    } catch (const std::system_error&) {   // fewer threads: those started do the work
+        if (own.empty()) throw Error("cannot start a worker thread (the system's limit); use fewer jobs");
+    }
+    std::exception_ptr failure;
+    try {
+        on_caller();
+    } catch (...) {
+        failure = std::current_exception();
+    }
+    for (std::thread& th : own) th.join();
+    if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace gyrokit

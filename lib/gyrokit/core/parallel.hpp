@@ -18,6 +18,13 @@ void run_parallel(std::size_t n, int threads, const std::function<void(std::size
 void on_idle(void (*release)());
 }
 
+// Workers that last a whole run: f() on `threads` threads of their own while the caller
+// runs on_caller() (e.g. writing their results in order as they come); every thread is
+// joined before it returns, and on_caller's exception is rethrown then (on_caller tells
+// the workers to stop before it throws). Not the kept pool: a run would hold its threads
+// from every other loop for its whole length. Where no thread can be started, Error.
+void run_beside(int threads, const std::function<void()>& f, const std::function<void()>& on_caller);
+
 template <class F>
 void for_each_index(std::size_t n, int threads, const F& f) {
     if (threads <= 1 || n <= 1) {

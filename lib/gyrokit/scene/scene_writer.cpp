@@ -234,8 +234,9 @@ std::string scene_text(const Scene& sc) {
         }, sc.model);
     if (!document.empty()) return document;   // read from a document: as read
     if (!sc.rotor_model())
-        throw InputError(fmt::format("{}: a [model] of type {} cannot be written; allowed: an fe_rotor model "
-                                     "(read from a scene or built as a RotorModel), or any model read from a scene",
+        throw InputError(fmt::format("{}: a [model] of type {} built in code cannot be written (it has no document); "
+                                     "allowed: an fe_rotor model (read from a scene or built as a RotorModel), or any "
+                                     "model read from a scene",
                                      sc.path, sc.model_type()));
     const RotorModel& m = *sc.rotor_model();
     Writer w;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <atomic>
+#include <condition_variable>
 #include <exception>
 #include <filesystem>
 #include <fmt/format.h>
@@ -290,6 +291,78 @@ void open_results(const Sweep& s, const RunOptions& opt, RunFiles& files, RunRes
     }
 }
 
+// The designs of one run, issued to the workers one at a time in index order (the k-th
+// issued is the k-th row written), and their results handed back in that order: nothing is
+// allocated per design of the grid, so a 1e8-design grid with --limit 2 costs two designs.
+class DesignQueue {
+public:
+    // The designs first, first + step, ... (a shard) not in `done`, at most `remaining` of them.
+    DesignQueue(const Sweep& s, const std::set<std::size_t>& done, std::size_t first, std::size_t step,
+                std::size_t remaining)
+        : s_(s), done_(done), n_(s.design_count()), step_(step), cursor_(first), remaining_(remaining) {}
+
+    // One worker: designs until none is left or the run stops; a failure (an interrupt: a
+    // design's own errors are its row) stops the run and reaches result().
+    void work(RunFiles& files) {
+        RunScope in_run(files);   // the designs read the study's files from the run's copies
+        for (;;) {
+            std::size_t k = 0, design = 0;
+            {
+                std::lock_guard<std::mutex> lock(mu_);
+                if (!more()) return;
+                k = issued_++;
+                design = cursor_;
+                cursor_ += step_;
+            }
+            try {
+                throw_if_interrupted();
+                DesignResult r = evaluate_design(s_, design);
+                std::lock_guard<std::mutex> lock(mu_);
+                ready_.emplace(k, std::move(r));
+            } catch (...) {
+                std::lock_guard<std::mutex> lock(mu_);
+                if (!failure_) failure_ = std::current_exception();
+                stop_ = true;
+            }
+            cv_.notify_all();
+        }
+    }
+    // The k-th issued design's result, once there; nullopt where it will not be (every
+    // issued design is handed back and no more will be issued). Rethrows a worker's failure.
+    std::optional<DesignResult> result(std::size_t k) {
+        std::unique_lock<std::mutex> lock(mu_);
+        cv_.wait(lock, [&] { return ready_.count(k) || failure_ || (k >= issued_ && !more()); });
+        const auto it = ready_.find(k);
+        if (it == ready_.end()) {
+            if (failure_) std::rethrow_exception(failure_);
+            return std::nullopt;
+        }
+        DesignResult r = std::move(it->second);
+        ready_.erase(it);
+        return r;
+    }
+    void halt() {
+        std::lock_guard<std::mutex> lock(mu_);
+        stop_ = true;
+    }
+
+private:
+    // Whether a design is left to issue (under mu_): the next one not done before, in range.
+    bool more() {
+        while (cursor_ < n_ && done_.count(cursor_)) cursor_ += step_;
+        return !stop_ && cursor_ < n_ && issued_ < remaining_;
+    }
+    const Sweep& s_;
+    const std::set<std::size_t>& done_;
+    const std::size_t n_, step_;
+    std::size_t cursor_, remaining_, issued_ = 0;
+    bool stop_ = false;
+    std::exception_ptr failure_;
+    std::map<std::size_t, DesignResult> ready_;   // results not yet written, by issue number
+    std::mutex mu_;
+    std::condition_variable cv_;
+};
+
 }  // namespace
 
 RunResult run_screening(const Sweep& s, const RunOptions& opt) {
@@ -305,58 +378,35 @@ RunResult run_screening(const Sweep& s, const RunOptions& opt) {
     std::set<std::size_t> done;
     std::optional<ResultFile> out;
     open_results(s, opt, run.files(), res, done, out);
-    // The designs of this run are issued one at a time in index order (the k-th
-    // issued is the k-th row written): nothing is allocated per design of the grid,
-    // so a 1e8-design grid with --limit 2 costs two designs.
     std::size_t remaining = res.shard_designs - std::min(res.shard_designs, done.size());
     if (opt.limit > 0) remaining = std::min(remaining, opt.limit);
 
     gsl_set_error_handler_off();   // global GSL state: set once before the workers start
-    std::mutex mu;
-    std::map<std::size_t, DesignResult> ready;   // results not yet written, by issue number
-    std::size_t cursor = first, issued = 0, written = 0;
-    bool stop = false;   // a failure (an interrupt, a write: a design's own errors are its row)
-    std::vector<ResultRow> fresh;
-    // Rows in issue order, each as soon as it and every row before it are done (under mu).
-    const auto write_ready = [&] {
-        for (auto it = ready.find(written); it != ready.end(); it = ready.find(written)) {
-            ResultRow row = format_row(s, it->second);
-            ready.erase(it);
-            if (out) out->write(csv_line(row.cells));
-            fresh.push_back(std::move(row));
-            ++written;
-            ++res.computed;
-            if (opt.progress) opt.progress(res.resumed + res.computed, res.shard_designs);
-        }
-    };
-    const auto worker = [&](std::size_t) {
-        RunScope in_run(run.files());   // the designs read the study's files from the run's copies
-        for (;;) {
-            std::size_t k = 0, design = 0;
-            {
-                std::lock_guard<std::mutex> lock(mu);
-                while (cursor < n && done.count(cursor)) cursor += step;
-                if (stop || cursor >= n || issued >= remaining) return;
-                k = issued++;
-                design = cursor;
-                cursor += step;
-            }
-            try {
-                throw_if_interrupted();
-                DesignResult r = evaluate_design(s, design);
-                std::lock_guard<std::mutex> lock(mu);
-                ready.emplace(k, std::move(r));
-                write_ready();
-            } catch (...) {
-                std::lock_guard<std::mutex> lock(mu);
-                stop = true;   // the others stop after their current design
-                throw;
-            }
-        }
-    };
+    DesignQueue queue(s, done, first, step, remaining);
     const int jobs = std::max(1, static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(1, opt.jobs)),
                                                                         std::max<std::size_t>(remaining, 1))));
-    for_each_index(static_cast<std::size_t>(jobs), jobs, worker);
+    std::vector<ResultRow> fresh;
+    // The workers on threads of their own for the whole run; this thread writes their
+    // rows in order as they come (and reports progress), so a slow disk or a progress
+    // callback never holds a worker.
+    run_beside(
+        jobs, [&] { queue.work(run.files()); },
+        [&] {
+            try {
+                for (std::size_t k = 0;; ++k) {
+                    std::optional<DesignResult> r = queue.result(k);
+                    if (!r) break;   // every issued design is written and no more will be
+                    ResultRow row = format_row(s, *r);
+                    if (out) out->write(csv_line(row.cells));
+                    fresh.push_back(std::move(row));
+                    ++res.computed;
+                    if (opt.progress) opt.progress(res.resumed + res.computed, res.shard_designs);
+                }
+            } catch (...) {
+                queue.halt();   // the workers stop after their current design
+                throw;
+            }
+        });
     // An input edited while the run read it: the file says so, and --resume and --merge refuse it.
     if (const std::string changed = run.files().changed_inputs(); !changed.empty()) {
         if (out) {
