@@ -14,15 +14,7 @@ namespace gyrokit {
 
 namespace {
 
-toml::table parse(const std::string& path) {
-    const std::string text = read_toml_text(path, "scene file");
-    try {
-        return toml::parse(text, path);
-    } catch (const toml::parse_error& e) {
-        const auto& b = e.source().begin;
-        throw InputError(fmt::format("{}: line {}, column {}: {}", path, b.line, b.column, e.description()));
-    }
-}
+toml::table parse(const std::string& path) { return parse_toml(read_toml_text(path, "scene file"), path); }
 
 // The ODE method and tolerances of [simulation] or [runup] (default tolerance `tol`).
 void read_ode_method(const TomlKeys& s, double tol, OdeOptions& ode) {

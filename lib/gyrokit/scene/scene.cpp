@@ -154,15 +154,7 @@ std::set<std::string> model_types() {
     return t;
 }
 
-toml::table parse_scene_file(const std::string& path) {
-    const std::string text = read_toml_text(path, "scene file");
-    try {
-        return toml::parse(text, path);
-    } catch (const toml::parse_error& e) {
-        const auto& b = e.source().begin;
-        throw InputError(fmt::format("{}: line {}, column {}: {}", path, b.line, b.column, e.description()));
-    }
-}
+toml::table parse_scene_file(const std::string& path) { return parse_toml(read_toml_text(path, "scene file"), path); }
 
 // One step of a parameter path: a key, and for an array of tables [[...]] the
 // entry ([i], from 0) or every entry ([*]).
@@ -377,14 +369,8 @@ Scene load_scene(const std::string& path, const std::map<std::string, double>& o
 
 Scene parse_scene(const std::string& text, const std::string& origin, const std::string& dir,
                   const std::map<std::string, double>& overrides) {
-    toml::table root;
     check_toml_depth(text, origin);
-    try {
-        root = toml::parse(text, origin);
-    } catch (const toml::parse_error& e) {
-        const auto& b = e.source().begin;
-        throw InputError(fmt::format("{}: line {}, column {}: {}", origin, b.line, b.column, e.description()));
-    }
+    toml::table root = parse_toml(text, origin);
     InputCollector read;
     Scene sc = scene_from(std::move(root), origin, dir.empty() ? "." : dir, overrides);
     sc.inputs = read.paths();

@@ -16,6 +16,17 @@
 
 namespace gyrokit {
 
+// TOML text parsed, a syntax error an InputError naming `origin`, the line and the column:
+// the one parse of every reader (scenes, balancer scenes, sweeps).
+inline toml::table parse_toml(const std::string& text, const std::string& origin) {
+    try {
+        return toml::parse(text, origin);
+    } catch (const toml::parse_error& e) {
+        const auto& b = e.source().begin;
+        throw InputError(fmt::format("{}: line {}, column {}: {}", origin, b.line, b.column, e.description()));
+    }
+}
+
 class TomlKeys {
 public:
     TomlKeys(const std::string& file, std::string table, const toml::table& t) : file_(file), table_(std::move(table)), t_(t) {}

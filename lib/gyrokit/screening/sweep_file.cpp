@@ -255,14 +255,7 @@ void read_criteria(const toml::table& root, const std::string& path, Sweep& s) {
 Sweep read_sweep(const std::string& path, const std::string& scene_text, const std::string& scene_name) {
     Sweep s;
     s.path = path;
-    toml::table root;
-    const std::string text = read_toml_text(path, "sweep file");
-    try {
-        root = toml::parse(text, path);
-    } catch (const toml::parse_error& e) {
-        const auto& b = e.source().begin;
-        throw InputError(fmt::format("{}: line {}, column {}: {}", path, b.line, b.column, e.description()));
-    }
+    toml::table root = parse_toml(read_toml_text(path, "sweep file"), path);
     TomlKeys top(path, "top level", root);
     top.only({"title", "scene", "units", "sampling", "parameter", "operating", "criteria", "plot"});
     read_scene_keys(top, path, scene_text, scene_name, s);
