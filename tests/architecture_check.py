@@ -25,13 +25,8 @@ import sys
 MAX_FILE_LINES = 500
 MAX_FUNCTION_LINES = 100
 
-# Not yet moved (issue: a model the code can see): key -> why it is still here.
-KNOWN = {
-    "length lib/gyrokit/analysis/campbell.cpp": "to be split with the solver pipeline",
-    "length lib/gyrokit/eig/quadratic_eigensolver.cpp": "the dense solve as a pipeline of named stages",
-    "function lib/gyrokit/solve/continuation_anchors.cpp solve_anchors": "the dense solve's stages",
-    "function lib/gyrokit/solve/continuation_steps.cpp branch_solve": "the continuation step's stages",
-}
+# What a staged move has not reached yet: key -> why it is still here (empty: none).
+KNOWN = {}
 
 
 def code_only(line, in_block):

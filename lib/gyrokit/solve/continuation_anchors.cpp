@@ -16,31 +16,40 @@
 
 namespace gyrokit::continuation_detail {
 
-void solve_anchors(Shared& sh, ContinuationReport& rep) {
-    const std::vector<double>& speeds = sh.grid;
-    const std::shared_ptr<const GyroscopicSystem>& model = sh.model;
-    const ContinuationOptions opt = sh.opt;   // as given (the band may widen below)
-    const int n = model->size();
-    // Full solves at the first speed (and every anchor_stride-th and the last, if set);
-    // the eigenvalues alone at every check_stride-th and the last where there is none.
-    std::vector<double> anchors{speeds.front()}, checks;
+namespace {
+
+// Where the continuation solves before any step: full solves at the first speed
+// (and every anchor_stride-th and the last, if set); the eigenvalues alone at every
+// check_stride-th and the last where there is no anchor.
+struct AnchorPlan {
+    std::vector<double> anchors, checks;
+};
+
+AnchorPlan plan_anchors(const std::vector<double>& speeds, const ContinuationOptions& opt) {
+    AnchorPlan p;
+    p.anchors.push_back(speeds.front());
     if (opt.anchor_stride > 0) {
         for (size_t k = static_cast<size_t>(opt.anchor_stride); k < speeds.size(); k += static_cast<size_t>(opt.anchor_stride))
-            anchors.push_back(speeds[k]);
-        if (anchors.back() != speeds.back()) anchors.push_back(speeds.back());
+            p.anchors.push_back(speeds[k]);
+        if (p.anchors.back() != speeds.back()) p.anchors.push_back(speeds.back());
     }
-    const auto is_anchor = [&](double w) { return std::find(anchors.begin(), anchors.end(), w) != anchors.end(); };
+    const auto is_anchor = [&](double w) { return std::find(p.anchors.begin(), p.anchors.end(), w) != p.anchors.end(); };
     for (size_t k = static_cast<size_t>(opt.check_stride); k < speeds.size(); k += static_cast<size_t>(opt.check_stride))
-        if (!is_anchor(speeds[k])) checks.push_back(speeds[k]);
-    if (!is_anchor(speeds.back()) && (checks.empty() || checks.back() != speeds.back())) checks.push_back(speeds.back());
-    rep.anchors = anchors;
-    rep.checks = checks;
-    sh.work->full_solves += static_cast<long>(anchors.size());
-    sh.work->eigenvalue_checks += static_cast<long>(checks.size());
+        if (!is_anchor(speeds[k])) p.checks.push_back(speeds[k]);
+    if (!is_anchor(speeds.back()) && (p.checks.empty() || p.checks.back() != speeds.back()))
+        p.checks.push_back(speeds.back());
+    return p;
+}
+
+// The anchors' full solves (with left vectors) and the checks' eigenvalues.
+void solve_plan(const std::shared_ptr<const GyroscopicSystem>& model, const ContinuationOptions& opt,
+                const AnchorPlan& plan, std::vector<QuadraticSpectrum>& solved,
+                std::vector<QuadraticSpectrum>& checked) {
+    const std::vector<double>& anchors = plan.anchors;
+    const std::vector<double>& checks = plan.checks;
     EigenOptions full = opt.eig;
     full.left_vectors = true;
     const SolverFactory dense = dense_solver(*model, full);
-    std::vector<QuadraticSpectrum> solved, checked;
     if (opt.workers.count > 1 && opt.workers.kind != WorkerKind::Processes && dense.thread_safe()) {
         // One loop on threads, the anchors (the longest) first: a thread done with
         // its anchor takes the checks.
@@ -62,43 +71,46 @@ void solve_anchors(Shared& sh, ContinuationReport& rep) {
                 throw;
             }
         });
-    } else {
-        solved = solve_speeds(dense, anchors, opt.workers);
-        const SolverFactory values([model]() -> SpectrumSolver {
-            return [model](double w) { return eigenvalues_only(*model, w); };
-        }, n);
-        if (!checks.empty()) checked = solve_speeds(values, checks, opt.workers);
+        return;
     }
+    solved = solve_speeds(dense, anchors, opt.workers);
+    const SolverFactory values([model]() -> SpectrumSolver {
+        return [model](double w) { return eigenvalues_only(*model, w); };
+    }, model->size());
+    if (!checks.empty()) checked = solve_speeds(values, checks, opt.workers);
+}
 
-    if (opt.lowest > 0) {   // the band of the lowest modes, from the anchors and checks
-        double top = 0.0;
-        for (const auto* list : {&solved, &checked})
-            for (const QuadraticSpectrum& s : *list) {
-                std::vector<Mode> m = s.modes;
-                sort_by_frequency(m);
-                // A divergent eigenvalue is kept whatever its size (within_band): it does not widen the band.
-                m.erase(std::remove_if(m.begin(), m.end(),
-                                       [&](const Mode& x) {
-                                           return std::abs(x.lambda.imag()) <= s.real_tol && x.lambda.real() > 0.0;
-                                       }),
-                        m.end());
-                for (size_t i = 0; i < std::min(m.size(), static_cast<size_t>(opt.lowest)); ++i)
-                    top = std::max(top, frequency_rank(m[i]).second);
-            }
-        if (!(top > 0.0) || !std::isfinite(top))
-            throw SolverError(fmt::format("continuation: no band holds the {} lowest modes (largest frequency {})",
-                                          opt.lowest, top));
-        sh.opt.band = std::max(opt.band, opt.band_margin * top);
-    }
-    const double band = sh.opt.band;
-    rep.band = band;
+// The band that holds the `lowest` lowest modes at every anchor and check, times the
+// margin (never below the band given).
+double lowest_modes_band(const std::vector<QuadraticSpectrum>& solved, const std::vector<QuadraticSpectrum>& checked,
+                         const ContinuationOptions& opt) {
+    double top = 0.0;
+    for (const auto* list : {&solved, &checked})
+        for (const QuadraticSpectrum& s : *list) {
+            std::vector<Mode> m = s.modes;
+            sort_by_frequency(m);
+            // A divergent eigenvalue is kept whatever its size (within_band): it does not widen the band.
+            m.erase(std::remove_if(m.begin(), m.end(),
+                                   [&](const Mode& x) {
+                                       return std::abs(x.lambda.imag()) <= s.real_tol && x.lambda.real() > 0.0;
+                                   }),
+                    m.end());
+            for (size_t i = 0; i < std::min(m.size(), static_cast<size_t>(opt.lowest)); ++i)
+                top = std::max(top, frequency_rank(m[i]).second);
+        }
+    if (!(top > 0.0) || !std::isfinite(top))
+        throw SolverError(fmt::format("continuation: no band holds the {} lowest modes (largest frequency {})",
+                                      opt.lowest, top));
+    return std::max(opt.band, opt.band_margin * top);
+}
 
-    // The basis: real and imaginary parts of the right and left vectors of every
-    // mode within twice the band (modes that enter the band between anchors are
-    // near it at an anchor), and of the rigid-body eigenvalues.
-    std::vector<Eigen::VectorXd> columns;   // only for the projected pencil, which the steps precede
+// The projection basis: real and imaginary parts of the right and left vectors of
+// every mode within twice the band (modes that enter the band between anchors are
+// near it at an anchor) and of the rigid-body eigenvalues, orthonormalised by an SVD
+// (rank cut at 1e-12). Empty where there is nothing to span.
+Eigen::MatrixXd projection_basis(const std::vector<QuadraticSpectrum>& solved, double band, int n) {
+    std::vector<Eigen::VectorXd> columns;
     const auto add = [&](const Eigen::VectorXcd& v) {
-        if (opt.along_branches) return;
         if (v.size() != n) return;
         for (const Eigen::VectorXd& c : {Eigen::VectorXd(v.real()), Eigen::VectorXd(v.imag())})
             if (c.norm() > 1e-8 * v.norm()) columns.push_back(c / c.norm());
@@ -110,23 +122,39 @@ void solve_anchors(Shared& sh, ContinuationReport& rep) {
     }
     Eigen::MatrixXd V(n, static_cast<Eigen::Index>(columns.size()));
     for (size_t j = 0; j < columns.size(); ++j) V.col(static_cast<Eigen::Index>(j)) = columns[j];
-    int r = 0;
-    Eigen::MatrixXd Q;
-    if (V.cols() > 0) {
-        Eigen::BDCSVD<Eigen::MatrixXd> svd(V, Eigen::ComputeThinU);
-        const Eigen::VectorXd& sv = svd.singularValues();
-        while (r < sv.size() && sv(r) > 1e-12 * sv(0)) ++r;
-        Q = svd.matrixU().leftCols(r);
-    }
-    rep.basis = r;
-    rep.used = r > 0 && r <= opt.max_basis_fraction * n;
-    if (rep.used) sh.Q = std::move(Q);
-    for (size_t k = 0; k < anchors.size(); ++k) {
-        sh.anchor_tracks[anchors[k]] = track_of(solved[k], sh, anchors[k]);
-        sh.anchors[anchors[k]] = keep_band(std::move(solved[k]), sh);
-    }
-    for (size_t k = 0; k < checks.size(); ++k) sh.checks[checks[k]] = std::move(checked[k]);
+    if (V.cols() == 0) return {};
+    Eigen::BDCSVD<Eigen::MatrixXd> svd(V, Eigen::ComputeThinU);
+    const Eigen::VectorXd& sv = svd.singularValues();
+    Eigen::Index r = 0;
+    while (r < sv.size() && sv(r) > 1e-12 * sv(0)) ++r;
+    return svd.matrixU().leftCols(r);
+}
 
+}  // namespace
+
+// The anchors, stage by stage: plan, solve, band, basis, then the anchors' tracks.
+void solve_anchors(Shared& sh, ContinuationReport& rep) {
+    const ContinuationOptions opt = sh.opt;   // as given (the band may widen below)
+    const int n = sh.model->size();
+    const AnchorPlan plan = plan_anchors(sh.grid, opt);
+    rep.anchors = plan.anchors;
+    rep.checks = plan.checks;
+    sh.work->full_solves += static_cast<long>(plan.anchors.size());
+    sh.work->eigenvalue_checks += static_cast<long>(plan.checks.size());
+    std::vector<QuadraticSpectrum> solved, checked;
+    solve_plan(sh.model, opt, plan, solved, checked);
+    if (opt.lowest > 0) sh.opt.band = lowest_modes_band(solved, checked, opt);
+    rep.band = sh.opt.band;
+    // The projected pencil precedes the steps; a continuation along branches has none.
+    Eigen::MatrixXd Q = opt.along_branches ? Eigen::MatrixXd() : projection_basis(solved, sh.opt.band, n);
+    rep.basis = static_cast<int>(Q.cols());
+    rep.used = rep.basis > 0 && rep.basis <= opt.max_basis_fraction * n;
+    if (rep.used) sh.Q = std::move(Q);
+    for (size_t k = 0; k < plan.anchors.size(); ++k) {
+        sh.anchor_tracks[plan.anchors[k]] = track_of(solved[k], sh, plan.anchors[k]);
+        sh.anchors[plan.anchors[k]] = keep_band(std::move(solved[k]), sh);
+    }
+    for (size_t k = 0; k < plan.checks.size(); ++k) sh.checks[plan.checks[k]] = std::move(checked[k]);
 }
 
 // The eigenvalues at speed w alone, as a spectrum of modes without vectors (a

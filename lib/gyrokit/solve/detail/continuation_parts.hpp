@@ -82,6 +82,27 @@ bool lands_on_another(const std::vector<Mode>& modes, const Mode& m);
 // where it does not converge to lambda (within 1e-6 of its modulus) or lands on a
 // mode of `at`.
 std::optional<Mode> joined_mode(const Frame& fr, const Solved& at, double w, cd lambda);
+// A start of a correction: the predicted eigenvalue, a start vector (the mode's own
+// or a Ritz vector) and the tracked mode it continues (-1: a Ritz pair of a cluster,
+// whose modes may be one more or one fewer than before, at an exceptional point).
+struct Seed {
+    cd predicted;
+    Mode start;
+    long origin = -1;
+};
+
+// The distance between two eigenvalues, the conjugate's included.
+double pair_distance(cd a, cd b);
+
+// The modes of a failed step that move as a group: each failed mode with its nearest
+// neighbour, or alone where its own conjugate is nearer (continuation_clusters.cpp).
+std::vector<std::vector<size_t>> clusters_of(const std::vector<Mode>& track, const std::vector<size_t>& failed,
+                                             double real_tol);
+
+// The Ritz pairs of a cluster at the pencil p as seeds; none where the span or the choice fails.
+std::optional<std::vector<Seed>> cluster_seeds(const SparsePencil& p, const std::vector<Mode>& track,
+                                               const std::vector<size_t>& members, double real_tol);
+
 // Step 1: every mode of `from` predicted along its slope and corrected at w. Given
 // `cluster_failed` (the modes a plain step failed on, listed in `failed`), each of
 // them with its nearest neighbour (or alone, as a complex pair about to meet on the
