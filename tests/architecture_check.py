@@ -12,6 +12,8 @@
 5. One of each: π is defined in lib/gyrokit/core/constants.hpp alone (no M_PI, no 3.14159 literal in lib/,
    apps/ or python/); std::thread is used by lib/gyrokit/core/parallel.cpp alone (the kept pool behind
    for_each_index; std::thread::hardware_concurrency aside); CSV fields are quoted by lib/gyrokit/io/csv.cpp alone.
+6. The C++ tests mirror lib/gyrokit: tests/M/test_*.cpp for a module M (tests/bench/ for apps/bench), only
+   test_main.cpp at the top, each listed in tests/CMakeLists.txt and every listed file present.
 
 KNOWN lists what the layout work has not reached yet, each with its reason: the check fails for anything
 else, and for an entry that no longer applies (so that the list only shrinks).
@@ -181,6 +183,21 @@ def main(root):
     present = {p.relative_to(root / "lib").as_posix() for p in lib.rglob("*.cpp")}
     findings += [f"unlisted lib/{p} (not in lib/CMakeLists.txt: it would not be built)" for p in sorted(present - listed)]
     findings += [f"missing lib/{p} (listed in lib/CMakeLists.txt)" for p in sorted(listed - present)]
+    # Rule 6: the C++ tests mirror lib/gyrokit (bench/ mirrors apps/bench), each listed in tests/CMakeLists.txt.
+    tests = root / "tests"
+    mirrors = {d.name for d in lib.iterdir() if d.is_dir()} | {"bench"}
+    test_cmake = (tests / "CMakeLists.txt").read_text()
+    listed = set(re.findall(r"^\s+([\w/]*test_\w+\.cpp)\s*$", test_cmake, re.M))
+    present = {p.relative_to(tests).as_posix() for p in tests.rglob("test_*.cpp")
+               if p.parent == tests or p.parent.parent == tests and p.parent.name != "fuzz"}
+    findings += [f"unlisted tests/{p} (not in tests/CMakeLists.txt: it would not run)" for p in sorted(present - listed)]
+    findings += [f"missing tests/{p} (listed in tests/CMakeLists.txt)" for p in sorted(listed - present)]
+    for p in sorted(present):
+        folder = p.split("/")[0] if "/" in p else ""
+        if folder and folder not in mirrors:
+            findings.append(f"test folder tests/{folder} mirrors no module of lib/gyrokit")
+        if not folder and p != "test_main.cpp":
+            findings.append(f"test tests/{p} lies outside the folders that mirror lib/gyrokit")
     bad = [f for f in findings if f not in KNOWN]
     stale = [k for k in KNOWN if k not in findings]
     for f in bad:

@@ -1,6 +1,6 @@
 // Seeded random FE rotors as engineers write them, and the checks every one of
 // them must pass on the default path: the family of the fast-path property test
-// (tests/test_rotor_family.cpp, a few of them) and of its benchmark
+// (tests/bench/test_rotor_family.cpp, a few of them) and of its benchmark
 // (apps/bench/bench_family.cpp, hundreds). docs/benchmarks.md ("Rotor family")
 // states the rules; docs/numerics.md the continuation they exercise.
 // Header-only.
