@@ -99,8 +99,8 @@ int main(int argc, char** argv) {
             SolverOptions so;
             so.kind = SolverKind::Dense;
             const SolverChoice plan = choose_solver(sc.system, so);
-            const CampbellOptions in_range = tracking_options(plan, kModesInRange, speeds, sc.harmonics, jobs);
-            CampbellOptions every = tracking_options(plan, 0, speeds, sc.harmonics, jobs);
+            const CampbellOptions in_range = tracking_options(plan, kModesInRange, speeds, sc.analysis.harmonics, jobs);
+            CampbellOptions every = tracking_options(plan, 0, speeds, sc.analysis.harmonics, jobs);
             const auto model = std::make_shared<const GyroscopicSystem>(sc.system);
             ContinuationOptions copt;
             copt.band = in_range.band;
@@ -110,9 +110,9 @@ int main(int argc, char** argv) {
             const SolverFactory cont = continuation_solver(model, speeds, copt, &rep);
             const double setup = seconds_since(t0);
 
-            const Run base = run(plan.make, speeds, every, sc.harmonics, jobs);
-            const Run full = run(plan.make, speeds, in_range, sc.harmonics, jobs);
-            Run fast = run(cont, speeds, in_range, sc.harmonics, jobs);
+            const Run base = run(plan.make, speeds, every, sc.analysis.harmonics, jobs);
+            const Run full = run(plan.make, speeds, in_range, sc.analysis.harmonics, jobs);
+            Run fast = run(cont, speeds, in_range, sc.analysis.harmonics, jobs);
             fast.campbell += setup;   // the anchor's full solve and the checks belong to the diagram's cost
             const double dev = deviation_over_bounds(cont, plan.make, speeds, in_range.band);
             const double total_base = base.campbell + base.critical;

@@ -9,6 +9,7 @@
 #include <gyrokit/scene/scene.hpp>
 #include <gyrokit/io/table.hpp>
 #include <gyrokit/models/gyrostat.hpp>
+#include <gyrokit/core/constants.hpp>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -46,7 +47,7 @@ GyroscopicSystem make_multi_disk_rotor(int disks) {
     const double k_bearing = 1e8;                                // N/m, both ends, x and y
     const double alpha = 0.5, beta = 1e-8;                       // proportional damping D = alpha M + beta K
     const int n = 4 * disks;
-    const double l = L / (disks - 1), EI = E * std::acos(-1.0) * std::pow(d, 4) / 64.0;
+    const double l = L / (disks - 1), EI = E * kPi * std::pow(d, 4) / 64.0;
 
     GyroscopicSystem sys;
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), G = M, K = M;

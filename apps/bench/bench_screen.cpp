@@ -6,6 +6,7 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/io/table.hpp>
 #include <gyrokit/screening/screening.hpp>
+#include <gyrokit/core/constants.hpp>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
@@ -26,7 +27,7 @@ namespace {
 // tilt_y) per disk, bearings at the two end disks with stiffness k and damping c.
 Scene multi_disk_rotor(int disks, double k_bearing, double c_bearing) {
     const double L = 1.2, d = 0.05, E = 2.1e11, m = 40.0 / disks, Id = 0.4 / disks, Ip = 0.6 / disks;
-    const double l = L / (disks - 1), EI = E * std::acos(-1.0) * std::pow(d, 4) / 64.0;
+    const double l = L / (disks - 1), EI = E * kPi * std::pow(d, 4) / 64.0;
     const int n = 4 * disks;
     Scene sc;
     GyroscopicSystem& s = sc.system;
@@ -70,7 +71,7 @@ Scene multi_disk_rotor(int disks, double k_bearing, double c_bearing) {
     const int mid = 4 * (disks / 2);
     s.unbalance(mid) = m * 1e-4;
     s.unbalance(mid + 1) = std::complex<double>(0, -m * 1e-4);
-    sc.modes = 8;
+    sc.solver.modes = 8;
     return sc;
 }
 

@@ -7,8 +7,13 @@
 #include <gyrokit/scene/scene.hpp>
 #include <gyrokit/scene/scene_writer.hpp>
 #include <gyrokit/models/rotor_model.hpp>
+#include <gyrokit/core/constants.hpp>
 
 #include <pybind11/stl.h>
+
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include <cmath>
 #include <fmt/format.h>
@@ -22,8 +27,8 @@ namespace {
 
 using Opt = std::optional<double>;
 
-double radians(double deg) { return deg * std::acos(-1.0) / 180.0; }
-double degrees(double rad) { return rad * 180.0 / std::acos(-1.0); }
+double radians(double deg) { return deg * kPi / 180.0; }
+double degrees(double rad) { return rad * 180.0 / kPi; }
 
 // A keyword that takes one of `allowed`.
 void require_choice(const char* keyword, const std::string& value, std::initializer_list<const char*> allowed) {
@@ -191,24 +196,128 @@ std::vector<T> named(std::vector<T> items, const char* list) {
     return items;
 }
 
-Scene scene_of(const RotorModel& model, const std::string& title, const py::object& speeds, const py::object& modes,
-               const py::object& harmonics, const std::string& solver, const py::object& target,
-               double target_order, const py::object& f_cut) {
-    Scene sc = rotor_scene(model, title);
+// A scene's [speeds] and [analysis] from Python's dicts (mapped by gyrokit/__init__.py), checked.
+Scene with_settings(Scene sc, const py::object& speeds, const py::object& modes, const py::object& harmonics,
+                    const std::string& solver, const py::object& target, double target_order, const py::object& f_cut) {
     if (!speeds.is_none()) {
         const auto t = speeds.cast<std::tuple<double, double, int, std::string>>();
         sc.speeds = SpeedRange{std::get<0>(t), std::get<1>(t), std::get<2>(t)};
         sc.speed_unit = SpeedUnit::parse(std::get<3>(t));
     }
-    if (!modes.is_none()) sc.modes = modes.cast<int>();
-    if (!harmonics.is_none()) sc.harmonics = harmonics.cast<std::vector<int>>();
+    if (!modes.is_none()) sc.solver.modes = modes.cast<int>();
+    if (!harmonics.is_none()) sc.analysis.harmonics = harmonics.cast<std::vector<int>>();
     require_choice("solver", solver, {"auto", "dense", "sparse"});
-    sc.solver = parse_solver_kind(solver);
-    if (!target.is_none()) sc.target = target.cast<double>();
-    sc.target_order = target_order;
-    if (!f_cut.is_none()) sc.f_cut = f_cut.cast<double>();
+    sc.solver.kind = parse_solver_kind(solver);
+    if (!target.is_none()) sc.solver.target = target.cast<double>();
+    sc.solver.target_order = target_order;
+    if (!f_cut.is_none()) sc.analysis.f_cut = f_cut.cast<double>();
     validate_settings(sc);
     return sc;
+}
+
+// A model's parameters from keywords named as the scene's [model] keys: each a number
+// (or, where `choices` names it, one of its words), unknown keys named with the allowed ones.
+template <class P>
+struct ParameterKeys {
+    const char* model;
+    std::vector<std::pair<const char*, double P::*>> numbers;
+    std::vector<std::pair<const char*, int P::*>> integers;
+    std::vector<std::tuple<const char*, bool P::*, const char*, const char*>> choices;   // key, flag, false word, true word
+
+    P from(const py::kwargs& kw) const {
+        P p;
+        for (const auto& [key, value] : kw) {
+            const std::string k = py::cast<std::string>(key);
+            if (set(p, k, value)) continue;
+            std::string allowed;
+            for (const auto& n : numbers) allowed += (allowed.empty() ? "" : ", ") + std::string(n.first);
+            for (const auto& n : integers) allowed += ", " + std::string(n.first);
+            for (const auto& c : choices) allowed += ", " + std::string(std::get<0>(c));
+            throw InputError(fmt::format("{}: unknown key '{}'; allowed: {}", model, k, allowed));
+        }
+        return p;
+    }
+
+private:
+    bool set(P& p, const std::string& k, const py::handle& value) const {
+        const auto bad = [&](const char* what) {
+            return InputError(fmt::format("{}: {} = {}: allowed: {}", model, k, py::str(py::repr(value)).cast<std::string>(), what));
+        };
+        for (const auto& [name, field] : numbers)
+            if (k == name) {
+                if (py::isinstance<py::bool_>(value) || (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value)))
+                    throw bad("a number");
+                p.*field = value.cast<double>();
+                return true;
+            }
+        for (const auto& [name, field] : integers)
+            if (k == name) {
+                if (py::isinstance<py::bool_>(value) || !py::isinstance<py::int_>(value)) throw bad("a whole number");
+                p.*field = value.cast<int>();
+                return true;
+            }
+        for (const auto& [name, field, no, yes] : choices)
+            if (k == name) {
+                const std::string w = py::isinstance<py::str>(value) ? value.cast<std::string>() : "";
+                if (w != no && w != yes) throw bad(fmt::format("'{}' or '{}'", no, yes).c_str());
+                p.*field = w == yes;
+                return true;
+            }
+        return false;
+    }
+};
+
+const ParameterKeys<GyrostatParameters>& gyrostat_keys() {
+    using G = GyrostatParameters;
+    static const ParameterKeys<G> keys{
+        "gyrostat",
+        {{"A_G", &G::A_G}, {"B_G", &G::B_G}, {"A_R", &G::A_R}, {"C_R", &G::C_R}, {"m", &G::m}, {"s", &G::s},
+         {"eps", &G::eps}, {"c_G", &G::c_G}, {"c_T", &G::c_T}, {"c_R", &G::c_R}, {"d_G", &G::d_G}, {"d_T", &G::d_T},
+         {"d_R", &G::d_R}},
+        {},
+        {{"shaft", &G::rigid_shaft, "elastic", "rigid"}, {"housing", &G::rigid_housing, "elastic", "rigid"}}};
+    return keys;
+}
+
+const ParameterKeys<FluidRotorParameters>& fluid_keys() {
+    using F = FluidRotorParameters;
+    static const ParameterKeys<F> keys{
+        "fluid_rotor",
+        {{"R", &F::R}, {"R0", &F::R0}, {"a", &F::a}, {"l", &F::l}, {"rho", &F::rho}, {"nu", &F::nu}, {"c1", &F::c1},
+         {"c2", &F::c2}, {"c11", &F::c11}, {"m0", &F::m0}, {"I0", &F::I0}, {"J0", &F::J0}, {"e", &F::e},
+         {"tolerance", &F::tolerance}},
+        {{"modes", &F::modes}, {"jstar_terms", &F::jstar_terms}},
+        {}};
+    return keys;
+}
+
+// Each field readable and writable under its [model] key, and a repr that lists them.
+template <class P>
+void bind_parameters(py::module_& m, const char* name, const char* doc, const ParameterKeys<P>& keys) {
+    py::class_<P> c(m, name, doc);
+    c.def(py::init([&keys](const py::kwargs& kw) { return keys.from(kw); }));
+    for (const auto& [key, field] : keys.numbers) c.def_readwrite(key, field);
+    for (const auto& [key, field] : keys.integers) c.def_readwrite(key, field);
+    for (const auto& [key, field, no, yes] : keys.choices) {
+        const auto f = field;
+        const std::string n = no, y = yes;
+        c.def_property(
+            key, [f, n, y](const P& p) { return p.*f ? y : n; },
+            [f, n, y, key = std::string(key)](P& p, const std::string& w) {
+                require_choice(key.c_str(), w, {n.c_str(), y.c_str()});
+                p.*f = w == y;
+            });
+    }
+    c.def("__repr__", [&keys, name](const P& p) {
+        std::string r = std::string(name) + "(";
+        const char* sep = "";
+        for (const auto& [key, field] : keys.numbers)   // Python's float repr: shortest round trip, "2.0"
+            r += fmt::format("{}{}={}", std::exchange(sep, ", "), key, py::repr(py::float_(p.*field)).cast<std::string>());
+        for (const auto& [key, field] : keys.integers) r += fmt::format("{}{}={}", std::exchange(sep, ", "), key, p.*field);
+        for (const auto& [key, field, no, yes] : keys.choices)
+            r += fmt::format("{}{}='{}'", std::exchange(sep, ", "), key, p.*field ? yes : no);
+        return r + ")";
+    });
 }
 
 }  // namespace
@@ -300,12 +409,51 @@ void bind_models(py::module_& m, py::class_<Scene>& scene) {
         .def_readonly("pedestals", &RotorModel::pedestals)
         .def_property_readonly("motion", [](const RotorModel& r) { return to_string(r.motion); });
 
-    m.def("rotor_scene", &scene_of, py::arg("rotor"), py::arg("title"), py::arg("speeds"), py::arg("modes"),
-          py::arg("harmonics"), py::arg("solver"), py::arg("target"), py::arg("target_order"),
-          py::arg("f_cut") = py::none());
+    bind_parameters(m, "GyrostatParameters",
+                    "The gyrostat with elastic shaft (docs/gyrostat.md): keywords and attributes named as the "
+                    "scene's [model] keys (SI units); shaft and housing 'elastic' or 'rigid'",
+                    gyrostat_keys());
+    bind_parameters(m, "FluidRotorParameters",
+                    "The liquid-filled rotor (docs/fluid_rotor.md): keywords and attributes named as the scene's "
+                    "[model] keys (SI units); modes 0: the sloshing sum truncated at `tolerance`",
+                    fluid_keys());
+    // One call per model kind; each with the scene's [speeds] and [analysis] as mapped by gyrokit/__init__.py.
+    m.def("rotor_scene",
+          [](const RotorModel& model, const std::string& title, const py::object& speeds, const py::object& modes,
+             const py::object& harmonics, const std::string& solver, const py::object& target, double target_order,
+             const py::object& f_cut) {
+              return with_settings(rotor_scene(model, title), speeds, modes, harmonics, solver, target, target_order,
+                                   f_cut);
+          },
+          py::arg("rotor"), py::arg("title"), py::arg("speeds"), py::arg("modes"), py::arg("harmonics"),
+          py::arg("solver"), py::arg("target"), py::arg("target_order"), py::arg("f_cut") = py::none());
+    m.def("gyrostat_scene",
+          [](const GyrostatParameters& p, const std::string& title, const py::object& speeds, const py::object& modes,
+             const py::object& harmonics, const std::string& solver, const py::object& target, double target_order,
+             const py::object& f_cut) {
+              return with_settings(model_scene(p, title), speeds, modes, harmonics, solver, target, target_order,
+                                   f_cut);
+          },
+          py::arg("parameters"), py::arg("title"), py::arg("speeds"), py::arg("modes"), py::arg("harmonics"),
+          py::arg("solver"), py::arg("target"), py::arg("target_order"), py::arg("f_cut") = py::none());
+    m.def("fluid_rotor_scene",
+          [](const FluidRotorParameters& p, const std::string& title, const py::object& speeds,
+             const py::object& modes, const py::object& harmonics, const std::string& solver,
+             const py::object& target, double target_order, const py::object& f_cut) {
+              return with_settings(model_scene(p, title), speeds, modes, harmonics, solver, target, target_order,
+                                   f_cut);
+          },
+          py::arg("parameters"), py::arg("title"), py::arg("speeds"), py::arg("modes"), py::arg("harmonics"),
+          py::arg("solver"), py::arg("target"), py::arg("target_order"), py::arg("f_cut") = py::none());
     scene.def_property_readonly("rotor", [](const Scene& s) {
         return s.rotor_model() ? std::optional<RotorModel>(*s.rotor_model()) : std::nullopt;
     })
+        .def_property_readonly("gyrostat", [](const Scene& s) {
+            return s.gyrostat() ? std::optional<GyrostatParameters>(*s.gyrostat()) : std::nullopt;
+        }, "The gyrostat's parameters (None for another model)")
+        .def_property_readonly("fluid_rotor", [](const Scene& s) {
+            return s.fluid() ? std::optional<FluidRotorParameters>(*s.fluid()) : std::nullopt;
+        }, "The liquid-filled rotor's parameters (None for another model)")
         .def("to_toml", &scene_text, "The scene as TOML that load_scene reads back to the same model and settings")
         .def("write", &write_scene, py::arg("path"), "Writes the scene to `path` (to_toml)")
         .def(py::pickle([](const Scene& s) { return py::make_tuple(scene_text(s), s.path); },

@@ -135,12 +135,12 @@ py::class_<Scene> bind_system(py::module_& m) {
         .def_property_readonly("length_unit", [](const Scene& s) { return s.length_unit().name; })
         .def_property_readonly("model_type", &Scene::model_type)
         .def_readonly("system", &Scene::system)
-        .def_readonly("modes", &Scene::modes)
-        .def_readonly("harmonics", &Scene::harmonics)
-        .def_readonly("target_order", &Scene::target_order)
-        .def_property_readonly("target", [](const Scene& s) { return s.target; })
-        .def_property_readonly("f_cut", [](const Scene& s) { return s.f_cut; })
-        .def_property_readonly("solver", [](const Scene& s) { return to_string(s.solver); })
+        .def_property_readonly("modes", [](const Scene& s) { return s.solver.modes; })
+        .def_property_readonly("harmonics", [](const Scene& s) { return s.analysis.harmonics; })
+        .def_property_readonly("target_order", [](const Scene& s) { return s.solver.target_order; })
+        .def_property_readonly("target", [](const Scene& s) { return s.solver.target; })
+        .def_property_readonly("f_cut", [](const Scene& s) { return s.analysis.f_cut; })
+        .def_property_readonly("solver", [](const Scene& s) { return to_string(s.solver.kind); })
         .def_property_readonly("speeds", [](const Scene& s) -> py::object {
             if (!s.speeds) return py::none();
             const std::vector<double> p = s.speed_points();

@@ -18,6 +18,7 @@ import numpy as _np
 
 from ._core import Error, InputError, Scene, SolverError, System, __version__
 from ._core import Bearing, Disk, Pedestal, Rotor, Section, Support, coupling
+from ._core import FluidRotorParameters, GyrostatParameters
 from . import _core
 from . import _defaults as _D
 from ._results import Result as _Result, Table, draw, load_tables
@@ -35,7 +36,7 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
            "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap", "frf",
            "FrequencyResponse", "Table", "load_tables", "draw", "summary", "ModelSummary", "transient",
-           "TransientResponse", "defaults", "fluid", "FluidResult"]
+           "TransientResponse", "defaults", "fluid", "FluidResult", "GyrostatParameters", "FluidRotorParameters"]
 
 
 def defaults() -> list:
@@ -726,11 +727,12 @@ def _model_scene(kind, keys, speeds=None, analysis=None, directory="."):
     return _core.parse_scene("\n".join(lines) + "\n", f"{kind}(...)", str(directory))
 
 
-def gyrostat(*, speeds=None, analysis=None, **keys) -> Scene:
-    """The gyrostat with elastic shaft from its [model] keys: A_G, B_G, A_R, C_R, m, s, eps, c_G, c_T, c_R,
-    d_G, d_T, d_R, shaft = "rigid", housing = "rigid" (docs/scene_format.md). speeds: {"from": .., "to": ..,
-    "count": ..}; analysis: {"modes": .., "solver": ..}."""
-    return _model_scene("gyrostat", keys, speeds, analysis)
+def gyrostat(parameters=None, *, title="", speeds=None, analysis=None, **keys) -> Scene:
+    """The gyrostat with elastic shaft from a GyrostatParameters or its [model] keys: A_G, B_G, A_R, C_R, m, s,
+    eps, c_G, c_T, c_R, d_G, d_T, d_R, shaft = "rigid", housing = "rigid" (docs/scene_format.md). speeds and
+    analysis as rotor_scene's. The scene's `gyrostat` gives the parameters back."""
+    p = _parameters(_core.GyrostatParameters, "gyrostat", parameters, keys)
+    return _core.gyrostat_scene(p, str(title), *_settings(speeds, analysis))
 
 
 def fe_rotor(*, speeds=None, analysis=None, directory=".", **keys) -> Scene:
@@ -751,6 +753,12 @@ def rotor_scene(rotor, *, title="", speeds=None, analysis=None) -> Scene:
     results are given in unless a call names one) and analysis {"modes", "harmonics", "solver",
     "target", "target_order", "f_cut"} as a scene's [speeds] and [analysis]. Scene.to_toml() and Scene.write(path)
     give its scene file."""
+    return _core.rotor_scene(rotor, str(title), *_settings(speeds, analysis))
+
+
+def _settings(speeds, analysis):
+    """A scene's [speeds] and [analysis] dicts as the core's arguments (span, modes, harmonics, solver, target,
+    target_order, f_cut); the core checks their values."""
     speeds = dict(speeds or {})
     analysis = dict(analysis or {})
     for given, allowed, name in ((speeds, {"from", "to", "count", "units"}, "speeds"),
@@ -766,15 +774,28 @@ def rotor_scene(rotor, *, title="", speeds=None, analysis=None) -> Scene:
             raise InputError(f"speeds: {missing[0]!r} is missing; required: from, to (in units), count (default 201)")
         span = (float(speeds["from"]), float(speeds["to"]), int(speeds.get("count", 201)), str(speeds.get("units", "rad/s")))
     harmonics = analysis.get("harmonics")
-    return _core.rotor_scene(rotor, str(title), span, analysis.get("modes"),
-                             None if harmonics is None else [int(h) for h in harmonics],
-                             str(analysis.get("solver", "auto")), analysis.get("target"),
-                             float(analysis.get("target_order", 0.0)), analysis.get("f_cut"))
+    return (span, analysis.get("modes"), None if harmonics is None else [int(h) for h in harmonics],
+            str(analysis.get("solver", "auto")), analysis.get("target"), float(analysis.get("target_order", 0.0)),
+            analysis.get("f_cut"))
 
 
-def fluid_rotor(*, speeds=None, analysis=None, **keys) -> Scene:
-    """The liquid-filled rotor from its [model] keys (docs/fluid_rotor.md)."""
-    return _model_scene("fluid_rotor", keys, speeds, analysis)
+def _parameters(kind, name, parameters, keys):
+    """A model's parameters: the object given, or made from its [model] keys (not both)."""
+    if parameters is None:
+        return kind(**keys)
+    if keys:
+        raise InputError(f"{name}: parameters and keys {sorted(keys)} given together; allowed: one of them")
+    if not isinstance(parameters, kind):
+        raise InputError(f"{name}: expected a gyrokit.{kind.__name__}, got {type(parameters).__name__}")
+    return parameters
+
+
+def fluid_rotor(parameters=None, *, title="", speeds=None, analysis=None, **keys) -> Scene:
+    """The liquid-filled rotor from a FluidRotorParameters or its [model] keys (docs/fluid_rotor.md): R, R0, a, l,
+    rho, nu, c1, c2, c11, m0, I0, J0, e, modes or tolerance, jstar_terms. speeds and analysis as rotor_scene's.
+    The scene's `fluid_rotor` gives the parameters back."""
+    p = _parameters(_core.FluidRotorParameters, "fluid_rotor", parameters, keys)
+    return _core.fluid_rotor_scene(p, str(title), *_settings(speeds, analysis))
 
 
 def matrices_scene(directory, *, speeds=None, analysis=None, **keys) -> Scene:

@@ -10,6 +10,7 @@ from ._core import Bearing as Bearing, Disk as Disk, Error as Error, InputError 
 from ._core import Pedestal as Pedestal, Rotor as Rotor, Scene as Scene, Section as Section
 from ._core import SolverError as SolverError, Support as Support, System as System
 from ._core import __version__ as __version__, coupling as coupling
+from ._core import FluidRotorParameters as FluidRotorParameters, GyrostatParameters as GyrostatParameters
 
 Model = Union[System, Scene]
 Path = Union[str, PathLike[str]]
@@ -193,14 +194,16 @@ def response(model: Model, speeds: Optional[npt.ArrayLike] = ..., *, dofs: Optio
              modes: Optional[int] = ..., method: str = ..., lanczos: int = ..., jobs: int = ...,
              unit: Optional[str] = ..., f_cut: Optional[float] = ..., stability_check: bool = ...,
              extrema: bool = ..., peaks: bool = ...) -> Response: ...
-def gyrostat(*, speeds: Optional[Mapping[str, Union[float, str]]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
+def gyrostat(parameters: Optional[GyrostatParameters] = ..., *, title: str = ...,
+             speeds: Optional[Mapping[str, Union[float, str]]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
              **keys: Any) -> Scene: ...
 def fe_rotor(*, speeds: Optional[Mapping[str, Union[float, str]]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
              directory: str = ..., **keys: Any) -> Scene: ...
 def rotor_scene(rotor: Rotor, *, title: str = ..., speeds: Optional[Mapping[str, Union[float, str]]] = ...,
                 analysis: Optional[Mapping[str, Any]] = ...) -> Scene: ...
 
-def fluid_rotor(*, speeds: Optional[Mapping[str, Union[float, str]]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
+def fluid_rotor(parameters: Optional[FluidRotorParameters] = ..., *, title: str = ...,
+                speeds: Optional[Mapping[str, Union[float, str]]] = ..., analysis: Optional[Mapping[str, Any]] = ...,
                 **keys: Any) -> Scene: ...
 def matrices_scene(directory: str, *, speeds: Optional[Mapping[str, Union[float, str]]] = ...,
                    analysis: Optional[Mapping[str, Any]] = ..., **keys: Any) -> Scene: ...

@@ -36,6 +36,47 @@ class Disk:
     @property
     def phase(self) -> float: ...
 
+class FluidRotorParameters:
+    """The liquid-filled rotor (docs/fluid_rotor.md): keywords and attributes named as the scene's [model] keys (SI units); modes 0: the sloshing sum truncated at `tolerance`"""
+    def __init__(self, **kwargs) -> None: ...
+    R: float
+    R0: float
+    a: float
+    l: float
+    rho: float
+    nu: float
+    c1: float
+    c2: float
+    c11: float
+    m0: float
+    I0: float
+    J0: float
+    e: float
+    tolerance: float
+    modes: int
+    jstar_terms: int
+    def __repr__(self) -> str: ...
+
+class GyrostatParameters:
+    """The gyrostat with elastic shaft (docs/gyrostat.md): keywords and attributes named as the scene's [model] keys (SI units); shaft and housing 'elastic' or 'rigid'"""
+    def __init__(self, **kwargs) -> None: ...
+    A_G: float
+    B_G: float
+    A_R: float
+    C_R: float
+    m: float
+    s: float
+    eps: float
+    c_G: float
+    c_T: float
+    c_R: float
+    d_G: float
+    d_T: float
+    d_R: float
+    shaft: str
+    housing: str
+    def __repr__(self) -> str: ...
+
 class Pedestal:
     """A mass on springs and dampers under the bearings at z"""
     def __init__(self, *, z: float, mass: float, k: float = ..., c: float = ..., kxx: Optional[float] = ..., kyy: Optional[float] = ..., cxx: Optional[float] = ..., cyy: Optional[float] = ...) -> None: ...
@@ -90,6 +131,10 @@ class Scene:
     def speed_unit(self) -> str: ...
     @property
     def rotor(self) -> Optional[Rotor]: ...
+    @property
+    def gyrostat(self) -> Optional[GyrostatParameters]: ...
+    @property
+    def fluid_rotor(self) -> Optional[FluidRotorParameters]: ...
     def to_toml(self) -> str:
         """The scene as TOML that load_scene reads back to the same model and settings"""
         ...
@@ -159,9 +204,13 @@ def eig(model: Any, speed: float, request: dict[str, Any]) -> dict[str, Any]: ..
 
 def fluid(scene: Scene, unit: Any, fill: Optional[list[float]]) -> dict[str, Any]: ...
 
+def fluid_rotor_scene(parameters: FluidRotorParameters, title: str, speeds: Any, modes: Any, harmonics: Any, solver: str, target: Any, target_order: float, f_cut: Any = ...) -> Scene: ...
+
 def format_tables(tables: list[Any], format: str) -> str: ...
 
 def frf(model: Any, request: dict[str, Any], input: str, speed: float, frequencies: Optional[list[float]], dofs: list[str], probes: list[tuple[int, float]]) -> dict[str, Any]: ...
+
+def gyrostat_scene(parameters: GyrostatParameters, title: str, speeds: Any, modes: Any, harmonics: Any, solver: str, target: Any, target_order: float, f_cut: Any = ...) -> Scene: ...
 
 def load_scene(path: str, overrides: dict[str, float] = ..., motion: str = ...) -> Scene: ...
 

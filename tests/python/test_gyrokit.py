@@ -345,7 +345,7 @@ def test_models_from_keywords_equal_their_scenes():
     w = np.linspace(0, 60, 241)
     # The same analysis on both (the scene's [analysis] modes = 6): the same numbers.
     np.testing.assert_array_equal(gk.critical_speeds(made, w, modes=6).speeds, gk.critical_speeds(read, w).speeds)
-    with pytest.raises(gk.InputError, match=r"\[model\] A_G = -1"):
+    with pytest.raises(gk.InputError, match=r"A_G = -1: out of range; allowed: a finite number > 0"):
         gk.gyrostat(**{**keys, "A_G": -1.0})
     with pytest.raises(gk.InputError, match="unknown key"):
         gk.gyrostat(**keys, c_X=1.0)

@@ -253,3 +253,56 @@ def test_frf_matches_the_cli_and_the_docs_example_runs():
         exec(compile(block, "docs/frf.md", "exec"), {"gk": gk, "np": np})
     finally:
         os.chdir(cwd)
+
+
+def test_gyrostat_and_fluid_rotor_parameters_are_objects_that_make_and_write_their_scenes():
+    # The parameters are bound types: made from the [model] keys, read back from a scene, and a scene built
+    # from them is written from them (no document), reading back to the same matrices bit for bit.
+    keys = dict(A_G=2.0, B_G=2.0, A_R=0.09, C_R=0.10, m=8.0, s=0.25, eps=1.0e-3, c_G=306.862, c_T=2112.19,
+                c_R=74.1333, d_G=4.0, d_T=5.0, d_R=0.02)
+    p = gk.GyrostatParameters(**keys)
+    assert p.A_G == 2.0 and p.shaft == "elastic" and p.housing == "elastic"
+    assert repr(p).startswith("GyrostatParameters(A_G=2.0, B_G=2.0") and "shaft='elastic'" in repr(p)
+    made = gk.gyrostat(p, title="centrifuge", speeds={"from": 0, "to": 60, "count": 241}, analysis={"modes": 6})
+    read = gk.load_scene(os.path.join(DATA, "centrifuge.toml"))
+    assert read.gyrostat.c_T == p.c_T and made.gyrostat.d_R == p.d_R
+    np.testing.assert_array_equal(made.system.M.toarray(), read.system.M.toarray())
+    np.testing.assert_array_equal(made.system.K.toarray(), read.system.K.toarray())
+    back = gk._core.parse_scene(made.to_toml(), "back", ".")
+    assert back.title == "centrifuge" and back.modes == 6
+    np.testing.assert_array_equal(back.system.M.toarray(), made.system.M.toarray())
+    np.testing.assert_array_equal(back.system.damping_matrix(0.0).toarray(), made.system.damping_matrix(0.0).toarray())
+    rigid = gk.gyrostat(**{k: v for k, v in keys.items() if k not in ("c_T", "c_R")}, shaft="rigid")
+    assert rigid.system.size == 2 and 'shaft = "rigid"' in rigid.to_toml()
+    with pytest.raises(gk.InputError, match=r"shaft = 'soft': allowed: 'elastic' or 'rigid'"):
+        gk.GyrostatParameters(shaft="soft")
+    with pytest.raises(gk.InputError, match=r"gyrostat: unknown key 'c_X'; allowed: A_G"):
+        gk.GyrostatParameters(c_X=1.0)
+    with pytest.raises(gk.InputError, match=r"A_G = 'two': allowed: a number"):
+        gk.GyrostatParameters(A_G="two")
+    with pytest.raises(gk.InputError, match="given together"):
+        gk.gyrostat(p, A_G=3.0)
+    with pytest.raises(gk.InputError, match=r"c_T = 0: out of range; allowed: a finite number > 0 \(N/m\)"):
+        gk.gyrostat(**{**keys, "c_T": 0.0})
+
+    fkeys = dict(R=0.6, R0=0.4, a=0.5, l=2.5, rho=1000.0, nu=1.0e-6, c1=6.0e8, c2=2.0e8, c11=3.0e6, m0=400.0,
+                 I0=133.0, J0=75.0, e=1.0e-4, modes=5)
+    f = gk.FluidRotorParameters(**fkeys)
+    assert f.modes == 5 and "R0=0.4" in repr(f)
+    fmade = gk.fluid_rotor(f)
+    fread = gk.load_scene(os.path.join(DATA, "fluid_N1.toml"))
+    assert fread.fluid_rotor.R == 0.6 and fmade.gyrostat is None and fread.rotor is None
+    np.testing.assert_array_equal(gk.eig(fmade, 50.0).eigenvalues, gk.eig(fread, 50.0).eigenvalues)
+    fback = pickle.loads(pickle.dumps(fmade))
+    np.testing.assert_array_equal(gk.eig(fback, 50.0).eigenvalues, gk.eig(fmade, 50.0).eigenvalues)
+    with pytest.raises(gk.InputError, match=r"modes = 1.5: allowed: a whole number"):
+        gk.FluidRotorParameters(modes=1.5)
+    with pytest.raises(gk.InputError, match=r"R0 = 0.7 is not below R = 0.6"):
+        gk.fluid_rotor(**{**fkeys, "R0": 0.7})
+    # The example of docs/python.md runs and gives the scene it says.
+    import re
+    text = open(os.path.join(os.path.dirname(os.path.abspath(DATA)), "docs", "python.md")).read()
+    part = text[text.index("Models from keyword parameters"):text.index("FE rotors built in code")]
+    namespace = {"gk": gk}
+    exec(compile(re.findall(r"```python\n(.*?)```", part, re.S)[0], "docs/python.md", "exec"), namespace)
+    np.testing.assert_array_equal(namespace["scene"].system.K.toarray(), read.system.K.toarray())

@@ -87,7 +87,7 @@ TEST_CASE("continuation: the modes in range equal the full solve's within their 
     int used = 0;
     for (const auto& [name, sc] : dense_rotor_scenes(2)) {
         const std::vector<double> grid = thinned(sc.speed_points(), 26);
-        const double band = excitation_band(grid, sc.harmonics);
+        const double band = excitation_band(grid, sc.analysis.harmonics);
         if (!std::isfinite(band)) continue;
         const auto model = std::make_shared<const GyroscopicSystem>(sc.system);
         for (const bool along : {true, false}) {
@@ -127,7 +127,7 @@ TEST_CASE("three-disk rotor: default Campbell tracks the modes in range without 
     SolverOptions so;
     so.modes = kModesInRange;
     const SolverChoice plan = choose_solver(sc.system, so);
-    const CampbellOptions co = tracking_options(plan, kModesInRange, grid, sc.harmonics, 2);
+    const CampbellOptions co = tracking_options(plan, kModesInRange, grid, sc.analysis.harmonics, 2);
     CHECK(co.band == Approx(kBandMargin * 15000 * M_PI / 30));
     const SolverFactory solver = tracking_solver(plan.make, co, grid);
     const CampbellDiagram cd = campbell(solver, grid, co);
@@ -470,11 +470,11 @@ TEST_CASE("f_cut sets the modes judged: the band as asked, every mode below it a
     StudyOptions so = study_options(sc);
     so.speeds = grid;
     CHECK_FALSE(so.f_cut);
-    const double band = excitation_band(grid, sc.harmonics);
+    const double band = excitation_band(grid, sc.analysis.harmonics);
     // The default and a cut-off a third of it, away from any mode's frequency.
     const CampbellDiagram wide = campbell_study(sc.system, so).diagram;
     CHECK(wide.band == band);
-    sc.f_cut = band / 3.0;
+    sc.analysis.f_cut = band / 3.0;
     validate_settings(sc);
     so = study_options(sc);
     so.speeds = grid;
@@ -506,7 +506,7 @@ TEST_CASE("f_cut sets the modes judged: the band as asked, every mode below it a
     // The same through the option; an f_cut that is no frequency is refused by name.
     so.f_cut = 0.0;
     CHECK_THROWS_WITH(campbell_study(sc.system, so), Catch::Contains("f_cut") && Catch::Contains("> 0"));
-    sc.f_cut = -1.0;
+    sc.analysis.f_cut = -1.0;
     CHECK_THROWS_WITH(validate_settings(sc), Catch::Contains("f_cut = -1"));
 }
 

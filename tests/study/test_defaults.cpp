@@ -26,8 +26,8 @@ TEST_CASE("the options' unset fields are the table's defaults", "[defaults]") {
     CHECK(StaticOptions{}.gravity == defaults::gravity);
     CHECK(TransientOptions{}.max_steps == defaults::max_steps);
     const Scene unset;
-    CHECK(unset.modes == defaults::modes);
-    CHECK(unset.harmonics == std::vector<int>{defaults::harmonic});
+    CHECK(unset.solver.modes == defaults::modes);
+    CHECK(unset.analysis.harmonics == std::vector<int>{defaults::harmonic});
 }
 
 TEST_CASE("the table of defaults names each default once", "[defaults]") {

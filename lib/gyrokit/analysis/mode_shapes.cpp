@@ -2,6 +2,7 @@
 #include <gyrokit/analysis/mode_shapes.hpp>
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/constants.hpp>
 
 #include <fmt/format.h>
 
@@ -25,7 +26,7 @@ Orbit orbit_of(std::complex<double> u, std::complex<double> v) {
     // arg f + t = arg b - t. A circle has no major axis: angle 0.
     const double small = kWhirlTolerance * o.major;
     double a = std::abs(f) > small && std::abs(b) > small ? 0.5 * (std::arg(f) + std::arg(b)) : 0.0;
-    const double pi = std::acos(-1.0);
+    const double pi = kPi;
     while (a > pi / 2) a -= pi;
     while (a <= -pi / 2) a += pi;
     o.angle = a;

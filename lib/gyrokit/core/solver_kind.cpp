@@ -22,4 +22,20 @@ std::string to_string(SolverKind k) {
     return "auto";
 }
 
+EigenMethod parse_eigen_method(const std::string& name) {
+    if (name == "qz") return EigenMethod::ScaledQZ;
+    if (name == "qz-classic") return EigenMethod::ClassicQZ;
+    if (name == "state") return EigenMethod::StateMatrix;
+    throw InputError(fmt::format("eigen method '{}' is unknown; allowed: qz, qz-classic, state", name));
+}
+
+std::string to_string(EigenMethod m) {
+    switch (m) {
+    case EigenMethod::ScaledQZ: return "qz";
+    case EigenMethod::ClassicQZ: return "qz-classic";
+    case EigenMethod::StateMatrix: break;
+    }
+    return "state";
+}
+
 }  // namespace gyrokit

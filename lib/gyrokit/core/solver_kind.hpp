@@ -1,8 +1,10 @@
-// The solver a scene or a call asks for, by name, and what a mode count means when
-// none is given: the words a scene file, the CLI and Python share. Which solver a
-// model then gets is decided by analysis/solver_choice.hpp.
+// The solver a scene or a call asks for (SolverOptions: plain data, held by a Scene and
+// filled by every front end), its words (the names a scene file, the CLI and Python
+// share) and what a mode count means when none is given. Which solver a model then
+// gets is decided by solve/solver_choice.hpp.
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace gyrokit {
@@ -17,5 +19,28 @@ constexpr int kDefaultSparseModes = 6;
 // `modes` not given: the modes in the range the speeds excite (tracking_options);
 // to a solver it means every mode (dense) or kDefaultSparseModes (sparse).
 constexpr int kModesInRange = -1;
+
+// The dense method: ScaledQZ (default), ClassicQZ, or the state matrix
+// (eig/quadratic_eigensolver.hpp).
+enum class EigenMethod { ScaledQZ, StateMatrix, ClassicQZ };
+EigenMethod parse_eigen_method(const std::string& name);   // "qz" | "qz-classic" | "state"
+std::string to_string(EigenMethod m);
+
+struct EigenOptions {
+    EigenMethod method = EigenMethod::ScaledQZ;
+    bool left_vectors = false;   // keep the left vectors in the modes (always computed, for the error bounds)
+};
+
+// The fields carry the names of the scene's [analysis] keys (and the CLI's options).
+struct SolverOptions {
+    SolverKind kind = SolverKind::Auto;   // solver
+    EigenOptions eig;                     // dense: scaled QZ or state matrix
+    int modes = 0;                        // modes wanted; 0: all (dense) or kDefaultSparseModes (sparse);
+                                          // kModesInRange: as 0, the tracking keeps those in range
+    std::optional<double> target;         // rad/s: the sparse search centre (default 0: the lowest modes)
+    double target_order = 0.0;            // the centre moves as target + target_order * speed
+    int lanczos_vectors = 0;              // sparse: Arnoldi vectors, 0 = automatic
+    bool reuse = true;                    // sparse: continue each speed from the last one (continue_window)
+};
 
 }  // namespace gyrokit

@@ -15,22 +15,6 @@ namespace gyrokit {
 using cd = std::complex<double>;
 using namespace dense;
 
-EigenMethod parse_eigen_method(const std::string& name) {
-    if (name == "qz") return EigenMethod::ScaledQZ;
-    if (name == "qz-classic") return EigenMethod::ClassicQZ;
-    if (name == "state") return EigenMethod::StateMatrix;
-    throw InputError(fmt::format("eigen method '{}' is unknown; allowed: qz, qz-classic, state", name));
-}
-
-std::string to_string(EigenMethod m) {
-    switch (m) {
-    case EigenMethod::ScaledQZ: return "qz";
-    case EigenMethod::ClassicQZ: return "qz-classic";
-    case EigenMethod::StateMatrix: break;
-    }
-    return "state";
-}
-
 void split_rigid_body(std::vector<Mode>& modes, std::vector<Mode>& rigid_body, const PencilAction& pencil,
                       double scale) {
     std::vector<Mode> kept;

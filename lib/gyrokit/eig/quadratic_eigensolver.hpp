@@ -10,16 +10,13 @@
 #pragma once
 
 #include <gyrokit/core/gyroscopic_system.hpp>
+#include <gyrokit/core/solver_kind.hpp>
 #include <gyrokit/eig/mode.hpp>
 
 #include <string>
 #include <vector>
 
 namespace gyrokit {
-
-enum class EigenMethod { ScaledQZ, StateMatrix, ClassicQZ };
-EigenMethod parse_eigen_method(const std::string& name);   // "qz" | "qz-classic" | "state"
-std::string to_string(EigenMethod m);
 
 // An eigenvalue is vouched for when its error bound is at most this fraction of
 // its modulus (or below the real-axis tolerance); otherwise the spectrum says so.
@@ -28,11 +25,6 @@ constexpr double kVouchTolerance = 1e-6;
 // Every eigenpair the dense solver returns has a backward error at most this
 // (QZ gives about 1e-15); else SolverError, never a table of noise.
 constexpr double kDenseVerifyTolerance = 1e-8;
-
-struct EigenOptions {
-    EigenMethod method = EigenMethod::ScaledQZ;
-    bool left_vectors = false;   // keep the left vectors in the modes (always computed, for the error bounds)
-};
 
 struct QuadraticSpectrum {
     std::vector<Mode> modes;      // finite eigenvalues with Im >= 0 (or real), by frequency; no rigid-body ones

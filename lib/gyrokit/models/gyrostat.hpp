@@ -3,6 +3,7 @@
 // cage tilts, rotor translation relative to the cage, rotor tilt relative to
 // the cage. Equations (9) of the paper with the corrections of docs/gyrostat.md.
 #pragma once
+#include <string>
 
 #include <gyrokit/core/gyroscopic_system.hpp>
 
@@ -21,6 +22,11 @@ struct GyrostatParameters {
     bool rigid_shaft = false;           // c_T, c_R -> infinity: only alpha, beta (eq. 12)
     bool rigid_housing = false;         // c_G -> infinity: only x, y, psi, theta
 };
+
+// Throws InputError naming `origin`, the key (the scene's [model] key), the value and
+// the allowed range; the keys a rigid shaft (c_T, c_R) or housing (A_G, B_G, c_G)
+// makes irrelevant are not checked.
+void validate(const GyrostatParameters& p, const std::string& origin);
 
 // Builds M, D (components "d_G", "d_T", "d_R"), G, K and the unbalance load
 // (make_system: the verb every model shares).

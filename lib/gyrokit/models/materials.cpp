@@ -1,6 +1,7 @@
 #include <gyrokit/models/materials.hpp>
 
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/constants.hpp>
 
 #include <cmath>
 #include <fmt/format.h>
@@ -32,7 +33,7 @@ Material find_material(const std::string& name, const std::vector<Material>& ext
 DiskInertia disk_inertia(double Do, double Di, double w, double rho) {
     DiskInertia d;
     const double s = Do * Do + Di * Di;
-    d.mass = rho * std::acos(-1.0) * (Do * Do - Di * Di) * w / 4.0;
+    d.mass = rho * kPi * (Do * Do - Di * Di) * w / 4.0;
     d.polar_inertia = d.mass * s / 8.0;
     d.diametral_inertia = d.mass * (3.0 * s / 4.0 + w * w) / 12.0;
     return d;

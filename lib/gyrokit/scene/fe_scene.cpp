@@ -6,6 +6,7 @@
 #include <gyrokit/models/journal_bearing.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/materials.hpp>
+#include <gyrokit/core/constants.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -317,7 +318,7 @@ RotorDisk read_disk(const TomlKeys& e, const ModelContext& c) {
         d.disk.polar_inertia = e.number("Ip", 0.0, 0, false, "kg m^2");
     }
     d.disk.unbalance = e.number("unbalance", 0.0, 0, false, "kg m");
-    d.disk.unbalance_phase = e.has("phase") ? e.any_number("phase", "deg") * std::acos(-1.0) / 180.0 : 0.0;
+    d.disk.unbalance_phase = e.has("phase") ? e.any_number("phase", "deg") * kPi / 180.0 : 0.0;
     return d;
 }
 
@@ -341,7 +342,7 @@ void read_fluid_film(const TomlKeys& e, const ModelContext& c, RotorBearing& b) 
         const double deg = e.any_number("load_angle", "deg");
         if (!(std::fabs(deg) <= 360.0))
             throw InputError(fmt::format("{} = {}; allowed: -360 to 360 (deg)", e.where("load_angle"), deg));
-        j.load_angle = deg * std::acos(-1.0) / 180.0;
+        j.load_angle = deg * kPi / 180.0;
     }
     j.max_eccentricity = e.number("max_eccentricity", 0.95, 0.0, true, "eccentricity ratio, 0.01 to 0.999");
     // The film's solution: the short-bearing closed form or the finite-difference Reynolds

@@ -29,7 +29,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-GyroscopicSystem gyrostat_from(const TomlKeys& k) {
+GyrostatParameters gyrostat_from(const TomlKeys& k) {
     k.only({"type", "A_G", "B_G", "A_R", "C_R", "m", "s", "eps", "c_G", "c_T", "c_R", "d_G", "d_T", "d_R", "shaft",
             "housing"});
     GyrostatParameters p;
@@ -52,7 +52,7 @@ GyroscopicSystem gyrostat_from(const TomlKeys& k) {
     p.d_G = k.number("d_G", 0.0, 0, false, "N m s/rad");
     p.d_T = k.number("d_T", 0.0, 0, false, "N s/m");
     p.d_R = k.number("d_R", 0.0, 0, false, "N m s/rad");
-    return make_system(p);
+    return p;
 }
 
 // A matrix model, read in sparse form.
@@ -136,8 +136,9 @@ const std::map<std::string, ModelReader>& model_readers() {
          }},
         {"gyrostat",
          [](const TomlKeys& k, const fs::path&, Scene& sc) {
-             sc.system = gyrostat_from(k);
-             sc.model = GyrostatScene{};
+             GyrostatParameters p = gyrostat_from(k);
+             sc.system = make_system(p);
+             sc.model = GyrostatScene{p, {}};
          }},
         {"matrices",
          [](const TomlKeys& k, const fs::path& dir, Scene& sc) {
@@ -335,19 +336,19 @@ Scene scene_from(toml::table root, const std::string& path, const fs::path& dir,
     if (const toml::table* an = root.get_as<toml::table>("analysis")) {
         TomlKeys k(path, "analysis", *an);
         k.only({"modes", "harmonics", "solver", "target", "target_order", "f_cut"});
-        if (k.has("modes")) sc.modes = static_cast<int>(k.integer("modes", 0, 0, 100000));
-        sc.solver = parse_solver_kind(k.choice("solver", "auto", {"auto", "dense", "sparse"}));
-        if (k.has("target")) sc.target = k.number("target", std::nullopt, 0, false, "rad/s");
-        sc.target_order = k.number("target_order", 0.0, 0, false, "multiple of the speed");
-        if (k.has("f_cut")) sc.f_cut = k.number("f_cut", std::nullopt, 0, true, "rad/s");
+        if (k.has("modes")) sc.solver.modes = static_cast<int>(k.integer("modes", 0, 0, 100000));
+        sc.solver.kind = parse_solver_kind(k.choice("solver", "auto", {"auto", "dense", "sparse"}));
+        if (k.has("target")) sc.solver.target = k.number("target", std::nullopt, 0, false, "rad/s");
+        sc.solver.target_order = k.number("target_order", 0.0, 0, false, "multiple of the speed");
+        if (k.has("f_cut")) sc.analysis.f_cut = k.number("f_cut", std::nullopt, 0, true, "rad/s");
         if (const toml::array* h = an->get_as<toml::array>("harmonics")) {
-            sc.harmonics.clear();
+            sc.analysis.harmonics.clear();
             for (const auto& e : *h) {
                 if (!e.is_integer() || *e.value<long long>() < 1 || *e.value<long long>() > 1000)
                     throw InputError(k.where("harmonics") + ": each entry must be a whole number in [1, 1000]");
-                sc.harmonics.push_back(static_cast<int>(*e.value<long long>()));
+                sc.analysis.harmonics.push_back(static_cast<int>(*e.value<long long>()));
             }
-            if (sc.harmonics.empty()) throw InputError(k.where("harmonics") + " is empty; allowed: e.g. [1] or [1, 2]");
+            if (sc.analysis.harmonics.empty()) throw InputError(k.where("harmonics") + " is empty; allowed: e.g. [1] or [1, 2]");
         } else if (an->contains("harmonics")) {
             throw InputError(k.where("harmonics") + " must be an array such as [1, 2]");
         }
@@ -379,20 +380,20 @@ Scene parse_scene(const std::string& text, const std::string& origin, const std:
 
 void validate_settings(const Scene& sc) {
     if (sc.speeds) sc.speeds->validate(sc.path + ": speeds");
-    if (sc.modes != kModesInRange && !(sc.modes >= 0 && sc.modes <= 100000))
+    if (sc.solver.modes != kModesInRange && !(sc.solver.modes >= 0 && sc.solver.modes <= 100000))
         throw InputError(fmt::format("{}: modes = {}; allowed: 0 (all) to 100000, or unset (those in range)", sc.path,
-                                     sc.modes));
-    if (sc.harmonics.empty()) throw InputError(sc.path + ": harmonics is empty; allowed: e.g. [1] or [1, 2]");
-    for (const int h : sc.harmonics)
+                                     sc.solver.modes));
+    if (sc.analysis.harmonics.empty()) throw InputError(sc.path + ": harmonics is empty; allowed: e.g. [1] or [1, 2]");
+    for (const int h : sc.analysis.harmonics)
         if (h < 1 || h > 1000)
             throw InputError(fmt::format("{}: harmonics entry {}; allowed: whole numbers in [1, 1000]", sc.path, h));
-    if (sc.target && !(std::isfinite(*sc.target) && *sc.target >= 0))
-        throw InputError(fmt::format("{}: target = {}; allowed: a finite number >= 0 (rad/s)", sc.path, *sc.target));
-    if (!(std::isfinite(sc.target_order) && sc.target_order >= 0))
+    if (sc.solver.target && !(std::isfinite(*sc.solver.target) && *sc.solver.target >= 0))
+        throw InputError(fmt::format("{}: target = {}; allowed: a finite number >= 0 (rad/s)", sc.path, *sc.solver.target));
+    if (!(std::isfinite(sc.solver.target_order) && sc.solver.target_order >= 0))
         throw InputError(fmt::format("{}: target_order = {}; allowed: a finite number >= 0 (multiple of the speed)",
-                                     sc.path, sc.target_order));
-    if (sc.f_cut && !(std::isfinite(*sc.f_cut) && *sc.f_cut > 0))
-        throw InputError(fmt::format("{}: f_cut = {}; allowed: a finite frequency > 0 (rad/s)", sc.path, *sc.f_cut));
+                                     sc.path, sc.solver.target_order));
+    if (sc.analysis.f_cut && !(std::isfinite(*sc.analysis.f_cut) && *sc.analysis.f_cut > 0))
+        throw InputError(fmt::format("{}: f_cut = {}; allowed: a finite frequency > 0 (rad/s)", sc.path, *sc.analysis.f_cut));
 }
 
 std::string Scene::model_type() const {
@@ -414,6 +415,11 @@ const FeRotor* Scene::fe_rotor() const {
 const FluidRotorParameters* Scene::fluid() const {
     const auto* f = std::get_if<FluidRotorScene>(&model);
     return f ? &f->parameters : nullptr;
+}
+
+const GyrostatParameters* Scene::gyrostat() const {
+    const auto* g = std::get_if<GyrostatScene>(&model);
+    return g ? &g->parameters : nullptr;
 }
 
 std::vector<double> Scene::speed_points() const {

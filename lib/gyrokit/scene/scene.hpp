@@ -8,6 +8,7 @@
 #include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/rotor_model.hpp>
 #include <gyrokit/models/fluid_rotor.hpp>
+#include <gyrokit/models/gyrostat.hpp>
 
 #include <map>
 #include <optional>
@@ -24,11 +25,12 @@ struct MatricesScene {
     std::string document;
 };
 struct GyrostatScene {
-    std::string document;
+    GyrostatParameters parameters;
+    std::string document;   // empty: built in code (written from the parameters)
 };
 struct FluidRotorScene {
     FluidRotorParameters parameters;
-    std::string document;
+    std::string document;   // empty: built in code (written from the parameters)
 };
 struct FeRotorScene {
     RotorModel model;   // the rotor as described (written back by scene_text)
@@ -37,21 +39,33 @@ struct FeRotorScene {
 // A system built in code is a MatricesScene (the default).
 using SceneModel = std::variant<MatricesScene, GyrostatScene, FluidRotorScene, FeRotorScene>;
 
+// What a scene's analyses excite and judge ([analysis]).
+struct AnalysisSettings {
+    std::vector<int> harmonics{1};     // the excitation orders (1 = synchronous)
+    std::optional<double> f_cut;       // rad/s: the modes judged (default: excitation_band)
+};
+
+// A scene's solver where it names none: auto, the modes in range.
+inline SolverOptions scene_solver() {
+    SolverOptions o;
+    o.modes = kModesInRange;
+    return o;
+}
+
 struct Scene {
     std::string path;                  // the file it was read from
     std::string title;
     SceneModel model;                  // what the [model] describes
     GyroscopicSystem system;           // the model's matrices, validated
-    SolverKind solver = SolverKind::Auto;   // [analysis] solver: auto | dense | sparse
-    std::optional<double> target;      // [analysis] target: frequency (rad/s) the sparse search centres on
-    double target_order = 0.0;         // [analysis] target_order: the centre moves as target + order * speed
-    std::optional<double> f_cut;       // [analysis] f_cut (rad/s): the modes judged (default: excitation_band)
+    // [analysis] solver, target (rad/s: the frequency the sparse search centres on),
+    // target_order (the centre moves as target + order * speed) and modes (0 = all;
+    // absent: those in range): the solver the scene asks for, as every study starts it.
+    SolverOptions solver = scene_solver();
+    AnalysisSettings analysis;         // [analysis] harmonics, f_cut
     std::optional<SpeedRange> speeds;  // [speeds] from, to, count as written, in speed_unit
     // [speeds] units (rad/s where the scene names none): the unit a study gives and
     // takes speeds and frequencies in unless the call names another (resolve_request).
     SpeedUnit speed_unit;
-    int modes = kModesInRange;         // [analysis] modes (0 = all; absent: those in range)
-    std::vector<int> harmonics{1};     // [analysis] harmonics
     // Every file read to build it (absolute paths: the scene file, the matrices and
     // tables it names): what no output of a run on it may overwrite.
     std::vector<std::string> inputs;
@@ -63,6 +77,7 @@ struct Scene {
     const RotorModel* rotor_model() const;
     const FeRotor* fe_rotor() const;
     const FluidRotorParameters* fluid() const;
+    const GyrostatParameters* gyrostat() const;
     // The unit the scene states lengths in (an FE rotor's length_unit; else metres).
     LengthUnit length_unit() const { return rotor_model() ? LengthUnit::parse(rotor_model()->length_unit) : LengthUnit{}; }
     // The [speeds] grid in rad/s (empty without [speeds]): the points in the scene's

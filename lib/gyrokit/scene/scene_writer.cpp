@@ -4,6 +4,7 @@
 #include <gyrokit/core/run_files.hpp>
 
 #include <gyrokit/core/solver_kind.hpp>
+#include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
 
 #include <cmath>
@@ -40,7 +41,7 @@ std::string quoted(const std::string& text) {
     return s + "\"";
 }
 
-double degrees(double rad) { return rad * 180.0 / std::acos(-1.0); }
+double degrees(double rad) { return rad * kDegreesPerRadian; }
 
 class Writer {
 public:
@@ -205,15 +206,76 @@ void write_settings(Writer& w, const Scene& sc) {
         w.key("units", sc.speed_unit.name);
     }
     w.table("[analysis]");
-    w.key("solver", to_string(sc.solver));
-    if (sc.modes != kModesInRange) w.key("modes", sc.modes);
-    if (sc.target) w.key("target", *sc.target);
-    w.key("target_order", sc.target_order);
-    if (sc.f_cut) w.key("f_cut", *sc.f_cut);
-    w.harmonics(sc.harmonics);
+    w.key("solver", to_string(sc.solver.kind));
+    if (sc.solver.modes != kModesInRange) w.key("modes", sc.solver.modes);
+    if (sc.solver.target) w.key("target", *sc.solver.target);
+    w.key("target_order", sc.solver.target_order);
+    if (sc.analysis.f_cut) w.key("f_cut", *sc.analysis.f_cut);
+    w.harmonics(sc.analysis.harmonics);
+}
+
+// A scene's start: title, [model] and its type.
+void write_model_header(Writer& w, const Scene& sc, const char* type) {
+    if (!sc.title.empty()) w.key("title", sc.title);
+    w.table("[model]");
+    w.key("type", type);
+}
+
+// The [model] of a gyrostat, in the keys the reader takes (docs/scene_format.md).
+void write_gyrostat(Writer& w, const GyrostatParameters& p) {
+    w.key("shaft", p.rigid_shaft ? "rigid" : "elastic");
+    w.key("housing", p.rigid_housing ? "rigid" : "elastic");
+    if (!p.rigid_housing) w.key("A_G", p.A_G), w.key("B_G", p.B_G), w.key("c_G", p.c_G);
+    w.key("A_R", p.A_R);
+    w.key("C_R", p.C_R);
+    w.key("m", p.m);
+    w.key("s", p.s);
+    w.key("eps", p.eps);
+    if (!p.rigid_shaft) w.key("c_T", p.c_T), w.key("c_R", p.c_R);
+    w.key("d_G", p.d_G);
+    w.key("d_T", p.d_T);
+    w.key("d_R", p.d_R);
+}
+
+// The [model] of a liquid-filled rotor (docs/fluid_rotor.md).
+void write_fluid_rotor(Writer& w, const FluidRotorParameters& p) {
+    for (const auto& [name, v] : {std::pair<const char*, double>{"R", p.R}, {"R0", p.R0}, {"a", p.a}, {"l", p.l},
+                                  {"rho", p.rho}, {"nu", p.nu}, {"c1", p.c1}, {"c2", p.c2}, {"c11", p.c11},
+                                  {"m0", p.m0}, {"I0", p.I0}, {"J0", p.J0}, {"e", p.e}})
+        w.key(name, v);
+    if (p.modes > 0) w.key("modes", p.modes);
+    else w.key("tolerance", p.tolerance);
+    if (p.jstar_terms > 0) w.key("jstar_terms", p.jstar_terms);
+}
+
+std::string finished(const Writer& w) {
+    std::string text = w.text();
+    return text.front() == '\n' ? text.substr(1) : text;
 }
 
 }  // namespace
+
+Scene model_scene(const GyrostatParameters& parameters, const std::string& title) {
+    Scene sc;
+    sc.path = title.empty() ? "gyrostat" : title;
+    sc.title = title;
+    validate(parameters, sc.path);
+    sc.system = make_system(parameters);
+    sc.system.validate(sc.path);
+    sc.model = GyrostatScene{parameters, {}};
+    return sc;
+}
+
+Scene model_scene(const FluidRotorParameters& parameters, const std::string& title) {
+    Scene sc;
+    sc.path = title.empty() ? "fluid_rotor" : title;
+    sc.title = title;
+    validate(parameters, sc.path);
+    sc.system = make_system(build_fluid_rotor(parameters));
+    sc.system.validate(sc.path);
+    sc.model = FluidRotorScene{parameters, {}};
+    return sc;
+}
 
 Scene rotor_scene(const RotorModel& model, const std::string& title) {
     Scene sc;
@@ -233,16 +295,26 @@ std::string scene_text(const Scene& sc) {
             else return m.document;
         }, sc.model);
     if (!document.empty()) return document;   // read from a document: as read
+    Writer w;
+    if (const GyrostatParameters* g = sc.gyrostat()) {
+        write_model_header(w, sc, "gyrostat");
+        write_gyrostat(w, *g);
+        write_settings(w, sc);
+        return finished(w);
+    }
+    if (const FluidRotorParameters* f = sc.fluid()) {
+        write_model_header(w, sc, "fluid_rotor");
+        write_fluid_rotor(w, *f);
+        write_settings(w, sc);
+        return finished(w);
+    }
     if (!sc.rotor_model())
         throw InputError(fmt::format("{}: a [model] of type {} built in code cannot be written (it has no document); "
-                                     "allowed: an fe_rotor model (read from a scene or built as a RotorModel), or any "
-                                     "model read from a scene",
+                                     "allowed: an fe_rotor, gyrostat or fluid_rotor model (read from a scene or built "
+                                     "from its parameters), or any model read from a scene",
                                      sc.path, sc.model_type()));
     const RotorModel& m = *sc.rotor_model();
-    Writer w;
-    if (!sc.title.empty()) w.key("title", sc.title);
-    w.table("[model]");
-    w.key("type", "fe_rotor");
+    write_model_header(w, sc, "fe_rotor");
     w.key("motion", to_string(m.motion));
     w.key("length_unit", "m");
     w.key("shear_deformation", m.shear_deformation);
@@ -257,8 +329,7 @@ std::string scene_text(const Scene& sc) {
     for (std::size_t i = 0; i < m.supports.size(); ++i) write_support(w, m.supports[i], i);
     for (const RotorPedestal& p : m.pedestals) write_pedestal(w, p);
     write_settings(w, sc);
-    std::string text = w.text();
-    return text.front() == '\n' ? text.substr(1) : text;
+    return finished(w);
 }
 
 void write_scene(const Scene& scene, const std::string& path) {

@@ -62,8 +62,8 @@ void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& 
         }
         PervasiveOptions po;
         po.tolerance = c.tolerance;
-        po.modes = sc.modes;
-        po.solver = solver_options(sc);   // the scene's choice, as for the other criteria
+        po.modes = sc.solver.modes;
+        po.solver = sc.solver;   // the scene's choice, as for the other criteria
         const PervasiveReport rep = pervasive_damping(one, s.operating_speeds(), po);
         for (const auto& l : rep.losses)
             if (l.damping == "total" && l.speed < first) first = l.speed, lost_set = name, lost_mode = l.mode;

@@ -81,8 +81,9 @@ void check_parameter(const Sweep& s, const SweepParameter& p) {
         for (std::size_t i = 1; i < models.size(); ++i) {
             const Scene& b = models[i].second;
             if (a.speeds.has_value() != b.speeds.has_value() ||
-                (a.speeds && b.speeds && a.speed_points() != b.speed_points()) || a.modes != b.modes ||
-                a.harmonics != b.harmonics || a.target != b.target || a.target_order != b.target_order)
+                (a.speeds && b.speeds && a.speed_points() != b.speed_points()) || a.solver.modes != b.solver.modes ||
+                a.analysis.harmonics != b.analysis.harmonics || a.solver.target != b.solver.target ||
+                a.solver.target_order != b.solver.target_order)
                 return;   // it changes the analysis settings
         }
         for (std::size_t i = 1; i < models.size(); ++i)
@@ -289,7 +290,7 @@ void check_against_base(Sweep& s) {
     const Criteria& c = s.criteria;
     const Scene base = s.loader({});
     s.dofs.names = base.system.dofs.names;
-    if (c.separation && c.separation->harmonics.empty()) s.criteria.separation->harmonics = base.harmonics;
+    if (c.separation && c.separation->harmonics.empty()) s.criteria.separation->harmonics = base.analysis.harmonics;
     if (c.response) {
         if (base.system.unbalance.size() == 0 || base.system.unbalance.norm() == 0.0)
             throw InputError(fmt::format("{}: [criteria.response] needs an unbalance, but scene {} has none", s.path,

@@ -20,17 +20,7 @@ constexpr int kAutoSparseDofs = 200;
 // (stability, 151 speeds, 2 threads: dense 5.7 s, every mode in range; a sparse
 // window 1.0 s) and on the same rotor in 168 elements (672 DOFs: 32 s and 2.4 s).
 constexpr int kAutoDenseInRangeDofs = 400;
-// The fields carry the names of the scene's [analysis] keys (and the CLI's options).
-struct SolverOptions {
-    SolverKind kind = SolverKind::Auto;   // solver
-    EigenOptions eig;                     // dense: scaled QZ or state matrix
-    int modes = 0;                        // modes wanted; 0: all (dense) or kDefaultSparseModes (sparse);
-                                          // kModesInRange: as 0, the tracking keeps those in range
-    std::optional<double> target;         // rad/s: the sparse search centre (default 0: the lowest modes)
-    double target_order = 0.0;            // the centre moves as target + target_order * speed
-    int lanczos_vectors = 0;              // sparse: Arnoldi vectors, 0 = automatic
-    bool reuse = true;                    // sparse: continue each speed from the last one (continue_window)
-};
+// SolverOptions (core/solver_kind.hpp): what a scene or call asks for.
 
 struct SolverChoice {
     SolverKind kind = SolverKind::Dense;  // Dense or Sparse, never Auto

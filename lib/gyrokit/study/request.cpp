@@ -9,15 +9,6 @@
 
 namespace gyrokit {
 
-SolverOptions solver_options(const Scene& scene) {
-    SolverOptions o;
-    o.kind = scene.solver;
-    o.modes = scene.modes;
-    o.target = scene.target;
-    o.target_order = scene.target_order;
-    return o;
-}
-
 double to_rad_s(double value, const char* field, const char* what, const SpeedUnit& u, bool positive) {
     if (!(std::isfinite(value) && (positive ? value > 0 : value >= 0)))
         throw InputError(fmt::format("{} {}: allowed: a finite {} {} 0 ({})", option_field(field), value, what,

@@ -29,9 +29,6 @@ struct RotorRequest {
     std::optional<int> jobs;                      // workers, 0: every core
 };
 
-// The scene's [analysis] solver, modes, target and target_order as solver options.
-SolverOptions solver_options(const Scene& scene);
-
 // Whether a study sweeps speeds (campbell, critical, ...) or solves at one (eig).
 enum class SpeedsNeeded { Yes, No };
 

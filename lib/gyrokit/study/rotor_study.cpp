@@ -40,10 +40,9 @@ void diagram_diagnostics(const CampbellDiagram& cd, const SpeedUnit& u, Diagnost
 
 StudyOptions study_options(const Scene& scene) {
     StudyOptions o;
-    o.solver = solver_options(scene);
-    o.solver.modes = scene.modes;
-    o.harmonics = scene.harmonics;
-    o.f_cut = scene.f_cut;
+    o.solver = scene.solver;
+    o.harmonics = scene.analysis.harmonics;
+    o.f_cut = scene.analysis.f_cut;
     o.speeds = scene.speed_points();
     o.unit = scene.speed_unit;
     return o;
