@@ -189,12 +189,14 @@ def main(root):
     test_cmake = (tests / "CMakeLists.txt").read_text()
     listed = set(re.findall(r"^\s+([\w/]*test_\w+\.cpp)\s*$", test_cmake, re.M))
     present = {p.relative_to(tests).as_posix() for p in tests.rglob("test_*.cpp")
-               if p.parent == tests or p.parent.parent == tests and p.parent.name != "fuzz"}
+               if p.relative_to(tests).parts[0] not in ("fuzz", "python")}
     findings += [f"unlisted tests/{p} (not in tests/CMakeLists.txt: it would not run)" for p in sorted(present - listed)]
     findings += [f"missing tests/{p} (listed in tests/CMakeLists.txt)" for p in sorted(listed - present)]
     for p in sorted(present):
         folder = p.split("/")[0] if "/" in p else ""
-        if folder and folder not in mirrors:
+        if p.count("/") > 1:
+            findings.append(f"test tests/{p} lies below tests/{folder}/: the tests of a module sit in its folder")
+        elif folder and folder not in mirrors:
             findings.append(f"test folder tests/{folder} mirrors no module of lib/gyrokit")
         if not folder and p != "test_main.cpp":
             findings.append(f"test tests/{p} lies outside the folders that mirror lib/gyrokit")

@@ -11,6 +11,9 @@
 
 #include <pybind11/stl.h>
 
+#include <functional>
+#include <limits>
+#include <set>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -216,18 +219,25 @@ Scene with_settings(Scene sc, const py::object& speeds, const py::object& modes,
 }
 
 // A model's parameters from keywords named as the scene's [model] keys: each a number
-// (or, where `choices` names it, one of its words), unknown keys named with the allowed ones.
+// (an int or float, numpy's too; or, where `choices` names it, one of its words); unknown
+// keys named with the allowed ones; a required key missing named as the scene reader
+// names it; `rules` for what the keys say together (InputError).
 template <class P>
 struct ParameterKeys {
     const char* model;
     std::vector<std::pair<const char*, double P::*>> numbers;
     std::vector<std::pair<const char*, int P::*>> integers;
     std::vector<std::tuple<const char*, bool P::*, const char*, const char*>> choices;   // key, flag, false word, true word
+    // Keys without a default: each with whether the parameters (the choices set) need it.
+    std::vector<std::pair<const char*, std::function<bool(const P&)>>> required;
+    std::function<void(const P&, const std::set<std::string>& given)> rules;
 
     P from(const py::kwargs& kw) const {
         P p;
+        std::set<std::string> given;
         for (const auto& [key, value] : kw) {
             const std::string k = py::cast<std::string>(key);
+            given.insert(k);
             if (set(p, k, value)) continue;
             std::string allowed;
             for (const auto& n : numbers) allowed += (allowed.empty() ? "" : ", ") + std::string(n.first);
@@ -235,31 +245,48 @@ struct ParameterKeys {
             for (const auto& c : choices) allowed += ", " + std::string(std::get<0>(c));
             throw InputError(fmt::format("{}: unknown key '{}'; allowed: {}", model, k, allowed));
         }
+        for (const auto& [key, needed] : required)
+            if (!given.count(key) && needed(p))
+                throw InputError(fmt::format("{}: key '{}' is missing; required: a finite number", model, key));
+        if (rules) rules(p, given);
         return p;
+    }
+
+    // The keywords that make `p` again (pickle).
+    py::dict keywords(const P& p) const {
+        py::dict d;
+        for (const auto& [key, field] : numbers) d[key] = p.*field;
+        for (const auto& [key, field] : integers) d[key] = p.*field;
+        for (const auto& [key, field, no, yes] : choices) d[key] = p.*field ? yes : no;
+        return d;
     }
 
 private:
     bool set(P& p, const std::string& k, const py::handle& value) const {
-        const auto bad = [&](const char* what) {
-            return InputError(fmt::format("{}: {} = {}: allowed: {}", model, k, py::str(py::repr(value)).cast<std::string>(), what));
+        const auto bad = [&](const std::string& what) {
+            return InputError(fmt::format("{}: {} = {}: allowed: {}", model, k, py::repr(value).cast<std::string>(), what));
         };
+        const bool word = py::isinstance<py::bool_>(value) || py::isinstance<py::str>(value);
         for (const auto& [name, field] : numbers)
             if (k == name) {
-                if (py::isinstance<py::bool_>(value) || (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value)))
-                    throw bad("a number");
-                p.*field = value.cast<double>();
+                if (word || !py::hasattr(value, "__float__")) throw bad("a number");
+                p.*field = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
                 return true;
             }
         for (const auto& [name, field] : integers)
             if (k == name) {
-                if (py::isinstance<py::bool_>(value) || !py::isinstance<py::int_>(value)) throw bad("a whole number");
-                p.*field = value.cast<int>();
+                if (word || !py::hasattr(value, "__index__")) throw bad("a whole number");
+                const py::int_ i(py::reinterpret_borrow<py::object>(value));
+                const long long v = i.cast<long long>();
+                if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+                    throw bad("a whole number within a C int");
+                p.*field = static_cast<int>(v);
                 return true;
             }
         for (const auto& [name, field, no, yes] : choices)
             if (k == name) {
                 const std::string w = py::isinstance<py::str>(value) ? value.cast<std::string>() : "";
-                if (w != no && w != yes) throw bad(fmt::format("'{}' or '{}'", no, yes).c_str());
+                if (w != no && w != yes) throw bad(fmt::format("'{}' or '{}'", no, yes));
                 p.*field = w == yes;
                 return true;
             }
@@ -269,25 +296,43 @@ private:
 
 const ParameterKeys<GyrostatParameters>& gyrostat_keys() {
     using G = GyrostatParameters;
+    const auto always = [](const G&) { return true; };
+    const auto elastic_housing = [](const G& g) { return !g.rigid_housing; };
+    const auto elastic_shaft = [](const G& g) { return !g.rigid_shaft; };
     static const ParameterKeys<G> keys{
         "gyrostat",
         {{"A_G", &G::A_G}, {"B_G", &G::B_G}, {"A_R", &G::A_R}, {"C_R", &G::C_R}, {"m", &G::m}, {"s", &G::s},
          {"eps", &G::eps}, {"c_G", &G::c_G}, {"c_T", &G::c_T}, {"c_R", &G::c_R}, {"d_G", &G::d_G}, {"d_T", &G::d_T},
          {"d_R", &G::d_R}},
         {},
-        {{"shaft", &G::rigid_shaft, "elastic", "rigid"}, {"housing", &G::rigid_housing, "elastic", "rigid"}}};
+        {{"shaft", &G::rigid_shaft, "elastic", "rigid"}, {"housing", &G::rigid_housing, "elastic", "rigid"}},
+        {{"A_G", elastic_housing}, {"B_G", elastic_housing}, {"c_G", elastic_housing}, {"A_R", always},
+         {"C_R", always}, {"m", always}, {"s", always}, {"c_T", elastic_shaft}, {"c_R", elastic_shaft}},
+        {}};
     return keys;
 }
 
 const ParameterKeys<FluidRotorParameters>& fluid_keys() {
     using F = FluidRotorParameters;
+    const auto always = [](const F&) { return true; };
     static const ParameterKeys<F> keys{
         "fluid_rotor",
         {{"R", &F::R}, {"R0", &F::R0}, {"a", &F::a}, {"l", &F::l}, {"rho", &F::rho}, {"nu", &F::nu}, {"c1", &F::c1},
          {"c2", &F::c2}, {"c11", &F::c11}, {"m0", &F::m0}, {"I0", &F::I0}, {"J0", &F::J0}, {"e", &F::e},
          {"tolerance", &F::tolerance}},
         {{"modes", &F::modes}, {"jstar_terms", &F::jstar_terms}},
-        {}};
+        {},
+        {{"R", always}, {"R0", always}, {"a", always}, {"l", always}, {"rho", always}, {"c1", always}, {"c2", always},
+         {"c11", always}, {"m0", always}, {"I0", always}, {"J0", always}},
+        // As the scene reader: modes, where given, in [1, 100000] and not with a tolerance.
+        [](const F& f, const std::set<std::string>& given) {
+            if (given.count("modes") && f.modes < 1)
+                throw InputError(fmt::format("fluid_rotor: modes = {}: out of range; allowed: [1, 100000], or absent "
+                                             "for a tolerance",
+                                             f.modes));
+            if (given.count("modes") && given.count("tolerance"))
+                throw InputError("fluid_rotor: tolerance given together with modes; allowed: one of modes, tolerance");
+        }};
     return keys;
 }
 
@@ -308,6 +353,8 @@ void bind_parameters(py::module_& m, const char* name, const char* doc, const Pa
                 p.*f = w == y;
             });
     }
+    c.def(py::pickle([&keys](const P& p) { return keys.keywords(p); },
+                     [&keys](const py::dict& d) { return keys.from(py::kwargs(d)); }));
     c.def("__repr__", [&keys, name](const P& p) {
         std::string r = std::string(name) + "(";
         const char* sep = "";
@@ -450,10 +497,10 @@ void bind_models(py::module_& m, py::class_<Scene>& scene) {
     })
         .def_property_readonly("gyrostat", [](const Scene& s) {
             return s.gyrostat() ? std::optional<GyrostatParameters>(*s.gyrostat()) : std::nullopt;
-        }, "The gyrostat's parameters (None for another model)")
+        }, "A copy of the gyrostat's parameters (None for another model): edit it and make a new scene")
         .def_property_readonly("fluid_rotor", [](const Scene& s) {
             return s.fluid() ? std::optional<FluidRotorParameters>(*s.fluid()) : std::nullopt;
-        }, "The liquid-filled rotor's parameters (None for another model)")
+        }, "A copy of the liquid-filled rotor's parameters (None for another model): edit it and make a new scene")
         .def("to_toml", &scene_text, "The scene as TOML that load_scene reads back to the same model and settings")
         .def("write", &write_scene, py::arg("path"), "Writes the scene to `path` (to_toml)")
         .def(py::pickle([](const Scene& s) { return py::make_tuple(scene_text(s), s.path); },

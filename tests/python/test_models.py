@@ -306,3 +306,31 @@ def test_gyrostat_and_fluid_rotor_parameters_are_objects_that_make_and_write_the
     namespace = {"gk": gk}
     exec(compile(re.findall(r"```python\n(.*?)```", part, re.S)[0], "docs/python.md", "exec"), namespace)
     np.testing.assert_array_equal(namespace["scene"].system.K.toarray(), read.system.K.toarray())
+
+
+def test_model_parameters_from_keywords_are_checked_as_the_scene_reader_checks_the_keys():
+    keys = dict(A_G=2.0, B_G=2.0, A_R=0.09, C_R=0.10, m=8.0, s=0.25, c_G=306.862, c_T=2112.19, c_R=74.1333)
+    # A key without a default is required (s = 0 is a valid value, so a missing s must not become 0).
+    with pytest.raises(gk.InputError, match=r"gyrostat: key 's' is missing"):
+        gk.gyrostat(**{k: v for k, v in keys.items() if k != "s"})
+    # numpy scalars are numbers; a subnormal value is refused (its written scene would not read back).
+    made = gk.gyrostat(**{**keys, "m": np.float64(8.0), "A_G": np.int64(2)})
+    assert made.gyrostat.m == 8.0 and made.gyrostat.A_G == 2.0
+    with pytest.raises(gk.InputError, match=r"d_G = 1e-310: a subnormal number"):
+        gk.gyrostat(**keys, d_G=1e-310)
+    with pytest.raises(gk.InputError, match=r"A_G = True: allowed: a number"):
+        gk.GyrostatParameters(A_G=True)
+    # The parameters pickle (they travel with a scene's settings to a pool).
+    p = gk.GyrostatParameters(**keys, shaft="elastic")
+    assert repr(pickle.loads(pickle.dumps(p))) == repr(p)
+    fkeys = dict(R=0.6, R0=0.4, a=0.5, l=2.5, rho=1000.0, c1=6.0e8, c2=2.0e8, c11=3.0e6, m0=400.0, I0=133.0, J0=75.0)
+    with pytest.raises(gk.InputError, match=r"fluid_rotor: key 'rho' is missing"):
+        gk.fluid_rotor(**{k: v for k, v in fkeys.items() if k != "rho"})
+    with pytest.raises(gk.InputError, match=r"tolerance given together with modes"):
+        gk.fluid_rotor(**fkeys, modes=5, tolerance=1e-8)
+    with pytest.raises(gk.InputError, match=r"modes = 0: out of range"):
+        gk.fluid_rotor(**fkeys, modes=0)
+    with pytest.raises(gk.InputError, match=r"modes = 4294967296: allowed: a whole number within a C int"):
+        gk.FluidRotorParameters(modes=2**32)
+    f = gk.fluid_rotor(**fkeys, modes=np.int64(5))
+    assert f.fluid_rotor.modes == 5 and f.fluid_rotor.nu == 0.0

@@ -1,5 +1,9 @@
 #include <gyrokit/core/error.hpp>
 
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
 namespace gyrokit {
 
 namespace {
@@ -64,6 +68,14 @@ std::vector<std::string> Error::fields() const {
         names.push_back(name[0] == kNoun ? name.substr(1) : name);
     });
     return names;
+}
+
+void check_parameter(bool ok, const std::string& origin, const char* key, double v, const char* allowed) {
+    if (!ok) throw InputError(fmt::format("{}: {} = {}: out of range; allowed: {}", origin, key, v, allowed));
+    if (v != 0.0 && std::fabs(v) < std::numeric_limits<double>::min())
+        throw InputError(fmt::format("{}: {} = {}: a subnormal number, which has lost precision; allowed: magnitudes "
+                                     "of at least {}",
+                                     origin, key, v, std::numeric_limits<double>::min()));
 }
 
 }  // namespace gyrokit

@@ -55,4 +55,10 @@ public:
     using Error::Error;
 };
 
+// A model parameter built in code, checked as a scene key is: InputError
+// "ORIGIN: KEY = V: out of range; allowed: ALLOWED" where !ok, and for a subnormal
+// value (0 < |v| < 2.2e-308: it has lost precision, and a written scene would not
+// read back).
+void check_parameter(bool ok, const std::string& origin, const char* key, double v, const char* allowed);
+
 }  // namespace gyrokit

@@ -17,10 +17,6 @@ namespace gyrokit {
 
 namespace {
 
-void need(bool ok, const std::string& origin, const char* key, double v, const char* allowed) {
-    if (!ok) throw InputError(fmt::format("{}: {} = {}: out of range; allowed: {}", origin, key, v, allowed));
-}
-
 // Scaled Bessel functions: Ih_m(x) = e^{-x} I_m(x), Kh_m(x) = e^{x} K_m(x).
 struct Scaled {
     double I0, I1, I2, K0, K1, K2;
@@ -163,25 +159,25 @@ double SloshingMode::tau(double w) const { return tau_coeff * std::sqrt(std::max
 void validate(const FluidRotorParameters& p, const std::string& origin) {
     const auto pos = [](double v) { return std::isfinite(v) && v > 0; };
     const auto nonneg = [](double v) { return std::isfinite(v) && v >= 0; };
-    need(pos(p.R), origin, "R", p.R, "> 0 (m)");
-    need(pos(p.R0), origin, "R0", p.R0, "> 0 (m)");
+    check_parameter(pos(p.R), origin, "R", p.R, "> 0 (m)");
+    check_parameter(pos(p.R0), origin, "R0", p.R0, "> 0 (m)");
     if (!(p.R0 < p.R))
         throw InputError(fmt::format("{}: R0 = {} is not below R = {}; allowed: 0 < R0 < R (m)", origin, p.R0, p.R));
-    need(pos(p.a), origin, "a", p.a, "> 0 (m)");
-    need(pos(p.l), origin, "l", p.l, "> 0 (m)");
-    need(nonneg(p.rho), origin, "rho", p.rho, ">= 0 (kg/m^3)");
-    need(nonneg(p.nu), origin, "nu", p.nu, ">= 0 (m^2/s)");
-    need(pos(p.c1), origin, "c1", p.c1, "> 0 (N/m)");
-    need(pos(p.c2), origin, "c2", p.c2, "> 0 (N/m)");
-    need(pos(p.c11), origin, "c11", p.c11, "> 0 (N/m)");
-    need(pos(p.m0), origin, "m0", p.m0, "> 0 (kg)");
-    need(nonneg(p.I0), origin, "I0", p.I0, ">= 0 (kg m^2)");
-    need(pos(p.J0), origin, "J0", p.J0, "> 0 (kg m^2)");
-    need(nonneg(p.e), origin, "e", p.e, ">= 0 (m)");
-    need(p.modes >= 0 && p.modes <= 100000, origin, "modes", p.modes, "[1, 100000], or absent for a tolerance");
-    need(std::isfinite(p.tolerance) && p.tolerance > 0 && p.tolerance < 1, origin, "tolerance", p.tolerance,
+    check_parameter(pos(p.a), origin, "a", p.a, "> 0 (m)");
+    check_parameter(pos(p.l), origin, "l", p.l, "> 0 (m)");
+    check_parameter(nonneg(p.rho), origin, "rho", p.rho, ">= 0 (kg/m^3)");
+    check_parameter(nonneg(p.nu), origin, "nu", p.nu, ">= 0 (m^2/s)");
+    check_parameter(pos(p.c1), origin, "c1", p.c1, "> 0 (N/m)");
+    check_parameter(pos(p.c2), origin, "c2", p.c2, "> 0 (N/m)");
+    check_parameter(pos(p.c11), origin, "c11", p.c11, "> 0 (N/m)");
+    check_parameter(pos(p.m0), origin, "m0", p.m0, "> 0 (kg)");
+    check_parameter(nonneg(p.I0), origin, "I0", p.I0, ">= 0 (kg m^2)");
+    check_parameter(pos(p.J0), origin, "J0", p.J0, "> 0 (kg m^2)");
+    check_parameter(nonneg(p.e), origin, "e", p.e, ">= 0 (m)");
+    check_parameter(p.modes >= 0 && p.modes <= 100000, origin, "modes", p.modes, "[1, 100000], or absent for a tolerance");
+    check_parameter(std::isfinite(p.tolerance) && p.tolerance > 0 && p.tolerance < 1, origin, "tolerance", p.tolerance,
          "0 < tolerance < 1");
-    need(p.jstar_terms >= 0 && p.jstar_terms <= 10000000, origin, "jstar_terms", p.jstar_terms,
+    check_parameter(p.jstar_terms >= 0 && p.jstar_terms <= 10000000, origin, "jstar_terms", p.jstar_terms,
          "[1, 10000000], or absent for automatic");
 }
 

@@ -19,10 +19,6 @@ Eigen::MatrixXd keep(const Eigen::MatrixXd& A, const std::vector<int>& dofs) {
     return B;
 }
 
-void need(bool ok, const std::string& origin, const char* key, double v, const char* allowed) {
-    if (!ok) throw InputError(fmt::format("{}: {} = {}: out of range; allowed: {}", origin, key, v, allowed));
-}
-
 }  // namespace
 
 void validate(const GyrostatParameters& p, const std::string& origin) {
@@ -32,22 +28,22 @@ void validate(const GyrostatParameters& p, const std::string& origin) {
     const auto pos = [](double v) { return std::isfinite(v) && v > 0; };
     const auto nonneg = [](double v) { return std::isfinite(v) && v >= 0; };
     if (!p.rigid_housing) {
-        need(pos(p.A_G), origin, "A_G", p.A_G, "a finite number > 0 (kg m^2)");
-        need(pos(p.B_G), origin, "B_G", p.B_G, "a finite number > 0 (kg m^2)");
-        need(pos(p.c_G), origin, "c_G", p.c_G, "a finite number > 0 (N m/rad)");
+        check_parameter(pos(p.A_G), origin, "A_G", p.A_G, "a finite number > 0 (kg m^2)");
+        check_parameter(pos(p.B_G), origin, "B_G", p.B_G, "a finite number > 0 (kg m^2)");
+        check_parameter(pos(p.c_G), origin, "c_G", p.c_G, "a finite number > 0 (N m/rad)");
     }
-    need(pos(p.A_R), origin, "A_R", p.A_R, "a finite number > 0 (kg m^2)");
-    need(pos(p.C_R), origin, "C_R", p.C_R, "a finite number > 0 (kg m^2)");
-    need(pos(p.m), origin, "m", p.m, "a finite number > 0 (kg)");
-    need(std::isfinite(p.s), origin, "s", p.s, "a finite number (m)");
-    need(nonneg(p.eps), origin, "eps", p.eps, "a finite number >= 0 (m)");
+    check_parameter(pos(p.A_R), origin, "A_R", p.A_R, "a finite number > 0 (kg m^2)");
+    check_parameter(pos(p.C_R), origin, "C_R", p.C_R, "a finite number > 0 (kg m^2)");
+    check_parameter(pos(p.m), origin, "m", p.m, "a finite number > 0 (kg)");
+    check_parameter(std::isfinite(p.s), origin, "s", p.s, "a finite number (m)");
+    check_parameter(nonneg(p.eps), origin, "eps", p.eps, "a finite number >= 0 (m)");
     if (!p.rigid_shaft) {
-        need(pos(p.c_T), origin, "c_T", p.c_T, "a finite number > 0 (N/m)");
-        need(pos(p.c_R), origin, "c_R", p.c_R, "a finite number > 0 (N m/rad)");
+        check_parameter(pos(p.c_T), origin, "c_T", p.c_T, "a finite number > 0 (N/m)");
+        check_parameter(pos(p.c_R), origin, "c_R", p.c_R, "a finite number > 0 (N m/rad)");
     }
-    need(nonneg(p.d_G), origin, "d_G", p.d_G, "a finite number >= 0 (N m s/rad)");
-    need(nonneg(p.d_T), origin, "d_T", p.d_T, "a finite number >= 0 (N s/m)");
-    need(nonneg(p.d_R), origin, "d_R", p.d_R, "a finite number >= 0 (N m s/rad)");
+    check_parameter(nonneg(p.d_G), origin, "d_G", p.d_G, "a finite number >= 0 (N m s/rad)");
+    check_parameter(nonneg(p.d_T), origin, "d_T", p.d_T, "a finite number >= 0 (N s/m)");
+    check_parameter(nonneg(p.d_R), origin, "d_R", p.d_R, "a finite number >= 0 (N m s/rad)");
 }
 
 GyroscopicSystem make_system(const GyrostatParameters& p) {

@@ -41,7 +41,7 @@ std::string quoted(const std::string& text) {
     return s + "\"";
 }
 
-double degrees(double rad) { return rad * kDegreesPerRadian; }
+double degrees(double rad) { return rad * 180.0 / kPi; }   // as written before: the same digits
 
 class Writer {
 public:
