@@ -187,6 +187,14 @@ expect "static analysis: --gravity -1; allowed: 0 (no weight)" static "$three_di
 expect "--modes: Value 0 not in range 1 to 1000" critical-map "$three_disk" --modes 0
 expect "--stiffness '1e9:1e6:5': allowed: FROM:TO:N with 0 < FROM < TO" critical-map "$three_disk" --stiffness 1e9:1e6:5
 expect "--units 'furlong' is unknown" critical-map "$three_disk" --units furlong
+# Level I: the machine data missing or out of range, each named.
+expect "the maximum continuous speed is missing; required: [api] mcs in the scene or --mcs (in rpm)" level1 "$data/compressor.toml"
+expect "the anticipated cross-coupling is unknown" level1 "$data/compressor.toml" --mcs 10000
+expect "--qa -5: allowed: a finite stiffness > 0 (N/m)" level1 "$three_disk" --mcs 10000 --qa -5
+expect "--mcs 0: allowed: a finite speed > 0 (rpm)" level1 "$three_disk" --mcs 0 --qa 1e6
+expect "--machine 'radial': allowed: centrifugal, axial" level1 "$three_disk" --mcs 10000 --qa 1e6 --machine radial
+expect "--q-ratio 1: allowed: [2, 1000]" level1 "$three_disk" --mcs 10000 --qa 1e6 --q-ratio 1
+expect "Level I needs an FE rotor" level1 "$data/centrifuge.toml" --mcs 10 --qa 1
 # Inputs that are not regular files, or nested beyond the parser's stack: one line, never a hang.
 printf '[model]\ntype = "matrices"\nM = "M2.mtx"\nK = "/dev/zero"\n' > "$dir/devzero.toml"
 expect "/dev/zero: is not a regular file (a device, FIFO or socket); expected a Matrix Market file" eig "$dir/devzero.toml" --speed 1

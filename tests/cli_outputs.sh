@@ -28,6 +28,7 @@ declare -A recipe=(
     [frf]="$w/three_disk_rotor.toml --speed 100 --input y3 --frequencies 10:1000:5"
     [static]="$w/three_disk_rotor.toml"
     [critical-map]="$w/three_disk_rotor.toml --stiffness 1e6:1e8:3"
+    [level1]="$w/three_disk_rotor.toml --mcs 1000 --qa 1e6 --intervals 4"
     [transient]="$w/three_disk_rotor.toml --speed 100 --node 3 --duration 0.02"
     [export]="$w/ross/scene.toml --speed 10"
     [fluid]="$w/fluid_N2.toml --fill 0.1:0.5:3"

@@ -12,6 +12,7 @@
     X(transient)      /* time integration: transient */                                   \
     X(static)         /* FE rotors at standstill: static */                               \
     X(critical_map)   /* FE rotors: critical-map */                                       \
+    X(level1)         /* FE rotors: level1 (API 617 Level I stability) */                 \
     X(balancer)       /* the auto-balancer: balancer (states, --simulate) */              \
     X(fluid)          /* the liquid-filled rotor: fluid */                                \
     X(screen)         /* design studies: screen */                                        \

@@ -94,7 +94,9 @@ std::string flag_words(const std::string& field) {
         {"frequencies", "--frequencies"}, {"mode", "--mode"}, {"fill", "--fill"},
         {"node", "--node"}, {"start", "--start"}, {"simulate", "--simulate"}, {"averaged", "--averaged"},
         {"integrator", "--integrator"}, {"abs_tol", "--abs-tol"}, {"rel_tol", "--rel-tol"}, {"runup", "--runup"},
-        {"max_speed", "--max-speed"}};
+        {"max_speed", "--max-speed"}, {"mcs", "--mcs"}, {"operating_speed", "--operating-speed"}, {"qa", "--qa"},
+        {"station", "--station"}, {"gas_density", "--gas-density"}, {"machine", "--machine"},
+        {"q_ratio", "--q-ratio"}, {"intervals", "--intervals"}};
     for (const auto& [name, flag] : flags)
         if (field == name) return flag;
     return "";

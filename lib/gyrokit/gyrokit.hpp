@@ -7,6 +7,7 @@
 #include <gyrokit/analysis/energy_bound.hpp>
 #include <gyrokit/analysis/fluid_critical_speeds.hpp>
 #include <gyrokit/analysis/frequency_response.hpp>
+#include <gyrokit/analysis/level1_stability.hpp>
 #include <gyrokit/analysis/mode_shapes.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
 #include <gyrokit/analysis/probe.hpp>
@@ -41,6 +42,7 @@
 #include <gyrokit/models/fluid_rotor.hpp>
 #include <gyrokit/models/gravity_loads.hpp>
 #include <gyrokit/models/gyrostat.hpp>
+#include <gyrokit/models/machine_stages.hpp>
 #include <gyrokit/models/materials.hpp>
 #include <gyrokit/models/rotor_model.hpp>
 #include <gyrokit/numerics/assignment.hpp>
@@ -60,6 +62,7 @@
 #include <gyrokit/study/defaults.hpp>
 #include <gyrokit/study/fluid_study.hpp>
 #include <gyrokit/study/frf_study.hpp>
+#include <gyrokit/study/level1_study.hpp>
 #include <gyrokit/study/request.hpp>
 #include <gyrokit/study/response_study.hpp>
 #include <gyrokit/study/rotor_study.hpp>

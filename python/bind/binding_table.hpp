@@ -9,6 +9,7 @@
 #define GYROKIT_BINDINGS(X)                                                    \
     X(statics)        /* static deflection, reactions, internal forces */       \
     X(critical_map)   /* the undamped critical speed map */                      \
+    X(level1)         /* API 617 Level I stability */                            \
     X(frf)            /* frequency response functions */                         \
     X(reports)        /* tables and figures of the CLI */                        \
     X(transient)      /* time integration */                                     \

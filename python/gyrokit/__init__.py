@@ -36,7 +36,8 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
            "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap", "frf",
            "FrequencyResponse", "Table", "load_tables", "draw", "summary", "ModelSummary", "transient",
-           "TransientResponse", "defaults", "fluid", "FluidResult", "GyrostatParameters", "FluidRotorParameters"]
+           "TransientResponse", "defaults", "fluid", "FluidResult", "GyrostatParameters", "FluidRotorParameters",
+           "level1", "Level1"]
 
 
 def defaults() -> list:
@@ -565,6 +566,44 @@ def critical_speed_map(model, *, stiffness=None, modes=_D.MAP_MODES, unit=None) 
                             unit)
 
 
+class Level1(_Result):
+    """API 617 Level I stability of an FE rotor (docs/level1.md): the first forward mode's log decrement against
+    the cross-coupled stiffness Q at the maximum continuous speed — arrays `q` (N/m), `log_decrement` (with
+    `log_decrement_bound`), `frequency` (in `unit`), `whirl` — and `qa`, `stage_qa`, `q0` (None where the log
+    decrement stays positive over the range) with `q0_bound`, `log_decrement_at_qa`, `log_decrement_at_zero`,
+    where Q acts (`layout`, `station_nodes`, `station_shares`, `station_z` in m), `rigid_critical` (in `unit`),
+    `csr`, `region_boundary`, the verdict `level2_required` and its `reasons`."""
+
+    def __init__(self, d):
+        self.unit = d["unit"]
+        for k in ("q", "log_decrement", "log_decrement_bound", "frequency"):
+            setattr(self, k, _np.asarray(d[k], dtype=float))
+        self.whirl = list(d["whirl"])
+        for k in ("qa", "q0", "q0_bound", "log_decrement_at_qa", "log_decrement_at_zero", "mcs", "layout",
+                  "station_nodes", "station_shares", "station_z", "rigid_critical", "csr", "region_boundary",
+                  "level2_required", "reasons", "solves", "notes", "warnings"):
+            setattr(self, k, d[k])
+        self.stage_qa = list(d["stage_qa"])
+        self._take_reports(d)   # level1_summary, level1_stages, level1_curve; plot(): log decrement against Q
+
+    def to_pandas(self):
+        return self._frame({"q": self.q, "log_decrement": self.log_decrement,
+                            "log_decrement_bound": self.log_decrement_bound, "frequency": self.frequency,
+                            "whirl": self.whirl})
+
+
+def level1(model, *, unit=None, machine=None, mcs=None, operating_speed=None, qa=None, station=None,
+           gas_density=None, q_ratio=None, intervals=_D.LEVEL1_INTERVALS, method=_D.METHOD) -> Level1:
+    """The API 617 Level I stability screen of an FE rotor scene: the scene's [api] machine data (mcs,
+    stages or qa, gas_density, ...) with these keywords on top (speeds in `unit`: rad/s, Hz or rpm, default the
+    scene's [speeds] units; `station` in the scene's length unit; `qa` in N/m replaces the stages')."""
+    if not isinstance(model, Scene):
+        raise InputError(f"level1: expected a gyrokit.Scene of an FE rotor, got {type(model).__name__}")
+    num = (lambda v: None if v is None else float(v))
+    return Level1(_core.level1(model, unit, machine, num(mcs), num(operating_speed), num(qa), num(station),
+                               num(gas_density), num(q_ratio), int(intervals), method))
+
+
 def static(model, *, gravity=_D.GRAVITY, loads=None) -> StaticDeflection:
     """An FE rotor scene at standstill under gravity (m/s^2 along -y) and point loads, a list of dicts
     {"node": n, "fx": .., "fy": .., "mx": .., "my": ..} (N, N m; missing ones 0). Speed-dependent bearings hold
@@ -961,6 +1000,6 @@ def _keeping_inputs(analysis):
 
 # Every analysis of the module, so that no result is saved over what it was computed from.
 for _name in ("eig", "modes", "campbell", "critical_speeds", "stability", "screen", "frf", "critical_speed_map",
-              "static", "summary", "pervasive", "response", "balancer", "sommerfeld", "transient", "fluid"):
+              "static", "summary", "pervasive", "response", "balancer", "sommerfeld", "transient", "fluid", "level1"):
     globals()[_name] = _keeping_inputs(globals()[_name])
 del _name

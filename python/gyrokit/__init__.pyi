@@ -323,6 +323,40 @@ class CriticalSpeedMap(_Result):
 def critical_speed_map(model: Scene, *, stiffness: Optional[Sequence[float]] = ..., modes: int = ...,
                        unit: Optional[str] = ...) -> CriticalSpeedMap: ...
 
+class Level1(_Result):
+    def __init__(self, d: dict[str, Any]) -> None: ...
+    unit: str
+    q: npt.NDArray[np.float64]
+    log_decrement: npt.NDArray[np.float64]
+    log_decrement_bound: npt.NDArray[np.float64]
+    frequency: npt.NDArray[np.float64]
+    whirl: list[str]
+    qa: float
+    stage_qa: list[float]
+    q0: Optional[float]
+    q0_bound: float
+    log_decrement_at_qa: float
+    log_decrement_at_zero: float
+    mcs: float
+    layout: str
+    station_nodes: list[int]
+    station_shares: list[float]
+    station_z: list[float]
+    rigid_critical: Optional[float]
+    csr: Optional[float]
+    region_boundary: Optional[float]
+    level2_required: bool
+    reasons: list[str]
+    solves: int
+    notes: list[str]
+    warnings: list[str]
+    def to_pandas(self) -> Any: ...
+
+def level1(model: Scene, *, unit: Optional[str] = ..., machine: Optional[str] = ..., mcs: Optional[float] = ...,
+           operating_speed: Optional[float] = ..., qa: Optional[float] = ..., station: Optional[float] = ...,
+           gas_density: Optional[float] = ..., q_ratio: Optional[float] = ..., intervals: int = ...,
+           method: str = ...) -> Level1: ...
+
 class ModelSummary(_Result): ...
 
 def summary(scene: Scene) -> ModelSummary: ...

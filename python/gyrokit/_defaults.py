@@ -11,5 +11,6 @@ JOBS = int(_VALUE["jobs"])
 TOLERANCE = float(_VALUE["tolerance"])
 GRAVITY = float(_VALUE["gravity"])
 MAP_MODES = int(_VALUE["map modes"])
+LEVEL1_INTERVALS = int(_VALUE["intervals"])
 MAX_STEPS = int(_VALUE["max steps"])
 START = _VALUE["start"]

@@ -217,6 +217,34 @@ def test_critical_speed_map_matches_the_cli():
         gk.critical_speed_map(gk.load_scene(os.path.join(DATA, "centrifuge.toml")))
 
 
+def test_level1_matches_the_cli_and_runs_on_a_rotor_built_in_python():
+    import json
+    import subprocess
+    scene = os.path.join(DATA, "three_disk_rotor.toml")
+    l1 = gk.level1(gk.load_scene(scene))
+    out = subprocess.run([os.environ["GYROKIT_CLI"], "level1", scene, "--format", "json", "--table", "level1_curve"],
+                         capture_output=True, text=True, check=True).stdout
+    rows = json.loads(out)
+    assert len(rows) == len(l1.q) == 21   # 20 steps, QA among them
+    for r, q, d in zip(rows, l1.q, l1.log_decrement):
+        assert r["Q_N_m"] == pytest.approx(q, rel=1e-14)
+        assert r["log_decrement"] == pytest.approx(d, abs=1e-7)
+    assert l1.unit == "rpm" and l1.layout == "between bearings" and not l1.level2_required
+    assert l1.q0 is not None and abs(l1.q0 / l1.qa - 3.448) < 1e-3 and l1.q0_bound < 1e-6 * l1.q0
+    assert sum(l1.stage_qa) == pytest.approx(l1.qa, rel=1e-14)
+    assert l1.csr == pytest.approx(10000 / l1.rigid_critical, rel=1e-12)
+    # The same rotor built in Python has no [api]: the machine data come as keywords.
+    built = gk.level1(gk.rotor_scene(three_disk_rotor()), mcs=10000 * 2 * np.pi / 60, qa=l1.qa, gas_density=40)
+    assert built.q0 == pytest.approx(l1.q0, rel=1e-6)
+    assert built.unit == "rad/s" and built.stage_qa == []
+    with pytest.raises(gk.InputError, match="mcs ="):
+        gk.level1(gk.rotor_scene(three_disk_rotor()), qa=1e6)
+    with pytest.raises(gk.InputError, match="Level I needs an FE rotor"):
+        gk.level1(gk.load_scene(os.path.join(DATA, "centrifuge.toml")), mcs=10, qa=1)
+    with pytest.raises(gk.InputError, match="expected a gyrokit.Scene"):
+        gk.level1(scene)
+
+
 def test_frf_matches_the_cli_and_the_docs_example_runs():
     import csv
     import io

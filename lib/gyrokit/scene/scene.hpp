@@ -8,6 +8,7 @@
 #include <gyrokit/models/fe_rotor.hpp>
 #include <gyrokit/models/rotor_model.hpp>
 #include <gyrokit/models/fluid_rotor.hpp>
+#include <gyrokit/models/machine_stages.hpp>
 #include <gyrokit/models/gyrostat.hpp>
 
 #include <map>
@@ -66,6 +67,9 @@ struct Scene {
     // [speeds] units (rad/s where the scene names none): the unit a study gives and
     // takes speeds and frequencies in unless the call names another (resolve_request).
     SpeedUnit speed_unit;
+    // [api]: the machine data of the API 617 / API 684 analyses (FE rotors; speeds in
+    // rad/s, lengths in m).
+    std::optional<ApiMachine> api;
     // Every file read to build it (absolute paths: the scene file, the matrices and
     // tables it names): what no output of a run on it may overwrite.
     std::vector<std::string> inputs;

@@ -197,6 +197,27 @@ void write_pedestal(Writer& w, const RotorPedestal& p) {
     w.key("cyy", p.pedestal.cyy);
 }
 
+// [api] in the keys the reader takes: speeds in the scene's unit, lengths in m
+// (the written [model] states length_unit = "m").
+void write_api(Writer& w, const ApiMachine& m, const SpeedUnit& unit) {
+    w.table("[api]");
+    w.key("machine", to_string(m.kind));
+    if (m.mcs) w.key("mcs", *m.mcs * unit.factor);
+    if (m.operating_speed) w.key("operating_speed", *m.operating_speed * unit.factor);
+    if (m.qa) w.key("qa", *m.qa);
+    if (m.station) w.key("station", *m.station);
+    if (m.gas_density) w.key("gas_density", *m.gas_density);
+    w.key("q_ratio", m.q_ratio);
+    for (const AeroStage& s : m.stages) {
+        w.table("[[api.stage]]");
+        w.key("z", s.z);
+        w.key("power", s.power);
+        w.key("diameter", s.diameter);
+        w.key("width", s.width);
+        if (s.density_ratio) w.key("density_ratio", *s.density_ratio);
+    }
+}
+
 void write_settings(Writer& w, const Scene& sc) {
     if (sc.speeds) {
         w.table("[speeds]");
@@ -212,6 +233,7 @@ void write_settings(Writer& w, const Scene& sc) {
     w.key("target_order", sc.solver.target_order);
     if (sc.analysis.f_cut) w.key("f_cut", *sc.analysis.f_cut);
     w.harmonics(sc.analysis.harmonics);
+    if (sc.api) write_api(w, *sc.api, sc.speed_unit);
 }
 
 // A scene's start: title, [model] and its type.

@@ -8,6 +8,7 @@
 
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speed_map.hpp>
+#include <gyrokit/analysis/level1_stability.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
 #include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/analysis/transient.hpp>
@@ -43,6 +44,9 @@ inline constexpr int critical_map_modes = kCriticalMapModes;
 inline constexpr double critical_map_stiffness_from = kMapStiffnessFrom;   // times 48 E I / L^3
 inline constexpr double critical_map_stiffness_to = kMapStiffnessTo;
 inline constexpr int critical_map_points = kMapStiffnessPoints;
+// Level I stability: the curve's equal steps, and its range in multiples of QA.
+inline constexpr int level1_intervals = kLevel1Intervals;
+inline constexpr double level1_q_ratio = kLevel1QRatio;
 // Static deflection: gravity along -y, m/s^2.
 inline constexpr double gravity = kStandardGravity;
 // Transient response: the largest number of time steps a run may take.

@@ -1,0 +1,149 @@
+#include <gyrokit/reports/level1_reports.hpp>
+
+#include <gyrokit/core/constants.hpp>
+#include <gyrokit/reports/critical_reports.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+
+namespace gyrokit {
+
+double log_decrement_bound(const Level1Point& p) {
+    const double im = std::fabs(p.lambda.imag()), re = std::fabs(p.lambda.real());
+    if (!(im > 0)) return std::numeric_limits<double>::infinity();
+    return 2.0 * kPi * p.error_bound * (im + re) / (im * im);
+}
+
+namespace {
+
+std::string vouched(double x, double bound, const char* unit) {
+    const double r = round_to_bound(x, bound);
+    if (!(bound > 0) || !std::isfinite(bound)) return fmt::format("{:.6g}{}", r, unit);
+    return fmt::format("{:.12g}{} (bound {:.1g})", r, unit, bound);
+}
+
+std::string station_text(const Level1Screen& s) {
+    std::string t;
+    for (std::size_t i = 0; i < s.stations.size(); ++i)
+        t += fmt::format("{}node {} at z = {:.6g} {}{}", i ? ", " : "", s.stations[i].node,
+                         s.length_unit.in_unit(s.station_z[i]), s.length_unit.name,
+                         s.stations.size() > 1 ? fmt::format(" ({:.3g} of Q)", s.stations[i].share) : std::string());
+    return t;
+}
+
+}  // namespace
+
+Table level1_summary(const Level1Screen& s) {
+    Table t({"quantity", "value"});
+    t.key = "level1_summary";
+    t.title = "API 617 Level I stability: summary";
+    const SpeedUnit& u = s.unit;
+    const auto speed = [&](double w) { return fmt::format("{:.6g} {}", u.factor * w, u.name); };
+    const auto row = [&](const char* q, const std::string& v) { t.add_row({std::string(q), v}); };
+    row("verdict", s.level2_required ? "Level II required" : "Level I passed");
+    for (const std::string& r : s.reasons) row(s.level2_required ? "reason" : "because", r);
+    row("machine", std::string(to_string(s.machine.kind)) +
+                       (s.machine.kind == MachineKind::centrifugal ? " compressor (Bc = 3, density ratio)"
+                                                                   : " compressor or turbine (Bt = 1.5)"));
+    row("maximum continuous speed", speed(*s.machine.mcs));
+    row("operating speed (QA)", speed(s.machine.operating_speed.value_or(*s.machine.mcs)));
+    row("QA", fmt::format("{:.6g} N/m{}", s.qa,
+                          s.stage_qa.empty() ? " (given)" : fmt::format(" (the sum of {} stages)", s.stage_qa.size())));
+    row("Q acts at", fmt::format("{} ({})", station_text(s), s.layout));
+    row("first forward mode at Q = 0",
+        fmt::format("frequency {}, log decrement {}", speed(s.at_zero.lambda.imag()),
+                    vouched(s.at_zero.log_decrement, log_decrement_bound(s.at_zero), "")));
+    row("log decrement at QA", vouched(s.at_qa.log_decrement, log_decrement_bound(s.at_qa), ""));
+    if (s.curve.q0 && *s.curve.q0 == 0.0)
+        row("Q0", "0 N/m: the mode is not stable at Q = 0 (unstable, or neutral: undamped)");
+    else if (s.curve.q0)
+        row("Q0", fmt::format("{} ; Q0/QA = {:.4g}", vouched(*s.curve.q0, s.curve.q0_bound, " N/m"), *s.curve.q0 / s.qa));
+    else
+        row("Q0", fmt::format("> {:.6g} N/m = {:.3g} QA (the log decrement stays positive)",
+                              s.machine.q_ratio * s.qa, s.machine.q_ratio));
+    if (s.rigid_critical)
+        row("first critical speed on rigid supports", fmt::format("{} ; critical speed ratio {:.4g}",
+                                                                  speed(*s.rigid_critical), *s.csr));
+    if (s.machine.gas_density)
+        row("average gas density", fmt::format("{:.6g} kg/m^3 ; region B above a critical speed ratio of {:.4g}",
+                                               *s.machine.gas_density, *s.region_boundary));
+    row("eigenvalue solves", std::to_string(s.curve.solves));
+    return t;
+}
+
+Table level1_stages(const Level1Screen& s) {
+    const LengthUnit& l = s.length_unit;
+    Table t({l.column("z"), "power_W", l.column("diameter"), l.column("width"), "density_ratio", "qa_N_m"});
+    t.key = "level1_stages";
+    t.title = "API 617 Level I: the stages' anticipated cross-coupling";
+    for (std::size_t i = 0; i < s.machine.stages.size() && i < s.stage_qa.size(); ++i) {
+        const AeroStage& a = s.machine.stages[i];
+        t.add_row({l.in_unit(a.z), a.power, l.in_unit(a.diameter), l.in_unit(a.width),
+                   s.machine.kind == MachineKind::centrifugal && a.density_ratio ? Cell(*a.density_ratio)
+                                                                                 : Cell(std::string("-")),
+                   s.stage_qa[i]});
+    }
+    return t;
+}
+
+Table level1_curve_table(const Level1Screen& s) {
+    Table t({"Q_N_m", "Q_over_QA", "log_decrement", "log_decrement_bound", s.unit.column("frequency"), "whirl"});
+    t.key = "level1_curve";
+    t.title = "API 617 Level I: the first forward mode against the cross-coupling Q";
+    for (const Level1Point& p : s.curve.points) {
+        const double b = log_decrement_bound(p);
+        t.add_row({p.q, p.q / s.qa, round_to_bound(p.log_decrement, b), b, s.unit.factor * p.lambda.imag(),
+                   to_string(p.whirl)});
+    }
+    return t;
+}
+
+std::vector<Table> level1_tables(const Level1Screen& s) {
+    std::vector<Table> out{level1_summary(s)};
+    if (!s.stage_qa.empty()) out.push_back(level1_stages(s));
+    out.push_back(level1_curve_table(s));
+    return out;
+}
+
+Figure level1_figure(const Level1Screen& s, const std::string& title) {
+    Figure f;
+    f.title = (title.empty() ? std::string() : title + ": ") + "API 617 Level I stability";
+    Panel p;
+    p.xlabel = "cross-coupled stiffness Q [N/m]";
+    p.ylabel = "log decrement of the first forward mode";
+    Series curve;
+    curve.label = "log decrement";
+    curve.style = "linespoints";
+    for (const Level1Point& q : s.curve.points) {
+        curve.x.push_back(q.q);
+        curve.y.push_back(q.log_decrement);
+    }
+    p.series.push_back(curve);
+    // QA and Q0 as vertical lines across the curve's span (a point alone is hard to see).
+    double lo = 0.0, hi = 0.0;
+    for (const Level1Point& q : s.curve.points) lo = std::min(lo, q.log_decrement), hi = std::max(hi, q.log_decrement);
+    const auto vertical = [&](double x, const std::string& label, const char* color) {
+        Series v;
+        v.label = label;
+        v.style = "dashed";
+        v.color = color;
+        v.x = {x, x};
+        v.y = {lo, hi};
+        p.series.push_back(v);
+    };
+    vertical(s.qa, fmt::format("QA = {:.4g} N/m (log decrement {:.3g})", s.qa, s.at_qa.log_decrement), "#d62728");
+    if (s.curve.q0 && *s.curve.q0 > 0) vertical(*s.curve.q0, fmt::format("Q0 = {:.4g} N/m", *s.curve.q0), "#2ca02c");
+    Series limit;
+    limit.label = fmt::format("log decrement {}", kLevel1MinLogDecrement);
+    limit.style = "dotted";
+    limit.color = "#7f7f7f";
+    limit.x = {0.0, s.curve.points.back().q};
+    limit.y = {kLevel1MinLogDecrement, kLevel1MinLogDecrement};
+    p.series.push_back(limit);
+    f.panels.push_back(p);
+    return f;
+}
+
+}  // namespace gyrokit

@@ -1,0 +1,283 @@
+// The Level I screen of a scene: QA from the stages against a hand computation of
+// API 617's formula, Q at the middle of the bearing span, and Q0 against an
+// independent computation on the exported matrices (the state matrix shifted and
+// inverted near the crossing, Eigen's complex eigensolver: Re(lambda) changes sign
+// across Q0 (1 -+ 1e-6)).
+#include <gyrokit/core/constants.hpp>
+#include <gyrokit/gyrokit.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <complex>
+#include <fstream>
+#include <sstream>
+
+using namespace gyrokit;
+
+namespace {
+
+// The rotor of data/three_disk_rotor.toml without its own [api].
+std::string three_disk_text() {
+    std::ifstream in(std::string(GYROKIT_DATA_DIR) + "/three_disk_rotor.toml");
+    std::stringstream s;
+    s << in.rdbuf();
+    const std::string text = s.str();
+    return text.substr(0, text.find("\n[api]"));
+}
+
+const char* kStages = R"(
+[api]
+machine = "centrifugal"
+mcs = 10000
+gas_density = 40
+[[api.stage]]
+z = 0.35
+power = 1e6
+diameter = 0.4
+width = 0.02
+density_ratio = 1.5
+[[api.stage]]
+z = 0.85
+power = 5e5
+diameter = 0.35
+width = 0.015
+density_ratio = 1.3
+)";
+
+// The eigenvalue of the pencil nearest `sigma`, independently: the state matrix
+// A = [0 I; -M^-1 K, -M^-1 C], (A - sigma I)^-1 by LU, its eigenvalue of largest modulus mu,
+// lambda = sigma + 1 / mu.
+std::complex<double> nearest_eigenvalue(const GyroscopicSystem& sys, double speed, std::complex<double> sigma) {
+    const QuadraticPencil p = sys.at_speed(speed);
+    const int n = static_cast<int>(p.M.rows());
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+    const Eigen::LLT<Eigen::MatrixXd> m(p.M);
+    A.topRightCorner(n, n).setIdentity();
+    A.bottomLeftCorner(n, n) = -m.solve(p.K);
+    A.bottomRightCorner(n, n) = -m.solve(p.C);
+    const Eigen::MatrixXcd shifted = A.cast<std::complex<double>>() - sigma * Eigen::MatrixXcd::Identity(2 * n, 2 * n);
+    const Eigen::MatrixXcd B = shifted.partialPivLu().inverse();
+    const Eigen::ComplexEigenSolver<Eigen::MatrixXcd> es(B, false);
+    Eigen::Index k = 0;
+    es.eigenvalues().cwiseAbs().maxCoeff(&k);
+    return sigma + 1.0 / es.eigenvalues()(k);
+}
+
+}  // namespace
+
+TEST_CASE("Level I of an FE rotor: QA by API 617's formula, Q at mid-span, Q0 against an independent solve",
+          "[level1]") {
+    const Scene sc = parse_scene(three_disk_text() + kStages, "three_disk_level1.toml", GYROKIT_DATA_DIR);
+    const Level1Screen s = level1_study(sc);
+    // QA by hand: 3 x 9.55 x P rho_d/rho_s / (D H N), N = 10000 rpm.
+    const double qa1 = 3 * 9.55 * 1e6 * 1.5 / (0.4 * 0.02 * 10000), qa2 = 3 * 9.55 * 5e5 * 1.3 / (0.35 * 0.015 * 10000);
+    REQUIRE(s.stage_qa.size() == 2);
+    CHECK(s.stage_qa[0] == Approx(qa1).epsilon(1e-12));
+    CHECK(s.stage_qa[1] == Approx(qa2).epsilon(1e-12));
+    CHECK(s.qa == Approx(qa1 + qa2).epsilon(1e-12));
+    // Both stages lie between the bearings (z = 0.05 and 1.15): Q at the node nearest z = 0.6.
+    CHECK(s.layout == "between bearings");
+    REQUIRE(s.stations.size() == 1);
+    CHECK(s.station_z[0] == Approx(0.6).margin(1e-12));
+    CHECK(s.at_zero.whirl == Whirl::Forward);
+    CHECK(s.at_zero.log_decrement > 0);
+    REQUIRE(s.curve.q0.has_value());
+    const double q0 = *s.curve.q0;
+    CHECK(s.curve.q0_bound <= 1e-6 * q0);
+    // The followed eigenvalue at Q0 sits on the imaginary axis; an independent solve on either side.
+    const double mcs = 10000 * 2 * kPi / 60;
+    double omega = 0;
+    for (const Level1Point& p : s.curve.points)
+        if (p.q <= q0) omega = p.lambda.imag();
+    const auto re_at = [&](double q) {
+        const GyroscopicSystem g = with_cross_coupling(sc.system, s.stations, q);
+        // The crossing's frequency: from the last curve point before Q0, refined by two shifts.
+        std::complex<double> l = nearest_eigenvalue(g, mcs, {0.0, omega});
+        l = nearest_eigenvalue(g, mcs, {0.0, l.imag()});
+        return l;
+    };
+    const std::complex<double> below = re_at(q0 * (1 - 1e-6)), above = re_at(q0 * (1 + 1e-6));
+    CHECK(below.real() < 0);
+    CHECK(above.real() > 0);
+    CHECK(std::fabs(below.imag() - above.imag()) <= 1e-6 * above.imag());
+    // The verdict follows the criteria as stated.
+    const double ratio = q0 / s.qa;
+    REQUIRE(s.csr.has_value());
+    REQUIRE(s.region_boundary.has_value());
+    CHECK(*s.region_boundary == Approx(2.69 - 0.0115 * 40));
+    const bool level2 = ratio < 2 || s.at_qa.log_decrement < 0.1 || (ratio < 10 && *s.csr > *s.region_boundary);
+    CHECK(s.level2_required == level2);
+}
+
+TEST_CASE("Level I of an overhung stage: Q acts at the stage, or QA given directly", "[level1]") {
+    std::string text = three_disk_text() + R"(
+[api]
+machine = "axial"
+mcs = 9000
+[[api.stage]]
+z = 1.2
+power = 2e5
+diameter = 0.3
+width = 0.04
+)";
+    const Scene sc = parse_scene(text, "overhung.toml", GYROKIT_DATA_DIR);
+    const Level1Screen s = level1_study(sc);
+    CHECK(s.layout == "overhung");
+    REQUIRE(s.station_z.size() == 1);
+    CHECK(s.station_z[0] == Approx(1.2).margin(1e-12));
+    // Alford's form: Bt = 1.5, no density ratio.
+    CHECK(s.qa == Approx(1.5 * 9.55 * 2e5 / (0.3 * 0.04 * 9000)).epsilon(1e-12));
+    // QA given: the stage still says where Q acts.
+    Level1Request r;
+    r.qa = 1e5;
+    const Level1Screen given = level1_study(sc, r);
+    CHECK(given.qa == 1e5);
+    CHECK(given.layout == "overhung");
+    CHECK(given.station_z[0] == Approx(1.2).margin(1e-12));
+    r.station = 0.6;
+    const Level1Screen placed = level1_study(sc, r);
+    CHECK(placed.layout == "station given");
+    CHECK(placed.station_z[0] == Approx(0.6).margin(1e-12));
+    // An axial machine has no density ratio to switch to a centrifugal one with.
+    Level1Request c;
+    c.machine = "centrifugal";
+    try {
+        level1_study(sc, c);
+        FAIL("no error");
+    } catch (const InputError& e) {
+        CHECK_THAT(std::string(e.what()), Catch::Contains("density_ratio is missing"));
+    }
+    // Axial: the critical speed ratio's region does not enter the verdict.
+    CHECK_FALSE(s.region_boundary.has_value());
+    for (const std::string& why : s.reasons) CHECK_THAT(why, !Catch::Contains("region"));
+}
+
+TEST_CASE("Level I verdicts: each criterion named", "[level1]") {
+    const Scene sc = parse_scene(three_disk_text() + kStages, "three_disk_level1.toml", GYROKIT_DATA_DIR);
+    const Level1Screen base = level1_study(sc);
+    REQUIRE(base.curve.q0.has_value());
+    const double q0 = *base.curve.q0;
+    const auto with = [&](double qa, std::optional<double> rho) {
+        Level1Request r;
+        r.qa = qa;
+        r.gas_density = rho;
+        return level1_study(sc, r);
+    };
+    // Q0/QA < 2.
+    const Level1Screen low = with(q0 / 1.5, 40.0);
+    CHECK(low.level2_required);
+    CHECK_THAT(low.reasons.front(), Catch::Contains("< 2"));
+    // Q0/QA in [2, 10): region A at 40 kg/m^3 (ratio 2.05 < 2.23) passes; beyond the chart (70) is region B.
+    CHECK_FALSE(with(q0 / 4, 40.0).level2_required);
+    const Level1Screen dense = with(q0 / 4, 70.0);
+    CHECK(dense.level2_required);
+    CHECK_THAT(dense.reasons.front(), Catch::Contains("region B"));
+    // No gas density: the region is unknown, which does not pass.
+    Level1Request none;
+    none.qa = q0 / 4;
+    ApiMachine m = *sc.api;
+    m.gas_density.reset();
+    Scene no_rho = sc;
+    no_rho.api = m;
+    const Level1Screen unknown = level1_study(no_rho, none);
+    CHECK(unknown.level2_required);
+    CHECK_THAT(unknown.reasons.front(), Catch::Contains("region of the critical speed ratio is unknown"));
+    // Q0/QA >= 10 passes whatever the region.
+    const Level1Screen high = with(q0 / 20, 70.0);
+    CHECK_FALSE(high.level2_required);
+    CHECK_FALSE(high.curve.q0.has_value());   // beyond 10 QA
+}
+
+TEST_CASE("[api] is read, checked and written back", "[level1][scene]") {
+    const Scene sc = parse_scene(three_disk_text() + kStages, "three_disk_level1.toml", GYROKIT_DATA_DIR);
+    REQUIRE(sc.api.has_value());
+    CHECK(*sc.api->mcs == Approx(10000 * 2 * kPi / 60).epsilon(1e-15));
+    CHECK(sc.api->stages.size() == 2);
+    const Scene back = parse_scene(scene_text(sc), "written.toml", GYROKIT_DATA_DIR);
+    REQUIRE(back.api.has_value());
+    CHECK(*back.api->mcs == Approx(*sc.api->mcs).epsilon(1e-15));
+    CHECK(back.api->stages.size() == 2);
+    CHECK(back.api->stages[1].density_ratio == 1.3);
+    CHECK(back.api->gas_density == 40.0);
+    // A scene in Hz: every key read in its unit and written back in the scene's speed unit.
+    std::string text = three_disk_text();
+    text.replace(text.find("units = \"rpm\""), 13, "units = \"Hz\" ");
+    const Scene hz = parse_scene(text + R"(
+[api]
+machine = "axial"
+mcs = 150
+operating_speed = 140
+qa = 2e6
+station = 0.55
+q_ratio = 5
+[[api.stage]]
+z = 0.6
+power = 1e5
+diameter = 0.3
+width = 0.02
+)", "hz.toml", GYROKIT_DATA_DIR);
+    REQUIRE(hz.api.has_value());
+    CHECK(*hz.api->mcs == Approx(150 * 2 * kPi).epsilon(1e-15));
+    const Scene hz_back = parse_scene(scene_text(hz), "hz_written.toml", GYROKIT_DATA_DIR);
+    const ApiMachine& a = *hz.api;
+    const ApiMachine& b = *hz_back.api;
+    CHECK(b.kind == MachineKind::axial);
+    CHECK(*b.mcs == Approx(*a.mcs).epsilon(1e-15));
+    CHECK(*b.operating_speed == Approx(*a.operating_speed).epsilon(1e-15));
+    CHECK(b.qa == a.qa);
+    CHECK(b.station == a.station);
+    CHECK(b.q_ratio == 5.0);
+    REQUIRE(b.stages.size() == 1);
+    CHECK(b.stages[0].z == a.stages[0].z);
+    CHECK(b.stages[0].diameter == a.stages[0].diameter);
+    CHECK(b.stages[0].width == a.stages[0].width);
+    CHECK_FALSE(b.stages[0].density_ratio.has_value());
+    // A scene in mm: positions and sizes read in mm, held in m, written back in m.
+    std::ifstream in(std::string(GYROKIT_DATA_DIR) + "/drive_train.toml");
+    std::stringstream drive;
+    drive << in.rdbuf();
+    const Scene mm = parse_scene(drive.str() + R"(
+[api]
+machine = "axial"
+mcs = 100
+qa = 1e6
+station = 550
+[[api.stage]]
+z = 600
+power = 1e5
+diameter = 300
+width = 20
+)", "mm.toml", GYROKIT_DATA_DIR);
+    REQUIRE(mm.length_unit().name == "mm");
+    CHECK(*mm.api->station == Approx(0.55).epsilon(1e-15));
+    CHECK(mm.api->stages[0].diameter == Approx(0.3).epsilon(1e-15));
+    const Scene mm_back = parse_scene(scene_text(mm), "mm_written.toml", GYROKIT_DATA_DIR);
+    CHECK(*mm_back.api->station == Approx(0.55).epsilon(1e-15));
+    CHECK(mm_back.api->stages[0].z == Approx(0.6).epsilon(1e-15));
+    CHECK(mm_back.api->stages[0].width == Approx(0.02).epsilon(1e-15));
+    const auto error = [](const std::string& text) {
+        try {
+            parse_scene(three_disk_text() + "\n" + text, "bad.toml", GYROKIT_DATA_DIR);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    CHECK_THAT(error("[api]\nmcs = 100\nmachine = \"axial\"\n[[api.stage]]\nz = 0.6\npower = 1e5\ndiameter = 0.3\n"
+                     "width = 0.02\ndensity_ratio = 1.2\n"),
+               Catch::Contains("density_ratio is given for an axial machine"));
+    CHECK_THAT(error("[api]\nmcs = 100\nqa = -1\n"), Catch::Contains("qa = -1"));
+    CHECK_THAT(error("[api]\nmcs = 100\nqa = 1\nq_ratio = 1\n"), Catch::Contains("q_ratio = 1: out of range; allowed: [2, 1000]"));
+    CHECK_THAT(error("[api]\nmcs = 100\n[[api.stage]]\nz = 0.6\npower = 1e5\ndiameter = 0.3\nwidth = 0.02\n"),
+               Catch::Contains("density_ratio' is missing"));
+    CHECK_THAT(error("[api]\nmcs = 100\nqa = 1\nspeed = 3\n"), Catch::Contains("unknown key 'speed'"));
+    // A scene without an FE rotor has no [api].
+    try {
+        level1_study(scene_of(sc.system));
+        FAIL("no error");
+    } catch (const InputError& e) {
+        CHECK_THAT(std::string(e.what()), Catch::Contains("fe_rotor"));
+    }
+}
