@@ -163,6 +163,7 @@ TEST_CASE("Level I verdicts: each criterion named", "[level1]") {
         Level1Request r;
         r.qa = qa;
         r.gas_density = rho;
+        r.intervals = 4;   // the verdict needs Q0 and QA, not the curve's detail
         return level1_study(sc, r);
     };
     // Q0/QA < 2.
@@ -177,6 +178,7 @@ TEST_CASE("Level I verdicts: each criterion named", "[level1]") {
     // No gas density: the region is unknown, which does not pass.
     Level1Request none;
     none.qa = q0 / 4;
+    none.intervals = 4;
     ApiMachine m = *sc.api;
     m.gas_density.reset();
     Scene no_rho = sc;

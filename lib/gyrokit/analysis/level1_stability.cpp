@@ -188,12 +188,16 @@ Mode first_forward(const QuadraticSpectrum& sp, double speed) {
                                  speed, sp.modes.size()));
 }
 
-// Q0 between a (stable) and b (unstable), bisected on the followed mode.
-void bisect_q0(Follower& f, Level1Curve& c, Mode ma, double a, Mode mb, double b) {
-    // Re(lambda) rises across the bracket; its slope turns the eigenvalues' bounds into Q's.
-    const double slope0 = (mb.lambda.real() - ma.lambda.real()) / (b - a);
-    for (int it = 0; it < 200 && b - a > 1e-10 * b; ++it) {   // a > 0: Q = 0 is decided before
-        const double m = 0.5 * (a + b);
+// Q0 between a (stable) and b (unstable) on the followed mode: regula falsi with the
+// Illinois rule (a bracket that shrinks from both ends, superlinearly), until the bracket
+// is below 1e-10 b or Re(lambda) lies within its error bound.
+void bracket_q0(Follower& f, Level1Curve& c, Mode ma, double a, Mode mb, double b) {
+    double fa = ma.lambda.real(), fb = mb.lambda.real();
+    const double slope0 = (fb - fa) / (b - a);   // Re(lambda) rises across the bracket
+    int side = 0;
+    for (int it = 0; it < 100 && b - a > 1e-10 * b; ++it) {
+        double m = (a * fb - b * fa) / (fb - fa);
+        m = std::min(std::max(m, a + 1e-3 * (b - a)), b - 1e-3 * (b - a));
         const Mode mm = f.step(ma, a, m);
         const double re = mm.lambda.real();
         if (std::fabs(re) <= mm.error_bound) {   // neutral within its bound: as tight as the eigenvalue allows
@@ -202,11 +206,13 @@ void bisect_q0(Follower& f, Level1Curve& c, Mode ma, double a, Mode mb, double b
             break;
         }
         if (re < 0) {
-            a = m;
-            ma = mm;
+            a = m, ma = mm, fa = re;
+            if (side == -1) fb *= 0.5;   // Illinois: the end kept twice gives way
+            side = -1;
         } else {
-            b = m;
-            mb = mm;
+            b = m, mb = mm, fb = re;
+            if (side == 1) fa *= 0.5;
+            side = 1;
         }
     }
     const double slope = b > a ? (mb.lambda.real() - ma.lambda.real()) / (b - a) : slope0;
@@ -247,7 +253,7 @@ Level1Curve level1_curve(const GyroscopicSystem& sys, const Level1Options& opt) 
             // The bracket's stable end: the last point whose eigenvalue lies left of zero.
             std::size_t a = i - 1;
             while (a > 0 && modes[a].lambda.real() >= 0) --a;
-            bisect_q0(f, c, modes[a], qs[a], modes[i], qs[i]);
+            bracket_q0(f, c, modes[a], qs[a], modes[i], qs[i]);
         }
     }
     c.solves = f.solves;

@@ -50,8 +50,8 @@ struct Level1Curve {
     // positive up to q_max, and 0 where the mode is unstable at Q = 0 or neutral there
     // (no damping: any Q > 0 destabilises it).
     std::optional<double> q0;
-    double q0_bound = 0.0;              // N/m: |Q0 - exact| at most this (bisection bracket and eigenvalue bound)
-    int solves = 0;                     // eigenvalue solves made (curve, halved steps and bisection)
+    double q0_bound = 0.0;              // N/m: |Q0 - exact| at most this (the bracket and the eigenvalue's bound)
+    int solves = 0;                     // eigenvalue solves made (curve, halved steps and Q0's bracket)
     std::vector<std::string> notes;     // steps that could not be told apart, solver notes
 };
 
@@ -64,7 +64,8 @@ GyroscopicSystem with_cross_coupling(const GyroscopicSystem& sys, const std::vec
 // at Q = 0. The mode is followed by its eigenvector (the candidate of largest |x_prev^H x|,
 // which must also be, to 1e-6, the nearest eigenvalue); a step where that fails is
 // halved, at most 10 times between two points of the curve, and a step taken undecided
-// is noted. Q0 is bisected on the followed mode until the bracket is below 1e-10 Q or
+// is noted. Q0's bracket on the followed mode is narrowed (regula falsi, Illinois) until
+// it is below 1e-10 Q or
 // Re(lambda) lies within its error bound. Dense up to kAutoSparseDofs DOFs (solver auto),
 // else a sparse window of 12 modes centred on the followed one.
 Level1Curve level1_curve(const GyroscopicSystem& sys, const Level1Options& options);
