@@ -195,6 +195,8 @@ expect "--mcs 0: allowed: a finite speed > 0 (rpm)" level1 "$three_disk" --mcs 0
 expect "--machine 'radial': allowed: centrifugal, axial" level1 "$three_disk" --mcs 10000 --qa 1e6 --machine radial
 expect "--q-ratio 1: allowed: [2, 1000]" level1 "$three_disk" --mcs 10000 --qa 1e6 --q-ratio 1
 expect "Level I needs an FE rotor" level1 "$data/centrifuge.toml" --mcs 10 --qa 1
+expect "--station = 0 m: its node 0 does not move laterally" level1 "$dir/pinned.toml" --mcs 100 --qa 1e5 --station 0
+expect "--station = 7 m: " level1 "$three_disk" --qa 1e5 --station 7
 # Inputs that are not regular files, or nested beyond the parser's stack: one line, never a hang.
 printf '[model]\ntype = "matrices"\nM = "M2.mtx"\nK = "/dev/zero"\n' > "$dir/devzero.toml"
 expect "/dev/zero: is not a regular file (a device, FIFO or socket); expected a Matrix Market file" eig "$dir/devzero.toml" --speed 1

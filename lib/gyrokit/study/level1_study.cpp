@@ -75,11 +75,18 @@ void place_stations(const Scene& sc, Level1Screen& s) {
                                       [&](const AeroStage& a) { return a.z < z0 - tol || a.z > z1 + tol; });
     // The node at z, an error naming the key that placed it.
     const auto node_at = [&](double z, const std::string& key) {
+        int node = -1;
         try {
-            return sys.nearest_node(z, lu);
+            node = sys.nearest_node(z, lu);
         } catch (const InputError& e) {
             throw InputError(fmt::format("{}: {} = {} {}: {}", sc.path, key, lu.in_unit(z), lu.name, e.what()));
         }
+        if (sys.dofs.find(node, DofMotion::x) < 0 || sys.dofs.find(node, DofMotion::y) < 0)
+            throw InputError(fmt::format("{}: {} = {} {}: its node {} does not move laterally (a rigid support holds "
+                                         "it, or the model has no lateral DOFs); allowed: a position whose node has x "
+                                         "and y",
+                                         sc.path, key, lu.in_unit(z), lu.name, node));
+        return node;
     };
     std::map<int, double> share;
     if (s.machine.station) {
