@@ -254,7 +254,7 @@ py::dict py_critical_speeds(const py::object& model, const py::dict& request) {
     py::array_t<double> speed(n), damping(n), amplification(n);
     py::array_t<int> harmonic(n), branch(n);
     py::array_t<bool> critical(n);
-    py::list whirl, af_method;
+    py::list whirl, af_method, af_dof, af_note;
     for (py::ssize_t k = 0; k < n; ++k) {
         const CriticalSpeed& c = cs[static_cast<size_t>(k)];
         speed.mutable_at(k) = c.speed;
@@ -264,6 +264,8 @@ py::dict py_critical_speeds(const py::object& model, const py::dict& request) {
         whirl.append(to_string(c.mode.whirl));
         amplification.mutable_at(k) = c.amplification;
         af_method.append(to_string(c.amplification_method));
+        af_dof.append(c.amplification_dof);
+        af_note.append(c.amplification_note);
         critical.mutable_at(k) = c.api684_critical();
     }
     py::dict d;
@@ -275,6 +277,8 @@ py::dict py_critical_speeds(const py::object& model, const py::dict& request) {
     d["damping_ratio"] = damping;
     d["amplification"] = amplification;
     d["af_method"] = af_method;
+    d["af_dof"] = af_dof;
+    d["af_note"] = af_note;
     d["api684_critical"] = critical;
     put_diagnostics(d, st.tracked.diagnostics);
     put_reports(d, critical_tables(cs, u));

@@ -175,6 +175,8 @@ class CriticalSpeeds(_Result):
             self.log_dec = _np.where(z < 1, 2 * _np.pi * z / _np.sqrt(_np.maximum(1 - z * z, 0.0)), _np.nan)
         self.amplification = d["amplification"]
         self.af_method = list(d["af_method"])
+        self.af_dof = list(d["af_dof"])     # the DOF whose response gave a half-power AF ("" for 1/(2 zeta))
+        self.af_note = list(d["af_note"])   # why 1/(2 zeta) where the half-power method did not apply
         self.notes = list(d["notes"])
         self.warnings = list(d["warnings"])
         self.api684_critical = d["api684_critical"]
@@ -184,6 +186,7 @@ class CriticalSpeeds(_Result):
         return self._frame({"speed": self.speeds, "branch": self.branch, "whirl": self.whirl,
                             "harmonic": self.harmonic, "damping_ratio": self.damping_ratio, "log_dec": self.log_dec,
                             "amplification": self.amplification, "af_method": self.af_method,
+                            "af_dof": self.af_dof, "af_note": self.af_note,
                             "api684_critical": self.api684_critical})
 
 

@@ -98,6 +98,8 @@ class CriticalSpeeds(_Result):
     log_dec: npt.NDArray[np.float64]
     amplification: npt.NDArray[np.float64]
     af_method: list[str]
+    af_dof: list[str]
+    af_note: list[str]
     api684_critical: npt.NDArray[np.bool_]
     notes: list[str]
     warnings: list[str]

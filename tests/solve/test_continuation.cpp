@@ -204,6 +204,9 @@ TEST_CASE("amplification factor: half-power on the Jeffcott rotor's unbalance re
             CHECK(c.speed == Approx(wn * std::sqrt(1.0 - zeta * zeta)).epsilon(1e-9));
             // The peak speed to sqrt(eps) relative on a flat top, the half-power roots to 1e-10: AF to 1e-6.
             CHECK(c.amplification_method == AmplificationMethod::HalfPower);
+            // x and y of the circular orbit tie: the first is the probe, named.
+            CHECK(c.amplification_dof == "x");
+            CHECK(c.amplification_note.empty());
             CHECK(c.amplification == Approx(jeffcott_af(zeta)).epsilon(1e-6));
             CHECK(c.api684_critical() == (jeffcott_af(zeta) >= 2.5));
         }
@@ -218,6 +221,30 @@ TEST_CASE("amplification factor: half-power on the Jeffcott rotor's unbalance re
     set_amplification_factors(cs, bare);
     CHECK(cs[0].amplification_method == AmplificationMethod::DampingRatio);
     CHECK(cs[0].amplification == Approx(5.0).epsilon(1e-9));
+    CHECK(cs[0].amplification_dof.empty());
+    CHECK(cs[0].amplification_note == "the model has no unbalance");
+    // A 2x crossing: the unbalance excites 1x only.
+    std::vector<CriticalSpeed> twice = critical_speeds(solver, campbell(solver, {0.0, 2.0 * wn}), {2});
+    REQUIRE(!twice.empty());
+    set_amplification_factors(twice, jeffcott(0.1));
+    CHECK(twice[0].amplification_note == "harmonic 2: the unbalance excites 1x");
+}
+
+TEST_CASE("amplification factors name their DOF, or why the damping ratio's 1/(2 zeta) stands in", "[continuation]") {
+    // The three-disk rotor: its forward crossing's half-power AF at the mid-span x; its backward
+    // crossing shows no peak of its own at x12 or y12 (the forward mode's covers it).
+    const Scene sc = load_scene(std::string(GYROKIT_DATA_DIR) + "/three_disk_rotor.toml");
+    const CriticalSpeedStudy st = critical_speed_study(sc.system, study_options(sc));
+    REQUIRE(st.critical.size() >= 2);
+    const CriticalSpeed& backward = st.critical[0];
+    const CriticalSpeed& forward = st.critical[1];
+    CHECK(forward.mode.whirl == Whirl::Forward);
+    CHECK(forward.amplification_method == AmplificationMethod::HalfPower);
+    CHECK(forward.amplification_dof == "x12");
+    CHECK(forward.amplification_note.empty());
+    CHECK(backward.mode.whirl == Whirl::Backward);
+    CHECK(backward.amplification_method == AmplificationMethod::DampingRatio);
+    CHECK(backward.amplification_note == "no response peak of this crossing at x12 or y12");
 }
 
 TEST_CASE("a Campbell study gives the same bits on one worker, on two processes, on two threads and again",

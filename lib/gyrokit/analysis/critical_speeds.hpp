@@ -28,6 +28,8 @@ struct CriticalSpeed {
     double amplification = std::numeric_limits<double>::quiet_NaN();
     AmplificationMethod amplification_method = AmplificationMethod::DampingRatio;
     int probe = -1;        // half-power: the DOF whose response peak was measured
+    std::string amplification_dof{};    // its name ("" for 1/(2 zeta))
+    std::string amplification_note{};   // 1/(2 zeta): why the half-power method did not apply ("" otherwise)
     // API 684: a crossing with an amplification factor below 2.5 is not a critical
     // speed (heavily damped, no separation margin required).
     bool api684_critical() const { return !(amplification < kApi684CriticalAmplification); }
@@ -45,9 +47,11 @@ double api684_required_margin(double af, bool above);
 // speeds where the amplitude of the probe DOF (the mode's largest translation)
 // is 0.707 of its peak; used for 1x crossings of a model with an unbalance whose
 // probe shows a peak within 3 damping widths of the crossing and both half-power
-// points within the search. Otherwise (other harmonics, no unbalance, no peak,
-// models above kHalfPowerDofs DOFs) AF = 1/(2 zeta) from the mode's damping
-// ratio (infinite for an undamped or unstable mode).
+// points within the search; where the largest translation shows none, its whirl
+// partner at the same node (y for x) is tried. Otherwise (other harmonics, no
+// unbalance, no peak, models above kHalfPowerDofs DOFs) AF = 1/(2 zeta) from the
+// mode's damping ratio (infinite for an undamped or unstable mode), and
+// amplification_note says why.
 // `only`: the index of the one crossing to set (the others' speeds still bound its
 // half-power search); npos: every crossing.
 void set_amplification_factors(std::vector<CriticalSpeed>& cs, const GyroscopicSystem& sys,

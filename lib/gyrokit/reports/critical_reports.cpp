@@ -24,15 +24,18 @@ Cell amplification_cell(const CriticalSpeed& c) {
 }
 
 Table critical_rows(const std::vector<const CriticalSpeed*>& cs, const SpeedUnit& u) {
+    // af_dof: the DOF whose response gave the half-power AF; af_note: why 1/(2 zeta) instead.
     Table t({u.column("speed"), "mode", "whirl", "harmonic", u.column("frequency"), "damping_ratio", "amplification",
-             "af_method", "api684"});
+             "af_method", "api684", "af_dof", "af_note"});
+    const auto or_dash = [](const std::string& s) { return s.empty() ? std::string("-") : s; };
     for (const CriticalSpeed* c : cs)
         t.add_row({u.factor * c->speed, ll(c->branch), to_string(c->mode.whirl), ll(c->harmonic),
                    u.factor * c->mode.frequency(), c->mode.damping_ratio(), amplification_cell(*c),
                    std::isnan(c->amplification) ? std::string("-") : to_string(c->amplification_method),
                    std::isnan(c->amplification) ? std::string("-")
                    : c->api684_critical()       ? std::string("critical")
-                                                : std::string("not critical")});
+                                                : std::string("not critical"),
+                   or_dash(c->amplification_dof), or_dash(c->amplification_note)});
     return t;
 }
 
