@@ -69,7 +69,8 @@ std::pair<double, double> bearing_span(const RotorModel& model, const std::strin
 void place_stations(const Scene& sc, Level1Screen& s) {
     const GyroscopicSystem& sys = sc.system;
     const LengthUnit lu = sc.length_unit();
-    const auto [z0, z1] = bearing_span(*sc.rotor_model(), sc.path);
+    const std::pair<double, double> span = bearing_span(*sc.rotor_model(), sc.path);
+    const double z0 = span.first, z1 = span.second;   // named: a lambda captures them (C++17)
     const double tol = 1e-9 * std::max(1.0, std::fabs(z1 - z0));
     const bool overhung = std::any_of(s.machine.stages.begin(), s.machine.stages.end(),
                                       [&](const AeroStage& a) { return a.z < z0 - tol || a.z > z1 + tol; });
