@@ -197,6 +197,18 @@ expect "--q-ratio 1: allowed: [2, 1000]" level1 "$three_disk" --mcs 10000 --qa 1
 expect "Level I needs an FE rotor" level1 "$data/centrifuge.toml" --mcs 10 --qa 1
 expect "--station = 0 m: its node 0 does not move laterally" level1 "$dir/pinned.toml" --mcs 100 --qa 1e5 --station 0
 expect "--station = 7 m: " level1 "$three_disk" --qa 1e5 --station 7
+expect "the maximum continuous speed is missing; required: [api] mcs in the scene or --mcs (in rpm)" api-unbalance "$data/compressor.toml"
+expect "--min-speed 0: allowed: a finite speed > 0 (rpm)" api-unbalance "$three_disk" --min-speed 0
+expect "--min-speed 12000: allowed: (0, 10000 rpm] (at most the mcs)" api-unbalance "$three_disk" --min-speed 12000
+expect "--trip-speed 9000: allowed: at least the mcs, 10000 rpm" api-unbalance "$three_disk" --trip-speed 9000
+expect "the API unbalance cases need an FE rotor" api-unbalance "$data/centrifuge.toml" --mcs 10
+sed 's/^trip_speed = 10500/trip_speed = 9500/' "$three_disk" > "$dir/trip.toml"
+expect "[api] trip_speed = 9500: out of range; allowed: at least the mcs, 10000 rpm" api-unbalance "$dir/trip.toml"
+sed 's/^clearance = 0.25e-3/clearance = -1/' "$three_disk" > "$dir/clearance.toml"
+expect "[api.clearance[0]] clearance = -1: out of range; allowed: > 0 (m)" api-unbalance "$dir/clearance.toml"
+expect "--tolerance 0.7: allowed: (0, 0.5)" mesh "$three_disk" --tolerance 0.7
+expect "--levels 1: allowed: [2, 8]" mesh "$three_disk" --levels 1
+expect "mesh convergence refines an FE rotor's sections" mesh "$data/centrifuge.toml"
 # Inputs that are not regular files, or nested beyond the parser's stack: one line, never a hang.
 printf '[model]\ntype = "matrices"\nM = "M2.mtx"\nK = "/dev/zero"\n' > "$dir/devzero.toml"
 expect "/dev/zero: is not a regular file (a device, FIFO or socket); expected a Matrix Market file" eig "$dir/devzero.toml" --speed 1

@@ -29,6 +29,7 @@ declare -A recipe=(
     [static]="$w/three_disk_rotor.toml"
     [critical-map]="$w/three_disk_rotor.toml --stiffness 1e6:1e8:3"
     [level1]="$w/three_disk_rotor.toml --mcs 1000 --qa 1e6 --intervals 4"
+    [api-unbalance]="$w/three_disk_rotor.toml --mcs 1000 --min-speed 700 --trip-speed 1050 --speeds 41"
     [transient]="$w/three_disk_rotor.toml --speed 100 --node 3 --duration 0.02"
     [export]="$w/ross/scene.toml --speed 10"
     [fluid]="$w/fluid_N2.toml --fill 0.1:0.5:3"

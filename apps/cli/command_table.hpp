@@ -13,6 +13,8 @@
     X(static)         /* FE rotors at standstill: static */                               \
     X(critical_map)   /* FE rotors: critical-map */                                       \
     X(level1)         /* FE rotors: level1 (API 617 Level I stability) */                 \
+    X(api_unbalance)  /* FE rotors: api-unbalance (API 617 unbalance cases) */            \
+    X(mesh)           /* FE rotors: mesh (mesh convergence) */                            \
     X(balancer)       /* the auto-balancer: balancer (states, --simulate) */              \
     X(fluid)          /* the liquid-filled rotor: fluid */                                \
     X(screen)         /* design studies: screen */                                        \

@@ -96,7 +96,8 @@ std::string flag_words(const std::string& field) {
         {"integrator", "--integrator"}, {"abs_tol", "--abs-tol"}, {"rel_tol", "--rel-tol"}, {"runup", "--runup"},
         {"max_speed", "--max-speed"}, {"mcs", "--mcs"}, {"operating_speed", "--operating-speed"}, {"qa", "--qa"},
         {"station", "--station"}, {"gas_density", "--gas-density"}, {"machine", "--machine"},
-        {"q_ratio", "--q-ratio"}, {"intervals", "--intervals"}};
+        {"q_ratio", "--q-ratio"}, {"intervals", "--intervals"}, {"min_speed", "--min-speed"},
+        {"trip_speed", "--trip-speed"}, {"levels", "--levels"}};
     for (const auto& [name, flag] : flags)
         if (field == name) return flag;
     return "";

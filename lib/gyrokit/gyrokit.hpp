@@ -7,6 +7,7 @@
 #include <gyrokit/analysis/energy_bound.hpp>
 #include <gyrokit/analysis/fluid_critical_speeds.hpp>
 #include <gyrokit/analysis/frequency_response.hpp>
+#include <gyrokit/analysis/api_unbalance.hpp>
 #include <gyrokit/analysis/level1_stability.hpp>
 #include <gyrokit/analysis/mode_shapes.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
@@ -62,7 +63,9 @@
 #include <gyrokit/study/defaults.hpp>
 #include <gyrokit/study/fluid_study.hpp>
 #include <gyrokit/study/frf_study.hpp>
+#include <gyrokit/study/api_unbalance_study.hpp>
 #include <gyrokit/study/level1_study.hpp>
+#include <gyrokit/study/mesh_convergence_study.hpp>
 #include <gyrokit/study/request.hpp>
 #include <gyrokit/study/response_study.hpp>
 #include <gyrokit/study/rotor_study.hpp>

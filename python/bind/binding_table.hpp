@@ -10,6 +10,8 @@
     X(statics)        /* static deflection, reactions, internal forces */       \
     X(critical_map)   /* the undamped critical speed map */                      \
     X(level1)         /* API 617 Level I stability */                            \
+    X(api_unbalance)  /* API 617 unbalance cases */                             \
+    X(mesh)           /* mesh convergence */                                    \
     X(frf)            /* frequency response functions */                         \
     X(reports)        /* tables and figures of the CLI */                        \
     X(transient)      /* time integration */                                     \

@@ -37,7 +37,8 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap", "frf",
            "FrequencyResponse", "Table", "load_tables", "draw", "summary", "ModelSummary", "transient",
            "TransientResponse", "defaults", "fluid", "FluidResult", "GyrostatParameters", "FluidRotorParameters",
-           "level1", "Level1"]
+           "level1", "Level1", "api_unbalance", "ApiUnbalance", "mesh_convergence",
+           "MeshConvergence"]
 
 
 def defaults() -> list:
@@ -607,6 +608,88 @@ def level1(model, *, unit=None, machine=None, mcs=None, operating_speed=None, qa
                                num(gas_density), num(q_ratio), int(intervals), method))
 
 
+class ApiUnbalance(_Result):
+    """The API 617 unbalance cases of an FE rotor (docs/api_unbalance.md): the `verdict` (pass, pass (scaled
+    clearances), fail, not judged) with `reasons` where the whole study fails; the operating range `min_speed` to
+    `mcs`, `trip_speed` and `search_to` (in `unit`); the `locations` (names, `probe` flags, `nodes`, `z` in m,
+    diametral `clearance` in m, 0 for probes); the response `speeds` (in `unit`); and `cases`, one dict each:
+    `layout`, `loads` (node, z, weight kg, weight_of, unbalance kg m, phase rad), `criticals` (speed, whirl,
+    amplification, af_method, af_dof, af_note, side, margin and required in percent, met), per location
+    `peak_to_peak`, `at`, `checked`, `limit` (m) and `ratio`, `curves` (peak-to-peak in m, speeds x locations),
+    `a1`, `avl` (m), `scc`, `concern`, `margins_met`, `verdict`, `reasons`."""
+
+    def __init__(self, d):
+        for k in ("unit", "verdict", "reasons", "mcs", "min_speed", "trip_speed", "search_to", "locations", "probe",
+                  "nodes", "clearance", "solves", "notes", "warnings"):
+            setattr(self, k, d[k])
+        self.z = _np.asarray(d["z"], dtype=float)
+        self.speeds = _np.asarray(d["speeds"], dtype=float)
+        self.cases = []
+        for c in d["cases"]:
+            c = dict(c)
+            for k in ("peak_to_peak", "at", "checked", "limit", "ratio", "curves"):
+                c[k] = _np.asarray(c[k], dtype=float)
+            c["loads"] = [dict(x) for x in c["loads"]]
+            c["criticals"] = [dict(x) for x in c["criticals"]]
+            self.cases.append(c)
+        self._take_reports(d)   # api_unbalance_summary, _cases, _loads, _margins, _amplitudes; plot(): the orbits
+
+    def to_pandas(self):
+        rows = []
+        for i, c in enumerate(self.cases):
+            for k, name in enumerate(self.locations):
+                rows.append({"case": i + 1, "location": name, "probe": self.probe[k],
+                             "peak_to_peak": c["peak_to_peak"][k], "at": c["at"][k], "checked": c["checked"][k],
+                             "limit": c["limit"][k], "ratio": c["ratio"][k], "verdict": c["verdict"]})
+        return self._frame(rows)
+
+
+def api_unbalance(model, *, unit=None, mcs=None, min_speed=None, trip_speed=None,
+                  speeds=_D.API_SPEEDS) -> ApiUnbalance:
+    """The API 617 unbalance cases of an FE rotor scene: the scene's [api] speeds (mcs, min_speed, trip_speed)
+    and [[api.clearance]] entries with these keywords on top (speeds in `unit`: rad/s, Hz or rpm, default the
+    scene's [speeds] units); `speeds` grid speeds from 0 to the higher of the trip speed and 1.26 mcs."""
+    if not isinstance(model, Scene):
+        raise InputError(f"api_unbalance: expected a gyrokit.Scene of an FE rotor, got {type(model).__name__}")
+    num = (lambda v: None if v is None else float(v))
+    return ApiUnbalance(_core.api_unbalance(model, unit, num(mcs), num(min_speed), num(trip_speed), int(speeds)))
+
+
+class MeshConvergence(_Result):
+    """The mesh convergence of an FE rotor (docs/mesh_convergence.md): the meshes (`factors`, `elements`,
+    `dofs`), `quantities` (dicts: `name`, `values` in `unit` per mesh, NaN where a mesh lacks it, `change` per
+    doubling, `converged`: the first mesh index from which every change is below `tolerance`, -1: none),
+    `chosen` (the mesh index chosen, -1: not converged) and its `section_elements`."""
+
+    def __init__(self, d):
+        for k in ("unit", "tolerance", "top_speed", "factors", "elements", "dofs", "chosen", "section_elements",
+                  "notes", "warnings"):
+            setattr(self, k, d[k])
+        self.quantities = [dict(q) for q in d["quantities"]]
+        for q in self.quantities:
+            q["values"] = _np.asarray(q["values"], dtype=float)
+            q["change"] = _np.asarray(q["change"], dtype=float)
+        self._take_reports(d)   # mesh_summary, mesh_quantities
+
+    def to_pandas(self):
+        rows = []
+        for q in self.quantities:
+            for i, f in enumerate(self.factors):
+                rows.append({"quantity": q["name"], "factor": f, "elements": self.elements[i], "dofs": self.dofs[i],
+                             "value": q["values"][i],
+                             "change": q["change"][i] if i < len(q["change"]) else float("nan")})
+        return self._frame(rows)
+
+
+def mesh_convergence(model, *, unit=None, tolerance=_D.MESH_TOLERANCE, levels=_D.MESH_LEVELS) -> MeshConvergence:
+    """The mesh convergence of an FE rotor scene: each section's elements doubled (up to `levels` meshes) until
+    every critical speed over the scene's [speeds] and every frequency up to f_cut at the top speed changes by
+    less than `tolerance` (a fraction: 1e-3 is 0.1 %) on doubling."""
+    if not isinstance(model, Scene):
+        raise InputError(f"mesh_convergence: expected a gyrokit.Scene of an FE rotor, got {type(model).__name__}")
+    return MeshConvergence(_core.mesh_convergence(model, unit, float(tolerance), int(levels)))
+
+
 def static(model, *, gravity=_D.GRAVITY, loads=None) -> StaticDeflection:
     """An FE rotor scene at standstill under gravity (m/s^2 along -y) and point loads, a list of dicts
     {"node": n, "fx": .., "fy": .., "mx": .., "my": ..} (N, N m; missing ones 0). Speed-dependent bearings hold
@@ -1003,6 +1086,7 @@ def _keeping_inputs(analysis):
 
 # Every analysis of the module, so that no result is saved over what it was computed from.
 for _name in ("eig", "modes", "campbell", "critical_speeds", "stability", "screen", "frf", "critical_speed_map",
-              "static", "summary", "pervasive", "response", "balancer", "sommerfeld", "transient", "fluid", "level1"):
+              "static", "summary", "pervasive", "response", "balancer", "sommerfeld", "transient", "fluid", "level1",
+              "api_unbalance", "mesh_convergence"):
     globals()[_name] = _keeping_inputs(globals()[_name])
 del _name

@@ -359,6 +359,49 @@ def level1(model: Scene, *, unit: Optional[str] = ..., machine: Optional[str] = 
            gas_density: Optional[float] = ..., q_ratio: Optional[float] = ..., intervals: int = ...,
            method: str = ...) -> Level1: ...
 
+class ApiUnbalance(_Result):
+    def __init__(self, d: dict[str, Any]) -> None: ...
+    unit: str
+    verdict: str
+    reasons: list[str]
+    mcs: float
+    min_speed: float
+    trip_speed: float
+    search_to: float
+    locations: list[str]
+    probe: list[bool]
+    nodes: list[int]
+    z: npt.NDArray[np.float64]
+    clearance: list[float]
+    speeds: npt.NDArray[np.float64]
+    cases: list[dict[str, Any]]
+    solves: int
+    notes: list[str]
+    warnings: list[str]
+    def to_pandas(self) -> Any: ...
+
+def api_unbalance(model: Scene, *, unit: Optional[str] = ..., mcs: Optional[float] = ...,
+                  min_speed: Optional[float] = ..., trip_speed: Optional[float] = ...,
+                  speeds: int = ...) -> ApiUnbalance: ...
+
+class MeshConvergence(_Result):
+    def __init__(self, d: dict[str, Any]) -> None: ...
+    unit: str
+    tolerance: float
+    top_speed: float
+    factors: list[int]
+    elements: list[int]
+    dofs: list[int]
+    quantities: list[dict[str, Any]]
+    chosen: int
+    section_elements: list[int]
+    notes: list[str]
+    warnings: list[str]
+    def to_pandas(self) -> Any: ...
+
+def mesh_convergence(model: Scene, *, unit: Optional[str] = ..., tolerance: float = ...,
+                     levels: int = ...) -> MeshConvergence: ...
+
 class ModelSummary(_Result): ...
 
 def summary(scene: Scene) -> ModelSummary: ...

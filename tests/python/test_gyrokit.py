@@ -855,6 +855,7 @@ def _every_result(tmp_path):
         (rotor, gk.frf(rotor, 100.0, "y3", np.linspace(10, 1000, 5))), (rotor, gk.static(rotor)),
         (rotor, gk.critical_speed_map(rotor, stiffness=[1e6, 1e7, 1e8])), (rotor, gk.summary(rotor)),
         (rotor, gk.level1(rotor, intervals=4)),
+        (rotor, gk.api_unbalance(rotor, speeds=41)), (rotor, gk.mesh_convergence(rotor)),
         (rotor, gk.transient(rotor, 100.0, node=3, duration=0.02, unit="rad/s")),
         (filled, gk.fluid(filled)),
         (str(tmp_path / "screen_centrifuge.toml"), gk.screen(str(tmp_path / "screen_centrifuge.toml"),

@@ -245,6 +245,58 @@ def test_level1_matches_the_cli_and_runs_on_a_rotor_built_in_python():
         gk.level1(scene)
 
 
+def test_api_unbalance_matches_the_cli_and_runs_on_a_rotor_built_in_python():
+    import json
+    import subprocess
+    scene = os.path.join(DATA, "three_disk_rotor.toml")
+    r = gk.api_unbalance(gk.load_scene(scene))
+    out = subprocess.run([os.environ["GYROKIT_CLI"], "api-unbalance", scene, "--format", "json", "--table",
+                          "api_unbalance_margins"], capture_output=True, text=True, check=True).stdout
+    rows = json.loads(out)
+    mine = [(i + 1, k) for i, c in enumerate(r.cases) for k in c["criticals"]]
+    assert len(rows) == len(mine) >= 3
+    for row, (case, k) in zip(rows, mine):
+        assert row["case"] == case
+        assert row["speed_rpm"] == pytest.approx(k["speed"], rel=1e-12)
+        assert row["met"] == k["met"]
+    assert r.verdict == "pass" and r.reasons == [] and r.unit == "rpm"
+    assert r.min_speed == pytest.approx(7000) and r.trip_speed == pytest.approx(10500)
+    first = r.cases[0]
+    assert first["layout"].startswith("first mode") and len(first["loads"]) == 1
+    assert first["scc"] == pytest.approx(min(6.0, max(0.5, first["avl"] / first["a1"])), rel=1e-12)
+    assert first["curves"].shape == (len(r.speeds), len(r.locations))
+    # The same rotor built in Python has no [api]: speeds as keywords, and no clearance to check.
+    built = gk.api_unbalance(gk.rotor_scene(three_disk_rotor()), mcs=10000, min_speed=7000, trip_speed=10500,
+                             unit="rpm")
+    assert [c["layout"] for c in built.cases] == [c["layout"] for c in r.cases]
+    assert built.cases[0]["a1"] == pytest.approx(first["a1"], rel=1e-8)
+    assert built.verdict == "not judged" and not any(built.clearance)
+    with pytest.raises(gk.InputError, match="mcs ="):
+        gk.api_unbalance(gk.rotor_scene(three_disk_rotor()))
+    with pytest.raises(gk.InputError, match="min_speed = 12000: allowed"):
+        gk.api_unbalance(gk.load_scene(scene), min_speed=12000)
+    with pytest.raises(gk.InputError, match="need an FE rotor"):
+        gk.api_unbalance(gk.load_scene(os.path.join(DATA, "centrifuge.toml")), mcs=10)
+
+
+def test_mesh_convergence_matches_the_cli():
+    import json
+    import subprocess
+    scene = os.path.join(DATA, "three_disk_rotor.toml")
+    m = gk.mesh_convergence(gk.load_scene(scene))
+    out = subprocess.run([os.environ["GYROKIT_CLI"], "mesh", scene, "--format", "json", "--table", "mesh_quantities"],
+                         capture_output=True, text=True, check=True).stdout
+    rows = json.loads(out)
+    assert len(rows) == len(m.quantities) * len(m.factors)
+    for row in rows:
+        q = next(q for q in m.quantities if q["name"] == row["quantity"])
+        i = m.factors.index(row["factor"])
+        assert row["value_rpm"] == pytest.approx(q["values"][i], rel=1e-12)
+    assert m.chosen == 0 and m.section_elements == [2, 5, 10, 5, 2] and m.factors == [1, 2]
+    with pytest.raises(gk.InputError, match="tolerance = 0.7"):
+        gk.mesh_convergence(gk.load_scene(scene), tolerance=0.7)
+
+
 def test_frf_matches_the_cli_and_the_docs_example_runs():
     import csv
     import io

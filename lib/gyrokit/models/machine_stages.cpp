@@ -45,9 +45,21 @@ void validate(const ApiMachine& m) {
         if (m.kind == MachineKind::centrifugal && !s.density_ratio)
             throw InputError(so + ": density_ratio is missing; required for a centrifugal machine: the discharge over "
                                   "suction density, > 0");
+        check_parameter(s.width < s.diameter, so, "width", s.width,
+                        fmt::format("below the diameter {} (m)", s.diameter).c_str());
         if (s.density_ratio)
-            check_parameter(std::isfinite(*s.density_ratio) && *s.density_ratio > 0, so, "density_ratio",
-                            *s.density_ratio, "a finite ratio > 0");
+            check_parameter(std::isfinite(*s.density_ratio) && *s.density_ratio >= 1, so, "density_ratio",
+                            *s.density_ratio, "a finite ratio >= 1 (a compressor's discharge is at least as dense "
+                                              "as its suction)");
+    }
+    if (m.min_speed) check_parameter(positive(m.min_speed), o, "min_speed", *m.min_speed, "a finite speed > 0");
+    if (m.trip_speed) check_parameter(positive(m.trip_speed), o, "trip_speed", *m.trip_speed, "a finite speed > 0");
+    for (std::size_t i = 0; i < m.clearances.size(); ++i) {
+        const CloseClearance& c = m.clearances[i];
+        const std::string co = c.origin.empty() ? fmt::format("{}: clearance {}", o, i) : c.origin;
+        check_parameter(std::isfinite(c.z), co, "z", c.z, "a position on the shaft");
+        check_parameter(std::isfinite(c.clearance) && c.clearance > 0, co, "clearance", c.clearance,
+                        "a finite diametral clearance > 0 (m)");
     }
 }
 

@@ -27,6 +27,16 @@ struct AeroStage {
     std::string origin;          // names the stage in messages
 };
 
+// A close-clearance location of the API unbalance cases (a seal, a bearing, a
+// balance piston): where the rotor's peak-to-peak orbit is held against 75 % of the
+// minimum diametral running clearance.
+struct CloseClearance {
+    double z = 0.0;              // m: axial position (its nearest node is read)
+    double clearance = 0.0;      // m, > 0: minimum diametral running clearance
+    std::string name;            // as the report names it ("" : "clearance K")
+    std::string origin;          // names the entry in messages
+};
+
 // The Q range of the curve unless asked otherwise: 0 to this many times QA.
 constexpr double kLevel1QRatio = 10.0;
 
@@ -41,6 +51,11 @@ struct ApiMachine {
                                              //    between-bearings rotor, the stages of an overhung one)
     std::optional<double> gas_density;       // kg/m^3, > 0: average of suction and discharge (region A/B check)
     double q_ratio = kLevel1QRatio;          // the Q range: 0 to q_ratio QA, in [2, 1000]
+    // The API unbalance cases (study/api_unbalance_study.hpp, docs/api_unbalance.md):
+    std::optional<double> min_speed;         // rad/s, > 0: minimum operating speed (default: the mcs)
+    std::optional<double> trip_speed;        // rad/s, >= mcs: the response's range 0 to trip speed
+                                             //    (default: kApiTripRatio mcs)
+    std::vector<CloseClearance> clearances;
     std::string origin;                      // names the table in messages
 };
 
@@ -55,8 +70,14 @@ constexpr double kQaAxial = 1.5;
 // B C P / (D H N_rpm), times rho_d / rho_s for a centrifugal stage.
 double anticipated_cross_coupling(const AeroStage& stage, MachineKind kind, double operating_speed);
 
+// The trip speed unless given: 105 % of the maximum continuous speed (API 617's
+// trip speed of a variable-speed electric drive and of gas turbines).
+constexpr double kApiTripRatio = 1.05;
+
 // InputError naming the stage or key, the value and the allowed range, for each value
-// given (what a Level I screen needs besides: level1_study).
+// given (what a Level I screen needs besides: level1_study; the order of min_speed, mcs
+// and trip_speed, which only the unbalance cases read: the scene reader and
+// api_unbalance_study, in the caller's unit).
 void validate(const ApiMachine& machine);
 
 }  // namespace gyrokit

@@ -337,4 +337,14 @@ BuiltRotor build(const RotorModel& model) {
     return out;
 }
 
+std::pair<double, double> bearing_span(const RotorModel& model, const std::string& path) {
+    std::vector<double> z;
+    for (const RotorBearing& b : model.bearings) z.push_back(b.z);
+    for (const RotorSupport& s : model.supports) z.push_back(s.z);
+    if (z.empty())
+        throw InputError(path + ": the rotor has no bearing or support; the API analyses load a rotor on its "
+                                "bearings");
+    return {*std::min_element(z.begin(), z.end()), *std::max_element(z.begin(), z.end())};
+}
+
 }  // namespace gyrokit

@@ -16,6 +16,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace gyrokit {
@@ -111,5 +112,9 @@ struct BuiltRotor {
 // a position that is not a node, a pedestal without a bearing, a journal lifted off
 // by the rotor's weight, a bearing on held DOFs, and whatever FeRotor::validate refuses.
 BuiltRotor build(const RotorModel& model);
+
+// The bearing span (m): the axial positions of the outermost bearings and rigid
+// supports. InputError naming `path` if the rotor has neither.
+std::pair<double, double> bearing_span(const RotorModel& model, const std::string& path);
 
 }  // namespace gyrokit

@@ -13,8 +13,6 @@ namespace gyrokit {
 
 using detail::ll;
 
-namespace {
-
 // The amplification factor as printed: 3 digits (a half-power width or a damping
 // ratio is not known better), "inf" for an undamped mode, "-" where not set.
 Cell amplification_cell(const CriticalSpeed& c) {
@@ -22,6 +20,8 @@ Cell amplification_cell(const CriticalSpeed& c) {
     if (std::isinf(c.amplification)) return std::string("inf");
     return std::stod(fmt::format("{:.3g}", c.amplification));
 }
+
+namespace {
 
 Table critical_rows(const std::vector<const CriticalSpeed*>& cs, const SpeedUnit& u) {
     // af_dof: the DOF whose response gave the half-power AF; af_note: why 1/(2 zeta) instead.

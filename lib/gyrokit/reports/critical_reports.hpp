@@ -12,6 +12,9 @@
 
 namespace gyrokit {
 
+// The amplification factor as printed: 3 digits (a half-power width or a damping
+// ratio is not known better), "inf" for an undamped mode, "-" where not set.
+Cell amplification_cell(const CriticalSpeed& c);
 Table critical_table(const std::vector<CriticalSpeed>& cs, const SpeedUnit& u);
 // The same split for reading: the critical speeds (API 684: amplification factor
 // >= 2.5), then, if any, the heavily damped crossings in a table of their own.

@@ -8,7 +8,9 @@
 #include <gyrokit/reports/critical_reports.hpp>
 #include <gyrokit/reports/fluid_reports.hpp>
 #include <gyrokit/reports/frf_reports.hpp>
+#include <gyrokit/reports/api_unbalance_reports.hpp>
 #include <gyrokit/reports/level1_reports.hpp>
+#include <gyrokit/reports/mesh_convergence_reports.hpp>
 #include <gyrokit/reports/mode_shape_reports.hpp>
 #include <gyrokit/reports/model_reports.hpp>
 #include <gyrokit/reports/response_reports.hpp>

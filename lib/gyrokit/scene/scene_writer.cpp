@@ -208,6 +208,8 @@ void write_api(Writer& w, const ApiMachine& m, const SpeedUnit& unit) {
     if (m.station) w.key("station", *m.station);
     if (m.gas_density) w.key("gas_density", *m.gas_density);
     w.key("q_ratio", m.q_ratio);
+    if (m.min_speed) w.key("min_speed", *m.min_speed * unit.factor);
+    if (m.trip_speed) w.key("trip_speed", *m.trip_speed * unit.factor);
     for (const AeroStage& s : m.stages) {
         w.table("[[api.stage]]");
         w.key("z", s.z);
@@ -215,6 +217,12 @@ void write_api(Writer& w, const ApiMachine& m, const SpeedUnit& unit) {
         w.key("diameter", s.diameter);
         w.key("width", s.width);
         if (s.density_ratio) w.key("density_ratio", *s.density_ratio);
+    }
+    for (const CloseClearance& c : m.clearances) {
+        w.table("[[api.clearance]]");
+        w.key("z", c.z);
+        w.key("clearance", c.clearance);
+        if (!c.name.empty()) w.key("name", c.name);
     }
 }
 

@@ -109,6 +109,14 @@ public:
     }
     const toml::table& table() const { return t_; }
     const std::string& file() const { return file_; }
+    // A string, `fallback` where the key is absent.
+    std::string text(const std::string& key, const std::string& fallback) const {
+        const toml::node* n = t_.get(key);
+        if (!n) return fallback;
+        std::optional<std::string> v = n->value<std::string>();
+        if (!v || !n->is_string()) throw InputError(fmt::format("{}: [{}] {} must be a string", file_, table_, key));
+        return *v;
+    }
     std::string where(const std::string& key) const { return fmt::format("{}: [{}] {}", file_, table_, key); }
 
 private:

@@ -6,11 +6,14 @@
 // front ends, so that none of them decides one of its own.
 #pragma once
 
+#include <gyrokit/analysis/api_unbalance.hpp>
 #include <gyrokit/analysis/campbell.hpp>
 #include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/analysis/level1_stability.hpp>
 #include <gyrokit/analysis/pervasive_damping.hpp>
+#include <gyrokit/models/machine_stages.hpp>
 #include <gyrokit/solve/solver_choice.hpp>
+#include <gyrokit/study/mesh_convergence_study.hpp>
 #include <gyrokit/analysis/transient.hpp>
 #include <gyrokit/analysis/static_deflection.hpp>
 
@@ -47,6 +50,13 @@ inline constexpr int critical_map_points = kMapStiffnessPoints;
 // Level I stability: the curve's equal steps, and its range in multiples of QA.
 inline constexpr int level1_intervals = kLevel1Intervals;
 inline constexpr double level1_q_ratio = kLevel1QRatio;
+// API unbalance cases: the grid speeds from 0 to the highest speed sought, and the trip
+// speed in multiples of the mcs.
+inline constexpr int api_speeds = kApiResponseSpeeds;
+inline constexpr double api_trip_ratio = kApiTripRatio;
+// Mesh convergence: the change allowed on doubling, and the meshes at most.
+inline constexpr double mesh_tolerance = kMeshTolerance;
+inline constexpr int mesh_levels = kMeshLevels;
 // Static deflection: gravity along -y, m/s^2.
 inline constexpr double gravity = kStandardGravity;
 // Transient response: the largest number of time steps a run may take.

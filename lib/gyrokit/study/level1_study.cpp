@@ -54,17 +54,6 @@ ApiMachine machine_of(const Scene& sc, const Level1Request& r, const SpeedUnit& 
     return m;
 }
 
-// The bearing span: the outermost bearings and rigid supports (m).
-std::pair<double, double> bearing_span(const RotorModel& model, const std::string& path) {
-    std::vector<double> z;
-    for (const RotorBearing& b : model.bearings) z.push_back(b.z);
-    for (const RotorSupport& s : model.supports) z.push_back(s.z);
-    if (z.empty())
-        throw InputError(path + ": the rotor has no bearing or support; Level I adds the cross-coupling to a rotor "
-                                "on its bearings");
-    return {*std::min_element(z.begin(), z.end()), *std::max_element(z.begin(), z.end())};
-}
-
 // Where Q acts, and how it is shared (docs/level1.md, "Where Q acts").
 void place_stations(const Scene& sc, Level1Screen& s) {
     const GyroscopicSystem& sys = sc.system;
