@@ -657,7 +657,7 @@ def api_unbalance(model, *, unit=None, mcs=None, min_speed=None, trip_speed=None
 
 class MeshConvergence(_Result):
     """The mesh convergence of an FE rotor (docs/mesh_convergence.md): the meshes (`factors`, `elements`,
-    `dofs`), `quantities` (dicts: `name`, `values` in `unit` per mesh, NaN where a mesh lacks it, `change` per
+    `dofs`), `quantities` (dicts: `name`, `values` in `unit` per mesh, `change` per
     doubling, `converged`: the first mesh index from which every change is below `tolerance`, -1: none),
     `chosen` (the mesh index chosen, -1: not converged) and its `section_elements`."""
 

@@ -103,7 +103,14 @@ TEST_CASE("API unbalance: placement by the mode shape", "[api_unbalance]") {
         REQUIRE(pb.points.size() == 2);
         CHECK(pb.points[0].index == 6);
         CHECK(pb.points[1].index == 14);
-        CHECK(std::fabs(pb.points[0].phase - pb.points[1].phase) == Approx(kPi));
+        CHECK(pb.points[0].phase == 0.0);
+        CHECK(pb.points[1].phase == kPi);
+        // The mirrored shape (negative first) is the same loading: the same points and phases.
+        const Shape m = shape([](double z) { return -std::sin(2.0 * kPi * (z - 0.1) / 0.8); }, phase);
+        const UnbalancePlacement pm = api_unbalance_placement(m.z, m.x, m.y, z0, z1);
+        CHECK(pm.points[0].index == 6);
+        CHECK(pm.points[0].phase == 0.0);
+        CHECK(pm.points[1].phase == kPi);
         // Overhung: the largest deflection at the free end z = 1 (node 20), outboard of z1.
         const Shape c = shape([](double z) { return z > 0.9 ? 10.0 * (z - 0.9) + 0.2 : 0.2 * std::sin(kPi * (z - 0.1) / 0.8); },
                               phase);
@@ -115,8 +122,10 @@ TEST_CASE("API unbalance: placement by the mode shape", "[api_unbalance]") {
         CHECK(api_unbalance_placement(c.z, c.x, c.y, z0, z1).layout == UnbalanceLayout::first_mode);
     }
     // A sign change below 5 % of the largest deflection is no second mode.
-    const Shape d = shape([](double z) { return z < 0.2 ? -0.01 : std::sin(kPi * (z - 0.1) / 0.8); }, 0.0);
-    CHECK(api_unbalance_placement(d.z, d.x, d.y, z0, z1).layout == UnbalanceLayout::first_mode);
+    for (const double phase : {0.0, 1.0, -2.5}) {
+        const Shape d = shape([](double z) { return z < 0.2 ? -0.01 : std::sin(kPi * (z - 0.1) / 0.8); }, phase);
+        CHECK(api_unbalance_placement(d.z, d.x, d.y, z0, z1).layout == UnbalanceLayout::first_mode);
+    }
     const Shape e = shape([](double) { return 0.0; }, 0.0);
     CHECK_THROWS_AS(api_unbalance_placement(e.z, e.x, e.y, z0, z1), InputError);
     CHECK_THROWS_AS(api_unbalance_placement(e.z, e.x.head(3), e.y, z0, z1), InputError);

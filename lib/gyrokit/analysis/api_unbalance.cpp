@@ -111,10 +111,11 @@ UnbalancePlacement api_unbalance_placement(const std::vector<double>& z, const E
     if (middle < 0) throw InputError("API unbalance placement: no node lies in the bearing span");
     const double floor = 0.05 * std::abs(d(peak));
     if (least >= 0 && -lo > floor && hi > floor) {
+        // 180 degrees apart; which of the two is at 0 is a turn of the whole loading, so the
+        // point nearer z = 0 is (one case for every shape of this placement).
         p.layout = UnbalanceLayout::second_mode;
-        const Eigen::Index a = std::min(most, least), b = std::max(most, least);
-        p.points.push_back({static_cast<int>(a), a == most ? 0.0 : kPi});
-        p.points.push_back({static_cast<int>(b), b == most ? 0.0 : kPi});
+        p.points.push_back({static_cast<int>(std::min(most, least)), 0.0});
+        p.points.push_back({static_cast<int>(std::max(most, least)), kPi});
         return p;
     }
     p.layout = UnbalanceLayout::first_mode;

@@ -20,9 +20,14 @@ constexpr double kApiUnbalanceMultiple = 2.0;
 constexpr double kApiClearanceFraction = 0.75;
 // The scale factor Scc = Avl / A1 is kept within these.
 constexpr double kApiScaleMin = 0.5, kApiScaleMax = 6.0;
-// Critical speeds are sought up to this many times the mcs (or to the trip speed if
-// higher): a mode up to 26 % above the mcs can need a separation margin.
+// Critical speeds are sought up to the higher of these multiples of the mcs and of the
+// trip speed: a mode up to 26 % above the mcs can need a separation margin, and API 617
+// asks for the modes up to 125 % of the trip speed.
 constexpr double kApiMarginReach = 1.26;
+constexpr double kApiTripReach = 1.25;
+// A1, the probe's reading at the critical speed of concern: the largest refined peak of
+// a probe within this fraction of that speed (else the reading at the speed itself).
+constexpr double kApiPeakWindow = 0.1;
 // The speeds of the grid from 0 to the highest speed sought unless asked otherwise.
 constexpr int kApiResponseSpeeds = 201;
 
@@ -57,7 +62,8 @@ SeparationMargin separation_margin(double critical, double min_speed, double mcs
 
 // How a mode is excited (API 617, Figure 2-2 as API RP 684 reads it): the first
 // between-bearings mode at mid-span; a mode whose shape changes sign between the
-// bearings at its largest deflections on either side, 180 degrees apart; a mode whose
+// bearings at its largest deflections on either side, 180 degrees apart (the one nearer
+// z = 0 at phase 0: which one leads is a turn of the whole loading); a mode whose
 // largest deflection lies outboard of the bearings at that overhang.
 enum class UnbalanceLayout { first_mode, second_mode, overhung };
 const char* to_string(UnbalanceLayout l);   // "first mode (mid-span)", ...

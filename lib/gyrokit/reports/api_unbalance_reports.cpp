@@ -55,8 +55,8 @@ Table api_unbalance_summary(const ApiUnbalanceStudy& s) {
     for (const std::string& r : s.reasons) row("reason", r);
     row("operating range", fmt::format("{} to {} (mcs)", speed_text(s.unit, s.min_speed), speed_text(s.unit, s.mcs)));
     row("trip speed", speed_text(s.unit, s.trip_speed) + " (the responses run from 0 to it)");
-    row("critical speeds sought", fmt::format("0 to {} (the higher of the trip speed and {} mcs)",
-                                              speed_text(s.unit, s.search_to), kApiMarginReach));
+    row("critical speeds sought", fmt::format("0 to {} (the higher of {} x the trip speed and {} x the mcs)",
+                                              speed_text(s.unit, s.search_to), kApiTripReach, kApiMarginReach));
     row("unbalance", fmt::format("U = {} x {} W/N g mm (W kg, N the mcs in rpm)", kApiUnbalanceMultiple,
                                  kApiUnbalanceConstant));
     std::size_t probes = 0;
@@ -75,7 +75,8 @@ Table api_unbalance_cases(const ApiUnbalanceStudy& s) {
     Table t({"case", "layout", "critical_speeds_" + s.unit.name, "margins_met", "A1_um", "Avl_um", "Scc",
              "worst_clearance_ratio", "verdict", "reasons"});
     t.key = "api_unbalance_cases";
-    t.title = "API 617 unbalance cases (A1: the largest probe orbit; Scc = Avl / A1 in [0.5, 6])";
+    t.title = "API 617 unbalance cases (A1: the probes' orbit at the critical speed of concern; Scc = Avl / A1 in "
+              "[0.5, 6])";
     for (std::size_t i = 0; i < s.cases.size(); ++i) {
         const ApiUnbalanceCase& c = s.cases[i];
         double worst = 0.0;

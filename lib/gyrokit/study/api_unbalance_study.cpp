@@ -56,7 +56,7 @@ void speeds_of(const Scene& sc, const ApiUnbalanceRequest& r, ApiUnbalanceStudy&
     s.mcs = *m.mcs;
     s.min_speed = m.min_speed.value_or(s.mcs);
     s.trip_speed = m.trip_speed.value_or(kApiTripRatio * s.mcs);
-    s.search_to = std::max(s.trip_speed, kApiMarginReach * s.mcs);
+    s.search_to = std::max(kApiTripReach * s.trip_speed, kApiMarginReach * s.mcs);
     if (!m.min_speed)
         s.diagnostics.push_back({Diagnostic::Level::Note, Diagnostic::Topic::Verdict,
                                  "no minimum operating speed is given: the operating range is the mcs alone (" +
@@ -141,17 +141,20 @@ Weights weights_of(const Scene& sc) {
     return w;
 }
 
-// The mass (kg) of the shaft and disks outboard of the bearing at z_b, on the side of z.
+// The mass (kg) of the shaft and disks outboard of the bearing at z_b, on the side of z;
+// positions compared to 1e-9 of the shaft's length (node positions are sums of element
+// lengths, the bearing's as written).
 double overhang_mass(const FeRotor& rotor, const std::vector<double>& node_z, double z_b, double z) {
     const bool left = z < z_b;
+    const double tol = 1e-9 * std::max(1.0, node_z.back() - node_z.front());
     double m = 0.0;
     for (std::size_t e = 0; e < rotor.elements.size(); ++e) {
         const double a = node_z.at(e), b = node_z.at(e + 1);
-        if (left ? b <= z_b : a >= z_b) m += fe_element_mass(rotor.elements[e]);
+        if (left ? b <= z_b + tol : a >= z_b - tol) m += fe_element_mass(rotor.elements[e]);
     }
     for (const FeDisk& d : rotor.disks) {
         const double zd = node_z.at(static_cast<std::size_t>(d.node));
-        if (left ? zd < z_b : zd > z_b) m += d.mass;
+        if (left ? zd < z_b - tol : zd > z_b + tol) m += d.mass;
     }
     return m;
 }
@@ -246,6 +249,10 @@ void respond(const GyroscopicSystem& sys, ApiUnbalanceStudy& s, ApiUnbalanceCase
         c.curves.row(i) = orbits(s.response_speeds[i]).transpose();
     }
     c.amplitudes.assign(nl, {});
+    // A1: the probes' largest refined peak near the critical speed of concern.
+    const double window = kApiPeakWindow * c.concern;
+    bool near = false;
+    c.a1 = 0.0;
     for (std::size_t k = 0; k < nl; ++k) {
         ApiAmplitude& a = c.amplitudes[k];
         for (std::size_t i = 0; i < ns; ++i)
@@ -258,12 +265,23 @@ void respond(const GyroscopicSystem& sys, ApiUnbalanceStudy& s, ApiUnbalanceCase
                                                  s.response_speeds[i + 1]);
             const double peak = -f(w);
             if (!(peak <= a.peak_to_peak)) a.peak_to_peak = peak, a.speed = w;
+            if (s.locations[k].probe && std::fabs(w - c.concern) <= window) {
+                near = true;
+                if (!(peak <= c.a1)) c.a1 = peak;
+            }
         }
+    }
+    // No probe peaks there (a heavily damped mode, or one beyond the trip speed): the
+    // readings at the critical speed itself.
+    if (!near) {
+        const Eigen::VectorXd at = orbits(c.concern);
+        for (std::size_t k = 0; k < nl; ++k)
+            if (s.locations[k].probe && !(at(k) <= c.a1)) c.a1 = at(k);
     }
 }
 
-// Margins, Scc, the clearance check and the verdict of a case (docs/api_unbalance.md).
-void judge(ApiUnbalanceStudy& s, ApiUnbalanceCase& c) {
+// Each critical speed's margins, and the critical speed of concern (docs/api_unbalance.md).
+void margins(const ApiUnbalanceStudy& s, ApiUnbalanceCase& c) {
     const SpeedUnit& u = s.unit;
     const auto speed = [&](double w) { return fmt::format("{:.6g} {}", u.factor * w, u.name); };
     std::vector<std::string>& why = c.reasons;
@@ -282,16 +300,21 @@ void judge(ApiUnbalanceStudy& s, ApiUnbalanceCase& c) {
                                             to_string(k.margin.side), k.required));
         }
     }
-    // Avl at the operating speed nearest the critical speed of concern: the first whose
-    // margin is not met, else the one of the largest AF.
+    // The critical speed of concern: the first whose margin is not met, else the one of
+    // the largest AF.
     const ApiCritical* concern = &c.criticals.front();
     for (const ApiCritical& k : c.criticals)
         if (concern->met && (!k.met || k.critical.amplification > concern->critical.amplification)) concern = &k;
     c.concern = concern->critical.speed;
+}
+
+// Avl at the operating speed nearest the critical speed of concern, Scc, the clearance
+// check and the verdict of a case (docs/api_unbalance.md).
+void judge(ApiUnbalanceStudy& s, ApiUnbalanceCase& c) {
+    const SpeedUnit& u = s.unit;
+    const auto speed = [&](double w) { return fmt::format("{:.6g} {}", u.factor * w, u.name); };
+    std::vector<std::string>& why = c.reasons;
     c.avl = api_allowable_vibration(std::clamp(c.concern, s.min_speed, s.mcs));
-    c.a1 = 0.0;
-    for (std::size_t k = 0; k < s.locations.size(); ++k)
-        if (s.locations[k].probe) c.a1 = std::max(c.a1, c.amplitudes[k].peak_to_peak);
     c.scale = api_scale_factor(c.avl, c.a1);
     bool any_clearance = false, clear = true;
     for (std::size_t k = 0; k < s.locations.size(); ++k) {
@@ -395,10 +418,11 @@ ApiUnbalanceStudy api_unbalance_study(const Scene& sc, const ApiUnbalanceRequest
     const Weights weights = weights_of(sc);
     // Overhung where a disk lies outboard of the bearing span.
     bool below = false, above = false;
+    const double tol = 1e-9 * std::max(1.0, span.second - span.first);
     for (const FeDisk& d : sc.fe_rotor()->disks) {
         const double zd = sc.system.node_z.at(static_cast<std::size_t>(d.node));
-        below = below || zd < span.first;
-        above = above || zd > span.second;
+        below = below || zd < span.first - tol;
+        above = above || zd > span.second + tol;
     }
     std::map<std::vector<std::pair<int, double>>, std::size_t> case_of;
     std::vector<std::vector<std::size_t>> members;
@@ -427,6 +451,7 @@ ApiUnbalanceStudy api_unbalance_study(const Scene& sc, const ApiUnbalanceRequest
             set_amplification_factors(af, sys, j);
             c.criticals.push_back({af[j], {}, 0.0, true});
         }
+        margins(s, c);
         respond(sys, s, c);
         judge(s, c);
         s.verdict = i == 0 ? c.verdict : worst(s.verdict, c.verdict);

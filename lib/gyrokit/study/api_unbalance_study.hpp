@@ -1,7 +1,7 @@
 // The API unbalance cases of a scene's FE rotor, as the CLI (gyrokit api-unbalance)
 // and Python (gyrokit.api_unbalance) run them (API 617 7th ed. 2.6.2, API RP 684;
-// docs/api_unbalance.md): the critical speeds from 0 to the higher of the trip speed
-// and 1.26 mcs; for each, the API unbalance placed by its mode shape and sized by the
+// docs/api_unbalance.md): the critical speeds from 0 to the higher of 1.25 x the trip
+// speed and 1.26 mcs; for each, the API unbalance placed by its mode shape and sized by the
 // journal (or overhang) weight; each case's steady response from 0 to the trip speed at
 // the probes (the bearings) and the close clearances; each critical speed's
 // amplification factor on that response, the margin it needs and the one it has; the
@@ -77,7 +77,8 @@ struct ApiUnbalanceCase {
     std::vector<ApiCritical> criticals;     // the critical speeds this placement excites
     std::vector<ApiAmplitude> amplitudes;   // one per location
     Eigen::MatrixXd curves;                 // peak-to-peak (m): response speeds x locations
-    double a1 = 0.0;                        // m: the largest probe reading
+    double a1 = 0.0;                        // m: the probes' reading at `concern` (their largest refined
+                                            //    peak within 10 % of it, else their reading at it)
     double concern = 0.0;                   // rad/s: the critical speed of concern (the first whose margin
                                             //    is not met, else the one of the largest AF)
     double avl = 0.0;                       // m: allowable at the operating speed nearest `concern`

@@ -55,9 +55,9 @@ const std::vector<Entry>& table() {
          "--q-ratio",
          "q_ratio", "level1", "level1"},
         {"api speeds", fmt::format("{}", api_speeds),
-         fmt::format("api-unbalance: grid speeds from 0 to the higher of the trip speed and {} x the mcs (peaks are "
-                     "refined between them)",
-                     kApiMarginReach),
+         fmt::format("api-unbalance: grid speeds from 0 to the higher of {} x the trip speed and {} x the mcs "
+                     "(peaks are refined between them)",
+                     kApiTripReach, kApiMarginReach),
          "--speeds", "speeds", "api-unbalance", "api_unbalance"},
         {"trip speed", "",
          fmt::format("api-unbalance: the scene's [api] trip_speed, else {} x the mcs", api_trip_ratio),

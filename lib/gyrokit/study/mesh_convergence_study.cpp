@@ -67,9 +67,12 @@ MeshQuantity quantity(const std::string& name, const std::vector<MeshLevel>& lev
     return q;
 }
 
+// The quantities every mesh has: a mode that crosses f_cut, or a crossing that enters
+// the speed range, as the mesh is refined is at the edge of what is judged, not a value
+// that fails to converge (a note names them).
 std::vector<MeshQuantity> quantities(const MeshConvergenceStudy& s) {
-    std::size_t nc = 0, nf = 0;
-    for (const MeshLevel& l : s.levels) nc = std::max(nc, l.critical.size()), nf = std::max(nf, l.frequencies.size());
+    std::size_t nc = s.levels.front().critical.size(), nf = s.levels.front().frequencies.size();
+    for (const MeshLevel& l : s.levels) nc = std::min(nc, l.critical.size()), nf = std::min(nf, l.frequencies.size());
     std::vector<MeshQuantity> out;
     for (std::size_t k = 0; k < nc; ++k)
         out.push_back(quantity(fmt::format("critical speed {}", k + 1), s.levels, k, true, s.tolerance));
@@ -126,10 +129,23 @@ MeshConvergenceStudy mesh_convergence_study(const Scene& sc, const MeshConvergen
         if (settled) break;
     }
     if (s.levels.size() < 2)
-        throw InputError(fmt::format("{}: the scene's mesh doubled has more than {} DOFs; mesh convergence needs two "
-                                     "meshes",
-                                     sc.path, kMeshMaxDofs));
+        throw InputError(fmt::format("{}: the {} mesh has more than {} DOFs; mesh convergence needs two meshes at "
+                                     "most that large: fewer elements in the scene",
+                                     sc.path, s.levels.empty() ? "scene's" : "scene's doubled", kMeshMaxDofs));
     s.quantities = quantities(s);
+    // What some meshes have and others not (at the edges of the range and of f_cut).
+    std::size_t most_c = 0, most_f = 0, least_c = s.levels.front().critical.size(),
+                least_f = s.levels.front().frequencies.size();
+    for (const MeshLevel& l : s.levels) {
+        most_c = std::max(most_c, l.critical.size()), least_c = std::min(least_c, l.critical.size());
+        most_f = std::max(most_f, l.frequencies.size()), least_f = std::min(least_f, l.frequencies.size());
+    }
+    if (most_c > least_c || most_f > least_f)
+        s.diagnostics.push_back({Diagnostic::Level::Note, Diagnostic::Topic::Verdict,
+                                 fmt::format("the meshes differ in number at the edges (critical speeds {} to {}, "
+                                             "frequencies up to f_cut {} to {}): the quantities every mesh has are "
+                                             "judged",
+                                             least_c, most_c, least_f, most_f)});
     s.chosen = 0;
     for (const MeshQuantity& q : s.quantities) {
         if (q.converged < 0) {

@@ -36,10 +36,11 @@ struct MeshLevel {
     std::vector<double> frequencies;   // rad/s: at the top speed, up to f_cut, ascending
 };
 
-// One quantity across the meshes: critical speed k or frequency k (by order).
+// One quantity across the meshes: critical speed k or frequency k (by order), of those
+// every mesh has.
 struct MeshQuantity {
     std::string name;                  // "critical speed 1", "frequency 3 at 15000 rpm"
-    std::vector<double> values;        // rad/s, one per level; NaN where that mesh has no k-th
+    std::vector<double> values;        // rad/s, one per level
     std::vector<double> change;        // |v(l + 1) - v(l)| / v(l + 1), one per doubling; NaN where unknown
     int converged = -1;                // the coarsest level from which every change is below the tolerance; -1: none
 };
