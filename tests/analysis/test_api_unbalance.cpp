@@ -118,7 +118,7 @@ TEST_CASE("API unbalance: placement by the mode shape", "[api_unbalance]") {
         CHECK(pc.layout == UnbalanceLayout::overhung);
         REQUIRE(pc.points.size() == 1);
         CHECK(pc.points[0].index == 20);
-        // The same shape where nothing hangs beyond z1 (a journal's stub): the span's own first mode.
+        // The same shape where nothing hangs beyond z1 (a bare shaft end): the span's own first mode.
         CHECK(api_unbalance_placement(c.z, c.x, c.y, z0, z1).layout == UnbalanceLayout::first_mode);
     }
     // A sign change below 5 % of the largest deflection is no second mode.

@@ -81,7 +81,7 @@ struct UnbalancePlacement {
 // the complex x and y deflections of each node, and the bearing span [z0, z1]; the
 // nodes outboard of z0 (z1) count only where the rotor is overhung there
 // (`overhung_below`, `overhung_above`: a disk, an impeller or a coupling outboard): a
-// journal's stub beyond its bearing is no overhang. The shape is read in the direction
+// bare shaft end beyond its bearing is no overhang. The shape is read in the direction
 // of its largest deflection, with that node's phase taken out; deflections below 5 %
 // of the largest are no sign change. InputError for mismatched sizes, no node in the
 // span, or a zero shape.
