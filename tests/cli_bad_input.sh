@@ -197,6 +197,11 @@ expect "--q-ratio 1: allowed: [2, 1000]" level1 "$three_disk" --mcs 10000 --qa 1
 expect "Level I needs an FE rotor" level1 "$data/centrifuge.toml" --mcs 10 --qa 1
 expect "--station = 0 m: its node 0 does not move laterally" level1 "$dir/pinned.toml" --mcs 100 --qa 1e5 --station 0
 expect "--station = 7 m: " level1 "$three_disk" --qa 1e5 --station 7
+# A film's tolerance band out of order, or half of it.
+sed 's/^clearance_min = 50e-6.*/clearance_min = 70e-6/' "$data/three_disk_rotor_journal.toml" > "$dir/band_order.toml"
+expect "clearance_min = 7e-05, clearance = 6e-05, clearance_max = 7.5e-05 (m); allowed: 0 < clearance_min <= clearance <= clearance_max" level1 "$dir/band_order.toml"
+grep -v '^viscosity_max' "$data/three_disk_rotor_journal.toml" > "$dir/band_half.toml"
+expect "viscosity_min is given without viscosity_max; allowed: both ends of the band or neither" level1 "$dir/band_half.toml"
 expect "the maximum continuous speed is missing; required: [api] mcs in the scene or --mcs (in rpm)" api-unbalance "$data/compressor.toml"
 expect "--min-speed 0: allowed: a finite speed > 0 (rpm)" api-unbalance "$three_disk" --min-speed 0
 expect "--min-speed 12000: allowed: (0, 10000 rpm] (at most the mcs)" api-unbalance "$three_disk" --min-speed 12000

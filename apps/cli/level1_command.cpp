@@ -66,7 +66,7 @@ std::vector<Command> add_level1_commands(CLI::App& app) {
                  r.intervals = o->intervals;
                  r.method = o->common.method;
                  const Scene sc = load_scene(o->common.scene);
-                 const Level1Screen s = level1_study(sc, r);
+                 const Level1Study s = level1_study(sc, r);
                  print_diagnostics(s.diagnostics);
                  write_result(out, level1_tables(s), format, o->table);
                  plot_if(o->common.plot, level1_figure(s, sc.title));

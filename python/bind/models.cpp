@@ -143,7 +143,9 @@ RotorBearing table(double z, const std::vector<double>& speeds, const Column& k,
 
 RotorBearing fluid_film(double z, double diameter, double length, double clearance, double viscosity,
                         const py::object& load, double load_angle, double max_eccentricity, const std::string& solution,
-                        int grid_circumferential, int grid_axial) {
+                        int grid_circumferential, int grid_axial, std::optional<double> clearance_min,
+                        std::optional<double> clearance_max, std::optional<double> viscosity_min,
+                        std::optional<double> viscosity_max) {
     RotorBearing b;
     b.z = z;
     b.kind = RotorBearing::Kind::fluid_film;
@@ -165,6 +167,10 @@ RotorBearing fluid_film(double z, double diameter, double length, double clearan
     j.solution = solution == "short" ? FilmSolution::short_bearing : FilmSolution::finite_difference;
     j.grid_circumferential = grid_circumferential;
     j.grid_axial = grid_axial;
+    j.clearance_min = clearance_min;
+    j.clearance_max = clearance_max;
+    j.viscosity_min = viscosity_min;
+    j.viscosity_max = viscosity_max;
     return b;
 }
 
@@ -405,7 +411,9 @@ void bind_models(py::module_& m, py::class_<Scene>& scene) {
                     py::kw_only(), py::arg("z"), py::arg("diameter"), py::arg("length"), py::arg("clearance"),
                     py::arg("viscosity"), py::arg("load") = py::str("auto"), py::arg("load_angle") = -90.0,
                     py::arg("max_eccentricity") = 0.95, py::arg("solution") = "short",
-                    py::arg("grid_circumferential") = 240, py::arg("grid_axial") = 32)
+                    py::arg("grid_circumferential") = 240, py::arg("grid_axial") = 32,
+                    py::arg("clearance_min") = py::none(), py::arg("clearance_max") = py::none(),
+                    py::arg("viscosity_min") = py::none(), py::arg("viscosity_max") = py::none())
         .def_property_readonly("z", [](const RotorBearing& b) { return b.z; })
         .def_property_readonly("kind", [](const RotorBearing& b) {
             return b.kind == RotorBearing::Kind::constant ? "constant"

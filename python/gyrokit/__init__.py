@@ -576,10 +576,14 @@ class Level1(_Result):
     `log_decrement_bound`), `frequency` (in `unit`), `whirl` — and `qa`, `stage_qa`, `q0` (None where the log
     decrement stays positive over the range) with `q0_bound`, `log_decrement_at_qa`, `log_decrement_at_zero`,
     where Q acts (`layout`, `station_nodes`, `station_shares`, `station_z` in m), `rigid_critical` (in `unit`),
-    `csr`, `region_boundary`, the verdict `level2_required` and its `reasons`."""
+    `csr`, `region_boundary`, the verdict `level2_required` and its `reasons`. Where a fluid film gives a
+    clearance or viscosity band these are the worse end's (`bearing_set`: "minimum clearance" or "maximum
+    clearance"; "" for the bearings as given), and `bearing_sets` holds each end's as a dict of the same keys."""
 
     def __init__(self, d):
         self.unit = d["unit"]
+        self.bearing_set = d["bearing_set"]
+        self.bearing_sets = [dict(s) for s in d["bearing_sets"]]
         for k in ("q", "log_decrement", "log_decrement_bound", "frequency"):
             setattr(self, k, _np.asarray(d[k], dtype=float))
         self.whirl = list(d["whirl"])

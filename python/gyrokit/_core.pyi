@@ -18,7 +18,7 @@ class Bearing:
         """Coefficients tabulated over speeds (rad/s)"""
         ...
     @staticmethod
-    def fluid_film(*, z: float, diameter: float, length: float, clearance: float, viscosity: float, load: Any = ..., load_angle: float = ..., max_eccentricity: float = ..., solution: str = ..., grid_circumferential: int = ..., grid_axial: int = ...) -> Bearing:
+    def fluid_film(*, z: float, diameter: float, length: float, clearance: float, viscosity: float, load: Any = ..., load_angle: float = ..., max_eccentricity: float = ..., solution: str = ..., grid_circumferential: int = ..., grid_axial: int = ..., clearance_min: Optional[float] = ..., clearance_max: Optional[float] = ..., viscosity_min: Optional[float] = ..., viscosity_max: Optional[float] = ...) -> Bearing:
         """A plain journal bearing from its geometry; load in N or "auto" """
         ...
     @property

@@ -245,6 +245,39 @@ def test_level1_matches_the_cli_and_runs_on_a_rotor_built_in_python():
         gk.level1(scene)
 
 
+def test_level1_at_both_ends_of_the_films_bands_in_python_and_the_cli(tmp_path):
+    import json
+    import subprocess
+    rotor = three_disk_rotor()
+    band = dict(diameter=0.06, length=0.03, clearance=60e-6, viscosity=0.015, clearance_min=50e-6,
+                clearance_max=75e-6, viscosity_min=0.011, viscosity_max=0.024)
+    rotor = gk.Rotor(sections=rotor.sections, disks=rotor.disks,
+                     bearings=[gk.Bearing.fluid_film(z=z, **band) for z in (0.05, 1.15)])
+    scene = gk.rotor_scene(rotor)
+    l1 = gk.level1(scene, mcs=6000 * 2 * np.pi / 60, qa=2e6, intervals=4)
+    assert [s["bearing_set"] for s in l1.bearing_sets] == ["minimum clearance", "maximum clearance"]
+    worse = min(l1.bearing_sets, key=lambda s: s["q0"] if s["q0"] is not None else np.inf)
+    assert l1.bearing_set == worse["bearing_set"] and l1.q0 == worse["q0"]
+    # The scene written back keeps the bands: the CLI screens the same two ends.
+    path = tmp_path / "bands.toml"
+    scene.write(str(path))
+    assert "clearance_min" in path.read_text()
+    out = subprocess.run([os.environ["GYROKIT_CLI"], "level1", str(path), "--mcs", "6000", "--units", "rpm", "--qa",
+                          "2e6", "--intervals", "4", "--format", "json", "--table", "level1_curve"],
+                         capture_output=True, text=True, check=True).stdout
+    rows = json.loads(out)
+    for s in l1.bearing_sets:
+        mine = [r for r in rows if r["bearing_set"] == s["bearing_set"]]
+        assert len(mine) == len(s["q"]) == 6   # 4 steps and QA
+        for r, d in zip(mine, s["log_decrement"]):
+            assert r["log_decrement"] == pytest.approx(d, abs=1e-7)
+    with pytest.raises(gk.InputError, match="clearance_min is given without clearance_max"):
+        gk.rotor_scene(gk.Rotor(sections=rotor.sections, disks=rotor.disks,
+                                bearings=[gk.Bearing.fluid_film(z=z, diameter=0.06, length=0.03, clearance=60e-6,
+                                                                viscosity=0.015, clearance_min=50e-6)
+                                          for z in (0.05, 1.15)]))
+
+
 def test_api_unbalance_matches_the_cli_and_runs_on_a_rotor_built_in_python():
     import json
     import subprocess

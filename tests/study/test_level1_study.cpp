@@ -70,7 +70,7 @@ std::complex<double> nearest_eigenvalue(const GyroscopicSystem& sys, double spee
 TEST_CASE("Level I of an FE rotor: QA by API 617's formula, Q at mid-span, Q0 against an independent solve",
           "[level1]") {
     const Scene sc = parse_scene(three_disk_text() + kStages, "three_disk_level1.toml", GYROKIT_DATA_DIR);
-    const Level1Screen s = level1_study(sc);
+    const Level1Screen s = level1_study(sc).verdict();
     // QA by hand: 3 x 9.55 x P rho_d/rho_s / (D H N), N = 10000 rpm.
     const double qa1 = 3 * 9.55 * 1e6 * 1.5 / (0.4 * 0.02 * 10000), qa2 = 3 * 9.55 * 5e5 * 1.3 / (0.35 * 0.015 * 10000);
     REQUIRE(s.stage_qa.size() == 2);
@@ -123,7 +123,7 @@ diameter = 0.3
 width = 0.04
 )";
     const Scene sc = parse_scene(text, "overhung.toml", GYROKIT_DATA_DIR);
-    const Level1Screen s = level1_study(sc);
+    const Level1Screen s = level1_study(sc).verdict();
     CHECK(s.layout == "overhung");
     REQUIRE(s.station_z.size() == 1);
     CHECK(s.station_z[0] == Approx(1.2).margin(1e-12));
@@ -132,19 +132,19 @@ width = 0.04
     // QA given: the stage still says where Q acts.
     Level1Request r;
     r.qa = 1e5;
-    const Level1Screen given = level1_study(sc, r);
+    const Level1Screen given = level1_study(sc, r).verdict();
     CHECK(given.qa == 1e5);
     CHECK(given.layout == "overhung");
     CHECK(given.station_z[0] == Approx(1.2).margin(1e-12));
     r.station = 0.6;
-    const Level1Screen placed = level1_study(sc, r);
+    const Level1Screen placed = level1_study(sc, r).verdict();
     CHECK(placed.layout == "station given");
     CHECK(placed.station_z[0] == Approx(0.6).margin(1e-12));
     // An axial machine has no density ratio to switch to a centrifugal one with.
     Level1Request c;
     c.machine = "centrifugal";
     try {
-        level1_study(sc, c);
+        level1_study(sc, c).verdict();
         FAIL("no error");
     } catch (const InputError& e) {
         CHECK_THAT(std::string(e.what()), Catch::Contains("density_ratio is missing"));
@@ -156,7 +156,7 @@ width = 0.04
 
 TEST_CASE("Level I verdicts: each criterion named", "[level1]") {
     const Scene sc = parse_scene(three_disk_text() + kStages, "three_disk_level1.toml", GYROKIT_DATA_DIR);
-    const Level1Screen base = level1_study(sc);
+    const Level1Screen base = level1_study(sc).verdict();
     REQUIRE(base.curve.q0.has_value());
     const double q0 = *base.curve.q0;
     const auto with = [&](double qa, std::optional<double> rho) {
@@ -164,7 +164,7 @@ TEST_CASE("Level I verdicts: each criterion named", "[level1]") {
         r.qa = qa;
         r.gas_density = rho;
         r.intervals = 4;   // the verdict needs Q0 and QA, not the curve's detail
-        return level1_study(sc, r);
+        return level1_study(sc, r).verdict();
     };
     // Q0/QA < 2.
     const Level1Screen low = with(q0 / 1.5, 40.0);
@@ -183,7 +183,7 @@ TEST_CASE("Level I verdicts: each criterion named", "[level1]") {
     m.gas_density.reset();
     Scene no_rho = sc;
     no_rho.api = m;
-    const Level1Screen unknown = level1_study(no_rho, none);
+    const Level1Screen unknown = level1_study(no_rho, none).verdict();
     CHECK(unknown.level2_required);
     CHECK_THAT(unknown.reasons.front(), Catch::Contains("region of the critical speed ratio is unknown"));
     // Q0/QA >= 10 passes whatever the region.
@@ -277,9 +277,124 @@ width = 20
     CHECK_THAT(error("[api]\nmcs = 100\nqa = 1\nspeed = 3\n"), Catch::Contains("unknown key 'speed'"));
     // A scene without an FE rotor has no [api].
     try {
-        level1_study(scene_of(sc.system));
+        level1_study(scene_of(sc.system)).verdict();
         FAIL("no error");
     } catch (const InputError& e) {
         CHECK_THAT(std::string(e.what()), Catch::Contains("fe_rotor"));
     }
+}
+
+namespace {
+
+// data/three_disk_rotor_journal.toml with QA given (2e6 N/m) and, where `bands`, the
+// films' clearance (50/60/75 um) and viscosity (0.011/0.015/0.024 Pa s) bands as the
+// file gives them; else each film at `clearance` and `viscosity` without a band.
+std::string journal_text(bool bands, const std::string& clearance = "60e-6", const std::string& viscosity = "0.015") {
+    std::ifstream in(std::string(GYROKIT_DATA_DIR) + "/three_disk_rotor_journal.toml");
+    std::string text, line;
+    while (std::getline(in, line)) {
+        const auto starts = [&](const char* key) { return line.rfind(key, 0) == 0; };
+        if (!bands && (starts("clearance_m") || starts("viscosity_m"))) continue;
+        if (!bands && starts("clearance = 60e-6")) line = "clearance = " + clearance;
+        if (!bands && starts("viscosity = 0.015")) line = "viscosity = " + viscosity;
+        text += line + "\n";
+        if (starts("mcs = ")) text += "qa = 2e6\n";
+    }
+    int films_with_bands = 0;
+    for (std::size_t at = text.find("clearance_min = 50e-6"); at != std::string::npos;
+         at = text.find("clearance_min = 50e-6", at + 1))
+        ++films_with_bands;
+    REQUIRE(films_with_bands == (bands ? 2 : 0));
+    return text;
+}
+
+}  // namespace
+
+TEST_CASE("Level I at both ends of the fluid films' tolerance bands: each end as its own scene, the worse governs",
+          "[level1]") {
+    const Scene sc = parse_scene(journal_text(true), "journal_bands.toml", GYROKIT_DATA_DIR);
+    REQUIRE(sc.rotor_model()->bearings.at(0).film.clearance_min.has_value());
+    Level1Request r;
+    r.intervals = 10;
+    const Level1Study st = level1_study(sc, r);
+    REQUIRE(st.screens.size() == 2);
+    CHECK(st.screens[0].bearing_set == "minimum clearance");
+    CHECK(st.screens[1].bearing_set == "maximum clearance");
+    // Each end equals the scene whose films are given at that end: the smallest clearance
+    // with the largest viscosity, and the largest with the smallest.
+    const std::pair<const char*, const char*> ends[] = {{"50e-6", "0.024"}, {"75e-6", "0.011"}};
+    for (std::size_t i = 0; i < 2; ++i) {
+        const Scene one = parse_scene(journal_text(false, ends[i].first, ends[i].second), "end.toml", GYROKIT_DATA_DIR);
+        const Level1Study alone = level1_study(one, r);
+        REQUIRE(alone.screens.size() == 1);
+        CHECK(alone.screens[0].bearing_set.empty());
+        const Level1Screen &a = alone.verdict(), &b = st.screens[i];
+        REQUIRE(a.curve.q0.has_value());
+        REQUIRE(b.curve.q0.has_value());
+        CHECK(*b.curve.q0 == Approx(*a.curve.q0).epsilon(1e-12));
+        CHECK(b.at_qa.log_decrement == Approx(a.at_qa.log_decrement).epsilon(1e-12));
+    }
+    // The larger clearance with the thinner oil is the less stable end, and governs.
+    CHECK(*st.screens[1].curve.q0 < *st.screens[0].curve.q0);
+    CHECK(st.governing == 1);
+    CHECK(st.level2_required());
+    CHECK(governing_screen({st.screens[0]}) == 0);
+
+    // At the minimum clearance the lowest forward mode is the conical one, with a node at
+    // mid-span where Q acts: passed over. Independently: its eigenvalue does not move with
+    // Q, and Q0 of the followed mode brackets a sign change of Re(lambda).
+    const Level1Screen& tight = st.screens[0];
+    REQUIRE(tight.curve.passed.size() == 1);
+    CHECK(tight.curve.notes.empty());   // every step decided (two heavily damped modes of one shape)
+    const GyroscopicSystem sys = build(bearing_extremes(*sc.rotor_model())[0].model).system;
+    const double mcs = 6000 * 2 * kPi / 60;
+    const std::complex<double> sigma(-120.0, 330.0);   // near the conical mode (-124.7 + 327.1i 1/s)
+    const std::complex<double> c0 = nearest_eigenvalue(with_cross_coupling(sys, tight.stations, 0.0), mcs, sigma);
+    const std::complex<double> cq = nearest_eigenvalue(with_cross_coupling(sys, tight.stations, tight.qa), mcs, sigma);
+    CHECK(std::abs(cq - c0) <= 1e-9 * std::abs(c0));
+    CHECK(tight.at_zero.lambda.imag() > 1.05 * c0.imag());   // the followed mode is another
+    const double q0 = *tight.curve.q0;
+    const auto re_at = [&](double q) {
+        const GyroscopicSystem g = with_cross_coupling(sys, tight.stations, q);
+        std::complex<double> l = nearest_eigenvalue(g, mcs, {0.0, tight.curve.points.back().lambda.imag()});
+        return nearest_eigenvalue(g, mcs, {0.0, l.imag()}).real();
+    };
+    CHECK(tight.curve.q0_bound <= 1e-6 * q0);
+    CHECK(re_at(q0 * (1 - 1e-6)) < 0);
+    CHECK(re_at(q0 * (1 + 1e-6)) > 0);
+}
+
+TEST_CASE("Fluid-film tolerance bands: given in pairs around the nominal value, each end a usable film, written back",
+          "[level1]") {
+    const auto error = [&](const std::string& from, const std::string& to) {
+        std::string text = journal_text(true);
+        REQUIRE(text.find(from) != std::string::npos);
+        text.replace(text.find(from), from.size(), to);
+        try {
+            parse_scene(text, "bands.toml", GYROKIT_DATA_DIR);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    CHECK_THAT(error("clearance_max = 75e-6\n", ""), Catch::Contains("clearance_min is given without clearance_max"));
+    CHECK_THAT(error("viscosity_min = 0.011\n", ""), Catch::Contains("viscosity_max is given without viscosity_min"));
+    CHECK_THAT(error("clearance_min = 50e-6", "clearance_min = 70e-6"),
+               Catch::Contains("allowed: 0 < clearance_min <= clearance <= clearance_max"));
+    CHECK_THAT(error("viscosity_max = 0.024", "viscosity_max = 0.012"),
+               Catch::Contains("allowed: 0 < viscosity_min <= viscosity <= viscosity_max"));
+    const std::string wide = error("clearance_max = 75e-6", "clearance_max = 0.031");
+    CHECK_THAT(wide, Catch::Contains("at its maximum clearance"));
+    CHECK_THAT(wide, Catch::Contains("clearance < diameter / 2"));
+    CHECK_THAT(error("clearance_min = 50e-6", "clearance_min = -1e-6"), Catch::Contains("clearance_min"));
+    // The bands survive a scene written back and read again.
+    const Scene sc = parse_scene(journal_text(true), "bands.toml", GYROKIT_DATA_DIR);
+    const Scene again = parse_scene(scene_text(sc), "again.toml", GYROKIT_DATA_DIR);
+    const JournalBearing &a = sc.rotor_model()->bearings.at(1).film, &b = again.rotor_model()->bearings.at(1).film;
+    CHECK(b.clearance_min == a.clearance_min);
+    CHECK(b.clearance_max == a.clearance_max);
+    CHECK(b.viscosity_min == a.viscosity_min);
+    CHECK(b.viscosity_max == a.viscosity_max);
+    // A rotor without bands has one bearing set: its bearings as given.
+    CHECK(bearing_extremes(*parse_scene(journal_text(false), "j.toml", GYROKIT_DATA_DIR).rotor_model()).empty());
 }

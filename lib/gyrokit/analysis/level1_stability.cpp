@@ -119,7 +119,8 @@ private:
     };
     static Pick pick(const Mode& from, const QuadraticSpectrum& sp) {
         Pick p;
-        double best_c = -1.0, second_c = -1.0, near_d = std::numeric_limits<double>::infinity();
+        double best_c = -1.0, second_c = -1.0;
+        double near_d = std::numeric_limits<double>::infinity(), next_d = near_d;   // the two nearest eigenvalues
         for (std::size_t i = 0; i < sp.modes.size(); ++i) {
             const double c = std::abs(from.right.dot(sp.modes[i].right));   // dot: conjugates the first
             if (c > best_c) {
@@ -129,13 +130,22 @@ private:
             } else if (c > second_c) {
                 second_c = c;
             }
-            near_d = std::min(near_d, std::abs(sp.modes[i].lambda - from.lambda));
+            const double d = std::abs(sp.modes[i].lambda - from.lambda);
+            if (d < near_d) {
+                next_d = near_d;
+                near_d = d;
+            } else if (d < next_d) {
+                next_d = d;
+            }
         }
         if (p.index < 0) throw SolverError("level1: no mode to follow (the solver returned none)");
         // Nearest to 1e-6: a double eigenvalue (forward and backward whirl of an isotropic
         // rotor without gyroscopic split) is as near as its partner, and the vector decides.
+        // Heavily damped modes can share nearly one shape (two overlaps above kSameMode):
+        // then the eigenvalue decides, where it moved less than half the way to the next.
         const double d = std::abs(sp.modes[static_cast<std::size_t>(p.index)].lambda - from.lambda);
-        p.clear = best_c >= kSameMode && second_c < kSameMode && d <= near_d * (1 + 1e-6) + 1e-300;
+        const bool nearest = d <= near_d * (1 + 1e-6) + 1e-300;
+        p.clear = best_c >= kSameMode && nearest && (second_c < kSameMode || d < 0.5 * next_d);
         return p;
     }
     void note(const std::string& n) {
@@ -179,13 +189,38 @@ void check(const GyroscopicSystem& sys, const Level1Options& o) {
         throw InputError(fmt::format("level1: the stations' shares sum to {}; allowed: 1", shares));
 }
 
-// The first forward mode: the lowest oscillating mode that whirls forward.
-Mode first_forward(const QuadraticSpectrum& sp, double speed) {
-    for (const Mode& m : sp.modes)
-        if (m.whirl == Whirl::Forward && m.lambda.imag() > sp.real_tol) return m;
-    throw InputError(fmt::format("level1: the rotor has no forward-whirling mode at {} rad/s with Q = 0 (its "
-                                 "modes: {}); Level I follows the first forward mode",
-                                 speed, sp.modes.size()));
+// A mode's orbit where Q acts (the largest over the stations) against its largest orbit
+// over the rotor's nodes, each orbit sqrt(|x|^2 + |y|^2).
+double station_orbit_ratio(const GyroscopicSystem& sys, const std::vector<CrossCouplingStation>& stations,
+                           const Mode& m) {
+    const auto orbit = [&](int node) {
+        const int x = sys.dofs.find(node, DofMotion::x), y = sys.dofs.find(node, DofMotion::y);
+        if (x < 0 || y < 0) return 0.0;
+        return std::sqrt(std::norm(m.right[x]) + std::norm(m.right[y]));
+    };
+    double largest = 0.0, at = 0.0;
+    for (int node = 0; node < static_cast<int>(sys.node_z.size()); ++node) largest = std::max(largest, orbit(node));
+    for (const CrossCouplingStation& s : stations) at = std::max(at, orbit(s.node));
+    return largest > 0 ? at / largest : 1.0;   // no node orbits to compare (a bare matrix model): Q loads it
+}
+
+// The first forward mode Q loads: the lowest oscillating mode that whirls forward and
+// moves where Q acts (kLevel1MinStationOrbit of its largest orbit); the lower forward
+// modes passed over are named in `passed`.
+Mode first_forward(const GyroscopicSystem& sys, const Level1Options& o, const QuadraticSpectrum& sp,
+                   std::vector<std::string>& passed) {
+    for (const Mode& m : sp.modes) {
+        if (m.whirl != Whirl::Forward || !(m.lambda.imag() > sp.real_tol)) continue;
+        const double r = station_orbit_ratio(sys, o.stations, m);
+        if (r >= kLevel1MinStationOrbit) return m;
+        passed.push_back(fmt::format("the forward mode at {:.6g} rad/s (log decrement {:.3g}) barely moves where Q "
+                                     "acts (its orbit there is {:.2g} of its largest, below {}): Q does not load it, "
+                                     "and the next forward mode is followed",
+                                     m.lambda.imag(), m.log_decrement(), r, kLevel1MinStationOrbit));
+    }
+    throw InputError(fmt::format("level1: the rotor has no forward-whirling mode at {} rad/s with Q = 0 that moves "
+                                 "where Q acts (its modes: {}); Level I follows the first forward mode",
+                                 o.speed, sp.modes.size()));
 }
 
 // Q0 between a (stable) and b (unstable) on the followed mode: regula falsi with the
@@ -238,7 +273,7 @@ Level1Curve level1_curve(const GyroscopicSystem& sys, const Level1Options& opt) 
 
     Follower f(sys, opt);
     Level1Curve c;
-    std::vector<Mode> modes{first_forward(f.solve(0.0, 0.0), opt.speed)};
+    std::vector<Mode> modes{first_forward(sys, opt, f.solve(0.0, 0.0), c.passed)};
     c.points.push_back(point_of(0.0, modes[0]));
     const auto unstable = [](const Mode& m) { return m.lambda.real() > m.error_bound; };
     // Unstable, or neutral within its bound (no damping): any Q > 0 destabilises it.
@@ -265,6 +300,28 @@ double region_b_boundary(double rho) {
     if (rho <= 16.53) return 2.5;
     if (rho <= 60.0) return 2.69 - 0.0115 * rho;
     return 0.0;
+}
+
+std::size_t governing_screen(const std::vector<Level1Screen>& screens) {
+    if (screens.empty()) throw Error("governing_screen: no screen");
+    // Q0/QA, with no Q0 in the range as infinitely large (it lies beyond the curve).
+    const auto ratio = [](const Level1Screen& s) {
+        return s.curve.q0 ? *s.curve.q0 / s.qa : std::numeric_limits<double>::infinity();
+    };
+    std::size_t worst = 0;
+    for (std::size_t i = 1; i < screens.size(); ++i) {
+        const Level1Screen &a = screens[i], &b = screens[worst];
+        if (a.level2_required != b.level2_required) {
+            if (a.level2_required) worst = i;
+            continue;
+        }
+        if (ratio(a) != ratio(b)) {
+            if (ratio(a) < ratio(b)) worst = i;
+            continue;
+        }
+        if (a.at_qa.log_decrement < b.at_qa.log_decrement) worst = i;
+    }
+    return worst;
 }
 
 }  // namespace gyrokit

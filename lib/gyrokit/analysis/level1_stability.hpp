@@ -53,6 +53,7 @@ struct Level1Curve {
     double q0_bound = 0.0;              // N/m: |Q0 - exact| at most this (the bracket and the eigenvalue's bound)
     int solves = 0;                     // eigenvalue solves made (curve, halved steps and Q0's bracket)
     std::vector<std::string> notes;     // steps that could not be told apart, solver notes
+    std::vector<std::string> passed;    // lower forward modes Q does not load (kLevel1MinStationOrbit)
 };
 
 // Adds Q times the stations' skew coupling to sys.K: K(x, y) += share Q, K(y, x) -= share Q.
@@ -61,7 +62,7 @@ GyroscopicSystem with_cross_coupling(const GyroscopicSystem& sys, const std::vec
 
 // The curve and Q0. InputError for options out of range (naming the field), for a
 // station that is no node with a whirl pair, and where the rotor has no forward mode
-// at Q = 0. The mode is followed by its eigenvector (the candidate of largest |x_prev^H x|,
+// at Q = 0 that Q loads. The mode is followed by its eigenvector (the candidate of largest |x_prev^H x|,
 // which must also be, to 1e-6, the nearest eigenvalue); a step where that fails is
 // halved, at most 10 times between two points of the curve, and a step taken undecided
 // is noted. Q0's bracket on the followed mode is narrowed (regula falsi, Illinois) until
@@ -82,11 +83,18 @@ constexpr double kLevel1MinLogDecrement = 0.1;
 // the critical speed ratio's region decides.
 constexpr double kLevel1MinRatio = 2.0;
 constexpr double kLevel1RegionRatio = 10.0;
+// The followed mode is the lowest forward mode whose orbit where Q acts is at least this
+// fraction of its largest orbit: a mode with a node there (the conical rigid-body mode of a
+// symmetric rotor at mid-span) is not loaded by Q (to first order the change of its
+// eigenvalue scales with the square of that ratio, here 0.25 % of a mode loaded at its
+// largest orbit), and screening it would pass any QA.
+constexpr double kLevel1MinStationOrbit = 0.05;
 // Equal steps of the curve from Q = 0 to q_ratio QA.
 constexpr int kLevel1Intervals = 20;
 
 // The screen's result: what level1_study ran and decided.
 struct Level1Screen {
+    std::string bearing_set;            // "": the bearings as given; else the end of their bands (BearingSet)
     ApiMachine machine;                 // as run (speeds rad/s, lengths m)
     SpeedUnit unit;                        // of the speeds the tables print
     LengthUnit length_unit;                // of the positions they print
@@ -104,5 +112,20 @@ struct Level1Screen {
     std::vector<std::string> reasons;      // each criterion that requires Level II, or why it passes
     Diagnostics diagnostics;
 };
+
+// One screen per bearing set: the bearings as given, or (where a fluid film gives a
+// clearance or viscosity band) both ends of the bands. The verdict is the worse screen's.
+struct Level1Study {
+    std::vector<Level1Screen> screens;
+    std::size_t governing = 0;          // the worse screen (governing_screen)
+    Diagnostics diagnostics;            // the placement's notes and each screen's, named by its set
+    const Level1Screen& verdict() const { return screens.at(governing); }
+    bool level2_required() const { return verdict().level2_required; }
+};
+
+// The worse of the screens: the first requiring Level II before any that passes; among
+// equals the smaller Q0/QA (none in the range counts as above it), then the smaller log
+// decrement at QA.
+std::size_t governing_screen(const std::vector<Level1Screen>& screens);
 
 }  // namespace gyrokit

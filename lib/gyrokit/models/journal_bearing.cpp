@@ -17,7 +17,38 @@ double sommerfeld_per_speed(const JournalBearing& b) {
     return b.viscosity * 0.5 * b.diameter * std::pow(b.length, 3) / (4.0 * b.load * b.clearance * b.clearance);
 }
 
+// A band given in pairs around its nominal value: lo <= nominal <= hi, both > 0.
+void validate_band(const std::string& origin, const char* key, double nominal, const std::optional<double>& lo,
+                   const std::optional<double>& hi, double scale, const char* unit) {
+    const std::string min_key = std::string(key) + "_min", max_key = std::string(key) + "_max";
+    if (lo.has_value() != hi.has_value())
+        throw InputError(fmt::format("{}: {} is given without {}; allowed: both ends of the band or neither", origin,
+                                     lo ? min_key : max_key, lo ? max_key : min_key));
+    if (!lo) return;
+    if (!(std::isfinite(*lo) && std::isfinite(*hi) && *lo > 0.0 && *lo <= nominal && nominal <= *hi))
+        throw InputError(fmt::format("{}: {} = {}, {} = {}, {} = {} ({}); allowed: 0 < {} <= {} <= {}", origin,
+                                     min_key, *lo / scale, key, nominal / scale, max_key, *hi / scale, unit, min_key,
+                                     key, max_key));
+}
+
 }  // namespace
+
+const char* to_string(FilmExtreme e) {
+    return e == FilmExtreme::minimum_clearance ? "minimum clearance" : "maximum clearance";
+}
+
+bool has_extremes(const JournalBearing& b) {
+    return b.clearance_min || b.clearance_max || b.viscosity_min || b.viscosity_max;
+}
+
+JournalBearing film_extreme(const JournalBearing& b, FilmExtreme e) {
+    JournalBearing j = b;
+    const bool tight = e == FilmExtreme::minimum_clearance;
+    j.clearance = (tight ? b.clearance_min : b.clearance_max).value_or(b.clearance);
+    j.viscosity = (tight ? b.viscosity_max : b.viscosity_min).value_or(b.viscosity);
+    j.clearance_min = j.clearance_max = j.viscosity_min = j.viscosity_max = std::nullopt;
+    return j;
+}
 
 void JournalBearing::validate(const std::string& origin, double metres_per_unit, const char* unit) const {
     const auto positive = [&](const char* key, double v, double scale, const char* u) {
@@ -57,6 +88,12 @@ void JournalBearing::validate(const std::string& origin, double metres_per_unit,
                                          "film stiffness scale {:g} N/m); allowed: values of a real bearing",
                                          origin, diameter / mu, unit, length / mu, unit, clearance / mu, unit, viscosity,
                                          load, per_speed, k_scale));
+    validate_band(origin, "clearance", clearance, clearance_min, clearance_max, mu, unit);
+    validate_band(origin, "viscosity", viscosity, viscosity_min, viscosity_max, 1.0, "Pa s");
+    // Each end must itself be a usable film (clearance_max below D / 2, its scales numbers).
+    if (has_extremes(*this))
+        for (const FilmExtreme e : {FilmExtreme::minimum_clearance, FilmExtreme::maximum_clearance})
+            film_extreme(*this, e).validate(fmt::format("{} at its {}", origin, to_string(e)), mu, unit);
 }
 
 double short_bearing_sommerfeld(double e) {

@@ -9,6 +9,7 @@
 #include <gyrokit/core/bearing_table.hpp>
 
 #include <Eigen/Dense>
+#include <optional>
 #include <string>
 
 namespace gyrokit {
@@ -38,11 +39,32 @@ struct JournalBearing {
     // solution for e <= 0.9 and 0.25 <= L/D <= 2 (docs/fe_rotor.md).
     int grid_circumferential = 240;
     int grid_axial = 32;
+    // The tolerance band of the running clearance and of the oil's viscosity (its supply
+    // temperature's range), given in pairs: clearance_min <= clearance <= clearance_max,
+    // viscosity_min <= viscosity <= viscosity_max. Unset: the nominal values only. API 617
+    // screens Level I at both ends (film_extreme).
+    std::optional<double> clearance_min, clearance_max;   // m
+    std::optional<double> viscosity_min, viscosity_max;   // Pa s
 
     // Throws InputError naming `origin`, the key, the value and the allowed range.
     // Lengths in messages are divided by `metres_per_unit` and named `unit` (a scene in mm).
     void validate(const std::string& origin, double metres_per_unit = 1.0, const char* unit = "m") const;
 };
+
+// The two ends of a film's tolerance band. Both raise or both lower the Sommerfeld number
+// S = eta w R L^3 / (4 W c^2), the conventional pairing of API RP 684: the smallest
+// clearance with the coldest oil (the largest viscosity) is the stiffest and most damped
+// film, the largest clearance with the hottest oil (the smallest viscosity) the softest.
+enum class FilmExtreme { minimum_clearance, maximum_clearance };
+
+const char* to_string(FilmExtreme e);   // "minimum clearance", "maximum clearance"
+
+// True where the bearing gives a clearance or a viscosity band.
+bool has_extremes(const JournalBearing& b);
+
+// The bearing at one end of its band: clearance and viscosity from the band where it is
+// given, else the nominal ones; the band itself is cleared.
+JournalBearing film_extreme(const JournalBearing& b, FilmExtreme e);
 
 // Modified Sommerfeld number of the short bearing at eccentricity ratio e:
 // S_s = eta Omega R L^3 / (4 W c^2) = (1 - e^2)^2 / (e sqrt(16 e^2 + pi^2 (1 - e^2))).

@@ -347,4 +347,19 @@ std::pair<double, double> bearing_span(const RotorModel& model, const std::strin
     return {*std::min_element(z.begin(), z.end()), *std::max_element(z.begin(), z.end())};
 }
 
+std::vector<BearingSet> bearing_extremes(const RotorModel& model) {
+    const bool any = std::any_of(model.bearings.begin(), model.bearings.end(), [](const RotorBearing& b) {
+        return b.kind == RotorBearing::Kind::fluid_film && has_extremes(b.film);
+    });
+    if (!any) return {};
+    std::vector<BearingSet> sets;
+    for (const FilmExtreme e : {FilmExtreme::minimum_clearance, FilmExtreme::maximum_clearance}) {
+        BearingSet s{to_string(e), model};
+        for (RotorBearing& b : s.model.bearings)
+            if (b.kind == RotorBearing::Kind::fluid_film) b.film = film_extreme(b.film, e);
+        sets.push_back(std::move(s));
+    }
+    return sets;
+}
+
 }  // namespace gyrokit

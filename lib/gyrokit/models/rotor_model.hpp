@@ -117,4 +117,15 @@ BuiltRotor build(const RotorModel& model);
 // supports. InputError naming `path` if the rotor has neither.
 std::pair<double, double> bearing_span(const RotorModel& model, const std::string& path);
 
+// The rotor with its bearings at one end of their tolerance bands (every fluid film at
+// film_extreme), as API 617 screens Level I: "minimum clearance" and "maximum clearance".
+struct BearingSet {
+    std::string name;
+    RotorModel model;
+};
+
+// Both ends where a fluid film gives a clearance or viscosity band; empty where none does
+// (the bearings as given are the only set). Other bearings keep their coefficients.
+std::vector<BearingSet> bearing_extremes(const RotorModel& model);
+
 }  // namespace gyrokit

@@ -50,11 +50,12 @@ Table level1_summary(const Level1Screen& s) {
     row("maximum continuous speed", speed(*s.machine.mcs));
     row("operating speed (QA)", speed(s.machine.operating_speed.value_or(*s.machine.mcs)));
     row("QA", fmt::format("{:.6g} N/m{}", s.qa,
-                          s.stage_qa.empty() ? " (given)" : fmt::format(" (the sum of {} stages)", s.stage_qa.size())));
+                          s.stage_qa.empty() ? " (given)" : fmt::format(" (the sum of {} stage{})", s.stage_qa.size(), s.stage_qa.size() == 1 ? "" : "s")));
     row("Q acts at", fmt::format("{} ({})", station_text(s), s.layout));
     row("first forward mode at Q = 0",
         fmt::format("frequency {}, log decrement {}", speed(s.at_zero.lambda.imag()),
                     vouched(s.at_zero.log_decrement, log_decrement_bound(s.at_zero), "")));
+    for (const std::string& m : s.curve.passed) row("passed over", m);
     row("log decrement at QA", vouched(s.at_qa.log_decrement, log_decrement_bound(s.at_qa), ""));
     if (s.curve.q0 && *s.curve.q0 == 0.0)
         row("Q0", "0 N/m: the mode is not stable at Q = 0 (unstable, or neutral: undamped)");
@@ -100,30 +101,71 @@ Table level1_curve_table(const Level1Screen& s) {
     return t;
 }
 
-std::vector<Table> level1_tables(const Level1Screen& s) {
-    std::vector<Table> out{level1_summary(s)};
-    if (!s.stage_qa.empty()) out.push_back(level1_stages(s));
-    out.push_back(level1_curve_table(s));
+namespace {
+
+// The rows of per-set tables under one header, each row led by its set's name.
+Table by_set(const std::vector<Table>& tables, const std::vector<std::string>& names, const Table* lead) {
+    std::vector<std::string> columns{"bearing_set"};
+    for (const std::string& c : tables.front().columns()) columns.push_back(c);
+    Table t(columns);
+    t.key = tables.front().key;
+    t.title = tables.front().title + " at each end of the bearings' tolerance bands";
+    if (lead)
+        for (std::size_t r = 0; r < lead->rows(); ++r) {
+            std::vector<Cell> row{std::string("all")};
+            for (const Cell& c : lead->row(r)) row.push_back(c);
+            t.add_row(row);
+        }
+    for (std::size_t i = 0; i < tables.size(); ++i)
+        for (std::size_t r = 0; r < tables[i].rows(); ++r) {
+            std::vector<Cell> row{names[i]};
+            for (const Cell& c : tables[i].row(r)) row.push_back(c);
+            t.add_row(row);
+        }
+    return t;
+}
+
+const char* const kSetColors[] = {"#1f77b4", "#ff7f0e", "#9467bd", "#8c564b"};
+
+}  // namespace
+
+std::vector<Table> level1_tables(const Level1Study& st) {
+    const Level1Screen& g = st.verdict();
+    if (st.screens.size() == 1) {
+        std::vector<Table> out{level1_summary(g)};
+        if (!g.stage_qa.empty()) out.push_back(level1_stages(g));
+        out.push_back(level1_curve_table(g));
+        return out;
+    }
+    std::vector<Table> summaries, curves;
+    std::vector<std::string> names;
+    for (const Level1Screen& s : st.screens) {
+        summaries.push_back(level1_summary(s));
+        curves.push_back(level1_curve_table(s));
+        names.push_back(s.bearing_set);
+    }
+    Table lead({"quantity", "value"});
+    lead.add_row({std::string("verdict"), std::string(g.level2_required ? "Level II required" : "Level I passed")});
+    lead.add_row({std::string("governing bearing set"),
+                  fmt::format("{} (the worse of {} sets)", g.bearing_set, st.screens.size())});
+    std::vector<Table> out{by_set(summaries, names, &lead)};
+    if (!g.stage_qa.empty()) out.push_back(level1_stages(g));   // QA does not depend on the bearings
+    out.push_back(by_set(curves, names, nullptr));
     return out;
 }
 
-Figure level1_figure(const Level1Screen& s, const std::string& title) {
+Figure level1_figure(const Level1Study& st, const std::string& title) {
     Figure f;
     f.title = (title.empty() ? std::string() : title + ": ") + "API 617 Level I stability";
     Panel p;
     p.xlabel = "cross-coupled stiffness Q [N/m]";
     p.ylabel = "log decrement of the first forward mode";
-    Series curve;
-    curve.label = "log decrement";
-    curve.style = "linespoints";
-    for (const Level1Point& q : s.curve.points) {
-        curve.x.push_back(q.q);
-        curve.y.push_back(q.log_decrement);
-    }
-    p.series.push_back(curve);
-    // QA and Q0 as vertical lines across the curve's span (a point alone is hard to see).
+    const bool several = st.screens.size() > 1;
+    // QA and Q0 as vertical lines across the curves' span (a point alone is hard to see).
     double lo = 0.0, hi = 0.0;
-    for (const Level1Point& q : s.curve.points) lo = std::min(lo, q.log_decrement), hi = std::max(hi, q.log_decrement);
+    for (const Level1Screen& s : st.screens)
+        for (const Level1Point& q : s.curve.points)
+            lo = std::min(lo, q.log_decrement), hi = std::max(hi, q.log_decrement);
     const auto vertical = [&](double x, const std::string& label, const char* color) {
         Series v;
         v.label = label;
@@ -133,13 +175,32 @@ Figure level1_figure(const Level1Screen& s, const std::string& title) {
         v.y = {lo, hi};
         p.series.push_back(v);
     };
-    vertical(s.qa, fmt::format("QA = {:.4g} N/m (log decrement {:.3g})", s.qa, s.at_qa.log_decrement), "#d62728");
-    if (s.curve.q0 && *s.curve.q0 > 0) vertical(*s.curve.q0, fmt::format("Q0 = {:.4g} N/m", *s.curve.q0), "#2ca02c");
+    for (std::size_t i = 0; i < st.screens.size(); ++i) {
+        const Level1Screen& s = st.screens[i];
+        Series curve;
+        curve.label = several ? "log decrement, " + s.bearing_set : std::string("log decrement");
+        curve.style = "linespoints";
+        if (several) curve.color = kSetColors[i % 4];
+        for (const Level1Point& q : s.curve.points) {
+            curve.x.push_back(q.q);
+            curve.y.push_back(q.log_decrement);
+        }
+        p.series.push_back(curve);
+    }
+    const Level1Screen& g = st.verdict();
+    vertical(g.qa, fmt::format("QA = {:.4g} N/m (log decrement {:.3g}{})", g.qa, g.at_qa.log_decrement,
+                               several ? ", " + g.bearing_set : std::string()),
+             "#d62728");
+    for (const Level1Screen& s : st.screens)
+        if (s.curve.q0 && *s.curve.q0 > 0)
+            vertical(*s.curve.q0,
+                     fmt::format("Q0 = {:.4g} N/m{}", *s.curve.q0, several ? ", " + s.bearing_set : std::string()),
+                     "#2ca02c");
     Series limit;
     limit.label = fmt::format("log decrement {}", kLevel1MinLogDecrement);
     limit.style = "dotted";
     limit.color = "#7f7f7f";
-    limit.x = {0.0, s.curve.points.back().q};
+    limit.x = {0.0, g.curve.points.back().q};
     limit.y = {kLevel1MinLogDecrement, kLevel1MinLogDecrement};
     p.series.push_back(limit);
     f.panels.push_back(p);

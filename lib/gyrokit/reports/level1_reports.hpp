@@ -19,8 +19,10 @@ double log_decrement_bound(const Level1Point& p);
 Table level1_summary(const Level1Screen& s);
 Table level1_stages(const Level1Screen& s);     // empty where QA was given directly
 Table level1_curve_table(const Level1Screen& s);
-// summary, stages (where there are stages), curve.
-std::vector<Table> level1_tables(const Level1Screen& s);
-Figure level1_figure(const Level1Screen& s, const std::string& title);
+// summary, stages (where there are stages), curve. With several bearing sets the summary
+// and the curve lead each row with its set (a bearing_set column; the summary's first rows,
+// set "all", give the verdict and the governing set), and the figure draws each set's curve.
+std::vector<Table> level1_tables(const Level1Study& st);
+Figure level1_figure(const Level1Study& st, const std::string& title);
 
 }  // namespace gyrokit

@@ -325,13 +325,19 @@ RotorDisk read_disk(const TomlKeys& e, const ModelContext& c) {
 // A fluid-film journal bearing from its geometry; load = "auto": its share of the rotor's weight.
 void read_fluid_film(const TomlKeys& e, const ModelContext& c, RotorBearing& b) {
     e.only({"type", "z", "diameter", "length", "clearance", "viscosity", "load", "load_angle", "max_eccentricity",
-            "solution", "grid_circumferential", "grid_axial"});
+            "solution", "grid_circumferential", "grid_axial", "clearance_min", "clearance_max", "viscosity_min",
+            "viscosity_max"});
     b.kind = RotorBearing::Kind::fluid_film;
     JournalBearing& j = b.film;
     j.diameter = c.len(e, "diameter", std::nullopt, true);
     j.length = c.len(e, "length", std::nullopt, true);
     j.clearance = c.len(e, "clearance", std::nullopt, true);
     j.viscosity = e.number("viscosity", std::nullopt, 0.0, true, "Pa s");
+    // The tolerance bands (their order is checked by JournalBearing::validate).
+    if (e.has("clearance_min")) j.clearance_min = c.len(e, "clearance_min", std::nullopt, true);
+    if (e.has("clearance_max")) j.clearance_max = c.len(e, "clearance_max", std::nullopt, true);
+    if (e.has("viscosity_min")) j.viscosity_min = e.number("viscosity_min", std::nullopt, 0.0, true, "Pa s");
+    if (e.has("viscosity_max")) j.viscosity_max = e.number("viscosity_max", std::nullopt, 0.0, true, "Pa s");
     const toml::node* load = e.table().get("load");
     b.auto_load = load && load->is_string();
     if (b.auto_load && *load->value<std::string>() != "auto")

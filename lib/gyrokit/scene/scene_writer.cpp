@@ -125,6 +125,10 @@ void write_film(Writer& w, const RotorBearing& b) {
     w.key("length", j.length);
     w.key("clearance", j.clearance);
     w.key("viscosity", j.viscosity);
+    if (j.clearance_min) w.key("clearance_min", *j.clearance_min);
+    if (j.clearance_max) w.key("clearance_max", *j.clearance_max);
+    if (j.viscosity_min) w.key("viscosity_min", *j.viscosity_min);
+    if (j.viscosity_max) w.key("viscosity_max", *j.viscosity_max);
     if (b.auto_load)
         w.key("load", "auto");
     else

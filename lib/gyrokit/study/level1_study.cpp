@@ -2,6 +2,7 @@
 
 #include <gyrokit/analysis/critical_speed_map.hpp>
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/models/rotor_model.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -169,41 +170,67 @@ void verdict(Level1Screen& s) {
                                                            : std::string()));
 }
 
-}  // namespace
-
-Level1Screen level1_study(const Scene& sc, const Level1Request& r) {
-    if (!sc.rotor_model())
-        throw InputError(fmt::format("{}: Level I needs an FE rotor (its nodes and bearings); this [model] is of type "
-                                     "{}; allowed: fe_rotor",
-                                     sc.path, sc.model_type()));
-    Level1Screen s;
-    s.unit = resolve_unit(sc, r.unit);
-    s.length_unit = sc.length_unit();
-    s.machine = machine_of(sc, r, s.unit);
-    const double n = s.machine.operating_speed.value_or(*s.machine.mcs);
-    for (const AeroStage& a : s.machine.stages) s.stage_qa.push_back(anticipated_cross_coupling(a, s.machine.kind, n));
-    for (const double q : s.stage_qa) s.qa += q;
-    if (s.machine.qa) s.qa = *s.machine.qa;
-    place_stations(sc, s);
-
+// The curve on one bearing set's system and its verdict; `s` holds what the sets share.
+void screen(const GyroscopicSystem& sys, const Level1Request& r, const SolverOptions& solver, Level1Screen& s) {
     Level1Options o;
     o.stations = s.stations;
     o.speed = *s.machine.mcs;
     o.q_max = s.machine.q_ratio * s.qa;
     o.intervals = r.intervals.value_or(kLevel1Intervals);
     o.marks = {s.qa};
-    o.solver = sc.solver;
+    o.solver = solver;
     if (r.method) o.solver.eig.method = parse_eigen_method(*r.method);
-    s.curve = level1_curve(sc.system, o);
+    s.curve = level1_curve(sys, o);
     s.at_zero = s.curve.points.front();
     const auto at = std::find_if(s.curve.points.begin(), s.curve.points.end(),
                                  [&](const Level1Point& p) { return p.q == s.qa; });
     if (at == s.curve.points.end()) throw Error("level1: QA is not on the curve");   // marks are kept exactly
     s.at_qa = *at;
+    add_notes(s.diagnostics, Diagnostic::Topic::Verdict, s.curve.passed);
     add_notes(s.diagnostics, Diagnostic::Topic::Ambiguity, s.curve.notes);
-    critical_speed_ratio(sc, s);
     verdict(s);
-    return s;
+}
+
+}  // namespace
+
+Level1Study level1_study(const Scene& sc, const Level1Request& r) {
+    if (!sc.rotor_model())
+        throw InputError(fmt::format("{}: Level I needs an FE rotor (its nodes and bearings); this [model] is of type "
+                                     "{}; allowed: fe_rotor",
+                                     sc.path, sc.model_type()));
+    Level1Screen base;
+    base.unit = resolve_unit(sc, r.unit);
+    base.length_unit = sc.length_unit();
+    base.machine = machine_of(sc, r, base.unit);
+    const double n = base.machine.operating_speed.value_or(*base.machine.mcs);
+    for (const AeroStage& a : base.machine.stages)
+        base.stage_qa.push_back(anticipated_cross_coupling(a, base.machine.kind, n));
+    for (const double q : base.stage_qa) base.qa += q;
+    if (base.machine.qa) base.qa = *base.machine.qa;
+    place_stations(sc, base);
+    critical_speed_ratio(sc, base);   // on rigid supports: the same for every bearing set
+
+    Level1Study study;
+    study.diagnostics = base.diagnostics;
+    const std::vector<BearingSet> sets = bearing_extremes(*sc.rotor_model());
+    if (sets.empty()) {
+        study.screens.push_back(base);
+        screen(sc.system, r, sc.solver, study.screens.back());
+    }
+    for (const BearingSet& set : sets) {
+        Level1Screen s = base;
+        s.bearing_set = set.name;
+        screen(build(set.model).system, r, sc.solver, s);   // the same mesh: the stations' nodes hold
+        study.screens.push_back(std::move(s));
+    }
+    for (const Level1Screen& s : study.screens)
+        for (std::size_t i = base.diagnostics.size(); i < s.diagnostics.size(); ++i) {
+            Diagnostic d = s.diagnostics[i];
+            if (!s.bearing_set.empty()) d.text = s.bearing_set + ": " + d.text;
+            study.diagnostics.push_back(d);
+        }
+    study.governing = governing_screen(study.screens);
+    return study;
 }
 
 }  // namespace gyrokit

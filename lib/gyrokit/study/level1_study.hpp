@@ -2,7 +2,8 @@
 // level1) and Python (gyrokit.level1) run it: the machine data from the scene's [api]
 // with the caller's values on top, QA from the stages, where Q acts, the curve of the
 // first forward mode's log decrement against Q at the maximum continuous speed, Q0,
-// the critical speed ratio and the verdict (docs/level1.md).
+// the critical speed ratio and the verdict, at each end of the bearings' tolerance bands
+// (docs/level1.md).
 #pragma once
 
 #include <gyrokit/analysis/level1_stability.hpp>
@@ -28,8 +29,10 @@ struct Level1Request {
     std::optional<std::string> method;            // the dense eigensolver: qz, qz-classic or state
 };
 
-// InputError for a scene without an FE rotor or machine data, naming the missing key
-// (mcs, qa or stages) and each value out of range.
-Level1Screen level1_study(const Scene& scene, const Level1Request& request = {});
+// One screen on the bearings as given, or one at each end of the fluid films' clearance
+// and viscosity bands where a bearing gives them (bearing_extremes); the verdict is the
+// worse screen's. InputError for a scene without an FE rotor or machine data, naming the
+// missing key (mcs, qa or stages) and each value out of range.
+Level1Study level1_study(const Scene& scene, const Level1Request& request = {});
 
 }  // namespace gyrokit
