@@ -64,6 +64,15 @@ py::dict screen_dict(const Level1Screen& s) {
     d["reasons"] = reasons;
     d["solves"] = s.curve.solves;
     d["bearing_set"] = s.bearing_set;
+    py::list passed;
+    for (const PassedMode& m : s.curve.passed) {
+        py::dict p;
+        p["frequency"] = s.unit.factor * m.lambda.imag();
+        p["log_decrement"] = m.log_decrement;
+        p["orbit_ratio"] = m.orbit_ratio;
+        passed.append(p);
+    }
+    d["passed"] = passed;
     return d;
 }
 

@@ -578,12 +578,15 @@ class Level1(_Result):
     where Q acts (`layout`, `station_nodes`, `station_shares`, `station_z` in m), `rigid_critical` (in `unit`),
     `csr`, `region_boundary`, the verdict `level2_required` and its `reasons`. Where a fluid film gives a
     clearance or viscosity band these are the worse end's (`bearing_set`: "minimum clearance" or "maximum
-    clearance"; "" for the bearings as given), and `bearing_sets` holds each end's as a dict of the same keys."""
+    clearance"; "" for the bearings as given), and `bearing_sets` holds each end's as a dict of the same keys.
+    `passed`: the lower forward modes Q does not load (each a dict of frequency in `unit`, log_decrement and
+    orbit_ratio, its orbit where Q acts over its largest), passed over but still judged."""
 
     def __init__(self, d):
         self.unit = d["unit"]
         self.bearing_set = d["bearing_set"]
         self.bearing_sets = [dict(s) for s in d["bearing_sets"]]
+        self.passed = [dict(p) for p in d["passed"]]
         for k in ("q", "log_decrement", "log_decrement_bound", "frequency"):
             setattr(self, k, _np.asarray(d[k], dtype=float))
         self.whirl = list(d["whirl"])

@@ -258,6 +258,9 @@ def test_level1_at_both_ends_of_the_films_bands_in_python_and_the_cli(tmp_path):
     assert [s["bearing_set"] for s in l1.bearing_sets] == ["minimum clearance", "maximum clearance"]
     worse = min(l1.bearing_sets, key=lambda s: s["q0"] if s["q0"] is not None else np.inf)
     assert l1.bearing_set == worse["bearing_set"] and l1.q0 == worse["q0"]
+    # The two ends are different films: their curves differ.
+    assert not np.allclose(l1.bearing_sets[0]["log_decrement"], l1.bearing_sets[1]["log_decrement"])
+    assert all(p["orbit_ratio"] < 0.05 for s in l1.bearing_sets for p in s["passed"])
     # The scene written back keeps the bands: the CLI screens the same two ends.
     path = tmp_path / "bands.toml"
     scene.write(str(path))

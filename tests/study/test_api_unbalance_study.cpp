@@ -8,6 +8,8 @@
 #include <gyrokit/core/constants.hpp>
 #include <gyrokit/gyrokit.hpp>
 
+#include "api_checks.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -16,6 +18,7 @@
 #include <sstream>
 
 using namespace gyrokit;
+using namespace gyrokit::test;
 
 namespace {
 
@@ -24,77 +27,6 @@ std::string data_text(const std::string& name) {
     std::stringstream s;
     s << in.rdbuf();
     return s.str();
-}
-
-double rpm(double x) { return x * 2.0 * kPi / 60.0; }
-
-// The case's unbalance vector, built from its loads (x: U e^{i phase}, y: -i U e^{i phase}).
-Eigen::VectorXcd unbalance_of(const GyroscopicSystem& sys, const ApiUnbalanceCase& c) {
-    Eigen::VectorXcd u = Eigen::VectorXcd::Zero(sys.size());
-    for (const ApiUnbalanceLoad& l : c.loads) {
-        const std::complex<double> f = l.unbalance * std::polar(1.0, l.phase);
-        u(sys.dofs.find(l.node, DofMotion::x)) += f;
-        u(sys.dofs.find(l.node, DofMotion::y)) += std::complex<double>(0, -1) * f;
-    }
-    return u;
-}
-
-// The steady response by our own LU: (K(w) - w^2 M + i w C(w)) Z = w^2 u.
-Eigen::VectorXcd response(const GyroscopicSystem& sys, const Eigen::VectorXcd& u, double w) {
-    const QuadraticPencil p = sys.at_speed(w);
-    const std::complex<double> i(0, 1);
-    const Eigen::MatrixXcd d = p.K.cast<std::complex<double>>() - w * w * p.M.cast<std::complex<double>>() +
-                               i * w * p.C.cast<std::complex<double>>();
-    return d.fullPivLu().solve(w * w * u);
-}
-
-// Twice the largest distance of the sampled orbit (x, y) = Re((Zx, Zy) e^{i t}) from its centre.
-double sampled_peak_to_peak(std::complex<double> zx, std::complex<double> zy) {
-    double far = 0.0;
-    const int n = 40000;
-    for (int k = 0; k < n; ++k) {
-        const std::complex<double> e = std::polar(1.0, 2.0 * kPi * k / n);
-        far = std::max(far, std::hypot((zx * e).real(), (zy * e).real()));
-    }
-    return 2.0 * far;
-}
-
-double pp_at(const GyroscopicSystem& sys, const Eigen::VectorXcd& u, const ApiLocation& l, double w) {
-    const Eigen::VectorXcd z = response(sys, u, w);
-    return sampled_peak_to_peak(z(sys.dofs.find(l.node, DofMotion::x)), z(sys.dofs.find(l.node, DofMotion::y)));
-}
-
-// API 617 2.6.2.10's required margin, written out.
-double required_margin(double af, bool above) {
-    if (af < 2.5) return 0.0;
-    const double t = 17.0 * (1.0 - 1.0 / (af - 1.5));
-    return above ? std::min(26.0, 10.0 + t) : std::min(16.0, t);
-}
-
-// Margins, Scc and the clearance ratios of a case, by hand from its numbers.
-void check_rules(const ApiUnbalanceStudy& s, const ApiUnbalanceCase& c) {
-    bool met = true;
-    for (const ApiCritical& k : c.criticals) {
-        const double w = k.critical.speed;
-        const double af = k.critical.amplification;
-        const bool above = w > s.mcs, below = w < s.min_speed;
-        const double have = below ? 100 * (s.min_speed - w) / s.min_speed : above ? 100 * (w - s.mcs) / s.mcs : 0.0;
-        const double need = required_margin(af, above);
-        CHECK(k.required == Approx(need).margin(1e-12));
-        CHECK(k.margin.percent == Approx(have).margin(1e-10));
-        CHECK(k.met == (need == 0.0 || ((below || above) && have >= need)));
-        met = met && k.met;
-    }
-    CHECK(c.margins_met == met);
-    const double n_rpm = std::clamp(c.concern, s.min_speed, s.mcs) * 60 / (2 * kPi);
-    CHECK(c.avl == Approx(std::min(25.4e-6, 25.4e-6 * std::sqrt(12000 / n_rpm))).epsilon(1e-13));
-    CHECK(c.scale == Approx(std::clamp(c.avl / c.a1, 0.5, 6.0)).epsilon(1e-13));
-    for (std::size_t k = 0; k < s.locations.size(); ++k) {
-        if (s.locations[k].probe) continue;
-        const ApiAmplitude& a = c.amplitudes[k];
-        const double checked = (met ? 1.0 : c.scale) * a.peak_to_peak;
-        CHECK(a.ratio == Approx(checked / (0.75 * s.locations[k].clearance)).epsilon(1e-13));
-    }
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <optional>
 
 namespace gyrokit {
 
@@ -80,24 +81,30 @@ public:
     }
 
     // The mode at q > q_from that continues `from`: steps from q_from to q, each step
-    // accepted where the candidate of the closest eigenvector is also (to 1e-6) the
-    // nearest eigenvalue; a step where they differ is halved, at most kMaxHalvings
-    // times in all, and a step accepted undecided is noted once.
-    Mode step(const Mode& from, double q_from, double q) {
+    // accepted where pick() finds it clear; a step where it does not is halved, at most
+    // kMaxHalvings times in all, and a step accepted undecided is noted once. `before`,
+    // the followed mode at q_before < q_from, gives the first step its linear predictor.
+    Mode step(const Mode& from, double q_from, double q, const Mode* before = nullptr, double q_before = 0.0) {
         Mode cur = from;
         double qc = q_from, h = q - q_from;
+        std::optional<std::pair<double, std::complex<double>>> prev;
+        if (before) prev.emplace(q_before, before->lambda);
         int halvings = 0;
         bool undecided = false;
         while (qc < q) {
             const double qn = qc + h >= q - 1e-12 * std::fabs(q) ? q : qc + h;
             const QuadraticSpectrum sp = solve(qn, std::fabs(cur.lambda.imag()));
-            const Pick p = pick(cur, sp);
+            std::optional<std::complex<double>> predicted;
+            if (prev && qc > prev->first)
+                predicted = cur.lambda + (cur.lambda - prev->second) * ((qn - qc) / (qc - prev->first));
+            const Pick p = pick(cur, sp, predicted);
             if (!p.clear && halvings < kMaxHalvings) {
                 h *= 0.5;
                 ++halvings;
                 continue;
             }
             undecided = undecided || !p.clear;
+            prev.emplace(qc, cur.lambda);
             cur = sp.modes[static_cast<std::size_t>(p.index)];
             qc = qn;
             h = std::min(2 * h, q - qc);   // back towards the full step after a decided one
@@ -117,10 +124,19 @@ private:
         int index = -1;
         bool clear = false;
     };
-    static Pick pick(const Mode& from, const QuadraticSpectrum& sp) {
+    // The candidate of the closest eigenvector (|x^H y| of unit vectors at least kSameMode)
+    // that is also the nearest eigenvalue (to 1e-6: a double eigenvalue, forward and
+    // backward whirl of an isotropic rotor without gyroscopic split, is as near as its
+    // partner, and the vector decides). Heavily damped modes can share nearly one shape
+    // (a runner-up overlap of kSameMode or more): then the eigenvalue alone decides, and
+    // must have moved less than half the way to the next nearest and, where the step has a
+    // linear predictor from the last two points, also be the eigenvalue nearest to it.
+    static Pick pick(const Mode& from, const QuadraticSpectrum& sp, std::optional<std::complex<double>> predicted) {
         Pick p;
         double best_c = -1.0, second_c = -1.0;
         double near_d = std::numeric_limits<double>::infinity(), next_d = near_d;   // the two nearest eigenvalues
+        double pred_d = near_d;                                                     // nearest to the prediction
+        int pred_index = -1;
         for (std::size_t i = 0; i < sp.modes.size(); ++i) {
             const double c = std::abs(from.right.dot(sp.modes[i].right));   // dot: conjugates the first
             if (c > best_c) {
@@ -137,15 +153,16 @@ private:
             } else if (d < next_d) {
                 next_d = d;
             }
+            if (predicted && std::abs(sp.modes[i].lambda - *predicted) < pred_d) {
+                pred_d = std::abs(sp.modes[i].lambda - *predicted);
+                pred_index = static_cast<int>(i);
+            }
         }
         if (p.index < 0) throw SolverError("level1: no mode to follow (the solver returned none)");
-        // Nearest to 1e-6: a double eigenvalue (forward and backward whirl of an isotropic
-        // rotor without gyroscopic split) is as near as its partner, and the vector decides.
-        // Heavily damped modes can share nearly one shape (two overlaps above kSameMode):
-        // then the eigenvalue decides, where it moved less than half the way to the next.
         const double d = std::abs(sp.modes[static_cast<std::size_t>(p.index)].lambda - from.lambda);
         const bool nearest = d <= near_d * (1 + 1e-6) + 1e-300;
-        p.clear = best_c >= kSameMode && nearest && (second_c < kSameMode || d < 0.5 * next_d);
+        const bool by_value = d < 0.5 * next_d && (!predicted || pred_index == p.index);
+        p.clear = best_c >= kSameMode && nearest && (second_c < kSameMode || by_value);
         return p;
     }
     void note(const std::string& n) {
@@ -206,17 +223,14 @@ double station_orbit_ratio(const GyroscopicSystem& sys, const std::vector<CrossC
 
 // The first forward mode Q loads: the lowest oscillating mode that whirls forward and
 // moves where Q acts (kLevel1MinStationOrbit of its largest orbit); the lower forward
-// modes passed over are named in `passed`.
+// modes passed over go to `passed`.
 Mode first_forward(const GyroscopicSystem& sys, const Level1Options& o, const QuadraticSpectrum& sp,
-                   std::vector<std::string>& passed) {
+                   std::vector<PassedMode>& passed) {
     for (const Mode& m : sp.modes) {
         if (m.whirl != Whirl::Forward || !(m.lambda.imag() > sp.real_tol)) continue;
         const double r = station_orbit_ratio(sys, o.stations, m);
         if (r >= kLevel1MinStationOrbit) return m;
-        passed.push_back(fmt::format("the forward mode at {:.6g} rad/s (log decrement {:.3g}) barely moves where Q "
-                                     "acts (its orbit there is {:.2g} of its largest, below {}): Q does not load it, "
-                                     "and the next forward mode is followed",
-                                     m.lambda.imag(), m.log_decrement(), r, kLevel1MinStationOrbit));
+        passed.push_back({m.lambda, m.error_bound, m.log_decrement(), r});
     }
     throw InputError(fmt::format("level1: the rotor has no forward-whirling mode at {} rad/s with Q = 0 that moves "
                                  "where Q acts (its modes: {}); Level I follows the first forward mode",
@@ -282,7 +296,8 @@ Level1Curve level1_curve(const GyroscopicSystem& sys, const Level1Options& opt) 
         c.q0_bound = 0.0;
     }
     for (std::size_t i = 1; i < qs.size(); ++i) {
-        modes.push_back(f.step(modes.back(), qs[i - 1], qs[i]));
+        const Mode* before = i >= 2 ? &modes[i - 2] : nullptr;
+        modes.push_back(f.step(modes.back(), qs[i - 1], qs[i], before, i >= 2 ? qs[i - 2] : 0.0));
         c.points.push_back(point_of(qs[i], modes.back()));
         if (!c.q0 && unstable(modes.back())) {
             // The bracket's stable end: the last point whose eigenvalue lies left of zero.
@@ -322,6 +337,14 @@ std::size_t governing_screen(const std::vector<Level1Screen>& screens) {
         if (a.at_qa.log_decrement < b.at_qa.log_decrement) worst = i;
     }
     return worst;
+}
+
+std::string passed_text(const PassedMode& m, const SpeedUnit& unit) {
+    return fmt::format("the forward mode at {:.6g} {} (log decrement {:.3g}) barely moves where Q acts (its orbit "
+                       "there is {:.2g} of its largest, below {}): Q does not load it, and the next forward mode is "
+                       "followed",
+                       unit.factor * m.lambda.imag(), unit.name, m.log_decrement, m.orbit_ratio,
+                       kLevel1MinStationOrbit);
 }
 
 }  // namespace gyrokit

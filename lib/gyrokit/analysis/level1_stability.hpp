@@ -44,6 +44,15 @@ struct Level1Point {
     Whirl whirl = Whirl::Undefined;
 };
 
+// A forward mode below the followed one that Q does not load (kLevel1MinStationOrbit),
+// at Q = 0: to first order Q moves its eigenvalue by the square of its orbit ratio.
+struct PassedMode {
+    std::complex<double> lambda;        // 1/s
+    double error_bound = 0.0;           // on |lambda - exact|, 1/s
+    double log_decrement = 0.0;
+    double orbit_ratio = 0.0;           // its orbit where Q acts over its largest orbit
+};
+
 struct Level1Curve {
     std::vector<Level1Point> points;    // by q, from 0
     // Q0: the first Q where the log decrement reaches zero; unset where it stays
@@ -53,7 +62,7 @@ struct Level1Curve {
     double q0_bound = 0.0;              // N/m: |Q0 - exact| at most this (the bracket and the eigenvalue's bound)
     int solves = 0;                     // eigenvalue solves made (curve, halved steps and Q0's bracket)
     std::vector<std::string> notes;     // steps that could not be told apart, solver notes
-    std::vector<std::string> passed;    // lower forward modes Q does not load (kLevel1MinStationOrbit)
+    std::vector<PassedMode> passed;     // lower forward modes Q does not load (kLevel1MinStationOrbit)
 };
 
 // Adds Q times the stations' skew coupling to sys.K: K(x, y) += share Q, K(y, x) -= share Q.
@@ -62,14 +71,18 @@ GyroscopicSystem with_cross_coupling(const GyroscopicSystem& sys, const std::vec
 
 // The curve and Q0. InputError for options out of range (naming the field), for a
 // station that is no node with a whirl pair, and where the rotor has no forward mode
-// at Q = 0 that Q loads. The mode is followed by its eigenvector (the candidate of largest |x_prev^H x|,
-// which must also be, to 1e-6, the nearest eigenvalue); a step where that fails is
-// halved, at most 10 times between two points of the curve, and a step taken undecided
-// is noted. Q0's bracket on the followed mode is narrowed (regula falsi, Illinois) until
-// it is below 1e-10 Q or
-// Re(lambda) lies within its error bound. Dense up to kAutoSparseDofs DOFs (solver auto),
+// at Q = 0 that Q loads. The mode is followed by its eigenvector (the candidate of
+// largest |x_prev^H x|, which must also be, to 1e-6, the nearest eigenvalue; where two
+// candidates' vectors are that close, the eigenvalue decides: less than half the way to
+// the next nearest, and nearest to the linear predictor from the last two points); a
+// step where that fails is halved, at most 10 times between two points of the curve, and
+// a step taken undecided is noted. Q0's bracket on the followed mode is narrowed (regula
+// falsi, Illinois) until it is below 1e-10 Q or Re(lambda) lies within its error bound. Dense up to kAutoSparseDofs DOFs (solver auto),
 // else a sparse window of 12 modes centred on the followed one.
 Level1Curve level1_curve(const GyroscopicSystem& sys, const Level1Options& options);
+
+// "the forward mode at 3123.65 rpm (log decrement 2.4) barely moves where Q acts ...".
+std::string passed_text(const PassedMode& m, const SpeedUnit& unit);
 
 // API 617's chart of the critical speed ratio against average gas density: the ratio
 // above which a centrifugal compressor lies in region B (docs/level1.md): 2.5 up to

@@ -90,6 +90,10 @@ void JournalBearing::validate(const std::string& origin, double metres_per_unit,
                                          load, per_speed, k_scale));
     validate_band(origin, "clearance", clearance, clearance_min, clearance_max, mu, unit);
     validate_band(origin, "viscosity", viscosity, viscosity_min, viscosity_max, 1.0, "Pa s");
+    if (clearance_max && !(*clearance_max < 0.5 * diameter))
+        throw InputError(fmt::format("{}: clearance_max = {} {} with diameter = {} {}; allowed: clearance_max < "
+                                     "diameter / 2",
+                                     origin, *clearance_max / mu, unit, diameter / mu, unit));
     // Each end must itself be a usable film (clearance_max below D / 2, its scales numbers).
     if (has_extremes(*this))
         for (const FilmExtreme e : {FilmExtreme::minimum_clearance, FilmExtreme::maximum_clearance})

@@ -50,12 +50,15 @@ Table level1_summary(const Level1Screen& s) {
     row("maximum continuous speed", speed(*s.machine.mcs));
     row("operating speed (QA)", speed(s.machine.operating_speed.value_or(*s.machine.mcs)));
     row("QA", fmt::format("{:.6g} N/m{}", s.qa,
-                          s.stage_qa.empty() ? " (given)" : fmt::format(" (the sum of {} stage{})", s.stage_qa.size(), s.stage_qa.size() == 1 ? "" : "s")));
+                          s.stage_qa.empty() || s.machine.qa
+                              ? std::string(" (given)")
+                              : fmt::format(" (the sum of {} stage{})", s.stage_qa.size(),
+                                            s.stage_qa.size() == 1 ? "" : "s")));
     row("Q acts at", fmt::format("{} ({})", station_text(s), s.layout));
-    row("first forward mode at Q = 0",
+    row(s.curve.passed.empty() ? "first forward mode at Q = 0" : "first forward mode Q loads, at Q = 0",
         fmt::format("frequency {}, log decrement {}", speed(s.at_zero.lambda.imag()),
                     vouched(s.at_zero.log_decrement, log_decrement_bound(s.at_zero), "")));
-    for (const std::string& m : s.curve.passed) row("passed over", m);
+    for (const PassedMode& m : s.curve.passed) row("passed over", passed_text(m, u));
     row("log decrement at QA", vouched(s.at_qa.log_decrement, log_decrement_bound(s.at_qa), ""));
     if (s.curve.q0 && *s.curve.q0 == 0.0)
         row("Q0", "0 N/m: the mode is not stable at Q = 0 (unstable, or neutral: undamped)");
@@ -191,11 +194,13 @@ Figure level1_figure(const Level1Study& st, const std::string& title) {
     vertical(g.qa, fmt::format("QA = {:.4g} N/m (log decrement {:.3g}{})", g.qa, g.at_qa.log_decrement,
                                several ? ", " + g.bearing_set : std::string()),
              "#d62728");
-    for (const Level1Screen& s : st.screens)
+    for (std::size_t i = 0; i < st.screens.size(); ++i) {
+        const Level1Screen& s = st.screens[i];
         if (s.curve.q0 && *s.curve.q0 > 0)
             vertical(*s.curve.q0,
                      fmt::format("Q0 = {:.4g} N/m{}", *s.curve.q0, several ? ", " + s.bearing_set : std::string()),
-                     "#2ca02c");
+                     several ? kSetColors[i % 4] : "#2ca02c");
+    }
     Series limit;
     limit.label = fmt::format("log decrement {}", kLevel1MinLogDecrement);
     limit.style = "dotted";

@@ -142,6 +142,14 @@ void verdict(Level1Screen& s) {
     if (s.at_qa.log_decrement < kLevel1MinLogDecrement)
         why.push_back(fmt::format("the log decrement at QA, {:.3g}, is below {}", s.at_qa.log_decrement,
                                   kLevel1MinLogDecrement));
+    // A lower forward mode Q does not load keeps its damping at QA (to first order): it
+    // must meet the same floor (unstable or neutral at Q = 0 included).
+    for (const PassedMode& m : s.curve.passed)
+        if (m.lambda.real() >= -m.error_bound || m.log_decrement < kLevel1MinLogDecrement)
+            why.push_back(fmt::format("the forward mode at {:.6g} {}, passed over (Q does not load it), has a log "
+                                      "decrement of {:.3g} at Q = 0 and so at QA, below {}",
+                                      s.unit.factor * m.lambda.imag(), s.unit.name, m.log_decrement,
+                                      kLevel1MinLogDecrement));
     // Without Q0 in the range, a range below 10 QA leaves the ratio possibly below 10.
     const bool below_ten = ratio ? *ratio < kLevel1RegionRatio : s.machine.q_ratio < kLevel1RegionRatio;
     const char* lies = ratio ? "lies" : "may lie";
@@ -171,7 +179,9 @@ void verdict(Level1Screen& s) {
 }
 
 // The curve on one bearing set's system and its verdict; `s` holds what the sets share.
-void screen(const GyroscopicSystem& sys, const Level1Request& r, const SolverOptions& solver, Level1Screen& s) {
+// The screen's own notes go to `own` (and to s.diagnostics after the shared ones).
+void screen(const GyroscopicSystem& sys, const Level1Request& r, const SolverOptions& solver, Level1Screen& s,
+            Diagnostics& own) {
     Level1Options o;
     o.stations = s.stations;
     o.speed = *s.machine.mcs;
@@ -186,8 +196,10 @@ void screen(const GyroscopicSystem& sys, const Level1Request& r, const SolverOpt
                                  [&](const Level1Point& p) { return p.q == s.qa; });
     if (at == s.curve.points.end()) throw Error("level1: QA is not on the curve");   // marks are kept exactly
     s.at_qa = *at;
-    add_notes(s.diagnostics, Diagnostic::Topic::Verdict, s.curve.passed);
-    add_notes(s.diagnostics, Diagnostic::Topic::Ambiguity, s.curve.notes);
+    for (const PassedMode& m : s.curve.passed)
+        own.push_back({Diagnostic::Level::Note, Diagnostic::Topic::Verdict, passed_text(m, s.unit)});
+    add_notes(own, Diagnostic::Topic::Ambiguity, s.curve.notes);
+    s.diagnostics.insert(s.diagnostics.end(), own.begin(), own.end());
     verdict(s);
 }
 
@@ -213,22 +225,19 @@ Level1Study level1_study(const Scene& sc, const Level1Request& r) {
     Level1Study study;
     study.diagnostics = base.diagnostics;
     const std::vector<BearingSet> sets = bearing_extremes(*sc.rotor_model());
-    if (sets.empty()) {
-        study.screens.push_back(base);
-        screen(sc.system, r, sc.solver, study.screens.back());
-    }
-    for (const BearingSet& set : sets) {
+    const auto run = [&](const GyroscopicSystem& sys, const std::string& name) {
         Level1Screen s = base;
-        s.bearing_set = set.name;
-        screen(build(set.model).system, r, sc.solver, s);   // the same mesh: the stations' nodes hold
-        study.screens.push_back(std::move(s));
-    }
-    for (const Level1Screen& s : study.screens)
-        for (std::size_t i = base.diagnostics.size(); i < s.diagnostics.size(); ++i) {
-            Diagnostic d = s.diagnostics[i];
-            if (!s.bearing_set.empty()) d.text = s.bearing_set + ": " + d.text;
+        s.bearing_set = name;
+        Diagnostics own;
+        screen(sys, r, sc.solver, s, own);
+        for (Diagnostic& d : own) {
+            if (!name.empty()) d.text = name + ": " + d.text;
             study.diagnostics.push_back(d);
         }
+        study.screens.push_back(std::move(s));
+    };
+    if (sets.empty()) run(sc.system, "");
+    for (const BearingSet& set : sets) run(build(set.model).system, set.name);   // the same mesh: the nodes hold
     study.governing = governing_screen(study.screens);
     return study;
 }
