@@ -15,6 +15,9 @@ $sudo apt-get install -y -qq --no-install-recommends \
     clang libclang-rt-14-dev \
     procps util-linux \
     > /dev/null
+# The report's browser check (tests/report_browser.py, its own stage of .ci/run):
+# Debian's chromium, headless, and PIL to read its screenshot.
+$sudo apt-get install -y -qq --no-install-recommends chromium python3-pil > /dev/null
 # BLIS (serial build) as the libblas.so.3 alternative: vectorized kernels for the
 # matrix-vector products of ARPACK's Arnoldi iteration, and safe to call from
 # several threads at once (gyrokit solves speeds in parallel). Reference LAPACK

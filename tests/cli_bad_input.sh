@@ -197,6 +197,10 @@ expect "--q-ratio 1: allowed: [2, 1000]" level1 "$three_disk" --mcs 10000 --qa 1
 expect "Level I needs an FE rotor" level1 "$data/centrifuge.toml" --mcs 10 --qa 1
 expect "--station = 0 m: its node 0 does not move laterally" level1 "$dir/pinned.toml" --mcs 100 --qa 1e5 --station 0
 expect "--station = 7 m: " level1 "$three_disk" --qa 1e5 --station 7
+# The report: its file required, never over the scene, a count out of range.
+expect "--out is required" report "$three_disk"
+expect "--out $three_disk: that file is an input of this run" report "$three_disk" --out "$three_disk"
+expect "--mode-shapes: Value 21 not in range 0 to 20" report "$three_disk" --out "$dir/r.html" --mode-shapes 21
 # A film's tolerance band out of order, or half of it.
 sed 's/^clearance_min = 50e-6.*/clearance_min = 70e-6/' "$data/three_disk_rotor_journal.toml" > "$dir/band_order.toml"
 expect "clearance_min = 7e-05, clearance = 6e-05, clearance_max = 7.5e-05 (m); allowed: 0 < clearance_min <= clearance <= clearance_max" level1 "$dir/band_order.toml"

@@ -36,6 +36,7 @@ declare -A recipe=(
     [balancer]="$w/balancer_bild7.toml --simulate --duration 0.05"
     [sommerfeld]="$w/sommerfeld_rotor.toml"
     [screen]="$w/screen_centrifuge.toml --limit 2"
+    [report]="$w/centrifuge.toml --mode-shapes 1"
 )
 
 # refused NEEDLE INPUT ARGS...: exit 2, the needle on stderr, INPUT byte-identical.

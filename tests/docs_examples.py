@@ -74,6 +74,7 @@ MIN_IMAGE_BYTES = 2000
 # diagrams), NAME -> the reason; they are exempt from "written by an example". None today:
 # every picture of the docs is a gyrokit figure.
 NOT_FROM_GYROKIT = {
+    "report.png": "a browser's screenshot of the HTML report (tests/report_browser.py --screenshot)",
 }
 
 

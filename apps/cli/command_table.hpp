@@ -15,6 +15,7 @@
     X(level1)         /* FE rotors: level1 (API 617 Level I stability) */                 \
     X(api_unbalance)  /* FE rotors: api-unbalance (API 617 unbalance cases) */            \
     X(mesh)           /* FE rotors: mesh (mesh convergence) */                            \
+    X(report)         /* the HTML report of a scene: report */                            \
     X(balancer)       /* the auto-balancer: balancer (states, --simulate) */              \
     X(fluid)          /* the liquid-filled rotor: fluid */                                \
     X(screen)         /* design studies: screen */                                        \

@@ -97,7 +97,7 @@ std::string flag_words(const std::string& field) {
         {"max_speed", "--max-speed"}, {"mcs", "--mcs"}, {"operating_speed", "--operating-speed"}, {"qa", "--qa"},
         {"station", "--station"}, {"gas_density", "--gas-density"}, {"machine", "--machine"},
         {"q_ratio", "--q-ratio"}, {"intervals", "--intervals"}, {"min_speed", "--min-speed"},
-        {"trip_speed", "--trip-speed"}, {"levels", "--levels"}};
+        {"trip_speed", "--trip-speed"}, {"levels", "--levels"}, {"mode_shapes", "--mode-shapes"}};
     for (const auto& [name, flag] : flags)
         if (field == name) return flag;
     return "";

@@ -12,6 +12,7 @@
     X(level1)         /* API 617 Level I stability */                            \
     X(api_unbalance)  /* API 617 unbalance cases */                             \
     X(mesh)           /* mesh convergence */                                    \
+    X(report)         /* the HTML report */                                     \
     X(frf)            /* frequency response functions */                         \
     X(reports)        /* tables and figures of the CLI */                        \
     X(transient)      /* time integration */                                     \

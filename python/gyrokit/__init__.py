@@ -37,7 +37,7 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap", "frf",
            "FrequencyResponse", "Table", "load_tables", "draw", "summary", "ModelSummary", "transient",
            "TransientResponse", "defaults", "fluid", "FluidResult", "GyrostatParameters", "FluidRotorParameters",
-           "level1", "Level1", "api_unbalance", "ApiUnbalance", "mesh_convergence",
+           "level1", "Level1", "api_unbalance", "ApiUnbalance", "mesh_convergence", "report", "Report",
            "MeshConvergence"]
 
 
@@ -695,6 +695,43 @@ def mesh_convergence(model, *, unit=None, tolerance=_D.MESH_TOLERANCE, levels=_D
     if not isinstance(model, Scene):
         raise InputError(f"mesh_convergence: expected a gyrokit.Scene of an FE rotor, got {type(model).__name__}")
     return MeshConvergence(_core.mesh_convergence(model, unit, float(tolerance), int(levels)))
+
+
+class Report:
+    """The HTML report of a scene (docs/report.md): `html` (the page), `title`, `unit`, `version`,
+    `generated`, `sections` (one dict each: key, title, failed ("" where it ran), tables (their keys),
+    figures (how many)), `failed` (the sections not computed, "title: reason"), `inputs` ((path,
+    fingerprint) pairs); write(path) saves the page, never over one of the scene's files."""
+
+    def __init__(self, d, inputs):
+        for k in ("html", "title", "unit", "version", "generated"):
+            setattr(self, k, d[k])
+        self.sections = [dict(s) for s in d["sections"]]
+        self.inputs = [tuple(i) for i in d["inputs"]]
+        self.failed = [f"{s['title']}: {s['failed']}" for s in self.sections if s["failed"]]
+        self._scene_inputs = list(inputs)
+
+    def write(self, path):
+        _core.write_report(self.html, str(path), self._scene_inputs)
+
+    def _repr_html_(self):
+        return self.html
+
+    def __repr__(self):
+        return (f"<gyrokit.Report {self.title!r}: {len(self.sections)} sections"
+                f"{', ' + str(len(self.failed)) + ' not computed' if self.failed else ''}>")
+
+
+def report(model, path=None, *, unit=None, mode_shapes=_D.MODE_SHAPES) -> Report:
+    """The analyses a scene supports as one self-contained HTML page (the CLI's `gyrokit report`): the model,
+    the undamped critical speed map, the Campbell diagram and critical speeds, the mode shapes at the critical
+    speeds, stability, the API 617 unbalance cases and Level I (with [api] data). `path`: also written there."""
+    if not isinstance(model, Scene):
+        raise InputError(f"report: expected a gyrokit.Scene, got {type(model).__name__}")
+    r = Report(_core.report(model, unit, int(mode_shapes)), model.inputs)
+    if path is not None:
+        r.write(path)
+    return r
 
 
 def static(model, *, gravity=_D.GRAVITY, loads=None) -> StaticDeflection:

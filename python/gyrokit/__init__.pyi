@@ -333,6 +333,9 @@ class Level1(_Result):
     log_decrement_bound: npt.NDArray[np.float64]
     frequency: npt.NDArray[np.float64]
     whirl: list[str]
+    bearing_set: str
+    bearing_sets: list[dict[str, Any]]
+    passed: list[dict[str, Any]]
     qa: float
     stage_qa: list[float]
     q0: Optional[float]
@@ -401,6 +404,20 @@ class MeshConvergence(_Result):
 
 def mesh_convergence(model: Scene, *, unit: Optional[str] = ..., tolerance: float = ...,
                      levels: int = ...) -> MeshConvergence: ...
+
+class Report:
+    html: str
+    title: str
+    unit: str
+    version: str
+    generated: str
+    sections: list[dict[str, Any]]
+    inputs: list[tuple[str, str]]
+    failed: list[str]
+    def __init__(self, d: dict[str, Any], inputs: Any) -> None: ...
+    def write(self, path: Any) -> None: ...
+
+def report(model: Scene, path: Any = ..., *, unit: Optional[str] = ..., mode_shapes: int = ...) -> Report: ...
 
 class ModelSummary(_Result): ...
 

@@ -15,5 +15,6 @@ LEVEL1_INTERVALS = int(_VALUE["intervals"])
 API_SPEEDS = int(_VALUE["api speeds"])
 MESH_TOLERANCE = float(_VALUE["mesh tolerance"])
 MESH_LEVELS = int(_VALUE["mesh levels"])
+MODE_SHAPES = int(_VALUE["mode shapes"])
 MAX_STEPS = int(_VALUE["max steps"])
 START = _VALUE["start"]

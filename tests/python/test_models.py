@@ -450,3 +450,21 @@ def test_model_parameters_from_keywords_are_checked_as_the_scene_reader_checks_t
         gk.FluidRotorParameters(modes=2**32)
     f = gk.fluid_rotor(**fkeys, modes=np.int64(5))
     assert f.fluid_rotor.modes == 5 and f.fluid_rotor.nu == 0.0
+
+
+def test_report_holds_every_section_and_is_never_written_over_its_scene(tmp_path):
+    scene = gk.load_scene(os.path.join(DATA, "three_disk_rotor.toml"))
+    r = gk.report(scene, tmp_path / "r.html", mode_shapes=2)
+    assert [s["key"] for s in r.sections] == ["model", "map", "campbell", "modes", "stability", "api_unbalance",
+                                              "level1"]
+    assert r.failed == [] and r.unit == "rpm"
+    page = (tmp_path / "r.html").read_text()
+    assert page == r.html and "<script" not in page and page.count("<svg ") == sum(s["figures"] for s in r.sections)
+    for s in r.sections:
+        for key in s["tables"]:
+            assert f'id="{key}"' in page
+    assert r._repr_html_() == page
+    with pytest.raises(gk.InputError, match="input of this run"):
+        r.write(os.path.join(DATA, "three_disk_rotor.toml"))
+    with pytest.raises(gk.InputError, match="expected a gyrokit.Scene"):
+        gk.report(os.path.join(DATA, "three_disk_rotor.toml"))

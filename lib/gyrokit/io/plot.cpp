@@ -183,6 +183,17 @@ std::string last_error_line(const fs::path& file) {
 
 }  // namespace
 
+void check_figure(const Figure& fig, const std::string& name) {
+    if (fig.panels.empty()) throw InputError(fmt::format("figure '{}' has no panels", name));
+    if (fig.width <= 0 || fig.height_per_panel <= 0)
+        throw InputError(fmt::format("figure '{}': width {} and height_per_panel {} must be positive", name,
+                                     fig.width, fig.height_per_panel));
+    for (std::size_t k = 0; k < fig.panels.size(); ++k) {
+        check_panel(fig.panels[k], k);
+        for (const Series& s : fig.panels[k].series) with_clause(s);   // an unknown style throws
+    }
+}
+
 void render_figure(const Figure& fig, const std::string& path, const std::string& option) {
     std::string ext = fs::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -190,10 +201,7 @@ void render_figure(const Figure& fig, const std::string& path, const std::string
     if (terminal.empty())
         throw InputError(fmt::format("cannot write figure '{}': unsupported extension '{}'; allowed: .svg .png",
                                      path, ext));
-    if (fig.panels.empty()) throw InputError(fmt::format("figure '{}' has no panels", path));
-    if (fig.width <= 0 || fig.height_per_panel <= 0)
-        throw InputError(fmt::format("figure '{}': width {} and height_per_panel {} must be positive", path,
-                                     fig.width, fig.height_per_panel));
+    check_figure(fig, path);
 
     TempDir dir;
     const fs::path script = dir.path / "plot.gp", image = dir.path / ("figure" + ext),

@@ -42,4 +42,9 @@ struct Figure {
 // writes no file.
 void render_figure(const Figure& fig, const std::string& path, const std::string& option = "path");
 
+// The checks every drawing of a figure makes first (render_figure, svg_figure):
+// InputError naming `name` for no panels, a bad size, bad axis limits, x and y of
+// different lengths or an unknown style.
+void check_figure(const Figure& fig, const std::string& name);
+
 }  // namespace gyrokit

@@ -165,6 +165,8 @@ void Table::add_row(std::vector<Cell> row) {
 
 void set_field_spelling(FieldSpelling spell) { field_spelling() = std::move(spell); }
 
+std::string spelled_text(const std::string& marked) { return spelled(marked); }
+
 void write_table(std::ostream& os, const Table& t, TableFormat f) { put(os, render(t, f)); }
 
 void write_tables(std::ostream& os, const std::vector<Table>& ts, TableFormat f) {

@@ -45,6 +45,9 @@ private:
 // (option_field marks, e.g. "modes" -> "--modes" in the CLI, "modes =" in Python):
 // set once at startup, before any table is written. Unset: "modes =".
 void set_field_spelling(FieldSpelling spell);
+// A text with option_field marks (a title, a cell, a note, an error) in that spelling:
+// what write_table does to its strings, for writers of other formats (the HTML report).
+std::string spelled_text(const std::string& marked);
 
 // Writes the table.
 //  Text: optional title line, header, rule, aligned rows (all padded to one

@@ -14,6 +14,7 @@
 #include <gyrokit/models/machine_stages.hpp>
 #include <gyrokit/solve/solver_choice.hpp>
 #include <gyrokit/study/mesh_convergence_study.hpp>
+#include <gyrokit/study/report_study.hpp>
 #include <gyrokit/analysis/transient.hpp>
 #include <gyrokit/analysis/static_deflection.hpp>
 
@@ -57,6 +58,8 @@ inline constexpr double api_trip_ratio = kApiTripRatio;
 // Mesh convergence: the change allowed on doubling, and the meshes at most.
 inline constexpr double mesh_tolerance = kMeshTolerance;
 inline constexpr int mesh_levels = kMeshLevels;
+// The report: the critical speeds whose mode shapes it draws.
+inline constexpr int report_mode_shapes = kReportModeShapes;
 // Static deflection: gravity along -y, m/s^2.
 inline constexpr double gravity = kStandardGravity;
 // Transient response: the largest number of time steps a run may take.

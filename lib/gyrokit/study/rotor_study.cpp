@@ -152,8 +152,12 @@ CriticalSpeedStudy critical_speed_study(const GyroscopicSystem& sys, const Study
 }
 
 StabilityStudy stability_study(const GyroscopicSystem& sys, const StudyOptions& opt) {
+    return stability_of(sys, campbell_study(sys, opt), opt);
+}
+
+StabilityStudy stability_of(const GyroscopicSystem& sys, const CampbellStudy& tracked, const StudyOptions& opt) {
     StabilityStudy s;
-    s.tracked = campbell_study(sys, opt);
+    s.tracked = tracked;
     s.changes = stability_changes(s.tracked.solver, s.tracked.diagram, opt.workers);
     Diagnostics& d = s.tracked.diagnostics;
     d.erase(std::remove_if(d.begin(), d.end(),

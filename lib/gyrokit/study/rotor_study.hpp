@@ -108,6 +108,8 @@ struct StabilityStudy {
     std::vector<StabilityChange> changes;
 };
 StabilityStudy stability_study(const GyroscopicSystem& sys, const StudyOptions& opt);
+// The same on a diagram already tracked with `opt` (the report's Campbell diagram).
+StabilityStudy stability_of(const GyroscopicSystem& sys, const CampbellStudy& tracked, const StudyOptions& opt);
 
 // The steady unbalance response is no state the rotor reaches where a mode is
 // unstable: the modes are tracked over the range (at most 21 speeds of it, a
