@@ -16,7 +16,7 @@ namespace {
 struct Options {
     Common common;
     std::string speed = "0", input, dofs, frequencies, probes;
-    bool polar = false;
+    bool polar = false, log_amplitude = false;
 };
 
 }  // namespace
@@ -36,6 +36,7 @@ std::vector<Command> add_frf_commands(CLI::App& app) {
                                                      "scene's [speeds] range");
     add_output_option(cmd, "--plot", o->common.plot, "Bode plot (amplitude and phase) into FILE.svg|.png");
     cmd->add_flag("--polar", o->polar, "with --plot: a polar plot (Im H against Re H)");
+    cmd->add_flag("--log-amplitude", o->log_amplitude, "with --plot: the amplitude on a log axis (default linear)");
     return {{cmd, [o](std::ostream& out) {
                  if (o->polar && o->common.plot.empty()) throw InputError("--polar: only together with --plot FILE");
                  const Context c = open_scene(o->common, false);
@@ -52,7 +53,7 @@ std::vector<Command> add_frf_commands(CLI::App& app) {
                  const ProbeOutputs& named = st.named;
                  write_table(out, frf_table(named.names, named.units, r, c.unit), c.format);
                  if (!o->common.plot.empty())
-                     plot_if(o->common.plot, frf_figure(named.names, named.units, r, c.unit, o->polar));
+                     plot_if(o->common.plot, frf_figure(named.names, named.units, r, c.unit, o->polar, o->log_amplitude));
              }}};
 }
 

@@ -19,7 +19,7 @@ struct Options {
     Common common;
     std::string dofs, nodes, at, probes;
     int modes = kNotGiven;
-    bool extrema = false, rows = false, polar = false, no_stability_check = false;
+    bool extrema = false, rows = false, polar = false, no_stability_check = false, log_amplitude = false;
 };
 
 // The items of a comma-separated list.
@@ -94,6 +94,7 @@ std::vector<Command> add_response_commands(CLI::App& app) {
     add_cut_option(resp, o->common);
     add_output_option(resp, "--plot", o->common.plot, "draw amplitude (one panel per unit) and phase into FILE.svg or FILE.png");
     resp->add_flag("--polar", o->polar, "with --plot: a polar plot (Im Z against Re Z) instead of amplitude and phase");
+    resp->add_flag("--log-amplitude", o->log_amplitude, "with --plot: the amplitude on a log axis (default linear)");
     resp->add_option("--dofs", o->dofs, "DOFs reported, by name, e.g. x3,y3 (default: all)");
     resp->add_option("--nodes", o->nodes, "DOFs reported: the lateral translations x, y of these nodes, e.g. 12,20");
     resp->add_option("--at", o->at, "DOFs reported: the lateral translations x, y of the nodes nearest these axial positions (in the scene's length_unit: m or mm)");
@@ -135,7 +136,8 @@ std::vector<Command> add_response_commands(CLI::App& app) {
             write_table(out, response_table(st.names, st.units, st.curve, c.unit), c.format);
         if (o->common.plot.empty()) return;
         plot_if(o->common.plot, o->polar ? response_polar_figure(st.names, st.units, st.curve, c.unit, sc.title, st.plotted)
-                                         : response_figure(st.names, st.units, st.curve, c.unit, sc.title, st.plotted));
+                                         : response_figure(st.names, st.units, st.curve, c.unit, sc.title, st.plotted,
+                                                           "speed", o->log_amplitude));
     }});
 
     return cmds;

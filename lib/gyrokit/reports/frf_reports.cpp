@@ -39,12 +39,12 @@ Table frf_table(const std::vector<std::string>& names, const std::vector<std::st
 }
 
 Figure frf_figure(const std::vector<std::string>& names, const std::vector<std::string>& units,
-                  const FrequencyResponse& r, const SpeedUnit& u, bool polar) {
+                  const FrequencyResponse& r, const SpeedUnit& u, bool polar, bool log_amplitude) {
     const std::vector<std::string> per = frf_units(units, r.input);
     const std::string title = fmt::format("FRF, force at {}, spin {:.6g} {}", names.at(static_cast<std::size_t>(r.input)),
                                           u.factor * r.spin, u.name);
     return polar ? response_polar_figure(names, per, frf_curve(r), u, title, {}, "frequency")
-                 : response_figure(names, per, frf_curve(r), u, title, {}, "frequency");
+                 : response_figure(names, per, frf_curve(r), u, title, {}, "frequency", log_amplitude);
 }
 
 }  // namespace gyrokit

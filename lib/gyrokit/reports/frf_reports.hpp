@@ -21,9 +21,9 @@ ResponseCurve frf_curve(const FrequencyResponse& r);
 // Key "frf": one row per frequency and output DOF: re, im, amplitude, phase (deg).
 Table frf_table(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
                 const FrequencyResponse& r, const SpeedUnit& u);
-// Bode (amplitude per unit, phase) or, with `polar`, Im H against Re H; titled with the
-// input DOF and the spin speed.
+// Bode (amplitude per unit, linear unless `log_amplitude`, phase) or, with `polar`, Im H
+// against Re H; titled with the input DOF and the spin speed.
 Figure frf_figure(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
-                  const FrequencyResponse& r, const SpeedUnit& u, bool polar);
+                  const FrequencyResponse& r, const SpeedUnit& u, bool polar, bool log_amplitude = false);
 
 }  // namespace gyrokit

@@ -144,7 +144,7 @@ double engineering_scale(const Panel& p) {
 
 Figure response_figure(const std::vector<std::string>& names, const std::vector<std::string>& units,
                        const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
-                       const std::vector<int>& shown, const std::string& axis) {
+                       const std::vector<int>& shown, const std::string& axis, bool log_amplitude) {
     Figure f;
     f.title = title.empty() ? "Unbalance response" : title;
     const std::vector<size_t> cols = columns_shown(c, shown);
@@ -153,7 +153,8 @@ Figure response_figure(const std::vector<std::string>& names, const std::vector<
     const std::string xlabel = axis + " [" + u.name + "]";
     Panel ph{xlabel, "phase [deg]", "", false, {}, -180.0, 180.0, {}, {}};
     for (const std::string& unit : units_in(units, dofs)) {
-        Panel amp{xlabel, amplitude_label(unit, "amplitude |" + symbol_of(axis) + "|"), "", true, {}, {}, {}, {}, {}};
+        Panel amp{xlabel, amplitude_label(unit, "amplitude |" + symbol_of(axis) + "|"), "", log_amplitude, {}, {}, {},
+                  {}, {}};
         for (const size_t k : cols) {
             if (unit_of(units, c.dofs[k]) != unit) continue;
             Series a, p;

@@ -35,12 +35,14 @@ Table extrema_table(const std::vector<std::string>& dof_names, const std::vector
                     const std::vector<ResponseExtremum>& e,
                     const SpeedUnit& u);
 
-// Bode plot of the DOFs `shown` (empty: every DOF of the curve): amplitude (log)
-// against speed, one panel per physical unit, then the phase in degrees.
+// Bode plot of the DOFs `shown` (empty: every DOF of the curve): amplitude against
+// speed, one panel per physical unit, then the phase in degrees. The amplitude axis is
+// linear (the half-power band of a peak reads off it) unless `log_amplitude`.
 // `axis` names the curve's abscissa ("speed"; a frequency response: "frequency").
 Figure response_figure(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
                        const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
-                       const std::vector<int>& shown = {}, const std::string& axis = "speed");
+                       const std::vector<int>& shown = {}, const std::string& axis = "speed",
+                       bool log_amplitude = false);
 // Polar plot: Im Z against Re Z over the speed range, one panel per unit, true to shape.
 Figure response_polar_figure(const std::vector<std::string>& dof_names, const std::vector<std::string>& dof_units,
                              const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
