@@ -5,8 +5,11 @@ beyond the standard library and python3-pil). For the report of a scene it check
 
   - the page loads without a console error, an uncaught exception or a failed request;
   - every table of the report is in the DOM under its key, every section under its id;
+  - no section says it was not computed;
+  - nothing is fetched but the page itself;
   - a screenshot of the whole page shows each figure drawn: inside each figure's box
-    at least 2 % of the pixels are not background (a blank or unrendered SVG fails);
+    at least 0.3 % of the pixels are coloured (curves: grid, frame and text are grey or
+    black, so an empty or unrendered figure fails);
   - the page prints (Page.printToPDF gives a PDF of more than one page).
 
 --screenshot PATH keeps the screenshot's top (docs/report.md shows it as
@@ -21,9 +24,12 @@ import fcntl
 import io
 import json
 import os
+import select
 import shutil
+import signal
 import subprocess
 import sys
+import tempfile
 import time
 
 CHROMIUM = ("chromium", "chromium-browser")
@@ -33,7 +39,7 @@ WIDTH = 1100
 class Browser:
     """chromium with its DevTools protocol on fds 3 (commands) and 4 (replies), NUL-separated JSON."""
 
-    def __init__(self, exe):
+    def __init__(self, exe, profile):
         to_chrome_r, self._to_chrome = os.pipe()
         self._from_chrome, from_chrome_w = os.pipe()
 
@@ -46,8 +52,9 @@ class Browser:
         # pass_fds keeps 3 and 4 open: the other descriptors are closed after fds() runs.
         self.proc = subprocess.Popen(
             [exe, "--headless", "--no-sandbox", "--disable-gpu", "--remote-debugging-pipe", "--no-first-run",
-             "--hide-scrollbars", "--disable-extensions", "about:blank"],
-            pass_fds=(3, 4), preexec_fn=fds, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+             "--hide-scrollbars", "--disable-extensions", f"--user-data-dir={profile}", "about:blank"],
+            pass_fds=(3, 4), preexec_fn=fds, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+            start_new_session=True)   # its own process group: closed with every renderer
         os.close(to_chrome_r)
         os.close(from_chrome_w)
         self._buffer = b""
@@ -56,7 +63,8 @@ class Browser:
 
     def _read_message(self, deadline):
         while b"\0" not in self._buffer:
-            if time.time() > deadline:
+            left = deadline - time.time()
+            if left <= 0 or not select.select([self._from_chrome], [], [], left)[0]:
                 raise TimeoutError("chromium did not answer in time")
             chunk = os.read(self._from_chrome, 1 << 20)
             if not chunk:
@@ -99,28 +107,35 @@ class Browser:
         try:
             self.proc.wait(timeout=10)
         except subprocess.TimeoutExpired:
-            self.proc.kill()
+            pass
+        try:
+            os.killpg(self.proc.pid, signal.SIGKILL)   # renderers left behind
+        except ProcessLookupError:
+            pass
+        self.proc.wait()
 
 
 PAGE_FACTS = """JSON.stringify({
   height: Math.ceil(document.documentElement.scrollHeight),
   tables: Array.from(document.querySelectorAll('table.data')).map(t => t.id),
-  sections: Array.from(document.querySelectorAll('section')).map(s => s.id),
+  sections: Array.from(document.querySelectorAll('section')).map(s => s.id.replace(/^section-/, '')),
+  failed: Array.from(document.querySelectorAll('.failed')).map(p => p.textContent),
   figures: Array.from(document.querySelectorAll('figure svg')).map(s => {
     const r = s.getBoundingClientRect();
     return {x: r.left + scrollX, y: r.top + scrollY, w: r.width, h: r.height,
-            section: s.closest('section').id};
+            section: s.closest('section').id.replace(/^section-/, '')};
   })
 })"""
 
 
 def drawn_fraction(image, box):
-    """The fraction of pixels in `box` (x, y, w, h) that are not the white background."""
+    """The fraction of pixels in `box` (x, y, w, h) that are coloured: max - min of R, G, B above 60
+    (the curves; the background, grid, frame and text are white, grey or black)."""
     x, y, w, h = (int(round(v)) for v in box)
-    crop = image.crop((x, y, x + w, y + h)).convert("L")
-    hist = crop.histogram()
-    total = sum(hist)
-    return (total - sum(hist[245:])) / total if total else 0.0
+    crop = image.crop((x, y, x + w, y + h)).convert("RGB")
+    pixels = list(crop.getdata())
+    coloured = sum(1 for r, g, b in pixels if max(r, g, b) - min(r, g, b) > 60)
+    return coloured / len(pixels) if pixels else 0.0
 
 
 def check(args):
@@ -133,9 +148,10 @@ def check(args):
     os.makedirs(args.out, exist_ok=True)
     page = os.path.abspath(os.path.join(args.out, "report.html"))
     scene = os.path.join(args.data, args.scene)
-    subprocess.run([args.gyrokit, "report", scene, "--out", page], check=True)
+    subprocess.run([args.gyrokit, "report", scene, "--out", page], check=True, timeout=600)
     failures = []
-    b = Browser(exe)
+    profile = tempfile.mkdtemp(prefix="gyrokit-chromium-")
+    b = Browser(exe, profile)
     try:
         target = b.call("Target.createTarget", {"url": "about:blank"})["targetId"]
         session = b.call("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
@@ -157,10 +173,16 @@ def check(args):
                 failures.append(f"browser log error: {p['entry'].get('text')}")
             elif m == "Network.loadingFailed":
                 failures.append(f"request failed: {p.get('errorText')}")
+            elif m == "Network.requestWillBeSent":
+                url = p.get("request", {}).get("url", "")
+                if url != "file://" + page and not url.startswith("data:"):
+                    failures.append(f"the page fetches {url}: it must hold everything itself")
+        for f in facts["failed"]:
+            failures.append(f"a section was not computed: {f}")
         for key in ("model", "map", "campbell", "modes", "stability", "api_unbalance", "level1", "run"):
             if key not in facts["sections"]:
                 failures.append(f"section '{key}' is not in the DOM")
-        for key in ("model", "critical_map", "summary", "critical_speeds", "stability_changes",
+        for key in ("model", "critical_map", "summary", "critical_speeds",
                     "api_unbalance_summary", "api_unbalance_margins", "level1_summary", "level1_curve", "inputs"):
             if key not in facts["tables"]:
                 failures.append(f"table '{key}' is not in the DOM (tables: {', '.join(facts['tables'])})")
@@ -174,8 +196,8 @@ def check(args):
         for i, f in enumerate(facts["figures"]):
             frac = drawn_fraction(image, (f["x"], f["y"], f["w"], f["h"]))
             print(f"figure {i + 1} ({f['section']}): {f['w']:.0f} x {f['h']:.0f} px at y = {f['y']:.0f}, "
-                  f"{100 * frac:.1f} % drawn")
-            if frac < 0.02:
+                  f"{100 * frac:.2f} % coloured")
+            if frac < 0.003:
                 failures.append(f"figure {i + 1} in section '{f['section']}' is blank ({100 * frac:.2f} % drawn)")
         pdf = base64.b64decode(b.call("Page.printToPDF", {"printBackground": True}, session=session,
                                       timeout=120)["data"])
@@ -188,6 +210,7 @@ def check(args):
             print(f"wrote {args.screenshot}")
     finally:
         b.close()
+        shutil.rmtree(profile, ignore_errors=True)
     print(f"{len(facts['sections'])} sections, {len(facts['tables'])} tables, {len(facts['figures'])} figures")
     for f in failures:
         print("FAIL " + f)

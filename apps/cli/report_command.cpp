@@ -1,6 +1,8 @@
 // report: the analyses a scene supports as one self-contained HTML page.
 #include "cli/common.hpp"
+#include <gyrokit/core/error.hpp>
 #include <gyrokit/io/output_file.hpp>
+#include <gyrokit/io/table.hpp>
 #include <gyrokit/reports/html_report.hpp>
 #include <gyrokit/study/defaults.hpp>
 #include <gyrokit/study/report_study.hpp>
@@ -41,11 +43,18 @@ std::vector<Command> add_report_commands(CLI::App& app) {
                  const Scene sc = load_scene(o->common.scene);
                  const Report rep = report_study(sc, r);
                  replace_file(o->out, html_report(rep), "report", "--out");
-                 std::size_t tables = 0, figures = 0;
+                 // The run's section and its table of inputs counted too: what the page holds.
+                 std::size_t tables = 1, figures = 0;
                  for (const ReportSection& s : rep.sections) tables += s.tables.size(), figures += s.figures.size();
-                 for (const std::string& f : failed_sections(rep)) std::cerr << "warning: not computed: " << f << "\n";
-                 out << fmt::format("wrote {} ({} sections, {} tables, {} figures)\n", o->out, rep.sections.size() + 1,
+                 // On stderr where the page itself goes to stdout (--out -).
+                 std::ostream& say = o->out == "-" || o->out == "/dev/stdout" ? std::cerr : out;
+                 say << fmt::format("wrote {} ({} sections, {} tables, {} figures)\n", o->out, rep.sections.size() + 1,
                                     tables, figures);
+                 const std::vector<std::string> failed = failed_sections(rep);
+                 for (const std::string& f : failed) std::cerr << "warning: not computed: " << spelled_text(f) << "\n";
+                 if (!failed.empty())
+                     throw Error(fmt::format("{} of the report's {} analyses not computed (the page says why)",
+                                             failed.size(), rep.sections.size()));
              }}};
 }
 

@@ -715,7 +715,10 @@ class Report:
         _core.write_report(self.html, str(path), self._scene_inputs)
 
     def _repr_html_(self):
-        return self.html
+        # In a frame of its own: the page's styles and ids stay out of the notebook's.
+        import html as _html
+        return (f'<iframe srcdoc="{_html.escape(self.html, quote=True)}" '
+                'style="width:100%;height:640px;border:1px solid #ccc"></iframe>')
 
     def __repr__(self):
         return (f"<gyrokit.Report {self.title!r}: {len(self.sections)} sections"

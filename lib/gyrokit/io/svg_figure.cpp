@@ -45,7 +45,8 @@ Range axis_range(std::optional<double> lo, std::optional<double> hi, double dlo,
     if (!(dlo <= dhi)) dlo = log ? 1 : 0, dhi = log ? 10 : 1;   // no data
     double a = lo.value_or(dlo), b = hi.value_or(dhi);
     if (a > b) std::swap(a, b);
-    if (a == b) {
+    if (!std::isfinite(b - a) || !std::isfinite(a) || !std::isfinite(b)) a = log ? 1 : -1, b = log ? 10 : 1;
+    if (b - a <= 1e-12 * std::max(std::fabs(a), std::fabs(b))) {   // one value, up to rounding
         a = log ? a / 10 : a - std::max(1.0, std::fabs(a) * 0.1);
         b = log ? b * 10 : b + std::max(1.0, std::fabs(b) * 0.1);
     }
@@ -68,12 +69,14 @@ struct Frame {
     double px(double v) const {
         const double f = logx ? (std::log10(v) - std::log10(x.lo)) / (std::log10(x.hi) - std::log10(x.lo))
                               : (v - x.lo) / (x.hi - x.lo);
-        return left + f * width;
+        return clamp(left + f * width);
     }
+    // Far outside the frame (the clip path hides it) but finite: no inf in the page.
+    static double clamp(double v) { return std::min(1e6, std::max(-1e6, v)); }
     double py(double v) const {
         const double f = logy ? (std::log10(v) - std::log10(y.lo)) / (std::log10(y.hi) - std::log10(y.lo))
                               : (v - y.lo) / (y.hi - y.lo);
-        return top + height - f * height;
+        return clamp(top + height - f * height);
     }
 };
 
@@ -140,7 +143,10 @@ void draw_axes(std::string& out, const Panel& p, const Frame& f) {
 // One series: its line (broken where points are dropped), its points, and a hover title
 // on at most kSvgTitledPoints of them.
 void draw_series(std::string& out, const Panel& p, const Frame& f, const Series& s, const std::string& color) {
-    const bool line = s.style != "points", dots = s.style == "points" || s.style == "linespoints";
+    bool line = s.style != "points", dots = s.style == "points" || s.style == "linespoints";
+    std::size_t drawn = 0;
+    for (std::size_t i = 0; i < s.x.size(); ++i) drawn += drawable(s.x[i], s.y[i], p) ? 1 : 0;
+    if (drawn == 1) dots = true;   // a lone point draws no line: a marker shows it
     std::vector<std::size_t> kept;
     std::string run;
     const auto flush = [&] {
@@ -190,7 +196,8 @@ void draw_panel(std::string& out, const Panel& p, double top, double width, doub
     int rows = 0;
     const std::vector<std::pair<double, int>> legend = legend_layout(p, width - kLeft - kRight, rows);
     const double head = (p.title.empty() ? 8.0 : kTitle + 4) + rows * kLegendRow;
-    Frame f{kLeft, top + head, width - kLeft - kRight, height - head - kBottom, {}, {}, p.logx, p.logy};
+    Frame f{kLeft, top + head, width - kLeft - kRight, std::max(40.0, height - head - kBottom), {}, {}, p.logx,
+            p.logy};
     double xlo, xhi, ylo, yhi;
     extent(p, xlo, xhi, ylo, yhi);
     f.x = axis_range(p.xmin, p.xmax, xlo, xhi, p.logx);
@@ -239,15 +246,21 @@ std::vector<double> axis_ticks(double lo, double hi, bool log, int target) {
     const double mag = std::pow(10.0, e);
     double m = 10.0;
     for (const double c : {1.0, 2.0, 5.0})
-        if (c * mag >= raw) {
+        if (c * mag >= raw * (1 - 1e-9)) {   // a span of 1.2000000000000002 keeps the step of 1.2
             m = c;
             break;
         }
     const double step = m * mag;
     // k m 10^e as the nearest double to the decimal: (k m) / 10^-e, both exact integers.
     const double inv = e < 0 ? std::pow(10.0, -e) : 0.0;
-    for (double k = std::ceil(lo / step - 1e-9); k * step <= hi + 1e-9 * step; k += 1)
+    // At most a few dozen: a span that rounding alone makes (below 1e-12 of the values)
+    // has no ticks of its own (axis_range widens it first).
+    const double k0 = std::ceil(lo / step - 1e-9);
+    for (int i = 0; i <= 4 * target; ++i) {
+        const double k = k0 + i;
+        if (k * step > hi + 1e-9 * step) break;
         t.push_back(k == 0 ? 0.0 : e < 0 ? (k * m) / inv : k * m * mag);
+    }
     return t;
 }
 

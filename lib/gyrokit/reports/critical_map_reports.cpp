@@ -3,6 +3,8 @@
 #include <gyrokit/reports/detail/cells.hpp>
 
 #include <fmt/format.h>
+#include <cmath>
+#include <limits>
 #include <map>
 
 namespace gyrokit {
@@ -55,10 +57,16 @@ Figure critical_map_figure(const CriticalSpeedMap& map, const SpeedUnit& u, cons
         if (q.whirl == "forward")
             p.series.push_back({{k0, k1}, {u.factor * q.speed, u.factor * q.speed},
                                 q.number == 1 ? "rigid supports (forward)" : "", "dotted", "#7f7f7f"});
+    // The log speed axis has no 0: a constant bearing's line (from speed 0) starts a
+    // decade below the lowest critical speed of the map.
+    double low = std::numeric_limits<double>::infinity();
+    for (const MapPoint& q : map.points)
+        if (q.speed > 0) low = std::min(low, u.factor * q.speed);
+    const double floor = std::isfinite(low) ? low / 10 : 1.0;
     for (const BearingCurve& c : map.bearings) {
         // kxx solid, kyy dashed: the two directions of one bearing apart.
         Series s{c.stiffness, {}, c.name, c.name.rfind("kyy", 0) == 0 ? "dashed" : "lines", "#000000"};
-        for (const double w : c.speed) s.y.push_back(u.factor * w);
+        for (const double w : c.speed) s.y.push_back(w > 0 ? u.factor * w : floor);
         p.series.push_back(std::move(s));
     }
     p.xmin = k0;

@@ -35,7 +35,7 @@ figure{margin:1em 0}figure svg{max-width:100%;height:auto}
 .failed{color:#a00;font-weight:bold}.notes{font-size:12px;color:#444}
 .warning{color:#a60}
 div.long{max-height:32em;overflow:auto;display:inline-block;border:1px solid #ddd}
-@media print{nav{display:none}div.long{max-height:none;overflow:visible;border:none}section{page-break-before:always}figure,table{page-break-inside:avoid}
+@media print{nav{display:none}section:first-of-type{page-break-before:auto}div.long{max-height:none;overflow:visible;border:none}section{page-break-before:always}figure,table{page-break-inside:avoid}
 body{margin:0;max-width:none}})";
 
 std::string cell(const Cell& c) {
@@ -46,12 +46,13 @@ std::string cell(const Cell& c) {
 }
 
 // A long table scrolls in a box of its own on screen (printed whole).
-constexpr std::size_t kFoldedRows = 30;
+constexpr std::size_t kFoldedRows = 60;
 
+// Ids: a table's key ("table-" and its section where it has none); sections are "section-" and their key.
 std::string table(const Table& t, const std::string& section_key) {
     const bool fold = t.rows() > kFoldedRows;
     std::string out = fold ? "<div class=\"long\">\n" : "";
-    out += fmt::format("<table class=\"data\" id=\"{}\">", html(t.key.empty() ? section_key : t.key));
+    out += fmt::format("<table class=\"data\" id=\"{}\">", html(t.key.empty() ? "table-" + section_key : t.key));
     if (!t.title.empty()) out += "<caption>" + html(t.title) + "</caption>";
     out += "<thead><tr>";
     for (const std::string& c : t.columns()) out += "<th>" + html(c) + "</th>";
@@ -74,7 +75,8 @@ std::string notes(const Diagnostics& d) {
 }
 
 std::string section(const ReportSection& s, std::size_t number) {
-    std::string out = fmt::format("<section id=\"{}\">\n<h2>{}. {}</h2>\n", html(s.key), number, html(s.title));
+    std::string out =
+        fmt::format("<section id=\"section-{}\">\n<h2>{}. {}</h2>\n", html(s.key), number, html(s.title));
     if (!s.failed.empty()) out += "<p class=\"failed\">Not computed: " + html(s.failed) + "</p>\n";
     for (const std::string& p : s.text) out += "<p>" + html(p) + "</p>\n";
     out += notes(s.diagnostics);
@@ -85,9 +87,9 @@ std::string section(const ReportSection& s, std::size_t number) {
 }
 
 std::string run_section(const Report& r, std::size_t number) {
-    std::string out = fmt::format("<section id=\"run\">\n<h2>{}. The run</h2>\n", number);
-    out += fmt::format("<p>gyrokit {}; speeds in {}; generated {}.</p>\n", html(r.version), html(r.unit),
-                       html(r.generated));
+    std::string out = fmt::format("<section id=\"section-run\">\n<h2>{}. The run</h2>\n", number);
+    out += fmt::format("<p>gyrokit {} ({}); generated {}.</p>\n<p>Speeds in {}: {}.</p>\n", html(r.version),
+                       html(r.build), html(r.generated), html(r.unit), html(r.settings));
     Table inputs({"input", "fingerprint_fnv1a64"});
     inputs.key = "inputs";
     inputs.title = "Inputs (FNV-1a fingerprints of the bytes read)";
@@ -105,9 +107,9 @@ std::string html_report(const Report& r) {
     out += fmt::format("<p>Rotordynamic analysis by gyrokit {}. Speeds in {}.</p>\n", html(r.version), html(r.unit));
     out += "<nav><ol>\n";
     for (const ReportSection& s : r.sections)
-        out += fmt::format("<li><a href=\"#{}\">{}</a>{}</li>\n", html(s.key), html(s.title),
+        out += fmt::format("<li><a href=\"#section-{}\">{}</a>{}</li>\n", html(s.key), html(s.title),
                            s.failed.empty() ? "" : " (not computed)");
-    out += "<li><a href=\"#run\">The run</a></li>\n</ol></nav>\n</header>\n";
+    out += "<li><a href=\"#section-run\">The run</a></li>\n</ol></nav>\n</header>\n";
     for (std::size_t i = 0; i < r.sections.size(); ++i) out += section(r.sections[i], i + 1);
     out += run_section(r, r.sections.size() + 1);
     return out + "</body>\n</html>\n";

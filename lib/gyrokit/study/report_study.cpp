@@ -3,6 +3,7 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/core/run_files.hpp>
 #include <gyrokit/core/input_file.hpp>
+#include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/reports/api_unbalance_reports.hpp>
 #include <gyrokit/reports/campbell_reports.hpp>
 #include <gyrokit/reports/critical_map_reports.hpp>
@@ -17,7 +18,9 @@
 #include <gyrokit/study/rotor_study.hpp>
 
 #include <fmt/format.h>
+#include <Eigen/Core>
 #include <ctime>
+#include <new>
 #include <functional>
 
 #ifndef GYROKIT_VERSION
@@ -34,12 +37,19 @@ ReportSection section(const std::string& key, const std::string& title,
     ReportSection s;
     s.key = key;
     s.title = title;
-    try {
-        run(s);
-    } catch (const Error& e) {
+    const auto fail = [&](const std::string& why) {
         s.tables.clear();
         s.figures.clear();
-        s.failed = e.what();
+        s.failed = why;
+    };
+    try {
+        run(s);
+    } catch (const Interrupted&) {
+        throw;   // Ctrl-C stops the whole report
+    } catch (const Error& e) {
+        fail(e.marked_text());   // its option fields spelled by the front end that prints it
+    } catch (const std::bad_alloc&) {
+        fail("out of memory (the model is too large for this analysis)");
     }
     return s;
 }
@@ -63,7 +73,7 @@ void rotor_sections(const Scene& sc, const StudyOptions& opt, int shapes, std::v
     CriticalSpeedStudy cs;
     out.push_back(section("campbell", "Campbell diagram and critical speeds", [&](ReportSection& s) {
         cs = critical_speed_study(sc.system, opt);
-        s.tables.push_back(campbell_summary(cs.tracked.diagram, cs.critical, opt.unit, "", false));
+        s.tables.push_back(campbell_summary(cs.tracked.diagram, cs.critical, opt.unit, "the figure below", false));
         for (const Table& t : critical_tables(cs.critical, opt.unit)) s.tables.push_back(t);
         s.figures.push_back(campbell_figure(cs.tracked.diagram, cs.critical, opt.harmonics, opt.unit, sc.title));
         s.diagnostics = cs.tracked.diagnostics;
@@ -71,23 +81,31 @@ void rotor_sections(const Scene& sc, const StudyOptions& opt, int shapes, std::v
     const bool tracked = out.back().failed.empty();
     out.push_back(section("modes", "Mode shapes at the critical speeds", [&](ReportSection& s) {
         if (!tracked) throw Error("no Campbell diagram (see its section)");
-        int drawn = 0;
+        // The API 684 critical speeds of the 1x line (AF >= 2.5), lowest first; the mode
+        // numbered as the critical speed table numbers it (its Campbell branch).
+        int drawn = 0, critical = 0;
         for (const CriticalSpeed& c : cs.critical) {
-            if (drawn >= shapes || c.harmonic != 1 || !(c.speed > 0)) continue;
-            const std::vector<ModeShape> one{mode_shape(c.mode, sc.system)};
-            s.figures.push_back(mode_shape_figure(
-                one, c.speed, opt.unit,
-                fmt::format("critical speed {:.6g} {} ({} whirl)", opt.unit.factor * c.speed, opt.unit.name,
-                            to_string(c.mode.whirl)),
-                sc.length_unit(), axis_marks(sc)));
+            if (c.harmonic != 1 || !(c.speed > 0) || !c.api684_critical()) continue;
+            ++critical;
+            if (drawn >= shapes) continue;
+            std::vector<ModeShape> one{mode_shape(c.mode, sc.system)};
+            one[0].number = c.branch;
+            s.figures.push_back(mode_shape_figure(one, c.speed, opt.unit,
+                                                  fmt::format("{} whirl, critical speed", to_string(c.mode.whirl)),
+                                                  sc.length_unit(), axis_marks(sc)));
             ++drawn;
         }
-        if (drawn == 0) s.text.push_back("No 1x critical speed lies in the speed range: no mode shape to draw.");
+        if (critical == 0)
+            s.text.push_back("No 1x critical speed (API 684: amplification factor 2.5 or more) lies in the speed "
+                             "range: no mode shape to draw.");
+        else if (drawn < critical)
+            s.text.push_back(fmt::format("The lowest {} of the {} critical speeds of the 1x line ({} for more).",
+                                         drawn, critical, option_field("mode_shapes")));
     }));
     out.push_back(section("stability", "Stability", [&](ReportSection& s) {
         if (!tracked) throw Error("no Campbell diagram (see its section)");
         const StabilityStudy st = stability_of(sc.system, cs.tracked, opt);
-        s.tables.push_back(stability_table(st.changes, opt.unit));
+        if (!st.changes.empty()) s.tables.push_back(stability_table(st.changes, opt.unit));
         s.diagnostics = st.tracked.diagnostics;
     }));
 }
@@ -145,6 +163,20 @@ Report report_study(const Scene& sc, const ReportRequest& r) {
                              "range and the stages; docs/scene_format.md).");
         }));
     rep.inputs = fingerprints(sc);
+    rep.settings = fmt::format("{} speeds from {:.6g} to {:.6g} {}; excitation lines {}; modes: {}; f_cut {}",
+                               opt.speeds.size(), opt.unit.factor * opt.speeds.front(),
+                               opt.unit.factor * opt.speeds.back(), opt.unit.name, [&] {
+                                   std::string h;
+                                   for (const int k : opt.harmonics) h += (h.empty() ? "" : ", ") + std::to_string(k) + "x";
+                                   return h;
+                               }(),
+                               opt.solver.modes == kModesInRange ? std::string("those in range")
+                               : opt.solver.modes == 0           ? std::string("every mode")
+                                                                 : std::to_string(opt.solver.modes) + " lowest",
+                               opt.f_cut ? fmt::format("{:.6g} {}", opt.unit.factor * *opt.f_cut, opt.unit.name)
+                                         : std::string("1.5 x the highest excitation frequency"));
+    rep.build = fmt::format("Eigen {}.{}.{}; compiled by {}", EIGEN_WORLD_VERSION, EIGEN_MAJOR_VERSION,
+                            EIGEN_MINOR_VERSION, __VERSION__);
     const std::time_t now = std::time(nullptr);
     std::tm utc{};
     gmtime_r(&now, &utc);

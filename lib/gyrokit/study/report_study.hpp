@@ -42,6 +42,8 @@ struct Report {
     std::string version;               // gyrokit's
     std::string unit;                  // of every speed the report prints
     std::string generated;             // when: UTC, ISO 8601
+    std::string settings;              // the sweep the analyses share: speeds, lines, modes, f_cut
+    std::string build;                 // the libraries and compiler gyrokit was built with
 };
 
 // The critical speeds (lowest first) whose mode shapes a report draws unless asked.
