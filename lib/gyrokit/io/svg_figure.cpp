@@ -17,7 +17,11 @@ const char* const kPalette[] = {"#9400d3", "#009e73", "#56b4e9", "#e69f00", "#f0
 
 constexpr double kLeft = 78, kRight = 24, kBottom = 48, kTitle = 22, kLegendRow = 16, kFigureTitle = 26;
 
-std::string xml(const std::string& text) {
+std::string xml(const std::string& text) { return markup_escape(text); }
+
+}  // namespace
+
+std::string markup_escape(const std::string& text) {
     std::string out;
     for (const char c : text) {
         switch (c) {
@@ -31,6 +35,8 @@ std::string xml(const std::string& text) {
     }
     return out;
 }
+
+namespace {
 
 bool drawable(double x, double y, const Panel& p) {
     return std::isfinite(x) && std::isfinite(y) && !(p.logx && x <= 0) && !(p.logy && y <= 0);

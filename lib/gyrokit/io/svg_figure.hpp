@@ -27,4 +27,7 @@ std::string svg_figure(const Figure& figure, const std::string& id = "figure");
 
 constexpr int kSvgTitledPoints = 400;
 
+// Text as XML/HTML character data or an attribute value: & < > " escaped, a line break a space.
+std::string markup_escape(const std::string& text);
+
 }  // namespace gyrokit

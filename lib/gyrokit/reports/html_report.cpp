@@ -10,20 +10,7 @@ namespace gyrokit {
 namespace {
 
 // Escaped HTML text, option fields in the front end's words (io/table.hpp).
-std::string html(const std::string& marked) {
-    const std::string text = spelled_text(marked);
-    std::string out;
-    for (const char c : text) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
+std::string html(const std::string& marked) { return markup_escape(spelled_text(marked)); }
 
 const char* const kStyle = R"(body{font-family:sans-serif;font-size:14px;margin:2em auto;max-width:1000px;color:#111}
 h1{font-size:24px}h2{font-size:19px;border-bottom:1px solid #999;margin-top:2em}
