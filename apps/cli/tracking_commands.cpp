@@ -53,9 +53,7 @@ Command campbell_command(CLI::App& app, const std::shared_ptr<Options>& o) {
         std::vector<CriticalSpeed> cs;
         if (summary || !o->common.plot.empty()) cs = critical_speeds_of(c.scene.system, st, so);
         if (summary) {
-            // A sparse window's verdict covers its modes only (a dense diagram keeps every mode).
-            const bool window = st.plan.kind == SolverKind::Sparse;
-            write_table(out, campbell_summary(cd, cs, c.unit, o->common.plot, window), c.format);
+            write_table(out, campbell_summary(st, cs, c.unit, o->common.plot), c.format);
             out << "\n";
             write_tables(out, critical_tables(cs, c.unit), c.format);
         } else {

@@ -232,7 +232,7 @@ py::dict py_campbell(const py::object& model, const py::dict& request) {
     py::dict d = campbell_dict(st.diagram);
     d["unit"] = u.name;
     put_diagnostics(d, st.diagnostics);
-    std::vector<Table> tables{campbell_summary(st.diagram, cs, u, "", st.plan.kind == SolverKind::Sparse),
+    std::vector<Table> tables{campbell_summary(st, cs, u, ""),
                               campbell_table(st.diagram, u)};
     for (Table& t : critical_tables(cs, u)) tables.push_back(std::move(t));
     put_reports(d, tables, campbell_figure(st.diagram, cs, harmonics, u, m.scene().title));

@@ -233,10 +233,49 @@ std::vector<UnstableRange> unstable_ranges(const CampbellDiagram& cd, bool every
                 out.back().max_real = std::max(out.back().max_real, m.lambda.real());
                 continue;
             }
-            out.push_back({b.id, b.points[i].speed, b.points[i].speed, m.lambda.real(), i});
+            UnstableRange r;
+            r.branch = b.id;
+            r.from = r.to = b.points[i].speed;
+            r.max_real = m.lambda.real();
+            r.first_index = r.last_index = i;
+            out.push_back(r);
         }
+        for (UnstableRange& r : out)
+            if (r.branch == b.id) r.to_last = r.last_index + 1 == b.points.size();
     }
     return out;
+}
+
+std::vector<UnstableRange> refine_edges(std::vector<UnstableRange> ranges, const CampbellDiagram& cd,
+                                        const std::vector<StabilityChange>& changes) {
+    const auto points_of = [&](int id) -> const std::vector<BranchPoint>* {
+        for (const auto* list : {&cd.branches, &cd.untracked})
+            for (const Branch& b : *list)
+                if (b.id == id) return &b.points;
+        return nullptr;
+    };
+    for (UnstableRange& r : ranges) {
+        const std::vector<BranchPoint>* p = points_of(r.branch);
+        if (!p || r.last_index >= p->size()) continue;
+        for (const StabilityChange& c : changes) {
+            if (c.branch != r.branch) continue;
+            // The onset lies in the step before the first unstable point, the end in the
+            // step after the last one.
+            if (c.becomes_unstable && r.first_index > 0 && c.speed >= (*p)[r.first_index - 1].speed &&
+                c.speed <= (*p)[r.first_index].speed) {
+                r.from = c.speed;
+                r.from_bound = c.bound;
+                r.from_refined = true;
+            }
+            if (!c.becomes_unstable && r.last_index + 1 < p->size() && c.speed >= (*p)[r.last_index].speed &&
+                c.speed <= (*p)[r.last_index + 1].speed) {
+                r.to = c.speed;
+                r.to_bound = c.bound;
+                r.to_refined = true;
+            }
+        }
+    }
+    return ranges;
 }
 
 std::vector<CriticalSpeed> critical_speeds_direct(const GyroscopicSystem& sys, int harmonic, double from,

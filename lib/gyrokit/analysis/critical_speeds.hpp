@@ -98,11 +98,22 @@ std::vector<StabilityChange> stability_changes(const SolverFactory& solver, cons
 // response warn about.
 struct UnstableRange {
     int branch = 0;
-    double from = 0, to = 0;   // first and last unstable grid speed
-    double max_real = 0;       // largest Re lambda there
-    size_t last_index = 0;
+    double from = 0, to = 0;   // first and last unstable grid speed (refined: the edges)
+    double max_real = 0;       // largest Re lambda at the grid speeds
+    size_t first_index = 0, last_index = 0;
+    bool to_last = false;      // the range runs to the branch's last speed
+    // Refined edges (refine_edges): the stability change inside the grid step before
+    // (after) the range, with its bound; a range that starts at the first speed or ends
+    // at the last has that speed as its edge, and one whose change was not refined (a
+    // real eigenvalue's end) keeps its grid speed.
+    bool from_refined = false, to_refined = false;
+    double from_bound = 0, to_bound = 0;
 };
 // Of the reported branches, and with `every_mode` of the untracked ones too.
 std::vector<UnstableRange> unstable_ranges(const CampbellDiagram& cd, bool every_mode = false);
+// The ranges with their edges moved to the refined stability changes of their branch
+// (stability_changes of the same diagram): one onset wherever an instability is named.
+std::vector<UnstableRange> refine_edges(std::vector<UnstableRange> ranges, const CampbellDiagram& cd,
+                                        const std::vector<StabilityChange>& changes);
 
 }  // namespace gyrokit

@@ -1,5 +1,6 @@
 #include <gyrokit/reports/campbell_reports.hpp>
 
+#include <gyrokit/reports/critical_reports.hpp>
 #include <gyrokit/reports/detail/cells.hpp>
 
 #include <fmt/format.h>
@@ -15,14 +16,21 @@ using detail::ll;
 using detail::mode_cells;
 using detail::speed_label;
 
-std::vector<std::string> instability_warnings(const CampbellDiagram& cd, const SpeedUnit& u) {
+std::string unstable_span(const UnstableRange& r, const SpeedUnit& u) {
+    const auto edge = [&](double w, bool refined, double bound, bool at_end) {
+        // A refined edge to its bound's digits; the first or last speed is the range's own edge.
+        if (refined) return fmt::format("{:.6g}", round_to_bound(u.factor * w, u.factor * bound));
+        return fmt::format("{:.6g}{}", u.factor * w, at_end ? "" : " (a grid speed)");
+    };
+    return fmt::format("from {} to {} {}", edge(r.from, r.from_refined, r.from_bound, r.first_index == 0),
+                       edge(r.to, r.to_refined, r.to_bound, r.to_last), u.name);
+}
+
+std::vector<std::string> instability_warnings(const std::vector<UnstableRange>& unstable, const SpeedUnit& u) {
     std::vector<std::string> out;
-    for (const UnstableRange& r : unstable_ranges(cd, true)) {
-        char line[256];
-        std::snprintf(line, sizeof line, "mode %d is unstable from %.6g to %.6g %s (Re lambda up to %.4g 1/s)",
-                      r.branch, u.factor * r.from, u.factor * r.to, u.name.c_str(), r.max_real);
-        out.emplace_back(line);
-    }
+    for (const UnstableRange& r : unstable)
+        out.push_back(fmt::format("mode {} is unstable {} (Re lambda up to {:.4g} 1/s)", r.branch,
+                                  unstable_span(r, u), r.max_real));
     return out;
 }
 
@@ -66,7 +74,8 @@ Table campbell_table(const CampbellDiagram& cd, const SpeedUnit& u) {
     return t;
 }
 
-Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& critical, const SpeedUnit& u,
+Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpeed>& critical,
+                       const std::vector<UnstableRange>& unstable, const SpeedUnit& u,
                        const std::string& plot_file, bool window) {
     Table t({"quantity", "value"});
     t.key = "summary";
@@ -97,7 +106,6 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
                                speed(least->point.speed), speed(least->point.mode.frequency()))});
     // The verdict covers every mode: a dense diagram keeps the untracked ones by eigenvalue;
     // a sparse window covers its tracked modes only, and says so.
-    const auto unstable = unstable_ranges(cd, true);
     window = window || (cd.partial && !std::isfinite(cd.band));   // the K lowest of a continuation
     if (cd.window_holds_band) window = false;   // a window widened to hold the band judges it whole
     const std::string more =
@@ -113,8 +121,7 @@ Table campbell_summary(const CampbellDiagram& cd, const std::vector<CriticalSpee
                                            : "";
     // Modes are numbered by frequency at the first speed, so the lowest ones are the tracked ones.
     for (const auto& r : unstable)
-        verdict += fmt::format("{}mode {} unstable from {} to {}{}", verdict.empty() ? "" : "; ", r.branch,
-                               speed(r.from), speed(r.to),
+        verdict += fmt::format("{}mode {} unstable {}{}", verdict.empty() ? "" : "; ", r.branch, unstable_span(r, u),
                                r.branch > static_cast<int>(cd.branches.size())
                                    ? fmt::format(" (beyond the {} shown)", cd.branches.size())
                                    : "");

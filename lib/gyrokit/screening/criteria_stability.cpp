@@ -126,23 +126,11 @@ void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& 
     }
     const StabilityStudy st = stability_study(sc.system, so);
     const CampbellDiagram& cd = st.tracked.diagram;
-    const std::vector<StabilityChange>& changes = st.changes;
+    // The earliest onset of any judged mode, as the study refined it.
     double onset = inf;
-    const Branch* which = nullptr;
-    for (const auto* list : {&cd.branches, &cd.untracked})   // the shown modes and the others judged
-        for (const Branch& b : *list) {
-        for (std::size_t k = 0; k < b.points.size(); ++k) {
-            const Mode& m = b.points[k].mode;
-            // The library's rule: Re lambda beyond its error bound (rounding is neutral).
-            if (m.stability() != Stability::Unstable) continue;
-            double w = b.points[k].speed;
-            if (k > 0)
-                for (const auto& ch : changes)
-                    if (ch.branch == b.id && ch.becomes_unstable && ch.speed <= b.points[k].speed) w = ch.speed;
-            if (w < onset) onset = w, which = &b;
-            break;
-        }
-    }
+    const UnstableRange* which = nullptr;
+    for (const UnstableRange& r : st.tracked.unstable)
+        if (r.from < onset) onset = r.from, which = &r;
     const GrowingAbove above = scan_above ? growing_above_band(sc.system, so.solver.eig, so.speeds, band, onset) : GrowingAbove{};
     if (above.speed < onset) {
         row.set(s.unit.column("instability_onset"), above.speed * s.unit.factor);
@@ -155,7 +143,7 @@ void check_stability(const Sweep& s, const Scene& sc, const StabilityCriterion& 
                                           s.unit.name));
     } else if (which) {
         row.set(s.unit.column("instability_onset"), onset * s.unit.factor);
-        row.fail("stability", fmt::format("mode {} is unstable from {:.6g} {} (checked up to {:.6g} {})", which->id,
+        row.fail("stability", fmt::format("mode {} is unstable from {:.6g} {} (checked up to {:.6g} {})", which->branch,
                                           onset * s.unit.factor, s.unit.name, c.up_to * s.unit.factor, s.unit.name));
     }
     if (c.min_log_dec) check_log_dec(s, cd, so, c, which != nullptr || above.speed < inf, row);

@@ -5,6 +5,7 @@
 #include <gyrokit/core/interrupt.hpp>
 #include <gyrokit/models/gravity_loads.hpp>
 #include <gyrokit/numerics/scalar_search.hpp>
+#include <gyrokit/reports/campbell_reports.hpp>
 #include <gyrokit/study/request.hpp>
 #include <gyrokit/study/rotor_study.hpp>
 
@@ -397,11 +398,10 @@ ApiUnbalanceStudy api_unbalance_study(const Scene& sc, const ApiUnbalanceRequest
     for (const Diagnostic& d : cs.tracked.diagnostics) s.diagnostics.push_back(d);
     // An unstable mode below the trip speed: the steady response there is no state the
     // rotor reaches, and no case can pass.
-    for (const UnstableRange& u : unstable_ranges(cs.tracked.diagram))
+    for (const UnstableRange& u : cs.tracked.unstable)
         if (u.from <= s.trip_speed)
-            s.reasons.push_back(fmt::format("mode {} is unstable from {:.6g} {} (a grid speed; gyrokit stability "
-                                            "refines the onset): the unbalance response there is no steady state",
-                                            u.branch, s.unit.factor * u.from, s.unit.name));
+            s.reasons.push_back(fmt::format("mode {} is unstable {}: the unbalance response there is no steady state",
+                                            u.branch, unstable_span(u, s.unit)));
     std::vector<CriticalSpeed> all;
     for (const CriticalSpeed& c : cs.critical)
         if (c.harmonic == 1 && c.speed > 0) all.push_back(c);

@@ -73,7 +73,7 @@ void rotor_sections(const Scene& sc, const StudyOptions& opt, int shapes, std::v
     CriticalSpeedStudy cs;
     out.push_back(section("campbell", "Campbell diagram and critical speeds", [&](ReportSection& s) {
         cs = critical_speed_study(sc.system, opt);
-        s.tables.push_back(campbell_summary(cs.tracked.diagram, cs.critical, opt.unit, "the figure below", false));
+        s.tables.push_back(campbell_summary(cs.tracked, cs.critical, opt.unit, "the figure below"));
         for (const Table& t : critical_tables(cs.critical, opt.unit)) s.tables.push_back(t);
         s.figures.push_back(campbell_figure(cs.tracked.diagram, cs.critical, opt.harmonics, opt.unit, sc.title));
         s.diagnostics = cs.tracked.diagnostics;

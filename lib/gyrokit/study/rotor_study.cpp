@@ -21,7 +21,8 @@ using Level = Diagnostic::Level;
 using Topic = Diagnostic::Topic;
 
 // What the tracked diagram says besides its rows.
-void diagram_diagnostics(const CampbellDiagram& cd, const SpeedUnit& u, Diagnostics& d) {
+void diagram_diagnostics(const CampbellDiagram& cd, const std::vector<UnstableRange>& unstable, const SpeedUnit& u,
+                         Diagnostics& d) {
     add_notes(d, Topic::Solver, cd.notes);
     if (cd.rigid_body > 0)
         d.push_back({Level::Note, Topic::RigidBody,
@@ -32,7 +33,7 @@ void diagram_diagnostics(const CampbellDiagram& cd, const SpeedUnit& u, Diagnost
         d.push_back({Level::Note, Topic::Ambiguity,
                      fmt::format("{} speed steps stayed ambiguous at the refinement limit; use a finer speed grid",
                                  cd.ambiguous_steps)});
-    for (const auto& w : instability_warnings(cd, u)) d.push_back({Level::Warning, Topic::Instability, w});
+    for (const auto& w : instability_warnings(unstable, u)) d.push_back({Level::Warning, Topic::Instability, w});
     if (std::isfinite(cd.band)) d.push_back({Level::Note, Topic::OutOfRange, out_of_range_note(cd, u)});
 }
 
@@ -83,18 +84,27 @@ ModeShapeStudy mode_shape_study(const GyroscopicSystem& sys, double speed, const
     std::vector<std::string> notes;
     s.shapes = mode_shapes(sys, speed, opt, &notes);
     add_notes(s.diagnostics, Topic::Solver, notes);
-    if (select.empty()) return s;
+    if (!select.empty()) s.shapes = select_mode_shapes(s.shapes, select);
+    return s;
+}
+
+std::vector<ModeShape> select_mode_shapes(const std::vector<ModeShape>& shapes, const std::vector<int>& select) {
     std::vector<ModeShape> chosen;
     for (const int k : select) {
-        if (k < 1 || k > static_cast<int>(s.shapes.size()))
-            throw InputError(s.shapes.empty()
-                                 ? fmt::format("{} {}: no mode was computed at this speed", option_field("mode"), k)
-                                 : fmt::format("{} {}: allowed: 1 to {} (the modes computed)", option_field("mode"), k,
-                                               s.shapes.size()));
-        chosen.push_back(s.shapes[static_cast<std::size_t>(k - 1)]);
+        const auto it = std::find_if(shapes.begin(), shapes.end(), [&](const ModeShape& m) { return m.number == k; });
+        if (it == shapes.end()) {
+            if (shapes.empty())
+                throw InputError(fmt::format("{} {}: no mode was computed at this speed", option_field("mode"), k));
+            std::string numbers;
+            for (const ModeShape& m : shapes) numbers += (numbers.empty() ? "" : ", ") + std::to_string(m.number);
+            const bool run = shapes.back().number - shapes.front().number + 1 == static_cast<int>(shapes.size());
+            throw InputError(fmt::format("{} {}: allowed: {} (the modes computed)", option_field("mode"), k,
+                                         run ? fmt::format("{} to {}", shapes.front().number, shapes.back().number)
+                                             : numbers));
+        }
+        chosen.push_back(*it);
     }
-    s.shapes = std::move(chosen);
-    return s;
+    return chosen;
 }
 
 PervasiveStudy pervasive_study(const GyroscopicSystem& sys, const StudyOptions& opt, double tolerance) {
@@ -133,8 +143,18 @@ CampbellStudy campbell_study(const GyroscopicSystem& sys, const StudyOptions& op
     Tracking t = track(s.plan.make, co, opt.speeds);
     s.solver = std::move(t.solver);
     s.diagram = std::move(t.diagram);
-    diagram_diagnostics(s.diagram, opt.unit, s.diagnostics);
+    s.unstable = unstable_ranges(s.diagram, true);
+    if (!s.unstable.empty()) {
+        s.changes = stability_changes(s.solver, s.diagram, opt.workers);
+        s.unstable = refine_edges(std::move(s.unstable), s.diagram, s.changes);
+    }
+    diagram_diagnostics(s.diagram, s.unstable, opt.unit, s.diagnostics);
     return s;
+}
+
+Table campbell_summary(const CampbellStudy& st, const std::vector<CriticalSpeed>& critical, const SpeedUnit& u,
+                       const std::string& plot_file) {
+    return campbell_summary(st.diagram, critical, st.unstable, u, plot_file, st.plan.kind == SolverKind::Sparse);
 }
 
 std::vector<CriticalSpeed> critical_speeds_of(const GyroscopicSystem& sys, const CampbellStudy& tracked,
@@ -158,7 +178,7 @@ StabilityStudy stability_study(const GyroscopicSystem& sys, const StudyOptions& 
 StabilityStudy stability_of(const GyroscopicSystem& sys, const CampbellStudy& tracked, const StudyOptions& opt) {
     StabilityStudy s;
     s.tracked = tracked;
-    s.changes = stability_changes(s.tracked.solver, s.tracked.diagram, opt.workers);
+    s.changes = s.tracked.changes;   // refined where a mode is unstable; none changes otherwise
     Diagnostics& d = s.tracked.diagnostics;
     d.erase(std::remove_if(d.begin(), d.end(),
                            [](const Diagnostic& x) {
@@ -170,7 +190,7 @@ StabilityStudy stability_of(const GyroscopicSystem& sys, const CampbellStudy& tr
         s.tracked.diagnostics.push_back(
             {Level::Note, Topic::Verdict,
              std::string("no mode changes stability in the range; ") +
-                 (unstable_ranges(s.tracked.diagram, true).empty()
+                 (s.tracked.unstable.empty()
                       ? "none is unstable (neutral modes: Re lambda within its error bound)"
                       : "some are unstable throughout")});
     // The modes above the band are not tracked; where the energy bound shows that none

@@ -71,6 +71,9 @@ struct ModeShapeStudy {
 };
 ModeShapeStudy mode_shape_study(const GyroscopicSystem& sys, double speed, const SolverOptions& opt,
                                 const SpeedUnit& unit = {}, const std::vector<int>& select = {});
+// The shapes numbered `select` (ModeShape::number), in that order; InputError naming
+// the mode field and the numbers computed.
+std::vector<ModeShape> select_mode_shapes(const std::vector<ModeShape>& shapes, const std::vector<int>& select);
 
 // The Hautus check of each damping component and of the total damping over the
 // study's speeds, the modes the study names (opt.solver.modes), its workers.
@@ -86,9 +89,17 @@ struct CampbellStudy {
     SolverChoice plan;       // the solver choice (its notes are in diagnostics)
     SolverFactory solver;    // the tracking solver (the continuation where it is used)
     CampbellDiagram diagram;
+    // Where a mode is unstable: its stability changes refined on the tracking solver
+    // and every unstable range (every mode judged) with those edges. Both empty where
+    // every mode is stable, so a stable rotor costs no refinement.
+    std::vector<StabilityChange> changes;
+    std::vector<UnstableRange> unstable;
     Diagnostics diagnostics; // solver, extrapolation, rigid-body, ambiguity, instability, out of range
 };
 CampbellStudy campbell_study(const GyroscopicSystem& sys, const StudyOptions& opt);
+// The Campbell summary of a study: its sparse window judges its own modes only.
+Table campbell_summary(const CampbellStudy& st, const std::vector<CriticalSpeed>& critical, const SpeedUnit& u,
+                       const std::string& plot_file);
 
 // The critical speeds of the tracked modes, with API 684 amplification factors.
 struct CriticalSpeedStudy {
