@@ -141,6 +141,20 @@ py::dict py_eig(const py::object& model, double speed, const py::dict& request) 
     return d;
 }
 
+// The shapes of a gk.modes result, kept for the figure of chosen modes (ModeShapes.plot(mode=...)).
+struct ModeShapeSet {
+    std::vector<ModeShape> shapes;
+    double speed = 0;
+    SpeedUnit unit;
+    std::string title;
+    LengthUnit length;
+    AxisMarks marks;
+    py::dict figure(const std::vector<int>& numbers) const {
+        return figure_dict(mode_shape_figure(numbers.empty() ? shapes : select_mode_shapes(shapes, numbers), speed,
+                                             unit, title, length, marks));
+    }
+};
+
 // gk.mode_shapes: the shapes as columns, and their orbits per whirl pair (the CLI's --per node table).
 py::dict py_mode_shapes(const py::object& model, double speed, const py::dict& request) {
     const ModelArg m(model);
@@ -208,10 +222,12 @@ py::dict py_mode_shapes(const py::object& model, double speed, const py::dict& r
     orbits["phase"] = phase;
     orbits["whirl"] = orbit_whirl;
     d["orbits"] = orbits;
+    const ModeShapeSet set{shapes, speed, u, m.scene().title, length, marks};
     put_reports(d,
                 {mode_list_table(shapes, s.dofs.names, speed, u), mode_orbit_table(shapes, speed, u, length),
                  mode_dof_table(shapes, s.dofs.names, s.dofs.units, speed, u)},
                 mode_shape_figure(shapes, speed, u, m.scene().title, length, marks));
+    d["shape_set"] = set;
     return d;
 }
 
@@ -439,6 +455,9 @@ py::dict py_fluid(const Scene& scene, const py::object& unit, std::optional<std:
 }  // namespace
 
 void bind_analyses(py::module_& m) {
+    py::class_<ModeShapeSet>(m, "_ModeShapeSet")
+        .def("figure", &ModeShapeSet::figure, py::arg("numbers"),
+             "the mode-shape figure of the modes numbered `numbers` (empty: all)");
     m.def("fluid", &py_fluid, py::arg("scene"), py::arg("unit"), py::arg("fill"));
     // The unit of a call's speeds and results: `unit`, else the scene's [speeds] units.
     m.def(

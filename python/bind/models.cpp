@@ -6,6 +6,7 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/scene/scene.hpp>
 #include <gyrokit/scene/scene_writer.hpp>
+#include <gyrokit/models/materials.hpp>
 #include <gyrokit/models/rotor_model.hpp>
 #include <gyrokit/core/constants.hpp>
 
@@ -43,9 +44,31 @@ void require_choice(const char* keyword, const std::string& value, std::initiali
     throw InputError(fmt::format("{} = '{}'; allowed: {}", keyword, value, list));
 }
 
+// A material keyword: a Material, or the name of a standard one (gk.materials()).
+std::optional<Material> material_of(const py::object& material) {
+    if (material.is_none()) return std::nullopt;
+    if (py::isinstance<Material>(material)) return material.cast<Material>();
+    if (!py::isinstance<py::str>(material))
+        throw InputError(fmt::format("material = {}: allowed: a gyrokit.Material or the name of one of "
+                                     "gyrokit.materials()",
+                                     py::repr(material).cast<std::string>()));
+    return find_material(material.cast<std::string>(), {}, "material");
+}
+
+// Python's float repr: the shortest string that reads back to the same double.
+std::string float_repr(double x) { return py::repr(py::float_(x)).cast<std::string>(); }
+
 RotorSection section(double length, double outer_diameter, Opt E, Opt density, int elements, double inner_diameter,
-                     Opt outer_diameter_end, Opt inner_diameter_end, double poisson, double G) {
-    if (!E || !density) throw InputError(std::string(E ? "density" : "E") + " is missing; required: a number > 0");
+                     Opt outer_diameter_end, Opt inner_diameter_end, Opt poisson, double G,
+                     const py::object& material) {
+    // As a scene's section: a value given wins over its material's, poisson 0.3 where neither gives one.
+    const std::optional<Material> mat = material_of(material);
+    if (!E && mat) E = mat->youngs_modulus;
+    if (!density && mat) density = mat->density;
+    if (!poisson) poisson = mat ? mat->poisson_ratio : 0.3;
+    if (!E || !density)
+        throw InputError(std::string(E ? "density" : "E") +
+                         " is missing; required: a number > 0, or material = one of gyrokit.materials()");
     RotorSection s;
     s.shape.length = length;
     s.shape.outer_diameter = outer_diameter;
@@ -54,10 +77,51 @@ RotorSection section(double length, double outer_diameter, Opt E, Opt density, i
     s.shape.inner_diameter_end = inner_diameter_end;
     s.shape.youngs_modulus = *E;
     s.shape.density = *density;
-    s.shape.poisson_ratio = poisson;
+    s.shape.poisson_ratio = *poisson;
     s.shape.shear_modulus = G;
     s.elements = elements;
     return s;
+}
+
+// A section as the call that makes it (round-trip values; keywords left at their defaults omitted).
+std::string section_repr(const RotorSection& s) {
+    const FeShaftElement& e = s.shape;
+    if (const auto& c = e.coupling) {
+        std::string r = "coupling(length=" + float_repr(e.length);
+        const std::pair<const char*, double> fields[] = {
+            {"k_lateral", c->k_lateral}, {"k_bending", c->k_bending}, {"k_axial", c->k_axial},
+            {"k_torsion", c->k_torsion}, {"c_lateral", c->c_lateral}, {"c_bending", c->c_bending},
+            {"c_axial", c->c_axial},     {"c_torsion", c->c_torsion}, {"mass", c->mass},
+            {"Id", c->diametral_inertia}, {"Ip", c->polar_inertia}};
+        for (const auto& [key, value] : fields)
+            if (value != 0.0) r += fmt::format(", {}={}", key, float_repr(value));
+        return r + ")";
+    }
+    std::string r = fmt::format("Section(length={}, outer_diameter={}", float_repr(e.length), float_repr(e.outer_diameter));
+    if (e.inner_diameter != 0.0) r += ", inner_diameter=" + float_repr(e.inner_diameter);
+    if (e.outer_diameter_end) r += ", outer_diameter_end=" + float_repr(*e.outer_diameter_end);
+    if (e.inner_diameter_end) r += ", inner_diameter_end=" + float_repr(*e.inner_diameter_end);
+    if (s.elements != 1) r += fmt::format(", elements={}", s.elements);
+    r += fmt::format(", E={}, density={}, poisson={}", float_repr(e.youngs_modulus), float_repr(e.density),
+                     float_repr(e.poisson_ratio));
+    if (e.shear_modulus != 0.0) r += ", G=" + float_repr(e.shear_modulus);
+    return r + ")";
+}
+
+std::string disk_repr(const RotorDisk& d) {
+    std::string r = "Disk(z=" + float_repr(d.z);
+    if (const auto& g = d.geometry) {
+        r += ", outer_diameter=" + float_repr(g->outer_diameter);
+        if (g->inner_diameter != 0.0) r += ", inner_diameter=" + float_repr(g->inner_diameter);
+        r += fmt::format(", width={}, density={}", float_repr(g->width), float_repr(g->density));
+    } else {
+        r += ", mass=" + float_repr(d.disk.mass);
+        if (d.disk.diametral_inertia != 0.0) r += ", Id=" + float_repr(d.disk.diametral_inertia);
+        if (d.disk.polar_inertia != 0.0) r += ", Ip=" + float_repr(d.disk.polar_inertia);
+    }
+    if (d.disk.unbalance != 0.0) r += ", unbalance=" + float_repr(d.disk.unbalance);
+    if (d.disk.unbalance_phase != 0.0) r += ", phase=" + float_repr(degrees(d.disk.unbalance_phase));
+    return r + ")";
 }
 
 RotorSection coupling(double length, double k_lateral, double k_bending, double k_axial, double k_torsion,
@@ -71,17 +135,24 @@ RotorSection coupling(double length, double k_lateral, double k_bending, double 
 }
 
 RotorDisk disk(double z, Opt mass, double Id, double Ip, Opt outer_diameter, double inner_diameter, Opt width,
-               Opt density, double unbalance, double phase) {
+               Opt density, double unbalance, double phase, const py::object& material) {
     RotorDisk d;
     d.z = z;
+    const std::optional<Material> mat = material_of(material);
     if (outer_diameter) {
         if (mass || Id != 0.0 || Ip != 0.0)
             throw InputError("mass, Id, Ip are given together with outer_diameter; allowed: either mass, Id, Ip or "
-                             "the geometry outer_diameter, inner_diameter, width, density");
+                             "the geometry outer_diameter, inner_diameter, width, density (or material)");
+        if (!density && mat) density = mat->density;
         if (!width || !density)
-            throw InputError(std::string(width ? "density" : "width") + " is missing; required with outer_diameter");
+            throw InputError(std::string(width ? "density" : "width") +
+                             " is missing; required with outer_diameter (density: or material)");
         d.geometry = DiskGeometry{*outer_diameter, inner_diameter, *width, *density};
     } else {
+        if (mat || density)
+            throw InputError(std::string(mat ? "material" : "density") +
+                             " needs outer_diameter; allowed: the geometry outer_diameter, inner_diameter, width (and "
+                             "material or density), or mass, Id, Ip");
         if (!mass) throw InputError("mass is missing; required: mass (kg), or the geometry outer_diameter, width, density");
         d.disk.mass = *mass;
         d.disk.diametral_inertia = Id;
@@ -376,15 +447,42 @@ void bind_parameters(py::module_& m, const char* name, const char* doc, const Pa
 }  // namespace
 
 void bind_models(py::module_& m, py::class_<Scene>& scene) {
+    py::class_<Material>(m, "Material", "A shaft and disk material: E (Pa), poisson, density (kg/m^3)")
+        .def(py::init([](const std::string& name, double E, double density, double poisson) {
+                 if (name.empty()) throw InputError("name is missing; required: the material's name");
+                 if (!(E > 0) || !std::isfinite(E)) throw InputError(fmt::format("E = {}: allowed: a number > 0 (Pa)", E));
+                 if (!(density > 0) || !std::isfinite(density))
+                     throw InputError(fmt::format("density = {}: allowed: a number > 0 (kg/m^3)", density));
+                 if (!(poisson > -1.0 && poisson < 0.5))
+                     throw InputError(fmt::format("poisson = {}: allowed: -1 < poisson < 0.5", poisson));
+                 return Material{name, E, poisson, density, "given"};
+             }),
+             py::kw_only(), py::arg("name"), py::arg("E"), py::arg("density"), py::arg("poisson") = 0.3)
+        .def_readonly("name", &Material::name)
+        .def_readonly("E", &Material::youngs_modulus)
+        .def_readonly("poisson", &Material::poisson_ratio)
+        .def_readonly("density", &Material::density)
+        .def_readonly("source", &Material::source)
+        .def("__repr__", [](const Material& x) {
+            return fmt::format("Material(name='{}', E={}, density={}, poisson={})", x.name, float_repr(x.youngs_modulus),
+                               float_repr(x.density), float_repr(x.poisson_ratio));
+        });
+    m.def("materials", &standard_materials,
+          "The named materials a scene's `material` key and Section/Disk(material=...) know (the scene's values)");
     py::class_<RotorSection>(m, "Section", "A shaft section of equal elements, or a flexible coupling (coupling())")
         .def(py::init(&section), py::kw_only(), py::arg("length"), py::arg("outer_diameter"), py::arg("E") = py::none(),
              py::arg("density") = py::none(), py::arg("elements") = 1, py::arg("inner_diameter") = 0.0,
              py::arg("outer_diameter_end") = py::none(), py::arg("inner_diameter_end") = py::none(),
-             py::arg("poisson") = 0.3, py::arg("G") = 0.0)
+             py::arg("poisson") = py::none(), py::arg("G") = 0.0, py::arg("material") = py::none())
         .def_property_readonly("length", [](const RotorSection& s) { return s.shape.length; })
         .def_property_readonly("elements", [](const RotorSection& s) { return s.elements; })
         .def_property_readonly("outer_diameter", [](const RotorSection& s) { return s.shape.outer_diameter; })
-        .def_property_readonly("is_coupling", [](const RotorSection& s) { return s.shape.coupling.has_value(); });
+        .def_property_readonly("inner_diameter", [](const RotorSection& s) { return s.shape.inner_diameter; })
+        .def_property_readonly("E", [](const RotorSection& s) { return s.shape.youngs_modulus; })
+        .def_property_readonly("density", [](const RotorSection& s) { return s.shape.density; })
+        .def_property_readonly("poisson", [](const RotorSection& s) { return s.shape.poisson_ratio; })
+        .def_property_readonly("is_coupling", [](const RotorSection& s) { return s.shape.coupling.has_value(); })
+        .def("__repr__", &section_repr);
     m.def("coupling", &coupling, "A flexible coupling of `length` in the shaft chain", py::kw_only(), py::arg("length"),
           py::arg("k_lateral") = 0.0, py::arg("k_bending") = 0.0, py::arg("k_axial") = 0.0, py::arg("k_torsion") = 0.0,
           py::arg("c_lateral") = 0.0, py::arg("c_bending") = 0.0, py::arg("c_axial") = 0.0,
@@ -393,7 +491,8 @@ void bind_models(py::module_& m, py::class_<Scene>& scene) {
         .def(py::init(&disk), py::kw_only(), py::arg("z"), py::arg("mass") = py::none(), py::arg("Id") = 0.0,
              py::arg("Ip") = 0.0, py::arg("outer_diameter") = py::none(), py::arg("inner_diameter") = 0.0,
              py::arg("width") = py::none(), py::arg("density") = py::none(), py::arg("unbalance") = 0.0,
-             py::arg("phase") = 0.0)
+             py::arg("phase") = 0.0, py::arg("material") = py::none())
+        .def("__repr__", &disk_repr)
         .def_property_readonly("z", [](const RotorDisk& d) { return d.z; })
         .def_property_readonly("unbalance", [](const RotorDisk& d) { return d.disk.unbalance; })
         .def_property_readonly("phase", [](const RotorDisk& d) { return degrees(d.disk.unbalance_phase); });

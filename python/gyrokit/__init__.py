@@ -17,7 +17,7 @@ import warnings as _warnings
 import numpy as _np
 
 from ._core import Error, InputError, Scene, SolverError, System, __version__
-from ._core import Bearing, Disk, Pedestal, Rotor, Section, Support, coupling
+from ._core import Bearing, Disk, Material, Pedestal, Rotor, Section, Support, coupling, materials
 from ._core import FluidRotorParameters, GyrostatParameters
 from . import _core
 from . import _defaults as _D
@@ -33,7 +33,7 @@ __all__ = ["Error", "InputError", "SolverError", "System", "Scene", "load_scene"
            "critical_speeds", "stability", "screen", "EigResult", "CampbellResult", "CriticalSpeeds",
            "StabilityChanges", "ScreenResult", "pervasive", "response", "PervasiveLosses", "Response", "gyrostat",
            "fe_rotor", "fluid_rotor", "matrices_scene", "balancer", "sommerfeld", "BalancerStates", "BalancerRun", "Sommerfeld", "SommerfeldRunup",
-           "modes", "ModeShapes", "Rotor", "Section", "Disk", "Bearing", "Support", "Pedestal", "coupling",
+           "modes", "ModeShapes", "Rotor", "Section", "Material", "materials", "Disk", "Bearing", "Support", "Pedestal", "coupling",
            "rotor_scene", "static", "StaticDeflection", "critical_speed_map", "CriticalSpeedMap", "frf",
            "FrequencyResponse", "Table", "load_tables", "draw", "summary", "ModelSummary", "transient",
            "TransientResponse", "defaults", "fluid", "FluidResult", "GyrostatParameters", "FluidRotorParameters",
@@ -244,38 +244,57 @@ class ModeShapes(_Result):
                        for k, v in d["orbits"].items()}
         self.notes = list(d["notes"])
         self._take_reports(d)
+        self._shape_set = d["shape_set"]
 
     def to_pandas(self):
         """One row per mode and whirl pair: the orbit table."""
         return self._frame(self.orbits)
 
+    def _numbers(self, mode):
+        chosen = [mode] if _np.ndim(mode) == 0 else list(mode)
+        for k in chosen:
+            if isinstance(k, bool) or not float(k).is_integer() or int(k) not in self.numbers:
+                raise InputError(f"mode = {k!r}; allowed: {', '.join(map(str, self.numbers))} (the modes computed)")
+        return [int(k) for k in chosen]
+
+    def plot(self, path=None, axes=None, mode=None):
+        """The CLI's figure (`gyrokit modes --plot`) of every mode, or of `mode` alone (a number of `numbers`,
+        or a list of them): into `path` (.png or .svg, gnuplot) or with matplotlib (returns its Figure)."""
+        figure = self._figure if mode is None else self._shape_set.figure(self._numbers(mode))
+        return self._draw_figure(figure, path, axes)
+
     def plot_orbits(self, mode=None, ax=None):
         """The orbits of one mode (a number of `numbers`; default the first) in 3D: each whirl pair's ellipse
-        in metres at its axial position z, the shaft's axis drawn through them (matplotlib)."""
+        in metres at its axial position z, the shaft's axis drawn through them (matplotlib). x and y share one
+        scale, so an ellipse is drawn true to shape (a nearly planar mode flat, not round). Returns the Figure."""
         plt = self._pyplot()
-        number = self.numbers[0] if mode is None else mode
-        if number not in self.numbers:
-            raise InputError(f"mode = {number!r}; allowed: {', '.join(map(str, self.numbers))}")
+        number = self.numbers[0] if mode is None else self._numbers(mode)[0]
         o = self.orbits
         rows = [i for i in range(len(o["mode"])) if o["mode"][i] == number and o["unit"][i] == "m"]
         if ax is None:
             ax = plt.figure().add_subplot(projection="3d")
         t = _np.linspace(0.0, 2 * _np.pi, 73)
-        zs = []
+        zs, reach = [], 0.0
         for i in rows:
             a, b, th, ph = o["major"][i], o["minor"][i], o["angle"][i], o["phase"][i]
             u, v = a * _np.cos(t + ph), b * _np.sin(t + ph)
             ax.plot(_np.full_like(t, o["z"][i]), u * _np.cos(th) - v * _np.sin(th), u * _np.sin(th) + v * _np.cos(th),
                     color="C0" if o["whirl"][i] == "forward" else "C3", linewidth=0.8)
             zs.append(o["z"][i])
+            reach = max(reach, abs(a))
         if zs:
             ax.plot([min(zs), max(zs)], [0, 0], [0, 0], "k-.", linewidth=0.6)
+        # One scale for x and y: the same limits and the same box side.
+        reach = 1.05 * reach if reach > 0 else 1.0
+        ax.set_ylim(-reach, reach)
+        ax.set_zlim(-reach, reach)
+        ax.set_box_aspect((2.0, 1.0, 1.0))
         j = self.numbers.index(number)
         ax.set_title(f"mode {number}: {self.frequencies[j]:.6g} {self.unit} ({self.whirl[j]})")
         ax.set_xlabel("z [m]")
         ax.set_ylabel("x")
         ax.set_zlabel("y")
-        return ax
+        return ax.figure
 
 
 def modes(model, speed, *, solver=None, modes=None, target=None, target_order=None, method=_D.METHOD,
@@ -346,7 +365,7 @@ class ScreenResult(_Result):
         return self._frame(columns)
 
     def plot(self, x=None, y=None, ax=None):
-        """The designs over two parameters, coloured by verdict (the safe region)."""
+        """The designs over two parameters, coloured by verdict (the safe region); returns the Figure."""
         plt = self._pyplot()
         names = list(self.parameters)
         x = x or names[0]
@@ -359,7 +378,7 @@ class ScreenResult(_Result):
         ax.set_xlabel(x)
         ax.set_ylabel(y)
         ax.legend(fontsize="small")
-        return ax
+        return ax.figure
 
 
 def _screen_one(sweep, scene, names, values, index, number, attempt=0):

@@ -10,6 +10,7 @@ from ._core import Bearing as Bearing, Disk as Disk, Error as Error, InputError 
 from ._core import Pedestal as Pedestal, Rotor as Rotor, Scene as Scene, Section as Section
 from ._core import SolverError as SolverError, Support as Support, System as System
 from ._core import __version__ as __version__, coupling as coupling
+from ._core import Material as Material, materials as materials
 from ._core import FluidRotorParameters as FluidRotorParameters, GyrostatParameters as GyrostatParameters
 
 Model = Union[System, Scene]
@@ -49,6 +50,7 @@ class ModeShapes(_Result):
     log_decrements: npt.NDArray[np.float64]
     notes: list[str]
     def to_pandas(self) -> Any: ...
+    def plot(self, path: Optional[Path] = ..., axes: Any = ..., mode: Union[int, Sequence[int], None] = ...) -> Any: ...
     def plot_orbits(self, mode: Optional[int] = ..., ax: Any = ...) -> Any: ...
 
 class EigResult(_Result):

@@ -215,6 +215,11 @@ def test_screen_gives_the_verdicts_of_the_cli():
     assert listed.verdict == [row["verdict"] for row in rows[::5]]
     assert calls[-1] == (len(designs), len(designs)) and len(calls) == len(designs)
     np.testing.assert_array_equal(listed.parameters["model.c_G"], [d["model.c_G"] for d in designs])
+    if _has("matplotlib"):   # the safe region: a Figure, as every plot() returns
+        import matplotlib
+        import matplotlib.figure
+        matplotlib.use("Agg")
+        assert isinstance(r.plot(), matplotlib.figure.Figure)
 
 
 def test_screen_varies_elements_by_path_in_the_cli_and_python_alike():

@@ -44,6 +44,45 @@ def test_a_rotor_built_in_python_equals_its_scene_file():
     assert [b.kind for b in built.rotor.bearings] == ["constant", "constant"]
 
 
+def test_named_materials_give_the_scenes_values_and_sections_read_back_from_their_repr():
+    # data/three_disk_rotor.toml names "steel"; the same rotor by material name is the same model bit for bit
+    # (by hand with the default poisson 0.3 it would not be: K differs by about 6e-5).
+    steel = {m.name: m for m in gk.materials()}["steel"]
+    assert (steel.E, steel.density, steel.poisson) == (STEEL["E"], STEEL["density"], STEEL["poisson"])
+    by_name = three_disk_rotor()
+    by_name = gk.Rotor(sections=[gk.Section(length=s.length, elements=s.elements, outer_diameter=s.outer_diameter,
+                                            material="steel") for s in by_name.sections],
+                       disks=[gk.Disk(z=d.z, outer_diameter=g[0], inner_diameter=0.10, width=g[1], material=steel,
+                                      unbalance=d.unbalance)
+                              for d, g in zip(by_name.disks, ((0.32, 0.05), (0.40, 0.07), (0.32, 0.05)))],
+                       bearings=by_name.bearings)
+    assert_same_model(gk.rotor_scene(by_name), gk.load_scene(os.path.join(DATA, "three_disk_rotor.toml")))
+    # A value given wins over its material's, as in a scene.
+    assert gk.Section(length=1.0, outer_diameter=0.05, material="aluminium", density=2800.0).density == 2800.0
+    # Readable reprs that read back to the same object.
+    s = gk.Section(length=0.25, elements=5, outer_diameter=0.09, inner_diameter=0.02, material="titanium")
+    assert repr(s) == ("Section(length=0.25, outer_diameter=0.09, inner_diameter=0.02, elements=5, E=113800000000.0, "
+                       "density=4430.0, poisson=0.342)")
+    back = eval(repr(s), {"Section": gk.Section})
+    assert (back.E, back.density, back.poisson, back.inner_diameter) == (s.E, s.density, s.poisson, s.inner_diameter)
+    assert repr(gk.coupling(length=0.1, k_lateral=1e7, mass=2.0)) == "coupling(length=0.1, k_lateral=10000000.0, mass=2.0)"
+    assert repr(by_name.disks[1]).startswith("Disk(z=0.6, outer_diameter=0.4, inner_diameter=0.1, width=0.07, "
+                                             "density=7810.0, unbalance=0.0002")
+    assert repr(steel) == "Material(name='steel', E=211000000000.0, density=7810.0, poisson=%r)" % STEEL["poisson"]
+    own = gk.Material(name="inconel", E=2.05e11, density=8190.0, poisson=0.284)
+    assert gk.Section(length=1.0, outer_diameter=0.05, material=own).poisson == 0.284
+    with pytest.raises(gk.InputError, match="material = 'iron' is unknown; allowed: steel, stainless, aluminium"):
+        gk.Section(length=1.0, outer_diameter=0.05, material="iron")
+    with pytest.raises(gk.InputError, match="E is missing; required: a number > 0, or material"):
+        gk.Section(length=1.0, outer_diameter=0.05)
+    with pytest.raises(gk.InputError, match="material needs outer_diameter"):
+        gk.Disk(z=0.5, mass=3.0, material="steel")
+    with pytest.raises(gk.InputError, match="poisson = 0.5: allowed: -1 < poisson < 0.5"):
+        gk.Material(name="rubber", E=1e6, density=1100.0, poisson=0.5)
+    with pytest.raises(gk.InputError, match="material = 3: allowed: a gyrokit.Material"):
+        gk.Section(length=1.0, outer_diameter=0.05, material=3)
+
+
 def test_a_scene_round_trips_through_toml_pickle_and_a_file(tmp_path):
     s = gk.load_scene(os.path.join(DATA, "three_disk_rotor_journal.toml"))
     assert_same_model(s, gk._core.parse_scene(s.to_toml(), "written", "."))

@@ -138,6 +138,7 @@ def test_tables_saved_and_loaded_json_exact_csv_to_its_digits(tmp_path, diagram)
 def test_figures_are_the_clis_drawn_by_matplotlib_or_gnuplot(tmp_path, scene, diagram):
     pytest.importorskip("matplotlib")
     import matplotlib
+    import matplotlib.figure
     matplotlib.use("Agg")
     fig = diagram.plot()
     assert len(fig.axes) == 2   # frequencies with the 1x line, damping ratio below
@@ -148,10 +149,29 @@ def test_figures_are_the_clis_drawn_by_matplotlib_or_gnuplot(tmp_path, scene, di
     shapes = gk.modes(scene, 600.0, modes=3)
     labels = [line.get_label() for line in shapes.plot().axes[0].lines]
     assert "disks" in labels and "bearings" in labels   # marked on the axis, as the CLI draws them
-    ax = shapes.plot_orbits(2)
+    # One mode alone, or a chosen few: the CLI's figure of `gyrokit modes --mode 2` (one line per mode per panel).
+    every = shapes.plot()
+    alone = shapes.plot(mode=2)
+    pair = shapes.plot(mode=[1, 3])
+    shape_lines = lambda fig: [l for l in fig.axes[0].lines if l.get_label().startswith("mode")]
+    assert len(shape_lines(every)) == 3 and len(shape_lines(alone)) == 1 and len(shape_lines(pair)) == 2
+    assert shape_lines(alone)[0].get_label().startswith("mode 2")
+    with pytest.raises(gk.InputError, match="mode = 4; allowed: 1, 2, 3"):
+        shapes.plot(mode=4)
+    with pytest.raises(gk.InputError, match="mode = 1.5; allowed"):
+        shapes.plot(mode=1.5)
+    shapes.plot(tmp_path / "mode2.svg", mode=2)   # gnuplot, as --mode 2 --plot
+    assert "<svg" in open(tmp_path / "mode2.svg").read()
+    orbits = shapes.plot_orbits(2)
+    assert isinstance(orbits, matplotlib.figure.Figure)   # a Figure, as every plot() returns
+    ax = orbits.axes[0]
     pairs = sum(1 for k in range(len(shapes.orbits["mode"]))
                 if shapes.orbits["mode"][k] == 2 and shapes.orbits["unit"][k] == "m")
     assert len(ax.lines) == pairs + 1   # an ellipse per node, the axis
+    # x and y on one scale: the same limits and the same box side, so an orbit keeps its shape.
+    assert ax.get_ylim() == ax.get_zlim()
+    aspect = ax.get_box_aspect()
+    assert aspect[1] == pytest.approx(aspect[2], rel=1e-12)
     r = gk.response(scene, np.linspace(0.0, 1500.0, 16), dofs=["x12", "y12"])
     assert r.table("response").columns[:2] == ["speed_rad_s", "dof"]
     r.plot_polar(tmp_path / "polar.svg")
