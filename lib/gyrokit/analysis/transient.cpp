@@ -8,6 +8,7 @@
 
 #include <Eigen/SparseLU>
 #include <cmath>
+#include <optional>
 #include <fmt/format.h>
 
 namespace gyrokit {
@@ -53,6 +54,36 @@ Eigen::VectorXd unbalance_force_at(const Eigen::VectorXcd& u, const SpeedProfile
 double transient_time_step(const SpeedProfile& p) {
     p.validate();
     return 2.0 * kPi / (kStepsPerPeriod * kBandMargin * p.top());
+}
+
+SteadyStep steady_time_step(const GyroscopicSystem& sys, const SpeedProfile& p, const std::vector<int>& outputs,
+                            SolverKind kind) {
+    SteadyStep s;
+    s.dt = transient_time_step(p);
+    if (p.acceleration != 0.0) return s;   // a run-up settles on nothing
+    const double w = p.from, h = 1e-4;
+    // The amplitudes at nu = w (1 -/+ h), the spin held at w: the slope of ln|Z_k| by a
+    // central difference (error h^2 of its second derivative, far below what it steers).
+    const Eigen::VectorXcd f = w * w * sys.unbalance;
+    const Eigen::VectorXcd lo = dynamic_response(sys, w, w * (1.0 - h), f, kind);
+    const Eigen::VectorXcd hi = dynamic_response(sys, w, w * (1.0 + h), f, kind);
+    double largest = 0.0;
+    for (const int k : outputs) largest = std::max(largest, std::abs(lo(k)) + std::abs(hi(k)));
+    for (const int k : outputs) {
+        const double a = std::abs(lo(k)), b = std::abs(hi(k));
+        if (!(a + b >= 1e-3 * largest) || !(a > 0.0 && b > 0.0)) continue;
+        s.sensitivity = std::max(s.sensitivity, std::abs(std::log(b / a)) / (2.0 * h));
+    }
+    const auto deviation = [&](double dt) {
+        const double x = 0.5 * w * dt;
+        return (std::tan(x) / x - 1.0) * s.sensitivity;
+    };
+    const double floor = kSteadyStepFloor * s.dt;
+    // (w_hat / w - 1) grows as dt^2: the step that meets the target, then checked.
+    if (deviation(s.dt) > 0.5 * kSteadyDeviation)
+        s.dt = std::max(floor, s.dt * std::sqrt(0.5 * kSteadyDeviation / deviation(s.dt)) * 0.99);
+    s.deviation = deviation(s.dt);
+    return s;
 }
 
 // ---------------------------------------------------------------------------
@@ -271,10 +302,12 @@ namespace {
 struct Plan {
     double duration = 0.0, dt = 0.0;
     long long steps = 0;
+    std::optional<SteadyStep> steady;   // a constant-speed run's default step
+    bool singular = false;              // no steady response at that speed (an undamped resonance)
 };
 
 // The duration, the time step and the step count, each checked against its range.
-Plan plan_run(const TransientOptions& o) {
+Plan plan_run(const GyroscopicSystem& sys, const TransientOptions& o) {
     const SpeedProfile& p = o.profile;
     p.validate(o.unit);
     if (!(o.max_steps >= 1 && o.max_steps <= kTransientStepLimit))
@@ -287,12 +320,21 @@ Plan plan_run(const TransientOptions& o) {
         throw InputError(fmt::format("{} {} s: allowed: a finite time > 0 (s); none: the ramp (a run-up) or 100 "
                                      "revolutions (constant speed)",
                                      option_field("duration"), o.duration));
-    const double dt = o.dt != 0.0 ? o.dt : policy;
+    double dt = o.dt != 0.0 ? o.dt : policy;
+    if (o.dt == 0.0 && p.acceleration == 0.0) {
+        try {
+            plan.steady = steady_time_step(sys, p, o.outputs.empty() ? transient_outputs(sys) : o.outputs, o.kind);
+            dt = plan.steady->dt;
+        } catch (const SolverError&) {
+            plan.singular = true;   // the run goes on at the band's step; the note says why
+        }
+    }
     if (!(std::isfinite(o.dt) && o.dt >= 0.0 && dt <= coarsest))
         throw InputError(fmt::format("{} {} s: allowed: (0, {:.6g}] s, at least 8 steps per revolution at the top "
-                                     "speed {:.6g} {}; none: {:.6g} s, {} steps per period of the excitation band",
+                                     "speed {:.6g} {}; none: {:.6g} s, {} steps per period of the excitation band{}",
                                      option_field("dt"), o.dt, coarsest, top * o.unit.factor, o.unit.name, policy,
-                                     kStepsPerPeriod));
+                                     kStepsPerPeriod,
+                                     p.acceleration == 0.0 ? ", shorter where the steady response needs it" : ""));
     if (dt > plan.duration)
         throw InputError(fmt::format("{} {} s is longer than the run ({} {} s); allowed: (0, {:.6g}] s",
                                      option_field("dt"), dt, option_field("duration"), plan.duration, plan.duration));
@@ -309,13 +351,31 @@ Plan plan_run(const TransientOptions& o) {
     return plan;
 }
 
+// What a constant-speed run at the default step settles on, against the steady response.
+std::string steady_note(const SpeedProfile& p, const Plan& plan) {
+    if (plan.singular)
+        return "; no steady response at this speed (the dynamic stiffness is singular): the band's step";
+    if (!plan.steady) return "";
+    const double x = 0.5 * p.from * plan.dt;
+    const double deviation = (std::tan(x) / x - 1.0) * plan.steady->sensitivity;
+    std::string note = fmt::format("; the step keeps the amplitude it settles on within {:.2g} % of the steady response "
+                                   "(|d ln|Z| / d ln w| up to {:.3g} at the outputs)",
+                                   100.0 * deviation, plan.steady->sensitivity);
+    if (deviation > kSteadyDeviation)
+        note += fmt::format(", above {:.2g} % at the shortest default step (1/{:.0f} of the band's): the response is "
+                            "that sensitive here; {} sets a shorter one",
+                            100.0 * kSteadyDeviation, 1.0 / kSteadyStepFloor, option_field("dt"));
+    return note;
+}
+
 std::string step_note(const SpeedProfile& p, const Plan& plan, const SpeedUnit& u) {
     const double band = kBandMargin * p.top(), wdt = band * plan.dt;
     return fmt::format("Newmark average acceleration, {} steps of {:.4g} s over {:.6g} s: {:.1f} steps per period at "
                        "the band edge {:.6g} {} ({} x the top speed), {:.1f} per revolution at the top speed; "
                        "period error (w dt)^2/12 there {:.2g} %",
                        plan.steps, plan.dt, plan.duration, 2.0 * kPi / wdt, band * u.factor, u.name, kBandMargin,
-                       2.0 * kPi / (p.top() * plan.dt), 100.0 * wdt * wdt / 12.0);
+                       2.0 * kPi / (p.top() * plan.dt), 100.0 * wdt * wdt / 12.0) +
+           steady_note(p, plan);
 }
 
 // The initial state: at rest, or the steady response to the force at t = 0 held harmonic.
@@ -334,14 +394,14 @@ void initial_state(const GyroscopicSystem& sys, const TransientOptions& o, Eigen
 void check_transient_options(const GyroscopicSystem& sys, const TransientOptions& o) {
     if (sys.unbalance.size() == 0) throw InputError("the model defines no unbalance load; the response is zero");
     check_dof_list(sys, o.outputs.empty() ? transient_outputs(sys) : o.outputs, "transient");
-    plan_run(o);
+    plan_run(sys, o);
 }
 
 TransientResult transient_response(const GyroscopicSystem& sys, const TransientOptions& o) {
     TransientResult r;
     r.dofs = o.outputs.empty() ? transient_outputs(sys) : o.outputs;
     check_transient_options(sys, o);
-    const Plan plan = plan_run(o);
+    const Plan plan = plan_run(sys, o);
     const SpeedProfile& p = o.profile;
     r.profile = p;
     r.dt = plan.dt;

@@ -81,7 +81,8 @@ TransientOptions transient_options(const Scene& scene, const RotorRequest& commo
     o.unit = so.unit;
     o.profile = profile_of(rq, so.unit);
     o.duration = time_of(rq.duration, "duration", "time", "the ramp or 100 revolutions");
-    o.dt = time_of(rq.dt, "dt", "time step", "32 steps per period of the band");
+    o.dt = time_of(rq.dt, "dt", "time step",
+                   "32 steps per period of the band, shorter at a constant speed where the steady response needs it");
     o.outputs = outputs_of(rq, scene.system);
     o.start_steady = start == "steady";
     o.max_steps = rq.max_steps.value_or(defaults::max_steps);
