@@ -3,6 +3,7 @@
 // horizontal point load, reactions and internal forces, and a rotor not held.
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/scene/scene.hpp>
+#include <gyrokit/reports/model_reports.hpp>
 #include <gyrokit/reports/static_reports.hpp>
 #include <gyrokit/study/static_study.hpp>
 #include <fmt/format.h>
@@ -11,6 +12,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
 
 using namespace gyrokit;
 
@@ -153,4 +155,37 @@ TEST_CASE("static: an mm scene prints positions and deflections in mm, the same 
             const double x = std::get<double>(a.row(i)[j]), y = std::get<double>(b.row(i)[j]);
             CHECK(std::abs(y - 1000.0 * x) <= 1e-12 * std::max(1.0, std::abs(y)));
         }
+}
+
+TEST_CASE("static: every bearing is named by its number in the scene, whatever its kind, as in the model summary") {
+    // A fluid film listed first, a constant bearing second, a support last: the reactions read
+    // bearing 1 (the film, held rigid), bearing 2 (the spring), support 1; the model summary's
+    // bearingN_z and the critical map's curves use the same numbers.
+    const std::string text =
+        "[model]\ntype = \"fe_rotor\"\nmaterial = \"steel\"\n"
+        "[[model.shaft]]\nlength = 1.0\nelements = 4\nouter_diameter = 0.05\n"
+        "[[model.bearing]]\ntype = \"fluid_film\"\nz = 0.0\ndiameter = 0.05\nlength = 0.025\nclearance = 5e-5\n"
+        "viscosity = 0.02\nload = \"auto\"\n"
+        "[[model.bearing]]\nz = 0.75\nkxx = 1e8\nkyy = 1e8\n"
+        "[[model.support]]\nz = 1.0\n";
+    const Scene sc = parse_scene(text, "mixed.toml", ".");
+    const StaticResult r = static_study(sc, {});
+    REQUIRE(r.reactions.size() == 3);
+    CHECK(r.reactions[0].what == "bearing 1");
+    CHECK(r.reactions[0].node == 0);
+    CHECK(r.reactions[1].what == "bearing 2");
+    CHECK(r.reactions[1].node == 3);
+    CHECK(r.reactions[2].what == "support 1");
+    // The weight is carried: the vertical reactions add up to it.
+    CHECK(r.reactions[0].fy + r.reactions[1].fy + r.reactions[2].fy == Approx(r.weight).epsilon(1e-9));
+    const Table summary = model_summary(sc);
+    std::map<std::string, double> z;
+    for (std::size_t i = 0; i < summary.rows(); ++i)
+        if (const auto* q = std::get_if<std::string>(&summary.row(i)[0]); q && q->rfind("bearing", 0) == 0 &&
+                                                                            q->find("_z") != std::string::npos)
+            z[*q] = std::get<double>(summary.row(i)[1]);
+    CHECK(z == std::map<std::string, double>{{"bearing1_z", 0.0}, {"bearing2_z", 0.75}});
+    const BearingNumbers numbers = bearing_numbers(*sc.rotor_model());
+    CHECK(numbers.constant == std::vector<int>{2});
+    CHECK(numbers.speed_dependent == std::vector<int>{1});
 }

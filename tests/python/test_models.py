@@ -210,7 +210,7 @@ def test_static_matches_the_cli_and_the_docs_example_runs():
     out = subprocess.run([os.environ["GYROKIT_CLI"], "static", scene, "--load", "12:0:-500", "--format", "csv",
                           "--table", "reactions"], capture_output=True, text=True, check=True).stdout
     rows = list(csv.DictReader(io.StringIO(out)))
-    assert [r["reaction"] for r in rows] == list(s.reactions["reaction"]) == ["fluid_film_1", "fluid_film_23"]
+    assert [r["reaction"] for r in rows] == list(s.reactions["reaction"]) == ["bearing 1", "bearing 2"]
     for r, fy in zip(rows, s.reactions["fy"]):
         assert float(r["fy_n"]) == pytest.approx(fy, rel=1e-11)   # CSV prints 12 digits
     # The weight and the load, carried half and half by the symmetric rotor's films.

@@ -97,15 +97,18 @@ std::vector<MapPoint> synchronous_criticals(const RotorModel& model, double k, i
 std::vector<BearingCurve> bearing_curves(const RotorModel& model, double top_speed) {
     std::vector<BearingCurve> out;
     const GyroscopicSystem sys = build(model).system;
+    const BearingNumbers numbers = bearing_numbers(model);
     for (std::size_t i = 0; i < model.bearings.size(); ++i) {
         const RotorBearing& b = model.bearings[i];
         if (b.kind != RotorBearing::Kind::constant) continue;
-        const std::string name = fmt::format("bearing {}", i);
+        const std::string name = bearing_name(static_cast<int>(i) + 1);
         out.push_back({"kxx " + name, {b.constant.kxx, b.constant.kxx}, {0.0, top_speed}});
         if (b.constant.kyy != b.constant.kxx) out.push_back({"kyy " + name, {b.constant.kyy, b.constant.kyy}, {0.0, top_speed}});
     }
-    for (const BearingTable& t : sys.bearings) {
-        BearingCurve kxx{"kxx " + t.label(), {}, {}}, kyy{"kyy " + t.label(), {}, {}};
+    for (std::size_t j = 0; j < sys.bearings.size(); ++j) {
+        const BearingTable& t = sys.bearings[j];
+        const std::string name = bearing_name(numbers.speed_dependent.at(j));
+        BearingCurve kxx{"kxx " + name, {}, {}}, kyy{"kyy " + name, {}, {}};
         const double from = t.speeds.front(), to = t.model ? std::max(top_speed, from) : t.speeds.back();
         for (int s = 0; s <= 60; ++s) {
             const double w = from + (to - from) * s / 60.0;

@@ -37,7 +37,7 @@ struct MapPoint {
 // A bearing's stiffness over speed, to overlay on the map: where its curve crosses a
 // map line the rotor on that bearing has a critical speed.
 struct BearingCurve {
-    std::string name;                // "kxx fluid_film_1", "kyy bearing 0"
+    std::string name;                // "kxx bearing 1", "kyy bearing 2": numbered as in the model (bearing_numbers)
     std::vector<double> stiffness;   // N/m
     std::vector<double> speed;       // rad/s (constant bearings: the map's speed span)
 };

@@ -41,7 +41,7 @@ Holds holds_of(const FeRotor& r, const StaticOptions& o, const FreeBody& b) {
     };
     for (std::size_t s = 0; s < r.supports.size(); ++s) {
         const FeSupport& sp = r.supports[s];
-        h.reactions.push_back({fmt::format("support {}", s), sp.node, 0, 0, 0, 0, 0});
+        h.reactions.push_back({fmt::format("support {}", s + 1), sp.node, 0, 0, 0, 0, 0});
         if (sp.x) hold(s, "x", sp.node);
         if (sp.y) hold(s, "y", sp.node);
         if (sp.theta_x) hold(s, "tx", sp.node);
@@ -52,7 +52,7 @@ Holds holds_of(const FeRotor& r, const StaticOptions& o, const FreeBody& b) {
         if (node < 0 || node >= r.node_count())
             throw InputError(fmt::format("static analysis: rigid hold {} at node {}; allowed: 0 to {}", k, node,
                                          r.node_count() - 1));
-        h.reactions.push_back({o.rigid[k].name.empty() ? fmt::format("rigid {}", k) : o.rigid[k].name, node, 0, 0, 0,
+        h.reactions.push_back({o.rigid[k].name.empty() ? fmt::format("rigid {}", k + 1) : o.rigid[k].name, node, 0, 0, 0,
                                0, 0});
         hold(h.reactions.size() - 1, "x", node);
         hold(h.reactions.size() - 1, "y", node);
@@ -196,14 +196,15 @@ StaticResult fe_static(const FeRotor& rotor, const StaticOptions& o) {
         const int p = pedestal_at(br.node);
         const double dx = u(b.at("x", br.node)) - (p >= 0 ? u(b.at("px", br.node)) : 0.0);
         const double dy = u(b.at("y", br.node)) - (p >= 0 ? u(b.at("py", br.node)) : 0.0);
-        StaticReaction rr{fmt::format("bearing {}", i), br.node, 0, -(br.kxx * dx + br.kxy * dy),
+        const std::string name = i < o.bearing_names.size() ? o.bearing_names[i] : fmt::format("bearing {}", i + 1);
+        StaticReaction rr{name, br.node, 0, -(br.kxx * dx + br.kxy * dy),
                           -(br.kyx * dx + br.kyy * dy), 0, 0};
         if (p < 0) sum_x += rr.fx, sum_y += rr.fy;   // on a pedestal: a force inside the supported body
         out.reactions.push_back(rr);
     }
     for (std::size_t i = 0; i < rotor.pedestals.size(); ++i) {
         const FePedestal& pd = rotor.pedestals[i];
-        StaticReaction rr{fmt::format("pedestal {}", i), pd.node, 0, -pd.kxx * u(b.at("px", pd.node)),
+        StaticReaction rr{fmt::format("pedestal {}", i + 1), pd.node, 0, -pd.kxx * u(b.at("px", pd.node)),
                           -pd.kyy * u(b.at("py", pd.node)), 0, 0};
         sum_x += rr.fx, sum_y += rr.fy;
         out.reactions.push_back(rr);

@@ -29,13 +29,14 @@ struct StaticLoad {
 // A node held in x and y besides the supports (a speed-dependent bearing at standstill).
 struct RigidHold {
     int node = 0;
-    std::string name;                 // its reaction's name ("" : "rigid <index>")
+    std::string name;                 // its reaction's name ("" : "rigid <index + 1>")
 };
 
 struct StaticOptions {
     double gravity = kStandardGravity;       // m/s^2 along -y (0: no weight)
     std::vector<StaticLoad> loads;
     std::vector<RigidHold> rigid;
+    std::vector<std::string> bearing_names;  // of the rotor's bearings in order; empty: "bearing <i + 1>"
 };
 
 // Deflection of a node; slopes are the shaft's dx/dz = theta_y and dy/dz = -theta_x.
@@ -59,7 +60,7 @@ struct StaticSection {
 
 // The force (N) and moment (N m) a bearing, support or pedestal spring exerts on the rotor.
 struct StaticReaction {
-    std::string what;                 // "bearing 0", "support 1", "pedestal 0", a rigid hold's name
+    std::string what;                 // "bearing 1", "support 1", "pedestal 1" (from 1), a rigid hold's name
     int node = 0;
     double z = 0.0;
     double fx = 0.0, fy = 0.0, mx = 0.0, my = 0.0;

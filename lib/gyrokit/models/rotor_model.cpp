@@ -20,6 +20,20 @@ std::string origin_of(const std::string& origin, const char* kind, std::size_t i
     return origin.empty() ? fmt::format("{} {}", kind, i) : origin;
 }
 
+}  // namespace
+
+BearingNumbers bearing_numbers(const RotorModel& model) {
+    BearingNumbers n;
+    for (std::size_t i = 0; i < model.bearings.size(); ++i)
+        (model.bearings[i].kind == RotorBearing::Kind::constant ? n.constant : n.speed_dependent)
+            .push_back(static_cast<int>(i) + 1);
+    return n;
+}
+
+std::string bearing_name(int number) { return fmt::format("bearing {}", number); }
+
+namespace {
+
 // How messages print lengths: the model's length_unit.
 LengthUnit unit_of(const RotorModel& m) { return LengthUnit::parse(m.length_unit); }
 

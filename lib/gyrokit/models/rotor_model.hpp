@@ -101,6 +101,15 @@ struct RotorModel {
     std::string length_unit = "m";         // "m" or "mm": how messages print lengths
 };
 
+// The bearings' numbers, 1 to n in the model's list (what every table names them by,
+// "bearing N"), in the order the build keeps them: the constant ones
+// (FeRotor::bearings), then the speed-dependent ones (GyroscopicSystem::bearings).
+struct BearingNumbers {
+    std::vector<int> constant, speed_dependent;
+};
+BearingNumbers bearing_numbers(const RotorModel& model);
+std::string bearing_name(int number);
+
 struct BuiltRotor {
     FeRotor rotor;                 // the mesh: elements, and every item at its node
     std::vector<double> node_z;    // m, z_0 = 0

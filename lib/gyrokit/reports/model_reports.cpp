@@ -63,7 +63,8 @@ void add_row(Table& t, const LengthUnit& length, const std::string& q, const Cel
         t.add_row({q, v, unit});
 }
 
-void add_fe_rotor_rows(Table& t, const FeRotor& r, const GyroscopicSystem& s, const LengthUnit& length) {
+void add_fe_rotor_rows(Table& t, const FeRotor& r, const GyroscopicSystem& s, const LengthUnit& length,
+                       const BearingNumbers& numbers) {
     const auto add = [&](const std::string& q, const Cell& v, const std::string& unit = "") {
         add_row(t, length, q, v, unit);
     };
@@ -97,12 +98,19 @@ void add_fe_rotor_rows(Table& t, const FeRotor& r, const GyroscopicSystem& s, co
         add(p + "Id", d.diametral_inertia, "kg m^2");
         add(p + "Ip", d.polar_inertia, "kg m^2");
     }
-    k = 0;
-    for (const auto& b : r.bearings)
-        add(fmt::format("bearing{}_z", ++k), s.node_z[static_cast<size_t>(b.node)], "m");
-    for (const auto& b : s.bearings)
-        if (const int node = bearing_node(s, b); node >= 0)
-            add(fmt::format("bearing{}_z", ++k), s.node_z[static_cast<size_t>(node)], "m");
+    // Each bearing by its number in the model's list (as the static reactions name it).
+    std::vector<std::pair<int, int>> bearing_nodes;   // number, node
+    for (std::size_t i = 0; i < r.bearings.size(); ++i)
+        bearing_nodes.emplace_back(i < numbers.constant.size() ? numbers.constant[i] : static_cast<int>(i) + 1,
+                                   r.bearings[i].node);
+    for (std::size_t j = 0; j < s.bearings.size(); ++j)
+        if (const int node = bearing_node(s, s.bearings[j]); node >= 0)
+            bearing_nodes.emplace_back(j < numbers.speed_dependent.size() ? numbers.speed_dependent[j]
+                                                                          : static_cast<int>(r.bearings.size() + j) + 1,
+                                       node);
+    std::sort(bearing_nodes.begin(), bearing_nodes.end());
+    for (const auto& [number, node] : bearing_nodes)
+        add(fmt::format("bearing{}_z", number), s.node_z[static_cast<size_t>(node)], "m");
     k = 0;
     for (const auto& sp : r.supports)
         add(fmt::format("support{}_z", ++k), s.node_z[static_cast<size_t>(sp.node)], "m");
@@ -178,7 +186,9 @@ Table model_summary(const Scene& sc) {
     } else {
         add("rigid_body_eigenvalues_at_rest", std::string("not computed (sparse model)"));
     }
-    if (sc.fe_rotor()) add_fe_rotor_rows(t, *sc.fe_rotor(), s, length);
+    if (sc.fe_rotor())
+        add_fe_rotor_rows(t, *sc.fe_rotor(), s, length,
+                          sc.rotor_model() ? bearing_numbers(*sc.rotor_model()) : BearingNumbers{});
     return t;
 }
 
