@@ -83,6 +83,13 @@ def test_named_materials_give_the_scenes_values_and_sections_read_back_from_thei
         gk.Section(length=1.0, outer_diameter=0.05, material=3)
 
 
+def test_a_scene_in_mm_is_written_back_in_mm():
+    s = gk.load_scene(os.path.join(DATA, "drive_train.toml"))
+    text = s.to_toml()
+    assert 'length_unit = "mm"' in text and "\nlength = 800.0\n" in text and "\nouter_diameter = 80.0\n" in text
+    assert_same_model(s, gk._core.parse_scene(text, "written", "."))
+
+
 def test_a_scene_round_trips_through_toml_pickle_and_a_file(tmp_path):
     s = gk.load_scene(os.path.join(DATA, "three_disk_rotor_journal.toml"))
     assert_same_model(s, gk._core.parse_scene(s.to_toml(), "written", "."))

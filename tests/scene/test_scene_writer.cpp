@@ -282,3 +282,86 @@ TEST_CASE("a gyrostat or liquid-filled rotor built from its parameters is writte
     f.R0 = f.R;
     CHECK_THROWS_WITH(model_scene(f, "f"), Catch::Contains("f: R0 = 0.6 is not below R = 0.6"));
 }
+
+TEST_CASE("scene writer: a scene in mm is written back in mm, every length as it was given") {
+    // Lengths of up to 15 significant digits, none of them exact in binary, in every length key
+    // the writer has (shaft, cone, disk, film and its band, support, pedestal, [api]).
+    const std::string text = R"(
+[model]
+type = "fe_rotor"
+length_unit = "mm"
+material = "steel"
+[[model.shaft]]
+length = 333.333333333333
+elements = 3
+outer_diameter = 63.5
+inner_diameter = 12.7
+[[model.shaft]]
+length = 466.666666666667
+elements = 4
+outer_diameter = 63.5
+outer_diameter_end = 50.8
+[[model.disk]]
+z = 333.333333333333
+outer_diameter = 304.8
+inner_diameter = 63.5
+width = 25.4
+[[model.bearing]]
+type = "fluid_film"
+z = 0.0
+diameter = 63.5
+length = 31.75
+clearance = 0.0762
+clearance_min = 0.0635
+clearance_max = 0.0889
+viscosity = 0.018
+load = "auto"
+[[model.bearing]]
+z = 800.0
+kxx = 1.3e8
+kyy = 1.1e8
+[[model.support]]
+z = 800.0
+type = "pinned"
+[[model.pedestal]]
+z = 800.0
+mass = 40.0
+k = 3e8
+[api]
+machine = "centrifugal"
+mcs = 1200
+station = 333.333333333333
+[[api.stage]]
+z = 333.333333333333
+power = 1.5e6
+diameter = 304.8
+width = 12.7
+density_ratio = 1.4
+[[api.clearance]]
+z = 333.333333333333
+clearance = 0.381
+[speeds]
+from = 0
+to = 1200
+count = 5
+)";
+    const Scene a = parse_scene(text, "inches.toml", ".");
+    const std::string written = scene_text(a);
+    INFO(written);
+    CHECK(written.find("length_unit = \"mm\"") != std::string::npos);
+    for (const char* line : {"length = 333.333333333333\n", "length = 466.666666666667\n", "outer_diameter = 63.5\n",
+                             "inner_diameter = 12.7\n", "outer_diameter_end = 50.8\n", "z = 333.333333333333\n",
+                             "outer_diameter = 304.8\n", "width = 25.4\n", "diameter = 63.5\n", "length = 31.75\n",
+                             "clearance = 0.0762\n", "clearance_min = 0.0635\n", "clearance_max = 0.0889\n",
+                             "z = 800.0\n", "station = 333.333333333333\n", "diameter = 304.8\n", "width = 12.7\n",
+                             "clearance = 0.381\n"})
+        CHECK(written.find(line) != std::string::npos);
+    const Scene b = parse_scene(written, "written", ".");
+    check_same(a, b);
+    // Written again, the same text: the unit is kept, nothing drifts.
+    CHECK(scene_text(b) == written);
+    REQUIRE(b.api.has_value());
+    CHECK(b.api->station == a.api->station);
+    CHECK(b.api->stages.at(0).diameter == a.api->stages.at(0).diameter);
+    CHECK(b.api->clearances.at(0).clearance == a.api->clearances.at(0).clearance);
+}

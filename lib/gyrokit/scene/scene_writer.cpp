@@ -6,6 +6,7 @@
 #include <gyrokit/core/solver_kind.hpp>
 #include <gyrokit/core/constants.hpp>
 #include <gyrokit/core/error.hpp>
+#include <gyrokit/core/length_unit.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -43,9 +44,22 @@ std::string quoted(const std::string& text) {
 
 double degrees(double rad) { return rad * 180.0 / kPi; }   // as written before: the same digits
 
+// A length in a unit of `metres` per unit, written back in that unit: in metres its shortest
+// round-trip form; in another unit to 15 significant digits, so that a value read from a
+// scene in that unit (x * metres, x of at most 15 digits) is written as the x it was.
+std::string length_number(double v, double metres) {
+    if (metres == 1.0) return number(v);
+    std::string s = fmt::format("{:.15g}", v / metres);
+    if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+    return s;
+}
+
 class Writer {
 public:
+    explicit Writer(double metres = 1.0) : metres_(metres) {}
     void key(const char* name, double v) { out_ += fmt::format("{} = {}\n", name, number(v)); }
+    // A length, in the model's length unit.
+    void length(const char* name, double v) { out_ += fmt::format("{} = {}\n", name, length_number(v, metres_)); }
     void key(const char* name, int v) { out_ += fmt::format("{} = {}\n", name, v); }
     void key(const char* name, bool v) { out_ += fmt::format("{} = {}\n", name, v ? "true" : "false"); }
     void key(const char* name, const std::string& v) { out_ += fmt::format("{} = {}\n", name, quoted(v)); }
@@ -65,6 +79,7 @@ public:
     std::string text() const { return out_; }
 
 private:
+    double metres_;
     std::string out_;
 };
 
@@ -74,7 +89,7 @@ void write_section(Writer& w, const RotorSection& s) {
     if (e.coupling) {
         const FeCoupling& c = *e.coupling;
         w.key("type", "coupling");
-        w.key("length", e.length);
+        w.length("length", e.length);
         w.key("k_lateral", c.k_lateral);
         w.key("k_bending", c.k_bending);
         w.key("k_axial", c.k_axial);
@@ -88,12 +103,12 @@ void write_section(Writer& w, const RotorSection& s) {
         w.key("Ip", c.polar_inertia);
         return;
     }
-    w.key("length", e.length);
+    w.length("length", e.length);
     w.key("elements", s.elements);
-    w.key("outer_diameter", e.outer_diameter);
-    w.key("inner_diameter", e.inner_diameter);
-    if (e.outer_diameter_end) w.key("outer_diameter_end", *e.outer_diameter_end);
-    if (e.inner_diameter_end) w.key("inner_diameter_end", *e.inner_diameter_end);
+    w.length("outer_diameter", e.outer_diameter);
+    w.length("inner_diameter", e.inner_diameter);
+    if (e.outer_diameter_end) w.length("outer_diameter_end", *e.outer_diameter_end);
+    if (e.inner_diameter_end) w.length("inner_diameter_end", *e.inner_diameter_end);
     w.key("E", e.youngs_modulus);
     if (e.shear_modulus != 0.0) w.key("G", e.shear_modulus);
     w.key("poisson", e.poisson_ratio);
@@ -102,11 +117,11 @@ void write_section(Writer& w, const RotorSection& s) {
 
 void write_disk(Writer& w, const RotorDisk& d) {
     w.table("[[model.disk]]");
-    w.key("z", d.z);
+    w.length("z", d.z);
     if (d.geometry) {
-        w.key("outer_diameter", d.geometry->outer_diameter);
-        w.key("inner_diameter", d.geometry->inner_diameter);
-        w.key("width", d.geometry->width);
+        w.length("outer_diameter", d.geometry->outer_diameter);
+        w.length("inner_diameter", d.geometry->inner_diameter);
+        w.length("width", d.geometry->width);
         w.key("density", d.geometry->density);
     } else {
         w.key("mass", d.disk.mass);
@@ -120,13 +135,13 @@ void write_disk(Writer& w, const RotorDisk& d) {
 void write_film(Writer& w, const RotorBearing& b) {
     const JournalBearing& j = b.film;
     w.key("type", "fluid_film");
-    w.key("z", b.z);
-    w.key("diameter", j.diameter);
-    w.key("length", j.length);
-    w.key("clearance", j.clearance);
+    w.length("z", b.z);
+    w.length("diameter", j.diameter);
+    w.length("length", j.length);
+    w.length("clearance", j.clearance);
     w.key("viscosity", j.viscosity);
-    if (j.clearance_min) w.key("clearance_min", *j.clearance_min);
-    if (j.clearance_max) w.key("clearance_max", *j.clearance_max);
+    if (j.clearance_min) w.length("clearance_min", *j.clearance_min);
+    if (j.clearance_max) w.length("clearance_max", *j.clearance_max);
     if (j.viscosity_min) w.key("viscosity_min", *j.viscosity_min);
     if (j.viscosity_max) w.key("viscosity_max", *j.viscosity_max);
     if (b.auto_load)
@@ -145,7 +160,7 @@ void write_film(Writer& w, const RotorBearing& b) {
 void write_bearing(Writer& w, const RotorBearing& b) {
     w.table("[[model.bearing]]");
     if (b.kind == RotorBearing::Kind::fluid_film) return write_film(w, b);
-    w.key("z", b.z);
+    w.length("z", b.z);
     if (b.kind == RotorBearing::Kind::table && !b.table_file.empty()) {
         w.key("table", fs::absolute(b.table_file).lexically_normal().string());
         return;
@@ -185,7 +200,7 @@ void write_support(Writer& w, const RotorSupport& s, std::size_t i) {
                                      s.origin.empty() ? fmt::format("support {}", i) : s.origin, h.x, h.y, h.theta_x,
                                      h.theta_y));
     w.table("[[model.support]]");
-    w.key("z", s.z);
+    w.length("z", s.z);
     w.key("type", clamped ? "clamped" : "pinned");
     w.key("axial", h.z);
     w.key("torsion", h.theta_z);
@@ -193,7 +208,7 @@ void write_support(Writer& w, const RotorSupport& s, std::size_t i) {
 
 void write_pedestal(Writer& w, const RotorPedestal& p) {
     w.table("[[model.pedestal]]");
-    w.key("z", p.z);
+    w.length("z", p.z);
     w.key("mass", p.pedestal.mass);
     w.key("kxx", p.pedestal.kxx);
     w.key("kyy", p.pedestal.kyy);
@@ -201,31 +216,31 @@ void write_pedestal(Writer& w, const RotorPedestal& p) {
     w.key("cyy", p.pedestal.cyy);
 }
 
-// [api] in the keys the reader takes: speeds in the scene's unit, lengths in m
-// (the written [model] states length_unit = "m").
+// [api] in the keys the reader takes: speeds in the scene's unit, lengths in the
+// model's length_unit (as the written [model] states it).
 void write_api(Writer& w, const ApiMachine& m, const SpeedUnit& unit) {
     w.table("[api]");
     w.key("machine", to_string(m.kind));
     if (m.mcs) w.key("mcs", *m.mcs * unit.factor);
     if (m.operating_speed) w.key("operating_speed", *m.operating_speed * unit.factor);
     if (m.qa) w.key("qa", *m.qa);
-    if (m.station) w.key("station", *m.station);
+    if (m.station) w.length("station", *m.station);
     if (m.gas_density) w.key("gas_density", *m.gas_density);
     w.key("q_ratio", m.q_ratio);
     if (m.min_speed) w.key("min_speed", *m.min_speed * unit.factor);
     if (m.trip_speed) w.key("trip_speed", *m.trip_speed * unit.factor);
     for (const AeroStage& s : m.stages) {
         w.table("[[api.stage]]");
-        w.key("z", s.z);
+        w.length("z", s.z);
         w.key("power", s.power);
-        w.key("diameter", s.diameter);
-        w.key("width", s.width);
+        w.length("diameter", s.diameter);
+        w.length("width", s.width);
         if (s.density_ratio) w.key("density_ratio", *s.density_ratio);
     }
     for (const CloseClearance& c : m.clearances) {
         w.table("[[api.clearance]]");
-        w.key("z", c.z);
-        w.key("clearance", c.clearance);
+        w.length("z", c.z);
+        w.length("clearance", c.clearance);
         if (!c.name.empty()) w.key("name", c.name);
     }
 }
@@ -329,14 +344,15 @@ std::string scene_text(const Scene& sc) {
             else return m.document;
         }, sc.model);
     if (!document.empty()) return document;   // read from a document: as read
-    Writer w;
     if (const GyrostatParameters* g = sc.gyrostat()) {
+        Writer w;
         write_model_header(w, sc, "gyrostat");
         write_gyrostat(w, *g);
         write_settings(w, sc);
         return finished(w);
     }
     if (const FluidRotorParameters* f = sc.fluid()) {
+        Writer w;
         write_model_header(w, sc, "fluid_rotor");
         write_fluid_rotor(w, *f);
         write_settings(w, sc);
@@ -348,9 +364,12 @@ std::string scene_text(const Scene& sc) {
                                      "from its parameters), or any model read from a scene",
                                      sc.path, sc.model_type()));
     const RotorModel& m = *sc.rotor_model();
+    // Lengths in the model's own unit (a scene in mm is written back in mm).
+    const LengthUnit unit = LengthUnit::parse(m.length_unit);
+    Writer w(unit.metres);
     write_model_header(w, sc, "fe_rotor");
     w.key("motion", to_string(m.motion));
-    w.key("length_unit", "m");
+    w.key("length_unit", unit.name);
     w.key("shear_deformation", m.shear_deformation);
     w.key("rotary_inertia", m.rotary_inertia);
     if (m.shaft_damping.alpha != 0.0) w.key("damping_alpha", m.shaft_damping.alpha);
