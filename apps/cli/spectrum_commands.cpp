@@ -68,7 +68,7 @@ Command model_command(CLI::App& app, const std::shared_ptr<Options>& o) {
         if (!o->common.plot.empty() && !sc.fe_rotor())
             throw InputError("--plot: draws finite-element rotors; this model is " + sc.model_type());
         write_table(out, model_summary(sc), format);
-        if (sc.fe_rotor()) plot_if(o->common.plot, fe_rotor_figure(*sc.fe_rotor(), sc.system, sc.title, sc.length_unit()));
+        if (sc.fe_rotor()) plot_if(o->common.plot, fe_rotor_figure(sc));
     }};
 }
 

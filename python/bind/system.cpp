@@ -153,7 +153,7 @@ py::class_<Scene> bind_system(py::module_& m) {
     m.def("model_summary", [](const Scene& scene) {
         py::dict d;
         d["tables"] = tables_list({model_summary(scene)});
-        d["figure"] = scene.fe_rotor() ? py::object(figure_dict(fe_rotor_figure(*scene.fe_rotor(), scene.system, scene.title, scene.length_unit())))
+        d["figure"] = scene.fe_rotor() ? py::object(figure_dict(fe_rotor_figure(scene)))
                                      : py::object(py::none());
         return d;
     }, py::arg("scene"));

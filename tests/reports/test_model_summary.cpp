@@ -101,7 +101,9 @@ k = 2e7
     CHECK(std::get<double>(value(t, "translating_mass")) == Approx(shaft + 10).epsilon(1e-13));
     CHECK(std::get<long long>(value(t, "couplings")) == 1);
     CHECK(std::get<double>(value(t, "pedestal1_mass")) == 20.0);
-    CHECK(std::get<double>(value(t, "bearing2_z")) == Approx(0.0).margin(1e-15));
+    // Bearings by their place in the scene: the table first (z = 0), the constant one second.
+    CHECK(std::get<double>(value(t, "bearing1_z")) == Approx(0.0).margin(1e-15));
+    CHECK(std::get<double>(value(t, "bearing2_z")) == Approx(950.0).epsilon(1e-15));
     // Lengths as the scene states them (length_unit = "mm"): 40 mm, not 0.04 m.
     CHECK(std::get<double>(value(t, "shaft_outer_diameter_min")) == Approx(40.0).epsilon(1e-14));
     for (std::size_t i = 0; i < t.rows(); ++i)
@@ -132,4 +134,35 @@ z = 1.0
     CHECK(std::get<double>(value(p, "shaft_damping_alpha")) == 2.0);
     CHECK(std::get<double>(value(p, "shaft_damping_beta")) == 1e-5);
     CHECK(std::get<std::string>(value(with("damping_zeta = [0.01, 0.02]"), "shaft_damping_zeta")) == "0.01, 0.02");
+}
+
+TEST_CASE("the model drawing shows a disk given by its geometry as that hollow cylinder", "[model]") {
+    // data/three_disk_rotor.toml: disks of 320/100 x 50, 400/100 x 70 and 320/100 x 50 mm, drawn
+    // with their bore (a box from the inner to the outer radius above and below the axis), not as
+    // the solid cylinder of the same m, Id, Ip; a disk given by m, Id, Ip keeps that one.
+    const Scene sc = load_scene(std::string(GYROKIT_DATA_DIR) + "/three_disk_rotor.toml");
+    const Figure f = fe_rotor_figure(sc);
+    const Series* disks = nullptr;
+    for (const auto& s : f.panels.front().series)
+        if (s.label == "disks") disks = &s;
+    REQUIRE(disks != nullptr);
+    // Six boxes of five corners and a break each.
+    REQUIRE(disks->y.size() == 36);
+    const double outer[3] = {0.16, 0.20, 0.16}, width[3] = {0.05, 0.07, 0.05}, z[3] = {0.35, 0.6, 0.85};
+    for (int k = 0; k < 3; ++k) {
+        const std::size_t above = 12 * k, below = 12 * k + 6;
+        INFO("disk " << k);
+        CHECK(disks->y[above] == 0.05);
+        CHECK(disks->y[above + 1] == outer[k]);
+        CHECK(disks->y[below] == -outer[k]);
+        CHECK(disks->y[below + 1] == -0.05);
+        CHECK(disks->x[above + 2] - disks->x[above] == Approx(width[k]).epsilon(1e-12));
+        CHECK(0.5 * (disks->x[above + 2] + disks->x[above]) == Approx(z[k]).epsilon(1e-12));
+    }
+    // The same scene through the description-free overload: the equivalent solid cylinders.
+    const Figure bare = fe_rotor_figure(*sc.fe_rotor(), sc.system, sc.title);
+    bool solid = false;
+    for (const auto& s : bare.panels.front().series)
+        solid = solid || s.label == "disks (solid cylinders of their m, Id, Ip)";
+    CHECK(solid);
 }

@@ -8,6 +8,7 @@
 #include <gyrokit/reports/mode_shape_reports.hpp>
 #include <gyrokit/models/fe_rotor.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,14 +20,16 @@ namespace gyrokit {
 // kAutoSparseDofs DOFs; larger ones say "not computed"); for FE rotors the
 // elements, sections, disks, bearings and supports. Rows: quantity, value, unit.
 Table model_summary(const Scene& scene);
-// An FE rotor's geometry along z: the shaft sections (outer and inner radius),
-// the disks (radius and width of the solid cylinder with their mass, Id and Ip),
-// bearings and supports at their nodes, the nodes on the axis.
 // Where the scene's FE rotor has disks, bearings (constant and tabulated) and supports
 // on its axis, for the mode shape figure; empty for other models.
 AxisMarks axis_marks(const Scene& scene);
-// Lengths in `length` (the scene's unit).
+// An FE rotor's geometry along z: the shaft sections (outer and inner radius), the
+// disks as given (a disk's `geometry`, one per disk in order: its hollow cylinder;
+// none: the solid cylinder with its mass, Id and Ip), bearings and supports at their
+// nodes, the nodes on the axis. Lengths in `length` (the scene's unit).
 Figure fe_rotor_figure(const FeRotor& rotor, const GyroscopicSystem& system, const std::string& title,
-                       const LengthUnit& length = {});
+                       const LengthUnit& length = {}, const std::vector<std::optional<DiskGeometry>>& geometry = {});
+// The drawing of a scene's FE rotor (its disks as the scene gives them).
+Figure fe_rotor_figure(const Scene& scene);
 
 }  // namespace gyrokit

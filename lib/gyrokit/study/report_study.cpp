@@ -56,7 +56,7 @@ ReportSection section(const std::string& key, const std::string& title,
 
 void model_section(const Scene& sc, ReportSection& s) {
     s.tables.push_back(model_summary(sc));
-    if (sc.fe_rotor()) s.figures.push_back(fe_rotor_figure(*sc.fe_rotor(), sc.system, sc.title, sc.length_unit()));
+    if (sc.fe_rotor()) s.figures.push_back(fe_rotor_figure(sc));
 }
 
 void map_section(const Scene& sc, const SpeedUnit& u, ReportSection& s) {
