@@ -72,6 +72,7 @@ Series series_of(const py::handle& h) {
     s.label = d["label"].cast<std::string>();
     s.style = d["style"].cast<std::string>();
     s.color = d["color"].cast<std::string>();
+    if (d.contains("point_labels")) s.point_labels = d["point_labels"].cast<std::vector<std::string>>();
     return s;
 }
 
@@ -135,6 +136,7 @@ py::dict figure_dict(const Figure& f) {
             sd["label"] = s.label;
             sd["style"] = s.style;
             sd["color"] = s.color;
+            sd["point_labels"] = s.point_labels;
             series.append(sd);
         }
         py::dict pd;

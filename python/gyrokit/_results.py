@@ -132,7 +132,12 @@ def draw(figure, axes=None):
                 kw["markersize"] = 3
             if s["color"]:
                 kw["color"] = s["color"]
-            ax.plot(x, y, **kw)
+            line, = ax.plot(x, y, **kw)
+            for xi, yi, text in zip(x, y, s.get("point_labels") or ()):   # speed marks: a ring and its text
+                if text and _np.isfinite(xi) and _np.isfinite(yi):
+                    ax.plot([xi], [yi], marker="o", markersize=5, fillstyle="none", color=line.get_color())
+                    ax.annotate(text, (xi, yi), xytext=(4, 4), textcoords="offset points", fontsize=8,
+                                color=line.get_color())
         ax.set_xlabel(p["xlabel"])
         ax.set_ylabel(p["ylabel"])
         if p["title"]:

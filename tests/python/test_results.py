@@ -176,6 +176,9 @@ def test_figures_are_the_clis_drawn_by_matplotlib_or_gnuplot(tmp_path, scene, di
     assert r.table("response").columns[:2] == ["speed_rad_s", "dof"]
     r.plot_polar(tmp_path / "polar.svg")
     assert "<svg" in open(tmp_path / "polar.svg").read()
+    assert ">500 rad/s<" in open(tmp_path / "polar.svg").read()   # speed marks along the curve (gnuplot)
+    marks = [t.get_text() for t in r.plot_polar().axes[0].texts]   # and with matplotlib
+    assert "500 rad/s" in marks and all(m.endswith(" rad/s") for m in marks)
     with pytest.raises(gk.InputError, match="axes: 1 given; allowed: one per panel"):
         diagram.plot(axes=[fig.axes[0]])
 

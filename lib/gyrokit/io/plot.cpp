@@ -122,10 +122,34 @@ void check_panel(const Panel& p, std::size_t k) {
         if (v && ((p.logy && name[0] == 'y') || (p.logx && name[0] == 'x')) && *v <= 0)
             throw InputError(fmt::format("panel {}: {} = {} on a log axis; it must be > 0", k + 1, name, *v));
     }
-    for (const Series& s : p.series)
+    for (const Series& s : p.series) {
         if (s.x.size() != s.y.size())
             throw InputError(fmt::format("panel {}: series '{}' has {} x values but {} y values", k + 1,
                                          s.label, s.x.size(), s.y.size()));
+        if (!s.point_labels.empty() && s.point_labels.size() != s.x.size())
+            throw InputError(fmt::format("panel {}: series '{}' has {} point labels for {} points; allowed: none or "
+                                         "one per point",
+                                         k + 1, s.label, s.point_labels.size(), s.x.size()));
+    }
+}
+
+// The labelled points of a series as a data block of x, y and the quoted text (gnuplot's
+// "with labels"); returns how many were kept.
+std::size_t append_labels(std::string& script, const std::string& name, const Series& s, bool logx, bool logy) {
+    std::string data;
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < s.point_labels.size(); ++i) {
+        if (s.point_labels[i].empty() || !std::isfinite(s.x[i]) || !std::isfinite(s.y[i]) ||
+            (logy && s.y[i] <= 0) || (logx && s.x[i] <= 0))
+            continue;
+        std::string text = s.point_labels[i];   // a data file's string: in double quotes, none inside
+        std::replace(text.begin(), text.end(), '"', '\'');
+        std::replace(text.begin(), text.end(), '\n', ' ');
+        data += fmt::format("{:.17g} {:.17g} \"{}\"\n", s.x[i], s.y[i], text);
+        ++kept;
+    }
+    if (kept) script += name + " << EOD\n" + data + "EOD\n";
+    return kept;
 }
 
 std::string make_script(const Figure& fig, const std::string& terminal, const fs::path& out) {
@@ -143,6 +167,13 @@ std::string make_script(const Figure& fig, const std::string& terminal, const fs
             const std::string name = fmt::format("$d{}_{}", k, i);
             if (append_block(script, name, p.series[i], p.logx, p.logy))
                 plots[k].push_back(name + " using 1:2 with " + clause);
+            const Series& s = p.series[i];
+            const std::string colour = s.color.empty() ? std::string() : " lc rgb " + gp_quote(s.color);
+            const std::string text = s.color.empty() ? std::string() : " tc rgb " + gp_quote(s.color);
+            if (append_labels(script, name + "l", s, p.logx, p.logy)) {
+                plots[k].push_back(name + "l using 1:2 with points pt 6 ps 0.9" + colour + " notitle");
+                plots[k].push_back(name + "l using 1:2:3 with labels left offset char 0.7,0.5" + text + " notitle");
+            }
         }
     }
 

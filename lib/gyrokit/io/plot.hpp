@@ -13,6 +13,9 @@ struct Series {
     std::string label;           // legend entry ("" = no legend entry)
     std::string style = "lines"; // "lines", "thin" (a thinner line), "dashed", "dotted", "points", "linespoints"
     std::string color;           // e.g. "#d62728"; "" = gnuplot default
+    // Text written next to points (a speed on a polar plot): empty, or one per point
+    // ("" for none); a labelled point is also drawn as a marker.
+    std::vector<std::string> point_labels = {};
 };
 
 struct Panel {

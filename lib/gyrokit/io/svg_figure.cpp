@@ -184,6 +184,14 @@ void draw_series(std::string& out, const Panel& p, const Frame& f, const Series&
                                        xml(p.ylabel), s.y[i]);
         out += "</circle>\n";
     }
+    // Labelled points: a ring and the text beside it.
+    for (std::size_t i = 0; i < s.point_labels.size(); ++i) {
+        if (s.point_labels[i].empty() || !drawable(s.x[i], s.y[i], p)) continue;
+        out += fmt::format("<circle cx=\"{0:.2f}\" cy=\"{1:.2f}\" r=\"3.5\" fill=\"none\" stroke=\"{2}\"/>"
+                           "<text x=\"{3:.1f}\" y=\"{4:.1f}\" font-size=\"10\" fill=\"{2}\">{5}</text>\n",
+                           f.px(s.x[i]), f.py(s.y[i]), color, f.px(s.x[i]) + 6.0, f.py(s.y[i]) - 5.0,
+                           xml(s.point_labels[i]));
+    }
 }
 
 // The data's extent on each axis, over the drawable points.

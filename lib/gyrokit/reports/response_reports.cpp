@@ -1,5 +1,7 @@
 #include <gyrokit/reports/response_reports.hpp>
 
+#include <gyrokit/io/svg_figure.hpp>
+
 #include <gyrokit/core/constants.hpp>
 #include <gyrokit/reports/detail/cells.hpp>
 
@@ -175,6 +177,49 @@ Figure response_figure(const std::vector<std::string>& names, const std::vector<
     return f;
 }
 
+namespace {
+
+// The grid points a polar plot marks with their speed (or frequency): for each round value
+// inside the range (1, 2 or 5 x 10^k apart, about six; 0 left out, the origin of a response
+// that starts at rest), the grid point nearest it, labelled with the grid's own value.
+std::vector<std::string> polar_marks(const std::vector<double>& speeds, const SpeedUnit& u) {
+    std::vector<std::string> labels(speeds.size());
+    if (speeds.size() < 2) return labels;
+    const double lo = u.factor * speeds.front(), hi = u.factor * speeds.back();
+    if (!(hi > lo)) return labels;
+    for (const double t : axis_ticks(lo, hi, false, 6)) {
+        if (t == 0.0 || t < lo || t > hi) continue;
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < speeds.size(); ++i)
+            if (std::abs(u.factor * speeds[i] - t) < std::abs(u.factor * speeds[best] - t)) best = i;
+        labels[best] = fmt::format("{:.4g} {}", u.factor * speeds[best], u.name);
+    }
+    return labels;
+}
+
+// A mark within 4 % of the panel's extent of an earlier one on its curve is left out: where
+// the curve lingers (far above a resonance) the labels would print over each other.
+void thin_marks(Panel& p) {
+    double lo = 0.0, hi = 0.0;
+    for (const Series& s : p.series)
+        for (std::size_t i = 0; i < s.x.size(); ++i)
+            if (std::isfinite(s.x[i]) && std::isfinite(s.y[i]))
+                lo = std::min({lo, s.x[i], s.y[i]}), hi = std::max({hi, s.x[i], s.y[i]});
+    const double near = 0.04 * (hi - lo);
+    for (Series& s : p.series) {
+        std::vector<std::size_t> kept;
+        for (std::size_t i = 0; i < s.point_labels.size(); ++i) {
+            if (s.point_labels[i].empty()) continue;
+            bool crowded = false;
+            for (const std::size_t j : kept) crowded = crowded || std::hypot(s.x[i] - s.x[j], s.y[i] - s.y[j]) < near;
+            if (crowded) s.point_labels[i].clear();
+            else kept.push_back(i);
+        }
+    }
+}
+
+}  // namespace
+
 Figure response_polar_figure(const std::vector<std::string>& names, const std::vector<std::string>& units,
                              const ResponseCurve& c, const SpeedUnit& u, const std::string& title,
                              const std::vector<int>& shown, const std::string& axis) {
@@ -201,11 +246,16 @@ Figure response_polar_figure(const std::vector<std::string>& names, const std::v
                 s.x.push_back(z.real());
                 s.y.push_back(z.imag());
             }
+            s.point_labels = polar_marks(c.speeds, u);   // where along the curve each speed lies
+            // Its own colour, so that the marks read with their curve.
+            static const char* const palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+            s.color = palette[p.series.size() % 6];
             p.series.push_back(std::move(s));
         }
         const double scale = engineering_scale(p);
         for (Series& s : p.series)
             for (std::size_t i = 0; i < s.x.size(); ++i) s.x[i] /= scale, s.y[i] /= scale;
+        thin_marks(p);
         const std::string per = scale == 1.0 ? unit : fmt::format("{:g} {}", scale, unit.empty() ? "1" : unit);
         p.xlabel = amplitude_label(per, "Re " + z);
         p.ylabel = amplitude_label(per, "Im " + z);
