@@ -53,9 +53,9 @@ if ! "$cli" transient "$rotor" --speed 600 --duration 0.1 --node 12 --start stea
     echo "FAIL: a constant-speed run failed"; cat "$dir/err"; fail=1
 fi
 # The default step at a constant speed: the band's, shortened for the amplitude to settle within 0.05 %.
-grep -q "^note: Newmark average acceleration, 1362 steps of 7.342e-05 s over 0.1 s.*within 0.049 % of the steady response" "$dir/err" ||
+grep -q "^note: Newmark average acceleration, 1417 steps of 7.057e-05 s over 0.1 s.*within 0.045 % of the steady response" "$dir/err" ||
     { echo "FAIL: no time-step note"; cat "$dir/err"; fail=1; }
-[ "$(wc -l < "$dir/h.csv")" -eq 1364 ] || { echo "FAIL: history rows $(wc -l < "$dir/h.csv")"; fail=1; }
+[ "$(wc -l < "$dir/h.csv")" -eq 1419 ] || { echo "FAIL: history rows $(wc -l < "$dir/h.csv")"; fail=1; }
 [ "$(head -1 "$dir/h.csv")" = "time_s,speed_rad_s,x12,y12" ] || { echo "FAIL: history header"; fail=1; }
 grep -q "nan" "$dir/out" "$dir/h.csv" && { echo "FAIL: nan printed"; fail=1; }
 [ -s "$dir/orbit.png" ] && [ -s "$dir/w.svg" ] || { echo "FAIL: no orbit or waterfall"; fail=1; }

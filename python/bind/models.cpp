@@ -108,6 +108,18 @@ std::string section_repr(const RotorSection& s) {
     return r + ")";
 }
 
+// The degrees that Disk(phase=...) turns back into exactly `rad`: the shortest of the
+// doubles next to rad * 180 / pi that does (30, not 29.999999999999996).
+double degrees_back(double rad) {
+    const double d = degrees(rad);
+    std::optional<double> best;
+    double x = d;
+    for (int k = 0; k < 3; ++k) x = std::nextafter(x, -HUGE_VAL);
+    for (int k = 0; k < 7; ++k, x = std::nextafter(x, HUGE_VAL))
+        if (radians(x) == rad && (!best || float_repr(x).size() < float_repr(*best).size())) best = x;
+    return best.value_or(d);
+}
+
 std::string disk_repr(const RotorDisk& d) {
     std::string r = "Disk(z=" + float_repr(d.z);
     if (const auto& g = d.geometry) {
@@ -120,7 +132,7 @@ std::string disk_repr(const RotorDisk& d) {
         if (d.disk.polar_inertia != 0.0) r += ", Ip=" + float_repr(d.disk.polar_inertia);
     }
     if (d.disk.unbalance != 0.0) r += ", unbalance=" + float_repr(d.disk.unbalance);
-    if (d.disk.unbalance_phase != 0.0) r += ", phase=" + float_repr(degrees(d.disk.unbalance_phase));
+    if (d.disk.unbalance_phase != 0.0) r += ", phase=" + float_repr(degrees_back(d.disk.unbalance_phase));
     return r + ")";
 }
 

@@ -250,11 +250,18 @@ class ModeShapes(_Result):
         """One row per mode and whirl pair: the orbit table."""
         return self._frame(self.orbits)
 
-    def _numbers(self, mode):
-        chosen = [mode] if _np.ndim(mode) == 0 else list(mode)
+    def _numbers(self, mode, one=False):
+        """The mode numbers asked for: one whole number of `numbers`, or (unless `one`) a non-empty list."""
+        import numbers
+        allowed = f"allowed: {'one of ' if one else ''}{', '.join(map(str, self.numbers))} (the modes computed)"
+        single = isinstance(mode, (numbers.Number, _np.generic, str)) or _np.ndim(mode) == 0
+        chosen = [mode] if single else list(mode)
+        if not chosen or (one and len(chosen) != 1):
+            raise InputError(f"mode = {mode!r}; {allowed}")
         for k in chosen:
-            if isinstance(k, bool) or not float(k).is_integer() or int(k) not in self.numbers:
-                raise InputError(f"mode = {k!r}; allowed: {', '.join(map(str, self.numbers))} (the modes computed)")
+            whole = isinstance(k, numbers.Integral) and not isinstance(k, (bool, _np.bool_))
+            if not whole or int(k) not in self.numbers:
+                raise InputError(f"mode = {k!r}; {allowed}")
         return [int(k) for k in chosen]
 
     def plot(self, path=None, axes=None, mode=None):
@@ -268,7 +275,7 @@ class ModeShapes(_Result):
         in metres at its axial position z, the shaft's axis drawn through them (matplotlib). x and y share one
         scale, so an ellipse is drawn true to shape (a nearly planar mode flat, not round). Returns the Figure."""
         plt = self._pyplot()
-        number = self.numbers[0] if mode is None else self._numbers(mode)[0]
+        number = self.numbers[0] if mode is None else self._numbers(mode, one=True)[0]
         o = self.orbits
         rows = [i for i in range(len(o["mode"])) if o["mode"][i] == number and o["unit"][i] == "m"]
         if ax is None:

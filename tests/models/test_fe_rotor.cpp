@@ -159,10 +159,10 @@ TEST_CASE("fe rotor: input errors name the item, key, value and range", "[fe_rot
     CHECK_THAT(message(a), Catch::Contains("density") && Catch::Contains("(0, inf)"));
     a = r;
     a.disks.push_back({5, 1.0, 0.1, 0.1, 0.0, 0.0});
-    CHECK_THAT(message(a), Catch::Contains("disk 0") && Catch::Contains("node = 5") && Catch::Contains("[0, 4]"));
+    CHECK_THAT(message(a), Catch::Contains("disk 1") && Catch::Contains("node = 5") && Catch::Contains("[0, 4]"));
     a = r;
     a.bearings.push_back({1, 1e6, 0, 0, std::nan(""), 0, 0, 0, 0});
-    CHECK_THAT(message(a), Catch::Contains("bearing 0") && Catch::Contains("kyy"));
+    CHECK_THAT(message(a), Catch::Contains("bearing 1") && Catch::Contains("kyy"));
     a = r;
     a.elements[3].poisson_ratio = 0.7;
     CHECK_THAT(message(a), Catch::Contains("poisson_ratio"));

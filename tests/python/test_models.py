@@ -69,6 +69,18 @@ def test_named_materials_give_the_scenes_values_and_sections_read_back_from_thei
     assert repr(by_name.disks[1]).startswith("Disk(z=0.6, outer_diameter=0.4, inner_diameter=0.1, width=0.07, "
                                              "density=7810.0, unbalance=0.0002")
     assert repr(steel) == "Material(name='steel', E=211000000000.0, density=7810.0, poisson=%r)" % STEEL["poisson"]
+    # Phases in degrees read back to the same radians (30, not 29.999999999999996).
+    assert repr(gk.Disk(z=0.2, mass=1.0, phase=30.0)) == "Disk(z=0.2, mass=1.0, phase=30.0)"
+    for phase in (30.0, 69.0, 75.0, 138.0, 359.9, 1e-3):
+        d = gk.Disk(z=0.2, mass=1.0, phase=phase)
+        assert repr(eval(repr(d), {"Disk": gk.Disk})) == repr(d)
+        assert gk.rotor_scene(gk.Rotor(sections=[gk.Section(length=0.4, elements=2, outer_diameter=0.05,
+                                                            material="steel")],
+                                       disks=[eval(repr(d), {"Disk": gk.Disk})],
+                                       supports=[gk.Support(z=0.0), gk.Support(z=0.4)])).to_toml() == \
+            gk.rotor_scene(gk.Rotor(sections=[gk.Section(length=0.4, elements=2, outer_diameter=0.05,
+                                                         material="steel")],
+                                    disks=[d], supports=[gk.Support(z=0.0), gk.Support(z=0.4)])).to_toml()
     own = gk.Material(name="inconel", E=2.05e11, density=8190.0, poisson=0.284)
     assert gk.Section(length=1.0, outer_diameter=0.05, material=own).poisson == 0.284
     with pytest.raises(gk.InputError, match="material = 'iron' is unknown; allowed: steel, stainless, aluminium"):

@@ -160,6 +160,12 @@ def test_figures_are_the_clis_drawn_by_matplotlib_or_gnuplot(tmp_path, scene, di
         shapes.plot(mode=4)
     with pytest.raises(gk.InputError, match="mode = 1.5; allowed"):
         shapes.plot(mode=1.5)
+    assert len(shape_lines(shapes.plot(mode=np.int64(2)))) == 1   # a NumPy whole number is one
+    for bad in (np.True_, True, "2", [], [1, "x"]):
+        with pytest.raises(gk.InputError, match="allowed"):
+            shapes.plot(mode=bad)
+    with pytest.raises(gk.InputError, match="allowed: one of 1, 2, 3"):
+        shapes.plot_orbits([2, 3])
     shapes.plot(tmp_path / "mode2.svg", mode=2)   # gnuplot, as --mode 2 --plot
     assert "<svg" in open(tmp_path / "mode2.svg").read()
     orbits = shapes.plot_orbits(2)

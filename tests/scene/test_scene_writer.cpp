@@ -204,13 +204,13 @@ TEST_CASE("scene writer: what a scene cannot say is refused with the item named"
     x_only.hold.y = false;
     m.supports = {x_only};
     const Scene sc = rotor_scene(m);
-    CHECK_THROWS_WITH(scene_text(sc), Catch::Contains("support 0: holds x = true, y = false") &&
+    CHECK_THROWS_WITH(scene_text(sc), Catch::Contains("support 1: holds x = true, y = false") &&
                                           Catch::Contains("allowed in a scene: pinned"));
     Scene in_code;
     CHECK_THROWS_WITH(scene_text(in_code), Catch::Contains("a [model] of type matrices built in code cannot be written"));
     // Positions that are not nodes name the item in a model built in code.
     m.supports[0].z = 0.3;
-    CHECK_THROWS_WITH(rotor_scene(m), Catch::Contains("support 0 z = 0.3 m is not a node of the mesh") &&
+    CHECK_THROWS_WITH(rotor_scene(m), Catch::Contains("support 1 z = 0.3 m is not a node of the mesh") &&
                                           Catch::Contains("the nearest is 0.25"));
     CHECK_THROWS_WITH(write_scene(load_scene(data("fe_rotor.toml")), "/nonexistent-dir/x.toml"),
                       Catch::Contains("/nonexistent-dir/x.toml: the folder '/nonexistent-dir' does not exist"));
@@ -364,4 +364,15 @@ count = 5
     CHECK(b.api->station == a.api->station);
     CHECK(b.api->stages.at(0).diameter == a.api->stages.at(0).diameter);
     CHECK(b.api->clearances.at(0).clearance == a.api->clearances.at(0).clearance);
+    // A length no scene in mm gave (0.1 + 0.2 m, set in code) still reads back bit for bit.
+    RotorModel m = *a.rotor_model();
+    m.sections.at(0).shape.inner_diameter = 0.1 / 7.0;
+    m.disks.at(0).geometry->width = 0.1 + 0.2;
+    m.bearings.at(0).film.clearance = 0.0762e-3 * (1.0 + 1.0 / 3.0e3);
+    const Scene c = rotor_scene(m, "code");
+    const Scene d = parse_scene(scene_text(c), "written", ".");
+    CHECK(d.rotor_model()->sections.at(0).shape.inner_diameter == 0.1 / 7.0);
+    CHECK(d.rotor_model()->disks.at(0).geometry->width == 0.1 + 0.2);
+    CHECK(d.rotor_model()->bearings.at(0).film.clearance == 0.0762e-3 * (1.0 + 1.0 / 3.0e3));
+    check_same(c, d);
 }

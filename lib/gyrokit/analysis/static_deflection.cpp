@@ -50,7 +50,7 @@ Holds holds_of(const FeRotor& r, const StaticOptions& o, const FreeBody& b) {
     for (std::size_t k = 0; k < o.rigid.size(); ++k) {
         const int node = o.rigid[k].node;
         if (node < 0 || node >= r.node_count())
-            throw InputError(fmt::format("static analysis: rigid hold {} at node {}; allowed: 0 to {}", k, node,
+            throw InputError(fmt::format("static analysis: rigid hold {} at node {}; allowed: 0 to {}", k + 1, node,
                                          r.node_count() - 1));
         h.reactions.push_back({o.rigid[k].name.empty() ? fmt::format("rigid {}", k + 1) : o.rigid[k].name, node, 0, 0, 0,
                                0, 0});

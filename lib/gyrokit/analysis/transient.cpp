@@ -56,33 +56,34 @@ double transient_time_step(const SpeedProfile& p) {
     return 2.0 * kPi / (kStepsPerPeriod * kBandMargin * p.top());
 }
 
+double steady_deviation(const GyroscopicSystem& sys, double w, double dt, const std::vector<int>& outputs,
+                        SolverKind kind) {
+    const Eigen::VectorXcd f = w * w * sys.unbalance;
+    const Eigen::VectorXcd exact = dynamic_response(sys, w, w, f, kind);
+    const Eigen::VectorXcd settled = dynamic_response(sys, w, 2.0 / dt * std::tan(0.5 * w * dt), f, kind);
+    double largest = 0.0, deviation = 0.0;
+    for (const int k : outputs) largest = std::max(largest, std::abs(exact(k)));
+    for (const int k : outputs)
+        if (std::abs(exact(k)) >= 1e-3 * largest && largest > 0.0)
+            deviation = std::max(deviation, std::abs(std::abs(settled(k)) / std::abs(exact(k)) - 1.0));
+    return deviation;
+}
+
 SteadyStep steady_time_step(const GyroscopicSystem& sys, const SpeedProfile& p, const std::vector<int>& outputs,
-                            SolverKind kind) {
+                            double duration, long long max_steps, SolverKind kind) {
     SteadyStep s;
     s.dt = transient_time_step(p);
     if (p.acceleration != 0.0) return s;   // a run-up settles on nothing
-    const double w = p.from, h = 1e-4;
-    // The amplitudes at nu = w (1 -/+ h), the spin held at w: the slope of ln|Z_k| by a
-    // central difference (error h^2 of its second derivative, far below what it steers).
-    const Eigen::VectorXcd f = w * w * sys.unbalance;
-    const Eigen::VectorXcd lo = dynamic_response(sys, w, w * (1.0 - h), f, kind);
-    const Eigen::VectorXcd hi = dynamic_response(sys, w, w * (1.0 + h), f, kind);
-    double largest = 0.0;
-    for (const int k : outputs) largest = std::max(largest, std::abs(lo(k)) + std::abs(hi(k)));
-    for (const int k : outputs) {
-        const double a = std::abs(lo(k)), b = std::abs(hi(k));
-        if (!(a + b >= 1e-3 * largest) || !(a > 0.0 && b > 0.0)) continue;
-        s.sensitivity = std::max(s.sensitivity, std::abs(std::log(b / a)) / (2.0 * h));
+    const double w = p.from, target = 0.5 * kSteadyDeviation;
+    // Never below 1/16 of the band's step, nor so short that the run would exceed max_steps.
+    const double floor = std::min(s.dt, std::max(kSteadyStepFloor * s.dt, duration / static_cast<double>(max_steps)));
+    s.deviation = steady_deviation(sys, w, s.dt, outputs, kind);
+    // The deviation goes as dt^2 (as dt^4 at a resonance's peak, where |Z| is flat): the step
+    // scaled for dt^2, at most 8 tries, each checked by its own solve.
+    for (int k = 0; k < 8 && s.deviation > target && s.dt > floor; ++k) {
+        s.dt = std::max(floor, s.dt * std::min(0.7, std::sqrt(target / s.deviation) * 0.95));
+        s.deviation = steady_deviation(sys, w, s.dt, outputs, kind);
     }
-    const auto deviation = [&](double dt) {
-        const double x = 0.5 * w * dt;
-        return (std::tan(x) / x - 1.0) * s.sensitivity;
-    };
-    const double floor = kSteadyStepFloor * s.dt;
-    // (w_hat / w - 1) grows as dt^2: the step that meets the target, then checked.
-    if (deviation(s.dt) > 0.5 * kSteadyDeviation)
-        s.dt = std::max(floor, s.dt * std::sqrt(0.5 * kSteadyDeviation / deviation(s.dt)) * 0.99);
-    s.deviation = deviation(s.dt);
     return s;
 }
 
@@ -307,7 +308,7 @@ struct Plan {
 };
 
 // The duration, the time step and the step count, each checked against its range.
-Plan plan_run(const GyroscopicSystem& sys, const TransientOptions& o) {
+Plan plan_run(const GyroscopicSystem& sys, const TransientOptions& o, bool steady) {
     const SpeedProfile& p = o.profile;
     p.validate(o.unit);
     if (!(o.max_steps >= 1 && o.max_steps <= kTransientStepLimit))
@@ -321,9 +322,12 @@ Plan plan_run(const GyroscopicSystem& sys, const TransientOptions& o) {
                                      "revolutions (constant speed)",
                                      option_field("duration"), o.duration));
     double dt = o.dt != 0.0 ? o.dt : policy;
-    if (o.dt == 0.0 && p.acceleration == 0.0) {
+    // The steady solves of a constant-speed run's default step: only for the run itself (the
+    // checks before it need none: that step never exceeds max_steps).
+    if (steady && o.dt == 0.0 && p.acceleration == 0.0 && std::isfinite(plan.duration) && plan.duration > 0.0) {
         try {
-            plan.steady = steady_time_step(sys, p, o.outputs.empty() ? transient_outputs(sys) : o.outputs, o.kind);
+            plan.steady = steady_time_step(sys, p, o.outputs.empty() ? transient_outputs(sys) : o.outputs,
+                                           plan.duration, o.max_steps, o.kind);
             dt = plan.steady->dt;
         } catch (const SolverError&) {
             plan.singular = true;   // the run goes on at the band's step; the note says why
@@ -352,19 +356,18 @@ Plan plan_run(const GyroscopicSystem& sys, const TransientOptions& o) {
 }
 
 // What a constant-speed run at the default step settles on, against the steady response.
-std::string steady_note(const SpeedProfile& p, const Plan& plan) {
+std::string steady_note(const Plan& plan) {
     if (plan.singular)
         return "; no steady response at this speed (the dynamic stiffness is singular): the band's step";
     if (!plan.steady) return "";
-    const double x = 0.5 * p.from * plan.dt;
-    const double deviation = (std::tan(x) / x - 1.0) * plan.steady->sensitivity;
-    std::string note = fmt::format("; the step keeps the amplitude it settles on within {:.2g} % of the steady response "
-                                   "(|d ln|Z| / d ln w| up to {:.3g} at the outputs)",
-                                   100.0 * deviation, plan.steady->sensitivity);
-    if (deviation > kSteadyDeviation)
-        note += fmt::format(", above {:.2g} % at the shortest default step (1/{:.0f} of the band's): the response is "
-                            "that sensitive here; {} sets a shorter one",
-                            100.0 * kSteadyDeviation, 1.0 / kSteadyStepFloor, option_field("dt"));
+    std::string note = fmt::format("; the amplitude it settles on (the response at (2/dt) tan(w dt/2)) within "
+                                   "{:.2g} % of the steady response",
+                                   100.0 * plan.steady->deviation);
+    if (plan.steady->deviation > kSteadyDeviation)
+        note += fmt::format(", above {:.2g} % at the shortest default step (1/{:.0f} of the band's, or {} over the "
+                            "run): the response is that sensitive here; {} sets a shorter one",
+                            100.0 * kSteadyDeviation, 1.0 / kSteadyStepFloor, option_field("max_steps"),
+                            option_field("dt"));
     return note;
 }
 
@@ -375,7 +378,7 @@ std::string step_note(const SpeedProfile& p, const Plan& plan, const SpeedUnit& 
                        "period error (w dt)^2/12 there {:.2g} %",
                        plan.steps, plan.dt, plan.duration, 2.0 * kPi / wdt, band * u.factor, u.name, kBandMargin,
                        2.0 * kPi / (p.top() * plan.dt), 100.0 * wdt * wdt / 12.0) +
-           steady_note(p, plan);
+           steady_note(plan);
 }
 
 // The initial state: at rest, or the steady response to the force at t = 0 held harmonic.
@@ -394,14 +397,23 @@ void initial_state(const GyroscopicSystem& sys, const TransientOptions& o, Eigen
 void check_transient_options(const GyroscopicSystem& sys, const TransientOptions& o) {
     if (sys.unbalance.size() == 0) throw InputError("the model defines no unbalance load; the response is zero");
     check_dof_list(sys, o.outputs.empty() ? transient_outputs(sys) : o.outputs, "transient");
-    plan_run(sys, o);
+    plan_run(sys, o, false);
 }
 
 TransientResult transient_response(const GyroscopicSystem& sys, const TransientOptions& o) {
     TransientResult r;
     r.dofs = o.outputs.empty() ? transient_outputs(sys) : o.outputs;
     check_transient_options(sys, o);
-    const Plan plan = plan_run(sys, o);
+    Plan plan = plan_run(sys, o, true);
+    // The deviation at the step the run takes (landed on its end: a little shorter).
+    if (plan.steady) {
+        try {
+            plan.steady->deviation =
+                steady_deviation(sys, o.profile.from, plan.dt, r.dofs, o.kind);
+        } catch (const SolverError&) {
+            plan.singular = true;
+        }
+    }
     const SpeedProfile& p = o.profile;
     r.profile = p;
     r.dt = plan.dt;

@@ -50,22 +50,25 @@ constexpr double kCoefficientSpeedStep = 1e-3;
 // excite; the unbalance at the top speed gets kBandMargin times as many.
 double transient_time_step(const SpeedProfile& p);
 
-// What a constant-speed run settles on: the trapezoidal rule's steady state is the
-// response at w_hat = (2/dt) tan(w dt/2) = w (1 + (w dt)^2/12 + ...), so each output's
-// amplitude differs from the steady |Z_k(w)| by about (w_hat/w - 1) S_k, S_k = |d ln|Z_k| /
-// d ln nu| at the excitation frequency nu = w (the spin held). The default step of such a
-// run keeps that within kSteadyDeviation / 2 for every output of at least 1e-3 of the
-// largest: the band's step, shortened (down to kSteadyStepFloor of it) where the response
-// is that sensitive.
+// What a constant-speed run settles on: the trapezoidal rule's steady state is exactly
+// the steady response at the frequency w_hat = (2/dt) tan(w dt/2) (the spin held at w),
+// so each output's amplitude differs from the steady |Z_k(w)| by |Z_k(w_hat)| / |Z_k(w)| - 1,
+// computed by one solve per step tried. The default step of such a run keeps that within
+// kSteadyDeviation / 2 (the other half left to the peak's sampling) for every output of at
+// least 1e-3 of the largest: the band's step, shortened where needed, down to
+// kSteadyStepFloor of it and to no more than `max_steps` steps over `duration`.
 constexpr double kSteadyDeviation = 1e-3;
 constexpr double kSteadyStepFloor = 1.0 / 16.0;
 struct SteadyStep {
     double dt = 0.0;           // s
-    double sensitivity = 0.0;  // the largest S_k of the outputs
-    double deviation = 0.0;    // (w_hat / w - 1) times it at dt: the predicted relative deviation
+    double deviation = 0.0;    // the largest relative deviation of the outputs at dt
 };
+// The relative deviation at a given step (SolverError where the dynamic stiffness at w is
+// singular: no steady response).
+double steady_deviation(const GyroscopicSystem& sys, double speed, double dt, const std::vector<int>& outputs,
+                        SolverKind kind = SolverKind::Auto);
 SteadyStep steady_time_step(const GyroscopicSystem& sys, const SpeedProfile& p, const std::vector<int>& outputs,
-                            SolverKind kind = SolverKind::Auto);
+                            double duration, long long max_steps, SolverKind kind = SolverKind::Auto);
 
 // One Newmark average-acceleration integrator of a model, stepping z, z', z'' with a
 // force given at each step. The effective matrix S(w) = 4/dt^2 M + 2/dt C(w) + K(w) is

@@ -14,7 +14,11 @@ namespace gyrokit {
 
 namespace {
 
-std::string where(const char* kind, std::size_t index) { return fmt::format("fe rotor: {} {}", kind, index); }
+// Disks, bearings, pedestals and supports numbered from 1, as the tables number them;
+// elements from 0, as nodes and the static tables' element column.
+std::string where(const char* kind, std::size_t index) {
+    return fmt::format("fe rotor: {} {}", kind, std::string(kind) == "element" ? index : index + 1);
+}
 
 void require(bool ok, const std::string& item, const char* key, double value, const std::string& range) {
     if (!ok) throw InputError(fmt::format("{}: {} = {} is out of range; allowed: {}", item, key, value, range));

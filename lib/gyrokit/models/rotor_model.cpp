@@ -15,9 +15,10 @@ namespace gyrokit {
 
 namespace {
 
-// An item's name in messages: its origin, or "<kind> <index>" for a model built in code.
+// An item's name in messages: its origin, or "<kind> <number>" (from 1, as the tables
+// number them) for a model built in code.
 std::string origin_of(const std::string& origin, const char* kind, std::size_t i) {
-    return origin.empty() ? fmt::format("{} {}", kind, i) : origin;
+    return origin.empty() ? fmt::format("{} {}", kind, i + 1) : origin;
 }
 
 }  // namespace

@@ -206,6 +206,40 @@ AxisMarks axis_marks(const Scene& scene) {
     return m;
 }
 
+namespace {
+
+// Disks as given: a geometry as its hollow cylinder (the bore left open, a rectangle
+// above and below the axis); mass and inertias as the solid cylinder they make.
+std::vector<Series> disk_series(const FeRotor& r, const std::vector<double>& z,
+                                const std::vector<std::optional<DiskGeometry>>& geometry) {
+    Series given, equivalent;
+    given.label = "disks";
+    equivalent.label = "disks (solid cylinders of their m, Id, Ip)";
+    given.color = equivalent.color = "#d62728";
+    const auto box = [](Series& s, double z0, double z1, double y0, double y1) {
+        for (const auto& [x, y] : std::vector<std::pair<double, double>>{{z0, y0}, {z0, y1}, {z1, y1}, {z1, y0}, {z0, y0}})
+            s.x.push_back(x), s.y.push_back(y);
+        s.x.push_back(NAN), s.y.push_back(NAN);
+    };
+    for (std::size_t i = 0; i < r.disks.size(); ++i) {
+        const FeDisk& d = r.disks[i];
+        const double zc = z[static_cast<size_t>(d.node)];
+        if (i < geometry.size() && geometry[i]) {
+            const DiskGeometry& g = *geometry[i];
+            const double h = std::max(g.width, 1e-3 * z.back()) / 2, ro = g.outer_diameter / 2, ri = g.inner_diameter / 2;
+            box(given, zc - h, zc + h, ri, ro);
+            box(given, zc - h, zc + h, -ro, -ri);
+            continue;
+        }
+        const auto [rad, width] = disk_cylinder(d);
+        const double h = std::max(width, 1e-3 * z.back()) / 2;
+        box(equivalent, zc - h, zc + h, -rad, rad);
+    }
+    return {given, equivalent};
+}
+
+}  // namespace
+
 Figure fe_rotor_figure(const Scene& scene) {
     std::vector<std::optional<DiskGeometry>> geometry;
     if (const RotorModel* m = scene.rotor_model())
@@ -245,33 +279,8 @@ Figure fe_rotor_figure(const FeRotor& r, const GyroscopicSystem& sys, const std:
         }
     }
     p.series = {top, bottom, bore_top, bore_bottom};
-    // Disks as given: a geometry as its hollow cylinder (the bore left open, a rectangle
-    // above and below the axis); mass and inertias as the solid cylinder they make.
-    Series given, equivalent;
-    given.label = "disks";
-    equivalent.label = "disks (solid cylinders of their m, Id, Ip)";
-    given.color = equivalent.color = "#d62728";
-    const auto box = [](Series& s, double z0, double z1, double y0, double y1) {
-        for (const auto& [x, y] : std::vector<std::pair<double, double>>{{z0, y0}, {z0, y1}, {z1, y1}, {z1, y0}, {z0, y0}})
-            s.x.push_back(x), s.y.push_back(y);
-        s.x.push_back(NAN), s.y.push_back(NAN);
-    };
-    for (std::size_t i = 0; i < r.disks.size(); ++i) {
-        const FeDisk& d = r.disks[i];
-        const double zc = z[static_cast<size_t>(d.node)];
-        if (i < geometry.size() && geometry[i]) {
-            const DiskGeometry& g = *geometry[i];
-            const double h = std::max(g.width, 1e-3 * z.back()) / 2, ro = g.outer_diameter / 2, ri = g.inner_diameter / 2;
-            box(given, zc - h, zc + h, ri, ro);
-            box(given, zc - h, zc + h, -ro, -ri);
-            continue;
-        }
-        const auto [rad, width] = disk_cylinder(d);
-        const double h = std::max(width, 1e-3 * z.back()) / 2;
-        box(equivalent, zc - h, zc + h, -rad, rad);
-    }
-    for (Series* s : {&given, &equivalent})
-        if (!s->x.empty()) p.series.push_back(*s);
+    for (Series& d : disk_series(r, z, geometry))
+        if (!d.x.empty()) p.series.push_back(std::move(d));
     // Bearings and supports below the shaft at their nodes.
     const auto marks = [&](const std::vector<int>& nodes, const std::string& label, const std::string& color) {
         Series m;

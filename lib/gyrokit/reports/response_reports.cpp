@@ -192,7 +192,7 @@ std::vector<std::string> polar_marks(const std::vector<double>& speeds, const Sp
         std::size_t best = 0;
         for (std::size_t i = 1; i < speeds.size(); ++i)
             if (std::abs(u.factor * speeds[i] - t) < std::abs(u.factor * speeds[best] - t)) best = i;
-        labels[best] = fmt::format("{:.4g} {}", u.factor * speeds[best], u.name);
+        labels[best] = fmt::format("{:.6g} {}", u.factor * speeds[best], u.name);   // 15000, not 1.5e+04
     }
     return labels;
 }

@@ -9,6 +9,7 @@
 #include <gyrokit/core/length_unit.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
 #include <type_traits>
@@ -45,13 +46,24 @@ std::string quoted(const std::string& text) {
 double degrees(double rad) { return rad * 180.0 / kPi; }   // as written before: the same digits
 
 // A length in a unit of `metres` per unit, written back in that unit: in metres its shortest
-// round-trip form; in another unit to 15 significant digits, so that a value read from a
-// scene in that unit (x * metres, x of at most 15 digits) is written as the x it was.
+// round-trip form; in another unit the shortest text x (15, 16 or 17 significant digits, of
+// v / metres or its neighbours) that the reader's x * metres turns back into v, so that a
+// value read from a scene in that unit is written as the x it was, and any other reads back
+// bit for bit too.
 std::string length_number(double v, double metres) {
-    if (metres == 1.0) return number(v);
-    std::string s = fmt::format("{:.15g}", v / metres);
-    if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-    return s;
+    if (metres == 1.0 || !std::isfinite(v)) return number(v);
+    const auto as_float = [](std::string s) {
+        if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+        return s;
+    };
+    const double q = v / metres, up = std::nextafter(q, HUGE_VAL), down = std::nextafter(q, -HUGE_VAL);
+    const double candidates[] = {q, up, down, std::nextafter(up, HUGE_VAL), std::nextafter(down, -HUGE_VAL)};
+    for (const int digits : {15, 16, 17})
+        for (const double x : candidates) {
+            const std::string s = fmt::format("{:.{}g}", x, digits);
+            if (std::strtod(s.c_str(), nullptr) * metres == v) return as_float(s);
+        }
+    return as_float(fmt::format("{:.17g}", q));   // within an ulp of v
 }
 
 class Writer {
@@ -197,7 +209,7 @@ void write_support(Writer& w, const RotorSupport& s, std::size_t i) {
     if (!clamped && !pinned)
         throw InputError(fmt::format("{}: holds x = {}, y = {}, theta_x = {}, theta_y = {}, which a scene cannot "
                                      "say; allowed in a scene: pinned (x, y) or clamped (x, y, theta_x, theta_y)",
-                                     s.origin.empty() ? fmt::format("support {}", i) : s.origin, h.x, h.y, h.theta_x,
+                                     s.origin.empty() ? fmt::format("support {}", i + 1) : s.origin, h.x, h.y, h.theta_x,
                                      h.theta_y));
     w.table("[[model.support]]");
     w.length("z", s.z);
