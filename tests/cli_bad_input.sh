@@ -265,6 +265,24 @@ if [ "$rc" -ne 3 ] || [ -s "$dir/out" ] || ! grep -q "the eigensolver cannot vou
     echo "FAIL: eig at 1e150 rad/s -> exit $rc, expected a solver error (3) and no table"; fail=1
 fi
 
+# A DOF of 1e20 N/m beside kilograms: its 4.47e9 rad/s mode is printed (QZ), never
+# dropped as infinite; the state-matrix method says it cannot resolve it (exit 3).
+printf '%%%%MatrixMarket matrix coordinate real general\n4 4 4\n1 1 5\n2 2 5\n3 3 0.02\n4 4 0.02\n' > "$dir/M20.mtx"
+printf '%%%%MatrixMarket matrix coordinate real general\n4 4 4\n1 1 1\n2 2 1e20\n3 3 1\n4 4 1\n' > "$dir/K20.mtx"
+printf '[model]\ntype = "matrices"\nM = "M20.mtx"\nK = "K20.mtx"\n' > "$dir/stiff20.toml"
+"$cli" eig "$dir/stiff20.toml" --speed 0 > "$dir/out" 2> "$dir/err"
+rc=$?
+if [ "$rc" -ne 0 ] || ! grep -q " 4 .*4\.47214e+09" "$dir/out" || grep -q "infinite" "$dir/out"; then
+    echo "FAIL: eig of the 1e20 N/m DOF -> exit $rc, expected its 4.47214e+09 rad/s mode and no infinite one"
+    sed 's/^/    /' "$dir/out" "$dir/err"; fail=1
+fi
+"$cli" eig "$dir/stiff20.toml" --speed 0 --method state > "$dir/out" 2> "$dir/err"
+rc=$?
+if [ "$rc" -ne 3 ] || [ -s "$dir/out" ] || ! grep -q "M is invertible" "$dir/err"; then
+    echo "FAIL: eig --method state of the 1e20 N/m DOF -> exit $rc, expected a solver error (3) naming M invertible"
+    sed 's/^/    /' "$dir/err"; fail=1
+fi
+
 # A file that is not what it should be is named, never quoted; a huge key is cut.
 printf 'root:secret-hash:19000:0:99999:7:::\n' > "$dir/shadow_like"
 printf '[model]\ntype = "matrices"\nM = "shadow_like"\nK = "M2.mtx"\n' > "$dir/shadow.toml"

@@ -139,6 +139,17 @@ def test_system_from_numpy_and_scipy_matrices_closed_form():
     assert sp.issparse(s.M) and s.M.nnz == 4
 
 
+def test_a_dof_of_1e20_beside_kilograms_keeps_its_mode():
+    # omega = sqrt(k / m) for each DOF; the 4.47e9 rad/s one is a mode, within its bound.
+    m, k = np.array([5.0, 5.0, 0.02, 0.02]), np.array([1.0, 1e20, 1.0, 1.0])
+    ev = gk.eig(gk.System(M=np.diag(m), K=np.diag(k)), speed=0.0)
+    expected = np.sort(np.sqrt(k / m))
+    assert len(ev.frequencies) == 4 and ev.notes == []
+    assert np.all(np.abs(ev.eigenvalues - 1j * expected) <= ev.error_bounds)
+    with pytest.raises(gk.SolverError, match="M is invertible"):
+        gk.eig(gk.System(M=np.diag(m), K=np.diag(k)), speed=0.0, method="state")
+
+
 def test_damping_components_and_unbalance():
     M, K, G, w, _ = jeffcott_with_disk()
     s = gk.System(M=M, K=K, G=G, damping={"bearings": np.diag([40.0, 40.0, 0, 0])},

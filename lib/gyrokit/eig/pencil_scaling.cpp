@@ -5,6 +5,8 @@
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/sparse_eigensolver.hpp>
 
+#include <Eigen/QR>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -96,7 +98,15 @@ Companion companion(const QuadraticPencil& original, const CompanionScaling& sca
 
 Companion companion(const QuadraticPencil& original) { return companion(original, companion_scaling(original)); }
 
-// Whether QZ's alpha / beta is an infinite eigenvalue (singular M).
+int infinite_limit(const QuadraticPencil& p) {
+    const Eigen::Index n = p.M.rows();
+    Eigen::VectorXd d(n);
+    for (Eigen::Index i = 0; i < n; ++i) d(i) = p.M(i, i) != 0.0 ? 1.0 / std::sqrt(std::abs(p.M(i, i))) : 1.0;
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(d.asDiagonal() * p.M * d.asDiagonal());
+    qr.setThreshold(1e-12);   // a singular M is singular exactly (massless DOFs), not to rounding
+    return static_cast<int>(n - qr.rank());
+}
+
 bool infinite(std::complex<double> alpha, double beta) {
     return std::abs(beta) <= 100.0 * std::numeric_limits<double>::epsilon() * std::abs(alpha) || beta == 0.0;
 }

@@ -16,7 +16,7 @@ namespace {
 
 // `scaling` and `scale`: a group's, the whole pencil's (qz_eigenpairs).
 QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left, bool classic,
-                           const CompanionScaling* scaling = nullptr, double scale = 0.0) {
+                           const CompanionScaling* scaling = nullptr, double scale = 0.0, bool reversible = true) {
     const int n = static_cast<int>(original.M.rows());
     const PencilAction action = action_of(original);   // backward errors refer to the original problem
     Companion c = scaling ? companion(original, *scaling) : companion(original);
@@ -48,10 +48,46 @@ QuadraticSpectrum solve_qz(const QuadraticPencil& original, bool want_left, bool
         if (want_left) m.left = unit_vector(t.asDiagonal() * ge.left.col(j).head(n));
         s.modes.push_back(std::move(m));
     }
+    // Eigenvalues at infinity beyond what M's null space allows are finite ones
+    // beyond the scaled pencil's resolution: taken from the reversed pencil.
+    if (reversible && s.infinite_count > 0) {
+        const int lost = s.infinite_count - infinite_limit(original);
+        if (lost > 0) {
+            for (Mode& m : largest_by_reversal(original, lost, want_left, classic)) {
+                s.infinite_count -= m.lambda.imag() == 0.0 ? 1 : 2;
+                s.modes.push_back(std::move(m));
+            }
+        }
+    }
     return s;
 }
 
 }  // namespace
+
+std::vector<Mode> largest_by_reversal(const QuadraticPencil& p, int lost, bool want_left, bool classic) {
+    const QuadraticPencil reversed{p.K, p.C, p.M};
+    QuadraticSpectrum r = solve_qz(reversed, want_left, classic, nullptr, 0.0, false);
+    std::sort(r.modes.begin(), r.modes.end(),
+              [](const Mode& a, const Mode& b) { return std::abs(a.lambda) < std::abs(b.lambda); });
+    const PencilAction action = action_of(p);
+    std::vector<Mode> out;
+    int counted = 0;
+    for (Mode& m : r.modes) {
+        if (counted >= lost) break;
+        if (!(std::abs(m.lambda) > 1e-12 * r.scale)) continue;   // nu = 0: lambda truly infinite
+        const bool real = std::abs(m.lambda.imag()) <= 1e-7 * std::abs(m.lambda);
+        counted += real ? 1 : 2;
+        // nu in the upper half plane is lambda = 1/nu in the lower: its conjugate.
+        m.lambda = real ? cd(1.0 / m.lambda.real(), 0.0) : std::conj(1.0 / m.lambda);
+        if (!real) {
+            m.right = m.right.conjugate();
+            if (want_left) m.left = m.left.conjugate();
+        }
+        m.backward_error = backward_error(action, m.lambda, m.right);
+        out.push_back(std::move(m));
+    }
+    return out;
+}
 
 // Every uncoupled group by solve_qz (the QZ's cost is cubic in the size: ROSS's
 // 42 DOFs as groups of 28, 7 and 7 cost a third), the vectors zero outside their

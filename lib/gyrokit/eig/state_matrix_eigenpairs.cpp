@@ -8,6 +8,8 @@
 #include <gyrokit/eig/sparse_eigensolver.hpp>
 
 #include <Eigen/LU>
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -103,9 +105,21 @@ QuadraticSpectrum state_matrix_eigenpairs(const QuadraticPencil& p) {
     A.bottomLeftCorner(n, n) = -lu.solve(Ks);
     A.bottomRightCorner(n, n) = -lu.solve(Cs);
     // A zero pivot can pass the condition estimate and leave infinities instead.
-    if (!(lu.rcond() > 1e-14) || !A.allFinite())
-        throw SolverError("the state-matrix method needs an invertible M, and M is singular; "
-                          "use the QZ method (" + option_field("method") + " qz)");
+    if (!(lu.rcond() > 1e-14) || !A.allFinite()) {
+        if (infinite_limit(p) > 0)
+            throw SolverError("the state-matrix method needs an invertible M, and M is singular; "
+                              "use the QZ method (" + option_field("method") + " qz)");
+        // M itself is invertible: the scaling by stiffness leaves a DOF's mass at rounding.
+        double ratio = 0.0;
+        for (int i = 0; i < n; ++i)
+            if (p.M(i, i) != 0.0) ratio = std::max(ratio, std::abs(p.K(i, i) / p.M(i, i)));
+        throw SolverError(fmt::format(
+            "the state-matrix method cannot resolve this pencil: M is invertible, but a DOF's stiffness over its "
+            "mass ({:.3g} 1/s^2, a natural frequency of {:.3g} rad/s) is beyond double precision against the "
+            "pencil's natural scale ({:.3g} rad/s), so the scaled M is singular to rounding (reciprocal "
+            "condition {:.2g}); use the QZ method ({} qz), which solves such modes apart",
+            ratio, std::sqrt(ratio), g, lu.rcond(), option_field("method")));
+    }
     // A sparse (banded FE) pencil refines every pair with a cheap sparse LU, which also
     // gives its left vector; a dense one takes the left vectors from dgeev (a quarter
     // more QR time) and factorizes only where a pair is not at rounding level: n dense

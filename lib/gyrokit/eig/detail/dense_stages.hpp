@@ -45,8 +45,22 @@ struct Companion {
 Companion companion(const QuadraticPencil& original, const CompanionScaling& scaling);
 Companion companion(const QuadraticPencil& original);
 
-// Whether QZ's alpha / beta is an infinite eigenvalue (singular M).
+// How many of the companion form's 2n eigenvalues are infinite at least: one for
+// each dimension of M's null space (two where that DOF has no damping either), none
+// where M is invertible. M's rank is taken in its own diagonal scaling, so that
+// units and a stiff support (1e20 N/m beside kilograms) do not make it singular.
+int infinite_limit(const QuadraticPencil& p);
+
+// Whether QZ's alpha / beta is an infinite eigenvalue (beta at rounding level).
 bool infinite(std::complex<double> alpha, double beta);
+
+// The eigenvalues QZ put at infinity beyond that least count (a DOF whose mass is
+// below rounding against its stiffness: 1e20 N/m beside kilograms): up to `lost`
+// largest eigenvalues of the pencil, found as the smallest of the reversed pencil
+// nu^2 K + nu C + M (nu = 1/lambda; same vectors), in the upper half plane (a
+// complex pair counts 2 toward `lost`, a real eigenvalue 1). A nu at rounding level
+// is a true infinite eigenvalue (M's null space): not taken. Backward errors on p.
+std::vector<Mode> largest_by_reversal(const QuadraticPencil& p, int lost, bool want_left, bool classic);
 
 // The DOFs in groups the pencil does not couple (connected components of M's, C's
 // and K's entries), each increasing; empty where a group has no mass (then the
