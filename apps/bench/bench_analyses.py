@@ -29,6 +29,12 @@ def map_check(out):
     return f"{len(d['critical_map'])} critical speeds, largest backward error {worst:.1e}"
 
 
+def pervasive_check(out):
+    d = json.loads(out)
+    rows = {r["quantity"]: r["value"] for r in d["pervasive_summary"]}
+    return f"{rows['modes checked']}; {len(d['pervasive_damping'])} losses"
+
+
 def rows_check(what):
     return lambda out: f"{len(json.loads(out))} {what}"
 
@@ -38,6 +44,7 @@ CASES = [
     ("Campbell diagram (baseline)", ["campbell", "--format", "json"], rows_check("rows, each pair verified")),
     ("critical speeds, API 684 AF", ["critical", "--format", "json"], rows_check("critical speeds")),
     ("stability", ["stability", "--format", "json"], rows_check("stability changes")),
+    ("pervasive damping (Hautus)", ["pervasive", "--format", "json"], pervasive_check),
     ("unbalance response", ["response", "--format", "json"], rows_check("rows (speed x DOF)")),
     ("static deflection", ["static", "--format", "json"], static_check),
     ("critical speed map", ["critical-map", "--format", "json"], map_check),

@@ -140,7 +140,11 @@ Command pervasive_command(CLI::App& app, const std::shared_ptr<Options>& o) {
         const Context c = open_scene(o->common, request(*o), true);
         const PervasiveStudy st = pervasive_study(c.scene.system, c.study, o->tolerance);
         print_diagnostics(st.diagnostics);
-        write_table(out, pervasive_table(st.report, c.unit), c.format);
+        // Csv holds one table: the losses; Text and Json the summary too.
+        if (c.format == TableFormat::Csv)
+            write_table(out, pervasive_table(st.report, c.unit), c.format);
+        else
+            write_tables(out, {pervasive_summary(st.report, c.unit), pervasive_table(st.report, c.unit)}, c.format);
     }};
 }
 

@@ -358,6 +358,11 @@ py::dict py_pervasive(const py::object& model, double tolerance, const py::dict&
     py::dict d;
     d["unit"] = u.name;
     d["checked"] = rep.checked;
+    d["checked_speeds"] = rep.speeds;
+    d["checked_modes"] = rep.modes;
+    d["f_cut"] = std::isfinite(rep.band) ? py::object(py::float_(rep.band)) : py::object(py::none());
+    d["pervades"] = !rep.checked.empty() && rep.losses.empty();
+    d["partial"] = rep.partial;
     d["damping"] = damping;
     d["speeds"] = py::array_t<double>(static_cast<py::ssize_t>(speed.size()), speed.data());
     d["mode"] = py::array_t<int>(static_cast<py::ssize_t>(mode.size()), mode.data());
@@ -365,7 +370,7 @@ py::dict py_pervasive(const py::object& model, double tolerance, const py::dict&
     d["whirl"] = whirl;
     d["residual"] = py::array_t<double>(static_cast<py::ssize_t>(residual.size()), residual.data());
     put_diagnostics(d, st.diagnostics);
-    put_reports(d, {pervasive_table(rep, u)});
+    put_reports(d, {pervasive_summary(rep, u), pervasive_table(rep, u)});
     return d;
 }
 

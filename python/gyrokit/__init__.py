@@ -801,12 +801,20 @@ def summary(scene) -> ModelSummary:
 
 class PervasiveLosses(_Result):
     """Speeds where a damping set (a component alone, or "total") does not reach a mode (Hautus test);
-    speeds and frequencies in `unit`."""
+    speeds and frequencies in `unit`. What was checked: `checked` (the sets), `checked_speeds`,
+    `checked_modes` (modes of the undamped system, every one up to `f_cut`; None: every mode);
+    `pervades`: the model has damping and no set loses a checked mode at a checked speed; `partial`: a
+    sparse window that may miss modes up to f_cut (the notes say which)."""
 
     def __init__(self, d):
         self.unit = d["unit"]
         f = _factor(self.unit)
         self.checked = list(d["checked"])
+        self.checked_speeds = int(d["checked_speeds"])
+        self.checked_modes = int(d["checked_modes"])
+        self.f_cut = None if d["f_cut"] is None else d["f_cut"] * f
+        self.pervades = bool(d["pervades"])
+        self.partial = bool(d["partial"])
         self.damping = list(d["damping"])
         self.speeds = d["speeds"] * f
         self.mode = d["mode"]

@@ -165,6 +165,11 @@ def screen(sweep: Union[str, PathLike[str]], designs: Optional[Sequence[Mapping[
 class PervasiveLosses(_Result):
     unit: str
     checked: list[str]
+    checked_speeds: int
+    checked_modes: int
+    f_cut: Optional[float]
+    pervades: bool
+    partial: bool
     damping: list[str]
     speeds: npt.NDArray[np.float64]
     mode: npt.NDArray[np.int32]

@@ -65,11 +65,16 @@ TEST_CASE("cage damping stops pervading exactly at eq. (29)", "[gyrostat][pervas
         const GyrostatParameters p = test::random_gyrostat(gen, trial % 3 != 0);   // (29) holds for any cage
         const double w1 = closed_form_w1(p);
         const GyroscopicSystem s = make_system(p);
-        const auto rep = pervasive_damping(s.with_damping_only({"d_G"}), SpeedRange{0.0, 2.0 * w1, 201}.points());
-        const auto w = losses_of(rep, "d_G");
-        INFO("trial " << trial << " w1 = " << w1);
-        REQUIRE(w.size() == 1);
-        CHECK(std::fabs(w[0] - w1) <= 1e-8 * w1);
+        for (const int modes : {0, kModesInRange}) {
+            PervasiveOptions po;
+            po.modes = modes;
+            po.f_cut = 100.0 * w1;
+            const auto rep = pervasive_damping(s.with_damping_only({"d_G"}), SpeedRange{0.0, 2.0 * w1, 201}.points(), po);
+            const auto w = losses_of(rep, "d_G");
+            INFO("trial " << trial << " modes " << modes << " w1 = " << w1);
+            REQUIRE(w.size() == 1);
+            CHECK(std::fabs(w[0] - w1) <= 1e-8 * w1);
+        }
     }
 }
 
@@ -78,13 +83,20 @@ TEST_CASE("rotation damping stops pervading at eq. (37) for a symmetric cage onl
     for (int trial = 0; trial < 12; ++trial) {
         const GyrostatParameters p = test::random_gyrostat(gen, true);
         const auto [w2, w3] = closed_form_w23(p);
-        const auto rep =
-            pervasive_damping(make_system(p).with_damping_only({"d_R"}), SpeedRange{0.0, 1.5 * w3, 301}.points());
-        const auto w = losses_of(rep, "d_R");
-        INFO("trial " << trial << " w2 = " << w2 << " w3 = " << w3);
-        REQUIRE(w.size() == 2);
-        CHECK(std::fabs(w[0] - w2) <= 1e-8 * w2);
-        CHECK(std::fabs(w[1] - w3) <= 1e-8 * w3);
+        // Every mode solved in full at each speed, and the modes up to f_cut continued
+        // (refined by following the branch; f_cut above the lost modes), alike.
+        for (const int modes : {0, kModesInRange}) {
+            PervasiveOptions po;
+            po.modes = modes;
+            po.f_cut = 100.0 * w3;
+            const auto rep = pervasive_damping(make_system(p).with_damping_only({"d_R"}),
+                                               SpeedRange{0.0, 1.5 * w3, 301}.points(), po);
+            const auto w = losses_of(rep, "d_R");
+            INFO("trial " << trial << " modes " << modes << " w2 = " << w2 << " w3 = " << w3);
+            REQUIRE(w.size() == 2);
+            CHECK(std::fabs(w[0] - w2) <= 1e-8 * w2);
+            CHECK(std::fabs(w[1] - w3) <= 1e-8 * w3);
+        }
     }
     for (int trial = 0; trial < 6; ++trial) {   // A_G != B_G: always pervading
         const GyrostatParameters p = test::random_gyrostat(gen, false);

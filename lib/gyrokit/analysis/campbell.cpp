@@ -188,6 +188,19 @@ SolverFactory window_for_band(const SolverFactory& make, double band, const std:
 
 }  // namespace
 
+double eigenvalue_gap(const CampbellDiagram& cd, const Branch& own, const BranchPoint& at) {
+    const std::complex<double> l = at.mode.lambda;
+    double gap = std::abs(l.imag()) > 0.0 ? 2.0 * std::abs(l.imag()) : std::numeric_limits<double>::infinity();
+    for (const auto* list : {&cd.branches, &cd.untracked, &cd.out_of_range})
+        for (const Branch& o : *list) {
+            if (&o == &own) continue;
+            for (const BranchPoint& q : o.points)
+                if (q.speed == at.speed)
+                    gap = std::min({gap, std::abs(q.mode.lambda - l), std::abs(std::conj(q.mode.lambda) - l)});
+        }
+    return gap;
+}
+
 Tracking track(const SolverFactory& make, CampbellOptions co, const std::vector<double>& speeds) {
     if (!make.can_continue() && std::isfinite(co.band) && co.widen_window && make.can_resize() && make.window() > 0 &&
         !speeds.empty()) {

@@ -143,4 +143,9 @@ double match_cost(const Mode& a, std::complex<double> predicted, const Mode& b);
 // eigenvalue predicted by linear interpolation.
 const Mode& continue_branch(const Branch& branch, size_t i, double w, const QuadraticSpectrum& spectrum);
 
+// The distance from a branch point's eigenvalue to the nearest other one the
+// diagram knows at that speed (another branch, out of range or not, or the
+// conjugate): how far a mode followed from it may move (SolverFactory::follow).
+double eigenvalue_gap(const CampbellDiagram& cd, const Branch& own, const BranchPoint& at);
+
 }  // namespace gyrokit

@@ -26,21 +26,6 @@ struct Root {
     double speed = 0.0, bound = 0.0;
 };
 
-// The distance from a branch point's eigenvalue to the nearest other one the
-// diagram knows at that speed (another branch, out of range or not, or the
-// conjugate).
-double gap_at(const CampbellDiagram& cd, const Branch& own, const BranchPoint& at) {
-    const std::complex<double> l = at.mode.lambda;
-    double gap = std::abs(l.imag()) > 0.0 ? 2.0 * std::abs(l.imag()) : std::numeric_limits<double>::infinity();
-    for (const auto* list : {&cd.branches, &cd.untracked, &cd.out_of_range})
-        for (const Branch& o : *list) {
-            if (&o == &own) continue;
-            for (const BranchPoint& q : o.points)
-                if (q.speed == at.speed)
-                    gap = std::min({gap, std::abs(q.mode.lambda - l), std::abs(std::conj(q.mode.lambda) - l)});
-        }
-    return gap;
-}
 
 // Every interval of every oscillating branch that `holds` accepts, refined on
 // `workers` (each search is independent) by `refine(mode_at, interval)`, then
@@ -84,7 +69,7 @@ void scan_branches(const SolverFactory& make, const CampbellDiagram& cd, const H
                     const double t = p1.speed > p0.speed ? (w - p0.speed) / (p1.speed - p0.speed) : 0.0;
                     const BranchPoint& near = t < 0.5 ? p0 : p1;
                     const std::complex<double> predicted = (1.0 - t) * p0.mode.lambda + t * p1.mode.lambda;
-                    if (auto m = make.follow(near.mode, w, predicted, 0.3 * gap_at(cd, b, near))) return *m;
+                    if (auto m = make.follow(near.mode, w, predicted, 0.3 * eigenvalue_gap(cd, b, near))) return *m;
                 }
                 return continue_branch(b, i, w, use(w));
             };

@@ -5,13 +5,16 @@
 #include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/core/error.hpp>
 #include <gyrokit/eig/quadratic_eigensolver.hpp>
+#include <gyrokit/eig/sparse_eigensolver.hpp>
 
 #include <fmt/format.h>
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <limits>
 
 namespace gyrokit {
@@ -22,7 +25,7 @@ double pervasion_residual(const QuadraticPencil& p, const Eigen::MatrixXd& D, st
     Eigen::MatrixXcd S(2 * n, n);
     S.topRows(n) = p.evaluate(lambda).transpose() / np;
     if (D.norm() == 0.0) return 0.0;   // no damping at this speed reaches anything
-    S.bottomRows(n) = D.cast<std::complex<double>>() / D.norm();
+    S.bottomRows(n) = D.transpose().cast<std::complex<double>>() / D.norm();   // z^T D = 0: D^T z = 0
     return Eigen::BDCSVD<Eigen::MatrixXcd>(S).singularValues()(n - 1);
 }
 
@@ -58,43 +61,100 @@ bool reaches_zero(double a, double ra, double b, double rb, double c, double rc)
     return false;
 }
 
+// The undamped system's tracking that every damping set is tested on: z^T P_D(lambda)
+// = 0 with z^T D = 0 holds exactly where z^T P_0(lambda) = 0 with z^T D = 0 (P_D =
+// P_0 + lambda D), so a set's losses are the undamped modes whose left vectors it
+// does not see. One continuation serves every set.
+struct Undamped {
+    const GyroscopicSystem& sys;
+    SolverFactory solver;               // the tracking's: follows a mode, or solves a speed
+    const CampbellDiagram& diagram;
+    bool dense = true;
+    std::vector<const Branch*> branches;   // the judged ones (shown and up to f_cut)
+    std::map<double, std::vector<const Mode*>> at;   // the modes at each speed, for double eigenvalues
+};
+
+// The residual over a mode's left plane for the set `set` (its damping at w).
+double plane_at(const Undamped& u, const GyroscopicSystem& set, double w, const Mode& m, const Eigen::MatrixXcd& Y) {
+    return u.dense ? pervasion_residual(u.sys.at_speed(w), Eigen::MatrixXd(set.damping_matrix(w)), m.lambda, Y)
+                   : pervasion_residual(u.sys.sparse_at_speed(w), set.damping_matrix(w), m.lambda, Y);
+}
+
+// The residual of a branch point whose vectors are polished first: inverse
+// iteration at its converged eigenvalue (refine_eigenpair, a factorization of the
+// sparse pencil), so that what is left of the other modes in its left vector drops
+// to rounding. The point's left vector alone (a double eigenvalue's plane is kept
+// as tracked).
+double polished(const Undamped& u, const GyroscopicSystem& set, const BranchPoint& q) {
+    Mode m = q.mode;
+    const SparsePencil p = u.sys.sparse_at_speed(q.speed);
+    (void)refine_eigenpair(p, sparse_pencil_action(p), m, 0.0, std::abs(m.lambda));
+    if (m.left.size() == 0 || !m.left.allFinite()) return std::numeric_limits<double>::infinity();
+    return plane_at(u, set, q.speed, m, Eigen::MatrixXcd(m.left));
+}
+
+// Branch b's mode at w (between its points i and i + 1): followed from the nearer
+// point (a few factorizations) and polished at its eigenvalue (a followed pair is
+// verified to the step's tolerance only, and the residual follows the eigenvalue's
+// error), else the speed solved by `solve` (made on first use) and the branch
+// continued into it.
+struct BranchAt {
+    QuadraticSpectrum spectrum;
+    size_t index = 0;
+    const Mode& mode() const { return spectrum.modes[index]; }
+    std::vector<const Mode*> all() const {
+        std::vector<const Mode*> m;
+        for (const Mode& x : spectrum.modes) m.push_back(&x);
+        return m;
+    }
+};
+BranchAt branch_at(const Undamped& u, const Branch& b, size_t i, double w, SpectrumSolver& solve) {
+    BranchAt at;
+    if (u.solver.can_follow()) {
+        const BranchPoint& p0 = b.points[i];
+        const BranchPoint& p1 = b.points[i + 1];
+        const double t = p1.speed > p0.speed ? (w - p0.speed) / (p1.speed - p0.speed) : 0.0;
+        const BranchPoint& near = t < 0.5 ? p0 : p1;
+        std::optional<Mode> m = u.solver.follow(near.mode, w, (1.0 - t) * p0.mode.lambda + t * p1.mode.lambda,
+                                                0.3 * eigenvalue_gap(u.diagram, b, near));
+        if (m && m->left.size() > 0) {
+            const SparsePencil p = u.sys.sparse_at_speed(w);
+            (void)refine_eigenpair(p, sparse_pencil_action(p), *m, 0.0, std::abs(m->lambda));
+            at.spectrum.modes = {std::move(*m)};
+            return at;
+        }
+    }
+    if (!solve) solve = u.solver();
+    at.spectrum = solve(w);
+    at.index = static_cast<size_t>(&continue_branch(b, i, w, at.spectrum) - at.spectrum.modes.data());
+    return at;
+}
+
 // Losses of one damping set: per tracked branch, the residual along speed, on
 // the grid from the left eigenvectors (a 2n x k SVD per mode); minima shaped
 // like a V reaching zero are refined by golden section on the continued branch
 // with the full SVD. A loss leaves a residual at the level of the eigenpair's
 // own accuracy: r <= min(tolerance, 1e3 max(eta, sqrt(n) eps)).
-void check_set(const std::string& name, const GyroscopicSystem& s, const std::vector<double>& speeds,
-               const PervasiveOptions& opt, std::vector<DampingLoss>& out) {
+void check_set(const std::string& name, const GyroscopicSystem& set, const Undamped& u, const PervasiveOptions& opt,
+               std::vector<DampingLoss>& out) {
     const double eps = std::numeric_limits<double>::epsilon();
-    SolverOptions so = opt.solver;
-    so.modes = opt.modes;
-    so.eig.left_vectors = true;
-    const SolverChoice solver = choose_solver(s, so);
-    const bool dense = solver.kind == SolverKind::Dense;
-    SpectrumSolver solve = solver.make();
-    CampbellOptions co = tracking_options(solver, opt.modes, speeds, {1}, opt.threads);
-    // K asked for: the K lowest are checked, wherever they lie (no cut-off).
-    if (opt.modes > 0) co.band = std::numeric_limits<double>::infinity();
-    const CampbellDiagram cd = campbell(solver.make, speeds, co);
-    // The residual over a mode's left plane, from the dense or the sparse pencil.
-    const auto plane = [&](double w, const Mode& m, const Eigen::MatrixXcd& Y) {
-        return dense ? pervasion_residual(s.at_speed(w), Eigen::MatrixXd(s.damping_matrix(w)), m.lambda, Y)
-                     : pervasion_residual(s.sparse_at_speed(w), s.damping_matrix(w), m.lambda, Y);
-    };
-    std::map<double, std::vector<const Mode*>> at;   // the modes at each speed, for double eigenvalues
-    for (const Branch& b : cd.branches)
-        for (const BranchPoint& q : b.points) at[q.speed].push_back(&q.mode);
     // The residual's rounding floor: its products sum n terms, so it is of the order
     // sqrt(n) eps (probabilistic rounding-error estimate) even for an exact left vector;
     // a backward error below that floor does not make the test stricter than it.
-    const double floor = std::sqrt(static_cast<double>(s.size())) * eps;
+    const double floor = std::sqrt(static_cast<double>(u.sys.size())) * eps;
     const auto limit = [&](const Mode& m) { return std::min(opt.tolerance, 1e3 * std::max(m.backward_error, floor)); };
-    for (const Branch& b : cd.branches) {
+    for (const Branch* bp : u.branches) {
+        const Branch& b = *bp;
         const size_t np = b.points.size();
         std::vector<double> r(np);
         for (size_t k = 0; k < np; ++k) {
             const BranchPoint& q = b.points[k];
-            r[k] = plane(q.speed, q.mode, left_plane(q.mode, at[q.speed]));
+            r[k] = plane_at(u, set, q.speed, q.mode, left_plane(q.mode, u.at.at(q.speed)));
+            // A residual between the loss limit and the tolerance may be the continued
+            // left vector's own error (its components along the other modes, left by a
+            // few steps of inverse iteration, not by rounding): polished at the converged
+            // eigenvalue, it falls to rounding at a loss and stays where D reaches the mode.
+            if (r[k] <= opt.tolerance && r[k] > limit(q.mode)) r[k] = std::min(r[k], polished(u, set, q));
         }
         const auto strict = [&](size_t k) { return k < np && r[k] <= limit(b.points[k].mode); };
         // Inside an interval of losses, a speed whose residual stays at its lost
@@ -115,6 +175,10 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
             m.left.resize(0);
             out.push_back({name, w, b.id, std::move(m), res});
         };
+        if (np < 2) {   // one point (one speed, or a window's mode seen once): no bracket to refine in
+            if (np == 1 && strict(0)) emit(b.points[0].speed, b.points[0].mode, r[0]);
+            continue;
+        }
         for (size_t k = 0; k < np; ++k) {
             if (lost(k) && ((k > 0 && lost(k - 1)) || lost(k + 1))) {
                 // Lost over a whole interval (e.g. a decoupled DOF group): every speed counts.
@@ -134,17 +198,16 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
                 continue;
             const double a = b.points[k == 0 ? 0 : k - 1].speed, c = b.points[std::min(k + 1, np - 1)].speed;
             Mode best = b.points[k].mode;
-            QuadraticSpectrum at_best;
-            size_t best_index = 0;
+            BranchAt at_best;
+            SpectrumSolver solve;   // made where a mode cannot be followed
             const auto f = [&](double w) {
-                const size_t i = (w < b.points[k].speed && k > 0) ? k - 1 : std::min(k, np - 2);
-                at_best = solve(w);
-                best_index = static_cast<size_t>(&continue_branch(b, i, w, at_best) - at_best.modes.data());
-                best = at_best.modes[best_index];
-                if (dense) return pervasion_residual(s.at_speed(w), Eigen::MatrixXd(s.damping_matrix(w)), best.lambda);
-                std::vector<const Mode*> modes;
-                for (const Mode& m : at_best.modes) modes.push_back(&m);
-                return plane(w, best, left_plane(best, modes));
+                at_best = branch_at(u, b, (w < b.points[k].speed && k > 0) ? k - 1 : std::min(k, np - 2), w, solve);
+                best = at_best.mode();
+                // The full SVD (dense): a single left vector is ill-determined near a
+                // crossing, where losses of a symmetric rotor lie (the centrifuge's d_R).
+                if (u.dense)
+                    return pervasion_residual(u.sys.at_speed(w), Eigen::MatrixXd(set.damping_matrix(w)), best.lambda);
+                return plane_at(u, set, w, best, left_plane(at_best.mode(), at_best.all()));
             };
             // A V reaching zero keeps its smallest sample within slope x bracket width;
             // a bowl stops shrinking: give up once the smallest value stands a hundred
@@ -156,9 +219,7 @@ void check_set(const std::string& name, const GyroscopicSystem& s, const std::ve
             // The full SVD also finds vectors that are no left eigenvector (its P block,
             // scaled by the Frobenius norms, weighs little for high modes): a loss
             // must hold for the left eigenvectors too.
-            std::vector<const Mode*> modes;
-            for (const Mode& m : at_best.modes) modes.push_back(&m);
-            const double own = plane(w, best, left_plane(at_best.modes[best_index], modes));
+            const double own = plane_at(u, set, w, best, left_plane(at_best.mode(), at_best.all()));
             if (res <= limit(best) && own <= limit(best)) emit(w, best, std::max(res, own));
         }
     }
@@ -188,7 +249,7 @@ double plane_residual(const Pencil& p, const Matrix& D, std::complex<double> lam
                                Eigen::MatrixXcd::Identity(Y.rows(), Y.cols());
     Eigen::MatrixXcd S(2 * Y.rows(), Y.cols());
     S.topRows(Y.rows()) = transposed_times(p, lambda, Z) / np;
-    S.bottomRows(Y.rows()) = D.template cast<std::complex<double>>() * Z / nD;
+    S.bottomRows(Y.rows()) = D.transpose().template cast<std::complex<double>>() * Z / nD;   // D^T z
     return Eigen::JacobiSVD<Eigen::MatrixXcd>(S).singularValues()(Y.cols() - 1);
 }
 
@@ -208,17 +269,52 @@ PervasiveReport pervasive_damping(const GyroscopicSystem& sys, const std::vector
                                   const PervasiveOptions& opt) {
     if (!(opt.tolerance > 0.0 && opt.tolerance < 1.0))
         throw InputError(fmt::format("{} {}: allowed: 0 < tolerance < 1", option_field("tolerance"), opt.tolerance));
+    if (speeds.empty()) throw InputError(option_field("speeds") + " (none): allowed: at least one speed in rad/s");
     PervasiveReport rep;
+    rep.speeds = static_cast<int>(speeds.size());
+    rep.from = speeds.front();
+    rep.to = speeds.back();
     std::vector<std::pair<std::string, GyroscopicSystem>> sets;
     const std::vector<std::string> names = sys.damping_names();
     for (const auto& n : names) sets.emplace_back(n, sys.with_damping_only({n}));
     if (!names.empty()) sets.emplace_back("total", sys);
-    for (const auto& [name, s] : sets) {
-        rep.checked.push_back(name);
-        check_set(name, s, speeds, opt, rep.losses);
-    }
-    std::stable_sort(rep.losses.begin(), rep.losses.end(), [](const DampingLoss& a, const DampingLoss& b) {
-        return a.damping == b.damping ? a.speed < b.speed : false;
+    for (const auto& [name, s] : sets) rep.checked.push_back(name);
+    if (sets.empty()) return rep;   // no damping: nothing to check
+    // The undamped system's modes, tracked once (the continuation where the solver
+    // has one), with their verified left vectors.
+    const GyroscopicSystem undamped = sys.with_damping_only({});
+    SolverOptions so = opt.solver;
+    so.modes = opt.modes;
+    so.eig.left_vectors = true;
+    const SolverChoice plan = choose_solver(undamped, so);
+    const CampbellOptions co = tracking_options(plan, opt.modes, speeds, {1}, opt.threads, opt.f_cut);
+    const Tracking t = track(plan.make, co, speeds);
+    Undamped u{undamped, t.solver, t.diagram, plan.kind == SolverKind::Dense, {}, {}};
+    // The judged modes: those at or below f_cut at some speed (the tracking's band may
+    // reach higher, to hold the K lowest a diagram shows); every mode without a band.
+    const double f_cut = std::isfinite(t.diagram.band) ? judged_band(opt.f_cut, speeds, {1}) : t.diagram.band;
+    const auto judged = [&](const Branch& b) {
+        return std::any_of(b.points.begin(), b.points.end(),
+                           [&](const BranchPoint& q) { return std::abs(q.mode.lambda.imag()) <= f_cut; });
+    };
+    for (const auto* list : {&t.diagram.branches, &t.diagram.untracked})
+        for (const Branch& b : *list) {
+            if (b.points.empty() || b.points.front().mode.left.size() == 0) continue;   // eigenvalues alone
+            if (!judged(b)) continue;
+            u.branches.push_back(&b);
+            for (const BranchPoint& q : b.points) u.at[q.speed].push_back(&q.mode);
+        }
+    rep.modes = static_cast<int>(u.branches.size());
+    rep.band = f_cut;
+    rep.partial = t.diagram.partial && !t.diagram.window_holds_band;
+    rep.notes = t.diagram.notes;
+    for (const auto& [name, s] : sets) check_set(name, s, u, opt, rep.losses);
+    // By set (in the order checked), then by speed.
+    const auto rank = [&](const DampingLoss& l) {
+        return std::find(rep.checked.begin(), rep.checked.end(), l.damping) - rep.checked.begin();
+    };
+    std::stable_sort(rep.losses.begin(), rep.losses.end(), [&](const DampingLoss& a, const DampingLoss& b) {
+        return rank(a) != rank(b) ? rank(a) < rank(b) : a.speed < b.speed;
     });
     return rep;
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <map>
 
 namespace gyrokit {
 
@@ -100,6 +101,45 @@ Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u) {
     for (const auto& l : r.losses)
         t.add_row({l.damping, u.factor * l.speed, ll(l.mode), u.factor * l.lost.frequency(), to_string(l.lost.whirl),
                    l.residual});
+    return t;
+}
+
+Table pervasive_summary(const PervasiveReport& r, const SpeedUnit& u) {
+    Table t({"quantity", "value"});
+    t.key = "pervasive_summary";
+    t.title = "pervasive damping: what was checked, and the verdict";
+    const auto speed = [&](double w) { return fmt::format("{:.6g} {}", u.factor * w, u.name); };
+    std::string sets;
+    for (size_t i = 0; i < r.checked.size(); ++i)
+        sets += (i == 0 ? "" : i + 1 == r.checked.size() ? " and " : ", ") + r.checked[i];
+    t.add_row({std::string("damping checked"),
+               r.checked.empty() ? std::string("none: the model has no damping")
+                                 : sets + " (each component alone, then all together)"});
+    t.add_row({std::string("speeds"),
+               fmt::format("{} from {} to {}", r.speeds, speed(r.from), speed(r.to))});
+    t.add_row({std::string("modes checked"),
+               fmt::format("{} of the undamped system: {}{}", r.modes,
+                           std::isfinite(r.band) ? "every mode up to f_cut = " + speed(r.band) : std::string("every mode"),
+                           r.partial ? " (a sparse window: modes up to f_cut may be missed, see the notes)" : "")});
+    std::string verdict;
+    if (r.checked.empty()) {
+        verdict = "nothing to check";
+    } else {
+        std::map<std::string, int> count;
+        for (const DampingLoss& l : r.losses) ++count[l.damping];
+        std::string lost, pervade;
+        for (const std::string& c : r.checked) {
+            const auto it = count.find(c);
+            if (it == count.end()) pervade += (pervade.empty() ? "" : ", ") + c;
+            else
+                lost += fmt::format("{}{} leaves {} (speed, mode) point{} unreached", lost.empty() ? "" : "; ", c,
+                                    it->second, it->second == 1 ? "" : "s");
+        }
+        verdict = lost.empty() ? "damping pervades: every set reaches every checked mode at every checked speed"
+                               : "not pervasive: " + lost + " (table below)" +
+                                     (pervade.empty() ? "" : "; " + pervade + " pervade");
+    }
+    t.add_row({std::string("verdict"), verdict});
     return t;
 }
 

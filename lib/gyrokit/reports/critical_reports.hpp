@@ -24,5 +24,8 @@ std::vector<Table> critical_tables(const std::vector<CriticalSpeed>& cs, const S
 double round_to_bound(double x, double bound);
 Table stability_table(const std::vector<StabilityChange>& sc, const SpeedUnit& u);
 Table pervasive_table(const PervasiveReport& r, const SpeedUnit& u);
+// What a pervasive-damping check covered (sets, speeds, modes up to f_cut) and its
+// verdict, also where nothing is lost.
+Table pervasive_summary(const PervasiveReport& r, const SpeedUnit& u);
 
 }  // namespace gyrokit

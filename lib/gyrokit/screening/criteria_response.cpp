@@ -63,6 +63,7 @@ void check_pervasive(const Sweep& s, const Scene& sc, const PervasiveCriterion& 
         PervasiveOptions po;
         po.tolerance = c.tolerance;
         po.modes = sc.solver.modes;
+        po.f_cut = sc.analysis.f_cut;   // the modes judged, as by the stability criteria
         po.solver = sc.solver;   // the scene's choice, as for the other criteria
         const PervasiveReport rep = pervasive_damping(one, s.operating_speeds(), po);
         for (const auto& l : rep.losses)

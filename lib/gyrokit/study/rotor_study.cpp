@@ -116,12 +116,14 @@ PervasiveStudy pervasive_study(const GyroscopicSystem& sys, const StudyOptions& 
     po.modes = opt.solver.modes;
     po.solver = opt.solver;
     po.threads = opt.workers;
+    po.f_cut = opt.f_cut;
     if (po.modes == 0 && resolve_solver_kind(sys.size(), opt.solver.kind) == SolverKind::Sparse)
         s.diagnostics.push_back({Level::Note, Topic::Solver,
                                  fmt::format("the sparse solver checks the {} modes nearest the target; set {} K for "
                                              "another number",
                                              kDefaultSparseModes, option_field("modes"))});
     s.report = pervasive_damping(sys, opt.speeds, po);
+    add_notes(s.diagnostics, Topic::Solver, s.report.notes);   // the tracking's (a window that may miss modes)
     return s;
 }
 
