@@ -267,13 +267,14 @@ py::dict py_critical_speeds(const py::object& model, const py::dict& request) {
     }
     const std::vector<CriticalSpeed>& cs = st.critical;
     const auto n = static_cast<py::ssize_t>(cs.size());
-    py::array_t<double> speed(n), damping(n), amplification(n);
+    py::array_t<double> speed(n), bound(n), damping(n), amplification(n);
     py::array_t<int> harmonic(n), branch(n);
     py::array_t<bool> critical(n);
     py::list whirl, af_method, af_dof, af_note;
     for (py::ssize_t k = 0; k < n; ++k) {
         const CriticalSpeed& c = cs[static_cast<size_t>(k)];
         speed.mutable_at(k) = c.speed;
+        bound.mutable_at(k) = c.bound;
         damping.mutable_at(k) = c.mode.damping_ratio();
         harmonic.mutable_at(k) = c.harmonic;
         branch.mutable_at(k) = c.branch;
@@ -287,6 +288,7 @@ py::dict py_critical_speeds(const py::object& model, const py::dict& request) {
     py::dict d;
     d["unit"] = u.name;
     d["speeds"] = speed;
+    d["bounds"] = bound;
     d["harmonic"] = harmonic;
     d["branch"] = branch;
     d["whirl"] = whirl;

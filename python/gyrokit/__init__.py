@@ -167,6 +167,7 @@ class CriticalSpeeds(_Result):
     def __init__(self, d):
         self.unit = d["unit"]
         self.speeds = d["speeds"] * _factor(self.unit)
+        self.bounds = d["bounds"] * _factor(self.unit)   # |speed - exact crossing| <= bound
         self.harmonic = d["harmonic"]
         self.branch = d["branch"]
         self.whirl = list(d["whirl"])
@@ -184,7 +185,7 @@ class CriticalSpeeds(_Result):
         self._take_reports(d)
 
     def to_pandas(self):
-        return self._frame({"speed": self.speeds, "branch": self.branch, "whirl": self.whirl,
+        return self._frame({"speed": self.speeds, "bound": self.bounds, "branch": self.branch, "whirl": self.whirl,
                             "harmonic": self.harmonic, "damping_ratio": self.damping_ratio, "log_dec": self.log_dec,
                             "amplification": self.amplification, "af_method": self.af_method,
                             "af_dof": self.af_dof, "af_note": self.af_note,

@@ -93,6 +93,7 @@ class CampbellResult(_Result):
 class CriticalSpeeds(_Result):
     unit: str
     speeds: npt.NDArray[np.float64]
+    bounds: npt.NDArray[np.float64]
     harmonic: npt.NDArray[np.int32]
     branch: npt.NDArray[np.int32]
     whirl: list[str]

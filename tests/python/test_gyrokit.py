@@ -94,6 +94,8 @@ def test_critical_speeds_match_the_cli():
     assert len(rows) == len(cs.speeds) == 5
     for k, r in enumerate(rows):
         assert cs.speeds[k] == pytest.approx(float(r["speed_rad_s"]), rel=RTOL)
+        # the crossing's bound: Im lambda - k w known to its sharp bound, over its slope
+        assert 0 < cs.bounds[k] < 1e-9 * cs.speeds[k]
         assert cs.whirl[k] == r["whirl"]
         assert cs.harmonic[k] == int(r["harmonic"])
 

@@ -3,10 +3,13 @@
 #include <gyrokit/numerics/scalar_search.hpp>
 #include <gyrokit/core/error.hpp>
 #include "gyrokit/eig/lapack.hpp"
+#include <gyrokit/eig/sharp_bound.hpp>
+#include <gyrokit/eig/sparse_eigensolver.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <functional>
 #include <limits>
 
 namespace gyrokit {
@@ -98,26 +101,52 @@ double bisect_edge(const Pred& unstable, double a, double b) {
     return 0.5 * (a + b);
 }
 
-// Bound on a stability threshold w in [a, b] (rad/s): the computed Re lambda is
-// within e (the eigenvalue's error bound) of the exact one, so the exact
-// threshold lies where |Re lambda| <= e: to first order within
-// (|Re lambda(w)| + e) / |d Re lambda / dw| of w. The slope is a difference over
-// a step that resolves it above the noise e (up to the interval), and the bound is
-// never below the search's own resolution `resolution`.
-template <class ModeAt>
-double threshold_bound(const ModeAt& mode_at, double w, double a, double b, double resolution) {
-    const Mode m = mode_at(w);
-    const double e = m.error_bound, g = m.lambda.real();
+// A part of the eigenvalue at w minus its line (Re lambda: a stability threshold;
+// Im lambda - k w: a crossing), and that part's error bound.
+struct Measured {
+    double g = 0.0, error = 0.0;
+};
+using Part = std::function<double(const Mode&, double)>;
+double real_part(const Mode& m, double) { return m.lambda.real(); }
+
+// The part at w, measured as sharply as the solver allows: where it gives the model's
+// pencil, on the mode polished there (refine_eigenpair: right and left vectors and the
+// eigenvalue to rounding, so that Newton's correction measures the error) with its
+// sharp bound (sharp_part_bounds); else on the mode as it is, with its own bound.
+std::function<Measured(const Mode&, double)> measured_part(const SolverFactory& solver, Part g, bool real) {
+    if (!solver.has_pencil()) return [g](const Mode& m, double w) { return Measured{g(m, w), m.error_bound}; };
+    return [&solver, g, real](const Mode& m, double w) {
+        const SparsePencil p = solver.pencil(w);
+        Mode polished = m;
+        (void)refine_eigenpair(p, sparse_pencil_action(p), polished, 0.0, std::max(std::abs(m.lambda), 1.0));
+        // A polish that left the mode (a near-double) is not used.
+        const Mode& use = std::abs(polished.lambda - m.lambda) <= std::max(m.error_bound, 1e-10 * std::abs(m.lambda))
+                              ? polished : m;
+        const PartBounds b = sharp_part_bounds(use, p);
+        return Measured{g(use, w), std::min(real ? b.real : b.imag, m.error_bound)};
+    };
+}
+
+// Bound on a root w in [a, b] (rad/s) of g: the part g is within e of the exact one at w
+// (measure), so the exact root lies where |g| <= e: to first order within
+// (|g(w)| + e) / |dg/dw| of w. The slope is a difference over a step that resolves it
+// above the noise e (up to the interval), and the bound is never below the search's own
+// resolution `resolution`.
+template <class ModeAt, class Measure>
+double root_bound(const ModeAt& mode_at, const Part& g, const Measure& measure, double w, double a, double b,
+                  double resolution) {
+    const Measured at = measure(mode_at(w), w);
+    const double e = at.error;
     if (!std::isfinite(e) || !(b > a)) return std::numeric_limits<double>::infinity();
     double slope = 0.0;
     for (double h = 1e-6 * (b - a); h <= b - a; h *= 10.0) {
         const double lo = std::max(a, w - h), hi = std::min(b, w + h);
-        const double dg = mode_at(hi).lambda.real() - mode_at(lo).lambda.real();
+        const double dg = g(mode_at(hi), hi) - g(mode_at(lo), lo);
         slope = dg / (hi - lo);
         if (std::abs(dg) >= 100.0 * e || hi - lo >= b - a) break;
     }
     if (!(std::abs(slope) > 0.0)) return std::numeric_limits<double>::infinity();
-    return std::max((std::abs(g) + e) / std::abs(slope), resolution);
+    return std::max((std::abs(at.g) + e) / std::abs(slope), resolution);
 }
 
 }  // namespace
@@ -146,16 +175,18 @@ std::vector<CriticalSpeed> critical_speeds(const SolverFactory& solver, const Ca
         };
         const auto refine = [&](const auto& mode_at, const Interval& iv) {
             const auto& p = iv.branch->points;
-            return Root{find_root([&](double x) { return g(mode_at(x), x); }, p[iv.i].speed, p[iv.i + 1].speed), 0.0};
+            const double a = p[iv.i].speed, b = p[iv.i + 1].speed;
+            const double w = find_root([&](double x) { return g(mode_at(x), x); }, a, b);
+            return Root{w, root_bound(mode_at, g, measured_part(solver, g, false), w, a, b, 4e-13 * std::abs(w))};
         };
-        scan_branches(solver, cd, holds, refine, workers, [&](const Branch& b, double w, double, Mode m) {
+        scan_branches(solver, cd, holds, refine, workers, [&](const Branch& b, double w, double bound, Mode m) {
             // A root is a crossing only where the mode lies on the line: a branch that jumps
             // between two points (a real eigenvalue matched to a pair far above it) changes
             // the sign of Im lambda - k w without crossing, and the search ends at the jump.
             // A real eigenvalue lies "on" every line at standstill and crosses none: the
             // mode at a crossing vibrates.
             if (std::abs(g(m, w)) <= 1e-6 * k * std::max(w, 1.0) && m.whirl != Whirl::Real && m.lambda.imag() > 0.0)
-                out.push_back({w, k, b.id, std::move(m)});
+                out.push_back({w, bound, k, b.id, std::move(m)});
         }, true);
     }
     std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.speed < b.speed; });
@@ -186,10 +217,10 @@ std::vector<StabilityChange> stability_changes(const SolverFactory& solver, cons
         // rounding and may change sign anywhere, the edge of the unstable range is bisected.
         if (m0.stability() != Stability::Neutral && m1.stability() != Stability::Neutral) {
             const double w = find_root([&](double x) { return mode_at(x).lambda.real(); }, a, b);
-            return Root{w, threshold_bound(mode_at, w, a, b, 4e-13 * std::abs(w))};
+            return Root{w, root_bound(mode_at, real_part, measured_part(solver, real_part, true), w, a, b, 4e-13 * std::abs(w))};
         }
         const double w = bisect_edge([&](double x) { return unstable(mode_at(x)); }, a, b);
-        return Root{w, threshold_bound(mode_at, w, a, b, 2e-12 * std::abs(w))};
+        return Root{w, root_bound(mode_at, real_part, measured_part(solver, real_part, true), w, a, b, 2e-12 * std::abs(w))};
     };
     scan_branches(solver, cd, holds, refine, workers, [&](const Branch& b, double w, double bound, Mode m) {
         const auto& p = b.points;

@@ -98,8 +98,25 @@ struct PencilAction {
         apply;
     // |K| a for a >= 0 (entrywise absolute values): the scale of K x entry by entry.
     std::function<void(const Eigen::VectorXd& a, Eigen::VectorXd& absKa)> apply_abs_K;
+    // |M| a, |C| a, |K| a at once (the componentwise bound, set_error_bounds); empty: not available.
+    std::function<void(const Eigen::VectorXd& a, Eigen::VectorXd& Ma, Eigen::VectorXd& Ca, Eigen::VectorXd& Ka)>
+        apply_abs;
+    // The most products a row of P(lambda) x sums (nonzeros of M, C, K in one row, the
+    // three together): what rounding in a residual entry is measured by.
+    double row_terms = 0.0;
     double norm_M = 0.0, norm_C = 0.0, norm_K = 0.0;
 };
+
+// The largest number of nonzero entries in a row of M, C and K together.
+template <class Matrix>
+double pencil_row_terms(const Matrix& M, const Matrix& C, const Matrix& K) {
+    Eigen::VectorXd count = Eigen::VectorXd::Zero(M.rows());
+    for (const Matrix* A : {&M, &C, &K})
+        for (Eigen::Index j = 0; j < A->cols(); ++j)
+            for (Eigen::InnerIterator<Matrix> it(*A, j); it; ++it)
+                if (it.value() != 0.0) count(it.row()) += 1.0;
+    return M.rows() > 0 ? count.maxCoeff() : 0.0;
+}
 
 // The action of M, C, K (dense or sparse, referenced: they must outlive it),
 // with `times(A, x)` the product A x.
@@ -113,6 +130,13 @@ PencilAction pencil_action(const Matrix& M, const Matrix& C, const Matrix& K, Ti
         Kx = times(K, x);
     };
     a.apply_abs_K = [&K](const Eigen::VectorXd& v, Eigen::VectorXd& absKv) { absKv = K.cwiseAbs() * v; };
+    a.apply_abs = [&M, &C, &K](const Eigen::VectorXd& v, Eigen::VectorXd& Mv, Eigen::VectorXd& Cv,
+                               Eigen::VectorXd& Kv) {
+        Mv = M.cwiseAbs() * v;
+        Cv = C.cwiseAbs() * v;
+        Kv = K.cwiseAbs() * v;
+    };
+    a.row_terms = pencil_row_terms(M, C, K);
     a.norm_M = M.norm();
     a.norm_C = C.norm();
     a.norm_K = K.norm();

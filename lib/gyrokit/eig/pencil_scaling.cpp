@@ -28,6 +28,12 @@ PencilAction action_of(const QuadraticPencil& p) {
             Kx = real_times(s->K, x);
         };
         a.apply_abs_K = [s](const Eigen::VectorXd& v, Eigen::VectorXd& absKv) { absKv = s->K.cwiseAbs() * v; };
+        a.apply_abs = [s](const Eigen::VectorXd& v, Eigen::VectorXd& Mv, Eigen::VectorXd& Cv, Eigen::VectorXd& Kv) {
+            Mv = s->M.cwiseAbs() * v;
+            Cv = s->C.cwiseAbs() * v;
+            Kv = s->K.cwiseAbs() * v;
+        };
+        a.row_terms = pencil_row_terms(s->M, s->C, s->K);
         a.norm_M = p.M.norm();
         a.norm_C = p.C.norm();
         a.norm_K = p.K.norm();

@@ -187,6 +187,7 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
         auto state = std::make_shared<Walk>();
         return [sh, state](double w) { return solve_one(*sh, *state, w); };
     }, n, sh->work);
+    f.with_pencil([model](double w) { return model->sparse_at_speed(w); });
     // A root search follows its branch's mode alone (a few factorizations of the full
     // pencil) rather than stepping every mode of the band.
     f.with_follow([model, tol = opt.tolerance, work = sh->work](const Mode& from, double w, cd predicted, double reach) {

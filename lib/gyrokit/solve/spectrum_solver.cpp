@@ -68,6 +68,11 @@ SolverFactory SolverFactory::resized(int modes) const {
     return resize_(modes);
 }
 
+SparsePencil SolverFactory::pencil(double w) const {
+    if (!pencil_) missing("pencil (has_pencil)");
+    return pencil_(w);
+}
+
 SpectrumSolver SolverFactory::walk(int threads) const {
     if (!walk_) missing("walk (walks)");
     return walk_(threads);
@@ -95,6 +100,7 @@ SolverFactory dense_solver(const GyroscopicSystem& sys, const EigenOptions& eig)
                     return s;
                 };
             }, model->size(), work);
+    f.with_pencil([model](double w) { return model->sparse_at_speed(w); });
     f.with_continuation([model, eig](const std::vector<double>& speeds, const ContinuationOptions& opt,
                                      ContinuationReport* report) {
         ContinuationOptions o = opt;
@@ -274,6 +280,7 @@ SolverFactory sparse_factory(std::function<SparsePencil(double)> pencil, std::ve
     };
     SolverFactory f([walk]() { return walk(1); }, dofs, work);
     f.not_thread_safe();
+    f.with_pencil(pencil);
     // The same window of another size; Arnoldi vectors as asked where they still suffice
     // (at least the automatic count for that size), else automatic.
     f.with_window(opt.modes, [pencil, whirl_pairs, opt, reuse, work, dofs](int modes) {

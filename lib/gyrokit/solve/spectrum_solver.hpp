@@ -108,6 +108,12 @@ public:
     SolverFactory resized(int modes) const;
     SolverFactory& with_window(int modes, Resize r) { window_ = modes; resize_ = std::move(r); return *this; }
 
+    // The model's pencil at a speed (what a result's sharp bound is measured on).
+    using Pencil = std::function<SparsePencil(double w)>;
+    bool has_pencil() const { return static_cast<bool>(pencil_); }
+    SparsePencil pencil(double w) const;
+    SolverFactory& with_pencil(Pencil p) { pencil_ = std::move(p); return *this; }
+
     bool walks() const { return static_cast<bool>(walk_); }
     SpectrumSolver walk(int threads) const;
     SolverFactory& with_walk(Walk w) { walk_ = std::move(w); return *this; }
@@ -122,6 +128,7 @@ private:
     Follow follow_;
     Continue continued_;
     Walk walk_;
+    Pencil pencil_;
     int window_ = 0;
     Resize resize_;
 };
