@@ -23,7 +23,7 @@ header() {   # header "expected,columns" command args...
 
 header "speed_rad_s,index,re_1_s,im_rad_s" eig "$scene" --speed 30
 header "speed_rad_s,mode,re_1_s,im_rad_s" campbell "$scene"
-header "speed_rad_s,mode,whirl,harmonic" critical "$scene"
+header "speed_rad_s,bound_rad_s,mode,whirl,harmonic" critical "$scene"
 header "damping,speed_rad_s,mode" pervasive "$scene"
 header "speed_rad_s,dof,unit,amplitude,phase_deg" response "$scene"
 header "speed_rad_s,bound_rad_s,mode,change" stability "$scene"
@@ -37,7 +37,7 @@ header "speed_rad_s,bound_rad_s,mode,change" stability "$scene"
     { echo "FAIL: rpm output"; fail=1; }
 # The unit is in the column names, in CSV and JSON alike (case-insensitive --units).
 header "speed_rpm,mode,re_1_s,im_rad_s,frequency_rpm" campbell "$scene" --units RPM --speeds 0:60:3
-header "speed_hz,mode,whirl,harmonic,frequency_hz" critical "$scene" --units hz
+header "speed_hz,bound_hz,mode,whirl,harmonic,frequency_hz" critical "$scene" --units hz
 "$cli" eig "$scene" --speed 3 --units Hz --format json | grep -q '"frequency_hz":' || { echo "FAIL: Hz JSON keys"; fail=1; }
 
 # The summary's stability verdict covers every mode up to f_cut, also those --modes does not show,

@@ -111,39 +111,49 @@ double real_part(const Mode& m, double) { return m.lambda.real(); }
 
 // The part at w, measured as sharply as the solver allows: where it gives the model's
 // pencil, on the mode polished there (refine_eigenpair: right and left vectors and the
-// eigenvalue to rounding, so that Newton's correction measures the error) with its
-// sharp bound (sharp_part_bounds); else on the mode as it is, with its own bound.
+// eigenvalue to rounding) and corrected by Newton's step in extended precision
+// (sharp_eigenvalue), with what is left of its error; else, or where the polish left
+// the mode (another eigenvalue, another shape) or the first order does not hold (an
+// exceptional point), on the mode as it is, with its own bound.
 std::function<Measured(const Mode&, double)> measured_part(const SolverFactory& solver, Part g, bool real) {
     if (!solver.has_pencil()) return [g](const Mode& m, double w) { return Measured{g(m, w), m.error_bound}; };
     return [&solver, g, real](const Mode& m, double w) {
+        const Measured plain{g(m, w), m.error_bound};
+        if (!std::isfinite(m.error_bound)) return plain;   // (the polish finds a missing left vector)
         const SparsePencil p = solver.pencil(w);
         Mode polished = m;
         (void)refine_eigenpair(p, sparse_pencil_action(p), polished, 0.0, std::max(std::abs(m.lambda), 1.0));
-        // A polish that left the mode (a near-double) is not used.
-        const Mode& use = std::abs(polished.lambda - m.lambda) <= std::max(m.error_bound, 1e-10 * std::abs(m.lambda))
-                              ? polished : m;
-        const PartBounds b = sharp_part_bounds(use, p);
-        return Measured{g(use, w), std::min(real ? b.real : b.imag, m.error_bound)};
+        if (!(std::abs(polished.lambda - m.lambda) <= std::max(m.error_bound, 1e-10 * std::abs(m.lambda))) ||
+            !(mac(polished.right, m.right) >= 0.99))
+            return plain;
+        const SharpEigenvalue sharp = sharp_eigenvalue(polished, p);
+        const double e = real ? sharp.real : sharp.imag;
+        if (!(e < m.error_bound)) return plain;
+        polished.lambda = sharp.lambda;
+        return Measured{g(polished, w), e};
     };
 }
 
-// Bound on a root w in [a, b] (rad/s) of g: the part g is within e of the exact one at w
-// (measure), so the exact root lies where |g| <= e: to first order within
+// Bound on a root w in [a, b] (rad/s) of g: the part g measured at w is within e of the
+// exact one (measure), so the exact root lies where |g| <= e: to first order within
 // (|g(w)| + e) / |dg/dw| of w. The slope is a difference over a step that resolves it
-// above the noise e (up to the interval), and the bound is never below the search's own
-// resolution `resolution`.
+// above the noise of the followed modes (up to the interval), and the bound is never
+// below the search's own resolution `resolution`.
 template <class ModeAt, class Measure>
 double root_bound(const ModeAt& mode_at, const Part& g, const Measure& measure, double w, double a, double b,
                   double resolution) {
-    const Measured at = measure(mode_at(w), w);
+    const Mode m = mode_at(w);
+    const Measured at = measure(m, w);
     const double e = at.error;
     if (!std::isfinite(e) || !(b > a)) return std::numeric_limits<double>::infinity();
+    // The slope's differences are of the modes as followed, whose noise is their own bound.
+    const double noise = std::max(e, m.error_bound);
     double slope = 0.0;
     for (double h = 1e-6 * (b - a); h <= b - a; h *= 10.0) {
         const double lo = std::max(a, w - h), hi = std::min(b, w + h);
         const double dg = g(mode_at(hi), hi) - g(mode_at(lo), lo);
         slope = dg / (hi - lo);
-        if (std::abs(dg) >= 100.0 * e || hi - lo >= b - a) break;
+        if (std::abs(dg) >= 100.0 * noise || hi - lo >= b - a) break;
     }
     if (!(std::abs(slope) > 0.0)) return std::numeric_limits<double>::infinity();
     return std::max((std::abs(at.g) + e) / std::abs(slope), resolution);
@@ -327,6 +337,19 @@ std::vector<CriticalSpeed> critical_speeds_direct(const GyroscopicSystem& sys, i
         c.mode.lambda = I * (k * w);
         c.mode.right = ge.right.col(j).normalized();
         c.mode.backward_error = backward_error(sys.at_speed(w), c.mode.lambda, c.mode.right);
+        // The bound: the pencil is Hermitian, so its left vector is x and to first order the exact
+        // w^2 is mu + x^H r / x^H B x (r = A x - mu B x); twice that, plus the rounding of r
+        // (n + 3 products a row, each within eps of |A| |x| + mu |B| |x|), over d(w^2)/dw = 2 w.
+        {
+            const Eigen::VectorXcd& x = c.mode.right;
+            const Eigen::VectorXcd Bx = B * x;
+            const Eigen::VectorXcd r = A * x - mu.real() * Bx;
+            const Eigen::VectorXd ax = x.cwiseAbs();
+            const double scale = ax.dot(A.cwiseAbs() * ax + mu.real() * (B.cwiseAbs() * ax));
+            const double terms = static_cast<double>(A.rows()) + 3.0;
+            const double dmu = 2.0 * (std::abs(x.dot(r)) + terms * eps * scale) / std::abs(x.dot(Bx));
+            c.bound = std::isfinite(dmu) ? dmu / (2.0 * w) + eps * w : std::numeric_limits<double>::infinity();
+        }
         c.mode.whirl = classify_whirl(c.mode.lambda, c.mode.right, sys.whirl_pairs, 0.0);
         if (c.mode.whirl == Whirl::None) continue;   // axial or torsional: not a critical speed
         // Mode number: its rank by frequency among the modes at that speed.

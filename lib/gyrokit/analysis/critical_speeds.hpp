@@ -23,7 +23,7 @@ struct CriticalSpeed {
     double speed = 0;      // rad/s
     // rad/s: |speed - exact crossing| <= bound, to first order: the error bound of
     // Im lambda - k w over its slope (docs/numerics.md); infinite where unknown.
-    double bound = 0;
+    double bound = std::numeric_limits<double>::infinity();
     int harmonic = 1;      // k of the line Im(lambda) = k w
     int branch = 0;        // Campbell branch id; direct method: rank by frequency at that speed
     Mode mode;             // the mode at the critical speed

@@ -364,7 +364,7 @@ double componentwise_bound(const Mode& m, const Eigen::VectorXcd& r, std::comple
     for (Eigen::Index i = 0; i < r.size(); ++i) {
         const double ri = std::abs(r[i]);
         if (ri == 0.0) continue;
-        if (!(scale[i] > 0.0)) return inf;
+        if (!(scale[i] > 0.0) || !std::isfinite(ri / scale[i])) return inf;
         omega = std::max(omega, ri / scale[i]);
     }
     const double gamma = (pencil.row_terms + 3.0) * eps;

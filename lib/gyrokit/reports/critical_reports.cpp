@@ -24,13 +24,16 @@ Cell amplification_cell(const CriticalSpeed& c) {
 
 namespace {
 
+double bound_digit(double bound);
+
 Table critical_rows(const std::vector<const CriticalSpeed*>& cs, const SpeedUnit& u) {
     // af_dof: the DOF whose response gave the half-power AF; af_note: why 1/(2 zeta) instead.
-    Table t({u.column("speed"), "mode", "whirl", "harmonic", u.column("frequency"), "damping_ratio", "amplification",
-             "af_method", "api684", "af_dof", "af_note"});
+    Table t({u.column("speed"), u.column("bound"), "mode", "whirl", "harmonic", u.column("frequency"), "damping_ratio",
+             "amplification", "af_method", "api684", "af_dof", "af_note"});
     const auto or_dash = [](const std::string& s) { return s.empty() ? std::string("-") : s; };
     for (const CriticalSpeed* c : cs)
-        t.add_row({u.factor * c->speed, ll(c->branch), to_string(c->mode.whirl), ll(c->harmonic),
+        t.add_row({round_to_bound(u.factor * c->speed, u.factor * c->bound), bound_digit(u.factor * c->bound),
+                   ll(c->branch), to_string(c->mode.whirl), ll(c->harmonic),
                    u.factor * c->mode.frequency(), c->mode.damping_ratio(), amplification_cell(*c),
                    std::isnan(c->amplification) ? std::string("-") : to_string(c->amplification_method),
                    std::isnan(c->amplification) ? std::string("-")
