@@ -3,7 +3,8 @@
 # second build folder (default build-sanitize), built with clang so that the fuzz
 # targets (libFuzzer needs clang) are built from the same tree and run as the test
 # fuzz_smoke. Python is off (the interpreter is not instrumented); install_examples
-# is left to the main build. A sanitizer report makes the test that hit it fail.
+# is left to the main build, and so are the tests labelled `slow`. A sanitizer report
+# makes the test that hit it fail.
 # Usage: sanitize.sh [BUILD_DIR]
 set -euo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
@@ -15,4 +16,6 @@ cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPIL
 cmake --build "$build" -j2
 export ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-ctest --test-dir "$build" --output-on-failure -j2
+# The `slow` tests (numerical repeats of the fast ones' code paths over every data/ scene)
+# run in the Release stages only; the fuzz smoke run (label `fuzz`) runs here.
+ctest --test-dir "$build" --output-on-failure -j2 -LE slow
