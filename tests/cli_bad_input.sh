@@ -75,7 +75,7 @@ expect "did you mean 'campbell'" campbel "$dir/ok.toml"
 expect "--speed '-3'" eig "$dir/ok.toml" --speed -3
 expect "table format 'xml'" eig "$dir/ok.toml" --speed 1 --format xml
 expect "--units" eig "$dir/ok.toml" --speed 1 --units furlong
-expect "--method 'lu': allowed: qz, qz-classic, state" eig "$dir/ok.toml" --speed 1 --method lu
+expect "--method 'lu': allowed: auto, qz, qz-classic, state" eig "$dir/ok.toml" --speed 1 --method lu
 expect "harmonics" critical "$dir/ok.toml" --harmonics 0
 expect "--plot" campbell "$dir/ok.toml" --plot "$dir/x.pdf"
 expect "--tolerance" pervasive "$dir/ok.toml" --tolerance 2

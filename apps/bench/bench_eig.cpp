@@ -176,13 +176,23 @@ void add_case(Table& t, const Case& c, double min_time) {
         t.add_row({c.name, static_cast<long long>(c.sys.size()), describe(c.speeds), std::string("state"), na, na,
                    na, na, "failed: " + what.substr(0, what.find("; "))});
     }
+    // The default: the state matrix where it is verified (from kAutoStateDofs DOFs), else QZ.
+    const Run au = run(c, EigenMethod::Auto, min_time);
+    const auto by_state = std::count_if(au.spectra.begin(), au.spectra.end(),
+                                        [](const QuadraticSpectrum& s) { return s.method == "state matrix"; });
+    std::string note = count_note(au, qz, c.speeds);
+    note += fmt::format("{}default: state matrix at {} of {} speeds", note.empty() ? "" : "; ", by_state,
+                        au.spectra.size());
+    t.add_row({c.name, static_cast<long long>(c.sys.size()), describe(c.speeds), std::string("auto"),
+               au.seconds_per_speed, au.seconds_per_speed / qz.seconds_per_speed, max_backward_error(au),
+               max_rel_diff(au.spectra, qz.spectra), note});
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"Times the dense quadratic eigensolvers: scaled QZ (qz: dggev3), classic QZ (qz-classic: dggev), "
-                 "M^-1 state matrix (state)"};
+                 "M^-1 state matrix (state) and the default (auto: the state matrix where verified, else qz)"};
     std::string scene_path = std::string(GYROKIT_DATA_DIR) + "/centrifuge.toml", format = "table";
     std::vector<int> sizes{24, 96, 240, 480};
     int rotor_speeds = 3;

@@ -19,7 +19,8 @@ void add_common(CLI::App* c, Common& o, bool with_speeds) {
     c->add_option("--format", o.format, "output format: table, csv or json")->capture_default_str();
     c->add_option("--units", o.units, "unit of speeds and frequencies on the command line and in the output: "
                                       "rad/s, Hz or rpm; default: the scene's [speeds] units, else rad/s");
-    c->add_option("--method", o.method, "eigensolver: qz (scaled QZ, default) or state (M^-1 state matrix)")
+    c->add_option("--method", o.method, "dense eigensolver: auto (the state matrix where verified, else scaled QZ), qz, qz-classic or "
+                                        "state (M^-1 state matrix)")
         ->capture_default_str();
     if (with_speeds) c->add_option("--speeds", o.speeds, "speed range FROM:TO:N (overrides the scene's [speeds])");
 }

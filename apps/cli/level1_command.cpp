@@ -47,7 +47,7 @@ std::vector<Command> add_level1_commands(CLI::App& app) {
     cmd->add_option("--q-ratio", o->q_ratio, "the curve's range in multiples of QA; default: [api] q_ratio, else 10");
     cmd->add_option("--intervals", o->intervals, "equal steps of the curve")->capture_default_str()->check(
         CLI::Range(2, 10000));
-    cmd->add_option("--method", o->common.method, "dense eigensolver: qz, qz-classic or state")->capture_default_str();
+    cmd->add_option("--method", o->common.method, "dense eigensolver: auto, qz, qz-classic or state")->capture_default_str();
     cmd->add_option("--table", o->table, "one table: level1_summary, level1_stages or level1_curve");
     add_output_option(cmd, "--plot", o->common.plot, "draw the log decrement against Q into FILE.svg|.png");
     return {{cmd, [o](std::ostream& out) {

@@ -6,6 +6,7 @@
 #include <gyrokit/core/speed_range.hpp>
 #include <gyrokit/reports/level1_reports.hpp>
 #include <gyrokit/scene/scene.hpp>
+#include <gyrokit/study/defaults.hpp>
 #include <gyrokit/study/level1_study.hpp>
 
 #include "reports.hpp"
@@ -113,5 +114,5 @@ void bind_level1(py::module_& m) {
         py::arg("scene"), py::arg("unit") = py::none(), py::arg("machine") = py::none(), py::arg("mcs") = py::none(),
         py::arg("operating_speed") = py::none(), py::arg("qa") = py::none(), py::arg("station") = py::none(),
         py::arg("gas_density") = py::none(), py::arg("q_ratio") = py::none(), py::arg("intervals") = kLevel1Intervals,
-        py::arg("method") = "qz");
+        py::arg("method") = defaults::method);
 }

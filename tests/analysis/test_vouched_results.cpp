@@ -10,6 +10,7 @@
 #include <gyrokit/models/fe_rotor.hpp>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -69,7 +70,7 @@ TEST_CASE("the state-matrix method agrees with QZ within the printed bounds or s
     for (double k : {1e8, 1e12, 1e20}) {
         INFO("k = " << k);
         const GyroscopicSystem sys = shaft_on(k);
-        const QuadraticSpectrum qz = solve_at_speed(sys, 100.0);
+        const QuadraticSpectrum qz = solve_at_speed(sys, 100.0, {EigenMethod::ScaledQZ, false});
         EigenOptions st;
         st.method = EigenMethod::StateMatrix;
         const QuadraticSpectrum s = solve_at_speed(sys, 100.0, st);
@@ -93,7 +94,7 @@ TEST_CASE("the state-matrix method agrees with QZ within the printed bounds or s
     EigenOptions st;
     st.method = EigenMethod::StateMatrix;
     const QuadraticSpectrum stiff = solve_at_speed(shaft_on(1e20), 0.0, st);
-    const QuadraticSpectrum stiff_qz = solve_at_speed(shaft_on(1e20), 0.0);
+    const QuadraticSpectrum stiff_qz = solve_at_speed(shaft_on(1e20), 0.0, {EigenMethod::ScaledQZ, false});
     int shaft_modes = 0, vouched = 0;
     for (const Mode& m : stiff.modes) {
         if (m.lambda.imag() >= 1e9) continue;
@@ -108,9 +109,65 @@ TEST_CASE("the state-matrix method agrees with QZ within the printed bounds or s
     CHECK(vouched >= shaft_modes - 2);   // the lowest pair, double at standstill, may not be
     // QZ vouches for every shaft mode; only the two modes of the supports' own bounce
     // (4e10 rad/s, the shaft's end nodes on 1e20 N/m) are resolved to 3e-4 alone.
-    const QuadraticSpectrum qz = solve_at_speed(shaft_on(1e20), 0.0);
+    const QuadraticSpectrum qz = solve_at_speed(shaft_on(1e20), 0.0, {EigenMethod::ScaledQZ, false});
     for (const Mode& m : qz.modes)
         if (m.lambda.imag() < 1e9) CHECK(m.error_bound <= kVouchTolerance * std::abs(m.lambda));
+}
+
+TEST_CASE("the default dense method answers by the state matrix where every pair is verified and vouched for, "
+          "by QZ elsewhere", "[vouched]") {
+    const auto same_as = [](const QuadraticSpectrum& a, const QuadraticSpectrum& b) {
+        REQUIRE(a.modes.size() == b.modes.size());
+        REQUIRE(a.rigid_body.size() == b.rigid_body.size());
+        for (size_t i = 0; i < a.modes.size(); ++i) CHECK(a.modes[i].lambda == b.modes[i].lambda);
+    };
+    // An 84-DOF shaft on ordinary bearings: the state matrix answers, every pair verified,
+    // each eigenvalue within the sum of its bound and QZ's of QZ's.
+    for (double w : {0.0, 100.0, 3000.0}) {
+        INFO("speed " << w);
+        const GyroscopicSystem sys = shaft_on(1e8);
+        REQUIRE(sys.size() >= kAutoStateDofs);
+        const QuadraticSpectrum a = solve_at_speed(sys, w);
+        const QuadraticSpectrum qz = solve_at_speed(sys, w, {EigenMethod::ScaledQZ, false});
+        CHECK(a.method == "state matrix");
+        CHECK(a.notes.empty());
+        REQUIRE(a.modes.size() == qz.modes.size());
+        for (size_t i = 0; i < a.modes.size(); ++i) {
+            CAPTURE(i, a.modes[i].lambda, qz.modes[i].lambda);
+            CHECK(a.modes[i].backward_error <= kStateVerifyTolerance);
+            CHECK(std::abs(a.modes[i].lambda - qz.modes[i].lambda) <= a.modes[i].error_bound + qz.modes[i].error_bound);
+        }
+    }
+    // Supports of 1e20 N/m at standstill: the state matrix alone bounds a mode above 1e-6
+    // of its modulus (the double lowest pair), so the default is QZ's answer, eigenvalue
+    // for eigenvalue.
+    {
+        EigenOptions st;
+        st.method = EigenMethod::StateMatrix;
+        const QuadraticSpectrum alone = solve_at_speed(shaft_on(1e20), 0.0, st);
+        REQUIRE(std::any_of(alone.modes.begin(), alone.modes.end(), [](const Mode& m) {
+            return m.error_bound > kVouchTolerance * std::abs(m.lambda);
+        }));
+        const QuadraticSpectrum a = solve_at_speed(shaft_on(1e20), 0.0);
+        CHECK(a.method == "scaled QZ");
+        same_as(a, solve_at_speed(shaft_on(1e20), 0.0, {EigenMethod::ScaledQZ, false}));
+    }
+    // A massless rotation DOF (M singular): the state matrix refuses, QZ answers.
+    {
+        GyroscopicSystem sys = shaft_on(1e8);
+        const Eigen::Index j = 3;   // a rotation of the first node
+        Eigen::MatrixXd M = Eigen::MatrixXd(sys.M);
+        M.row(j).setZero();
+        M.col(j).setZero();
+        sys.M = M;
+        CHECK_THROWS_AS(solve_at_speed(sys, 100.0, {EigenMethod::StateMatrix, false}), SolverError);
+        const QuadraticSpectrum a = solve_at_speed(sys, 100.0);
+        CHECK(a.method == "scaled QZ");
+        same_as(a, solve_at_speed(sys, 100.0, {EigenMethod::ScaledQZ, false}));
+    }
+    // Below kAutoStateDofs QZ answers (as fast there, and no refinement).
+    const QuadraticSpectrum small = solve_at_speed(make_system(test::centrifuge()), 30.0);
+    CHECK(small.method == "scaled QZ");
 }
 
 TEST_CASE("sparse stability thresholds equal the dense ones within their bounds, for two targets", "[vouched]") {

@@ -23,14 +23,16 @@ std::string to_string(SolverKind k) {
 }
 
 EigenMethod parse_eigen_method(const std::string& name) {
+    if (name == "auto") return EigenMethod::Auto;
     if (name == "qz") return EigenMethod::ScaledQZ;
     if (name == "qz-classic") return EigenMethod::ClassicQZ;
     if (name == "state") return EigenMethod::StateMatrix;
-    throw InputError(fmt::format("eigen method '{}' is unknown; allowed: qz, qz-classic, state", name));
+    throw InputError(fmt::format("eigen method '{}' is unknown; allowed: auto, qz, qz-classic, state", name));
 }
 
 std::string to_string(EigenMethod m) {
     switch (m) {
+    case EigenMethod::Auto: return "auto";
     case EigenMethod::ScaledQZ: return "qz";
     case EigenMethod::ClassicQZ: return "qz-classic";
     case EigenMethod::StateMatrix: break;

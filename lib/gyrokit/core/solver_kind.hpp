@@ -20,21 +20,25 @@ constexpr int kDefaultSparseModes = 6;
 // to a solver it means every mode (dense) or kDefaultSparseModes (sparse).
 constexpr int kModesInRange = -1;
 
-// The dense method: ScaledQZ (default), ClassicQZ, or the state matrix
+// The dense method: Auto (default: the state matrix where it is faster and every pair
+// is verified, else ScaledQZ), ScaledQZ, ClassicQZ, or the state matrix
 // (eig/quadratic_eigensolver.hpp).
-enum class EigenMethod { ScaledQZ, StateMatrix, ClassicQZ };
-EigenMethod parse_eigen_method(const std::string& name);   // "qz" | "qz-classic" | "state"
+enum class EigenMethod { Auto, ScaledQZ, StateMatrix, ClassicQZ };
+EigenMethod parse_eigen_method(const std::string& name);   // "auto" | "qz" | "qz-classic" | "state"
 std::string to_string(EigenMethod m);
+// Auto takes the state matrix from this many DOFs on (below it QZ is as fast and
+// needs no refinement; docs/benchmarks.md, "Dense eigensolvers").
+constexpr int kAutoStateDofs = 64;
 
 struct EigenOptions {
-    EigenMethod method = EigenMethod::ScaledQZ;
+    EigenMethod method = EigenMethod::Auto;
     bool left_vectors = false;   // keep the left vectors in the modes (always computed, for the error bounds)
 };
 
 // The fields carry the names of the scene's [analysis] keys (and the CLI's options).
 struct SolverOptions {
     SolverKind kind = SolverKind::Auto;   // solver
-    EigenOptions eig;                     // dense: scaled QZ or state matrix
+    EigenOptions eig;                     // dense: auto, scaled QZ or state matrix
     int modes = 0;                        // modes wanted; 0: all (dense) or kDefaultSparseModes (sparse);
                                           // kModesInRange: as 0, the tracking keeps those in range
     std::optional<double> target;         // rad/s: the sparse search centre (default 0: the lowest modes)

@@ -108,14 +108,15 @@ void note_unvouched(QuadraticSpectrum& s, EigenMethod method) {
 
 }  // namespace
 
-// The dense solve, stage by stage.
-QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& opt,
-                                  const std::vector<std::pair<int, int>>& whirl_pairs) {
-    require_finite(p);
+namespace {
+
+// The dense solve by one method, stage by stage.
+QuadraticSpectrum solve_by(const QuadraticPencil& p, EigenMethod method, bool left_vectors,
+                           const std::vector<std::pair<int, int>>& whirl_pairs) {
     // 1. Raw eigenpairs with left and right vectors (both give the error bounds).
-    QuadraticSpectrum s = eigenpairs(p, opt.method);
+    QuadraticSpectrum s = eigenpairs(p, method);
     // 2. Refuse what no scaling resolves.
-    if (opt.method != EigenMethod::StateMatrix) refuse_unresolvable(s, p);
+    if (method != EigenMethod::StateMatrix) refuse_unresolvable(s, p);
     // 3. The upper half plane, real eigenvalues on the axis, whirl.
     keep_upper_half_plane(s, whirl_pairs);
     // 4. Error bounds on the DOF-scaled pencil (as QZ solves it): stiff supports do
@@ -123,7 +124,7 @@ QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& 
     const PencilAction action = action_of(p);
     const Eigen::VectorXd t = dof_scaling(p);
     set_error_bounds(s.modes, action, scaled_norms(p, t), t);
-    if (!opt.left_vectors)
+    if (!left_vectors)
         for (Mode& m : s.modes) m.left.resize(0);
     // 5. Rigid-body eigenvalues apart from the modes.
     split_rigid_body(s.modes, s.rigid_body, action, s.scale);
@@ -131,8 +132,42 @@ QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& 
     separate_double_whirl(s.modes, whirl_pairs, s.real_tol, action);
     // 7. By frequency; what is not vouched for said.
     sort_by_frequency(s.modes);
-    note_unvouched(s, opt.method);
+    note_unvouched(s, method);
     return s;
+}
+
+// Auto keeps the state matrix's spectrum only where every pair (modes and rigid-body
+// eigenvalues) is verified on the quadratic to the sparse solver's tolerance and every
+// mode's bound is within kVouchTolerance of its modulus: the real-axis tolerance, which
+// vouches for a small eigenvalue on a stiff pencil, is not enough here, as QZ may bound
+// such a mode more tightly (a double pair at standstill on 1e20 N/m supports: 3e-6
+// relative by the state matrix) (docs/numerics.md, "The default dense method").
+bool state_spectrum_holds(const QuadraticSpectrum& s) {
+    const auto verified = [](const Mode& m) { return m.backward_error <= kStateVerifyTolerance; };
+    const auto vouched = [](const Mode& m) { return m.error_bound <= kVouchTolerance * std::abs(m.lambda); };
+    return s.notes.empty() && std::all_of(s.modes.begin(), s.modes.end(), verified) &&
+           std::all_of(s.modes.begin(), s.modes.end(), vouched) &&
+           std::all_of(s.rigid_body.begin(), s.rigid_body.end(), verified);
+}
+
+}  // namespace
+
+QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& opt,
+                                  const std::vector<std::pair<int, int>>& whirl_pairs) {
+    require_finite(p);
+    if (opt.method != EigenMethod::Auto) return solve_by(p, opt.method, opt.left_vectors, whirl_pairs);
+    // Auto: the state matrix where it is the faster (from kAutoStateDofs DOFs: a third of
+    // QZ's time at 240) and its answer holds; QZ where M is singular to rounding, a pair
+    // stays unverified or a bound loose, and on small pencils.
+    if (p.M.rows() >= kAutoStateDofs) {
+        try {
+            QuadraticSpectrum s = solve_by(p, EigenMethod::StateMatrix, opt.left_vectors, whirl_pairs);
+            if (state_spectrum_holds(s)) return s;
+        } catch (const SolverError&) {
+            // M (scaled) singular: QZ solves such pencils.
+        }
+    }
+    return solve_by(p, EigenMethod::ScaledQZ, opt.left_vectors, whirl_pairs);
 }
 
 namespace {

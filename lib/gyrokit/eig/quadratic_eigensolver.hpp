@@ -1,6 +1,8 @@
 // Dense solvers for the quadratic eigenproblem (lambda^2 M + lambda C + K) x = 0.
 //
-// ScaledQZ (default): Fan-Lin-Van Dooren scaling, first companion linearization,
+// Auto (default): StateMatrix from kAutoStateDofs DOFs on, kept where every pair is
+//   verified (kStateVerifyTolerance) and vouched for; ScaledQZ otherwise.
+// ScaledQZ: Fan-Lin-Van Dooren scaling, first companion linearization,
 //   LAPACK dggev3 (multishift QZ with aggressive early deflation). Needs no
 //   inverse of M, so singular M (infinite eigenvalues) and badly scaled data are
 //   handled. ClassicQZ: the same with LAPACK dggev (single-shift QZ), slower on
@@ -25,6 +27,11 @@ constexpr double kVouchTolerance = 1e-6;
 // Every eigenpair the dense solver returns has a backward error at most this
 // (QZ gives about 1e-15); else SolverError, never a table of noise.
 constexpr double kDenseVerifyTolerance = 1e-8;
+
+// The state-matrix pairs are refined towards this backward error (the sparse solver's
+// verification); the default method (EigenMethod::Auto) keeps the state matrix's answer
+// only where every pair reached it and every mode is vouched for, else it solves by QZ.
+constexpr double kStateVerifyTolerance = 1e-10;
 
 struct QuadraticSpectrum {
     std::vector<Mode> modes;      // finite eigenvalues with Im >= 0 (or real), by frequency; no rigid-body ones

@@ -19,9 +19,6 @@ using cd = std::complex<double>;
 
 namespace {
 
-// The state-matrix pairs are refined towards this backward error (the sparse
-// solver's verification tolerance).
-constexpr double kStateVerifyTolerance = 1e-10;
 // A pair straight from the state matrix whose right and left vectors both have
 // backward errors below this on the quadratic is kept as it is.
 constexpr double kStateRoundingLevel = 1e-14;
@@ -87,6 +84,16 @@ void drop_unsolving_left(std::vector<Mode>& modes, const Eigen::SparseMatrix<dou
     }
 }
 
+// A refined pair of a real eigenvalue made real: the eigenvalue's real part, the
+// vectors' real parts (unit_vector turned their largest entry real), the backward
+// error of what is kept.
+void make_real(Mode& m, const PencilAction& action, int n) {
+    m.lambda = cd(m.lambda.real(), 0.0);
+    m.right = unit_vector(Eigen::VectorXcd(unit_vector(m.right).real().cast<cd>()));
+    if (m.left.size() == n) m.left = unit_vector(Eigen::VectorXcd(unit_vector(m.left).real().cast<cd>()));
+    m.backward_error = backward_error(action, m.lambda, m.right);
+}
+
 }  // namespace
 
 QuadraticSpectrum state_matrix_eigenpairs(const QuadraticPencil& p) {
@@ -132,6 +139,7 @@ QuadraticSpectrum state_matrix_eigenpairs(const QuadraticPencil& p) {
     QuadraticSpectrum s;
     s.scale = natural_scale(p);
     s.real_tol = 1e-7 * s.scale;
+    std::vector<bool> raw_real;   // per mode: dgeev gave it a real eigenvalue
     for (int j = 0; j < 2 * n; ++j) {
         Mode m;
         m.lambda = g * ev.alpha(j);
@@ -152,6 +160,7 @@ QuadraticSpectrum state_matrix_eigenpairs(const QuadraticPencil& p) {
             m.left = unit_vector(t.asDiagonal() * y);
         }
         s.modes.push_back(std::move(m));
+        raw_real.push_back(ev.alpha(j).imag() == 0.0);
     }
     // Pairs that are not at rounding level on the quadratic itself (the right or the left
     // vector) are refined there (one sparse LU of P near lambda: inverse iteration, the
@@ -172,6 +181,11 @@ QuadraticSpectrum state_matrix_eigenpairs(const QuadraticPencil& p) {
             // Aimed at the level QZ reaches: the bounds then match QZ's.
             refine_eigenpair(sp, sa, m, 1e-6 * kStateVerifyTolerance, s.scale);
             ++s.refined;
+            // dgeev's real eigenvalue of the real state matrix (an overdamped mode) stays
+            // real: the exact eigenvalue of a real pencil near a simple real one is real,
+            // and the refinement's complex arithmetic only adds rounding to its imaginary
+            // part (which would list it among the oscillating modes, as QZ does not).
+            if (raw_real[static_cast<size_t>(&m - s.modes.data())]) make_real(m, sa, n);
         }
     keep_double_vectors(s.modes, raw, n);
     biorthogonalize_double_left(s.modes, sp, n);

@@ -26,7 +26,11 @@ const std::vector<Entry>& table() {
          fmt::format("speeds and frequencies given and printed (rad/s, Hz or rpm): the scene's [speeds] units, else {}",
                      unit),
          "--units", "unit", "", ""},
-        {"method", method, "the dense eigensolver: qz (scaled QZ), qz-classic or state (M^-1 state matrix)",
+        {"method", method,
+         fmt::format("the dense eigensolver: auto (the state matrix from {} DOFs, kept where every pair is verified "
+                     "and bounded to 1e-6 of its modulus, else scaled QZ), qz (scaled QZ), qz-classic or state (M^-1 "
+                     "state matrix)",
+                     kAutoStateDofs),
          "--method", "method", "", ""},
         {"solver", solver,
          fmt::format("dense up to {} DOFs ({} for the modes in range), sparse above; the scene's [analysis] solver "

@@ -31,8 +31,8 @@ inline constexpr double f_cut_margin = kBandMargin;
 inline constexpr int harmonic = 1;
 // Speeds and frequencies in and out where neither the call nor the scene's [speeds] names a unit.
 inline constexpr const char* unit = "rad/s";
-// The dense eigensolver: scaled QZ.
-inline constexpr const char* method = "qz";
+// The dense eigensolver: the state matrix where it is faster and verified, else scaled QZ.
+inline constexpr const char* method = "auto";
 // The solver: dense up to kAutoSparseDofs DOFs (kAutoDenseInRangeDofs for the modes in range), else sparse.
 inline constexpr const char* solver = "auto";
 // The sparse window when no mode count is given.

@@ -61,7 +61,7 @@ StudyOptions resolve_request(const Scene& scene, const RotorRequest& r, SpeedsNe
         try {
             o.solver.eig.method = parse_eigen_method(*r.method);
         } catch (const InputError&) {
-            throw InputError(fmt::format("{} '{}': allowed: qz, qz-classic, state", option_field("method"), *r.method));
+            throw InputError(fmt::format("{} '{}': allowed: auto, qz, qz-classic, state", option_field("method"), *r.method));
         }
     }
     if (r.target) o.solver.target = to_rad_s(*r.target, "target", "frequency", u);
