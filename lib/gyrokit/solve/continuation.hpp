@@ -88,7 +88,8 @@ SolverFactory continuation_solver(std::shared_ptr<const GyroscopicSystem> model,
 // inverse iteration on the full P(lambda) at w (up to three factorizations, as
 // step 1 above). Kept if its right and left vectors verify to `tolerance`, it lies
 // within `reach` of the prediction and its shape has MAC >= 0.9 with `from`'s;
-// then with whirl, error bound and slope as from the solvers. Nothing otherwise.
+// then with whirl and error bound as from the solvers, and no slope (NaN: a root
+// search measures the mode where it chooses). Nothing otherwise.
 std::optional<Mode> follow_mode(const std::function<SparsePencil(double)>& pencil,
                                 const std::vector<std::pair<int, int>>& whirl_pairs, const Mode& from, double w,
                                 std::complex<double> predicted, double reach, double tolerance = 1e-10);

@@ -365,7 +365,9 @@ std::optional<Mode> follow_mode(const std::function<SparsePencil(double)>& penci
     one[0].whirl = classify_whirl(one[0].lambda, one[0].right, whirl_pairs, frame.real_tol);
     const Eigen::VectorXd t = sparse_dof_scaling(p, frame.scale);
     set_error_bounds(one, action, scaled_norms(p, t), t);
-    set_slopes(one, pencil, w, frame.scale, 1, &p);
+    // No slope: its callers (the root searches, the loss searches) measure the mode at
+    // the speeds they choose; the slope's two pencils cost as much as the correction.
+    one[0].slope = {std::numeric_limits<double>::quiet_NaN(), 0.0};
     return std::move(one[0]);
 }
 
