@@ -20,6 +20,7 @@
 #include <cmath>
 #include <complex>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,55 +34,61 @@ using MatrixL = Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic>;
 using VectorL = Eigen::Matrix<Complex, Eigen::Dynamic, 1>;
 
 // The eigenvalue of the pencil at w nearest the start, by Newton's method on
-// [P(l) x; c^H x - 1] = 0 in long double (the pencil's entries as stored).
+// [P(l) x; c^H x - 1] = 0 with its residual in long double (the pencil's entries as
+// stored). `correction(it, l, x, c, f)` gives the step [dx; dl] for the residual f.
 struct Refined {
     Complex lambda;
     VectorL x;
 };
-Refined newton(const QuadraticPencil& p, Refined start) {
-    const Eigen::Index n = p.M.rows();
-    const MatrixL M = p.M.cast<Real>().cast<Complex>(), C = p.C.cast<Real>().cast<Complex>(),
-                  K = p.K.cast<Real>().cast<Complex>();
+template <class Correction>
+Refined bordered_newton(Refined start, int iterations, const Correction& correction) {
+    const Eigen::Index n = start.x.size();
     const VectorL c = start.x / start.x.squaredNorm();
     Refined r = start;
     r.x /= c.dot(r.x);
-    for (int it = 0; it < 12; ++it) {
-        const Complex l = r.lambda;
-        MatrixL J(n + 1, n + 1);
-        J.topLeftCorner(n, n) = l * l * M + l * C + K;
-        J.topRightCorner(n, 1) = (Real(2) * l * M + C) * r.x;
-        J.bottomLeftCorner(1, n) = c.adjoint();
-        J(n, n) = 0;
-        VectorL f(n + 1);
-        f.head(n) = J.topLeftCorner(n, n) * r.x;
-        f(n) = c.dot(r.x) - Real(1);
-        const VectorL d = J.partialPivLu().solve(-f);
-        r.x += d.head(n);
-        r.lambda += d(n);
-        if (it >= 1 && std::abs(d(n)) <= 1e-17L * std::abs(r.lambda)) break;
+    for (int it = 0; it < iterations; ++it) {
+        const std::optional<VectorL> d = correction(it, r.lambda, r.x, c);
+        if (!d) break;
+        r.x += d->head(n);
+        r.lambda += (*d)(n);
+        if (it >= 1 && std::abs((*d)(n)) <= 1e-17L * std::abs(r.lambda)) break;
     }
     return r;
 }
 
-// The same Newton iteration on a large sparse pencil in mixed precision: the
-// residual [P(l) x; c^H x - 1] in long double, the correction from a sparse LU of the
-// bordered Jacobian in double (iterative refinement: each step gains the Jacobian's
-// condition times 1e-16, so the iteration reaches the long-double residual's level).
+// Small pencils: the Jacobian in long double too, a dense LU.
+Refined newton(const QuadraticPencil& p, Refined start) {
+    const Eigen::Index n = p.M.rows();
+    const MatrixL M = p.M.cast<Real>().cast<Complex>(), C = p.C.cast<Real>().cast<Complex>(),
+                  K = p.K.cast<Real>().cast<Complex>();
+    return bordered_newton(start, 12, [&](int, Complex l, const VectorL& x, const VectorL& c) {
+        MatrixL J(n + 1, n + 1);
+        J.topLeftCorner(n, n) = l * l * M + l * C + K;
+        J.topRightCorner(n, 1) = (Real(2) * l * M + C) * x;
+        J.bottomLeftCorner(1, n) = c.adjoint();
+        J(n, n) = 0;
+        VectorL f(n + 1);
+        f.head(n) = J.topLeftCorner(n, n) * x;
+        f(n) = c.dot(x) - Real(1);
+        return std::optional<VectorL>(J.partialPivLu().solve(-f));
+    });
+}
+
+// Large sparse pencils in mixed precision: the residual in long double, the correction
+// from a sparse LU of the bordered Jacobian in double (iterative refinement: each step
+// gains the Jacobian's condition times 1e-16, so the iteration reaches the long-double
+// residual's level).
 using SparseL = Eigen::SparseMatrix<Complex>;
 using SparseD = Eigen::SparseMatrix<std::complex<double>>;
 Refined newton_mixed(const SparsePencil& p, Refined start) {
     const Eigen::Index n = p.M.rows();
     const SparseL M = p.M.cast<Real>().cast<Complex>(), C = p.C.cast<Real>().cast<Complex>(),
                   K = p.K.cast<Real>().cast<Complex>();
-    const VectorL c = start.x / start.x.squaredNorm();
-    Refined r = start;
-    r.x /= c.dot(r.x);
     Eigen::SparseLU<SparseD> lu;
-    for (int it = 0; it < 40; ++it) {
-        const Complex l = r.lambda;
+    return bordered_newton(start, 40, [&](int it, Complex l, const VectorL& x, const VectorL& c) {
         const SparseL P = (l * l) * M + l * C + K;
-        const VectorL dP = (Real(2) * l) * (M * r.x) + C * r.x;
         if (it % 4 == 0) {   // the Jacobian in double, refreshed now and then
+            const VectorL dP = (Real(2) * l) * (M * x) + C * x;
             std::vector<Eigen::Triplet<std::complex<double>>> t;
             for (Eigen::Index j = 0; j < P.outerSize(); ++j)
                 for (SparseL::InnerIterator e(P, j); e; ++e)
@@ -93,19 +100,15 @@ Refined newton_mixed(const SparsePencil& p, Refined start) {
             SparseD J(n + 1, n + 1);
             J.setFromTriplets(t.begin(), t.end());
             lu.compute(J);
-            if (lu.info() != Eigen::Success) break;
+            if (lu.info() != Eigen::Success) return std::optional<VectorL>();
         }
         VectorL f(n + 1);
-        f.head(n) = P * r.x;
-        f(n) = c.dot(r.x) - Real(1);
+        f.head(n) = P * x;
+        f(n) = c.dot(x) - Real(1);
         const Eigen::VectorXcd fd = f.unaryExpr([](const Complex& z) { return std::complex<double>(z); });
         const Eigen::VectorXcd dd = lu.solve(-fd);
-        const VectorL d = dd.unaryExpr([](const std::complex<double>& z) { return Complex(z); });
-        r.x += d.head(n);
-        r.lambda += d(n);
-        if (it >= 1 && std::abs(d(n)) <= 1e-17L * std::abs(r.lambda)) break;
-    }
-    return r;
+        return std::optional<VectorL>(dd.unaryExpr([](const std::complex<double>& z) { return Complex(z); }));
+    });
 }
 
 // Above this many DOFs the reference takes the mixed-precision iteration (a dense
