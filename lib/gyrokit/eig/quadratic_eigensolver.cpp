@@ -156,10 +156,14 @@ QuadraticSpectrum solve_quadratic(const QuadraticPencil& p, const EigenOptions& 
                                   const std::vector<std::pair<int, int>>& whirl_pairs) {
     require_finite(p);
     if (opt.method != EigenMethod::Auto) return solve_by(p, opt.method, opt.left_vectors, whirl_pairs);
-    // Auto: the state matrix where it is the faster (from kAutoStateDofs DOFs: a third of
-    // QZ's time at 240) and its answer holds; QZ where M is singular to rounding, a pair
-    // stays unverified or a bound loose, and on small pencils.
-    if (p.M.rows() >= kAutoStateDofs) {
+    // Auto: the state matrix where it is the faster (from kAutoStateDofs DOFs: 0.42 of
+    // QZ's time at 240, docs/benchmarks.md) and its answer holds; QZ where M is singular
+    // to rounding, a pair stays unverified or a bound loose, and on small pencils. A
+    // pencil of uncoupled groups (the two planes of a rotor at standstill) goes to QZ group
+    // by group: smaller solves, and each vector stays in its group, where the state
+    // matrix's reduction mixes the groups at rounding level (a pair split across two
+    // planes by less than its bound would then read as whirling instead of planar).
+    if (p.M.rows() >= kAutoStateDofs && uncoupled_groups(p).size() <= 1) {
         try {
             QuadraticSpectrum s = solve_by(p, EigenMethod::StateMatrix, opt.left_vectors, whirl_pairs);
             if (state_spectrum_holds(s)) return s;

@@ -87,11 +87,15 @@ void drop_unsolving_left(std::vector<Mode>& modes, const Eigen::SparseMatrix<dou
 // A refined pair of a real eigenvalue made real: the eigenvalue's real part, the
 // vectors' real parts (unit_vector turned their largest entry real), the backward
 // error of what is kept.
+// Kept only if the real pair is still verified (kStateVerifyTolerance): next to an
+// exceptional point dgeev's two real values may belong to a complex pair.
 void make_real(Mode& m, const PencilAction& action, int n) {
-    m.lambda = cd(m.lambda.real(), 0.0);
-    m.right = unit_vector(Eigen::VectorXcd(unit_vector(m.right).real().cast<cd>()));
-    if (m.left.size() == n) m.left = unit_vector(Eigen::VectorXcd(unit_vector(m.left).real().cast<cd>()));
-    m.backward_error = backward_error(action, m.lambda, m.right);
+    Mode r = m;
+    r.lambda = cd(m.lambda.real(), 0.0);
+    r.right = unit_vector(Eigen::VectorXcd(unit_vector(m.right).real().cast<cd>()));
+    if (m.left.size() == n) r.left = unit_vector(Eigen::VectorXcd(unit_vector(m.left).real().cast<cd>()));
+    r.backward_error = backward_error(action, r.lambda, r.right);
+    if (r.backward_error <= kStateVerifyTolerance) m = std::move(r);
 }
 
 }  // namespace

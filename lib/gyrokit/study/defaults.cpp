@@ -28,7 +28,7 @@ const std::vector<Entry>& table() {
          "--units", "unit", "", ""},
         {"method", method,
          fmt::format("the dense eigensolver: auto (the state matrix from {} DOFs, kept where every pair is verified "
-                     "and bounded to 1e-6 of its modulus, else scaled QZ), qz (scaled QZ), qz-classic or state (M^-1 "
+                     "and bounded to 1e-6 of its modulus, else scaled QZ, as on uncoupled DOF groups), qz (scaled QZ), qz-classic or state (M^-1 "
                      "state matrix)",
                      kAutoStateDofs),
          "--method", "method", "", ""},
