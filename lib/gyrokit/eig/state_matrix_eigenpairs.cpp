@@ -84,11 +84,10 @@ void drop_unsolving_left(std::vector<Mode>& modes, const Eigen::SparseMatrix<dou
     }
 }
 
-// A refined pair of a real eigenvalue made real: the eigenvalue's real part, the
-// vectors' real parts (unit_vector turned their largest entry real), the backward
-// error of what is kept.
-// Kept only if the real pair is still verified (kStateVerifyTolerance): next to an
-// exceptional point dgeev's two real values may belong to a complex pair.
+// A refined pair of a real eigenvalue made real (the eigenvalue's real part, the
+// vectors' real parts once unit_vector turned their largest entry real), kept only if
+// it is still verified: next to an exceptional point dgeev's two real values may
+// belong to a complex pair.
 void make_real(Mode& m, const PencilAction& action, int n) {
     Mode r = m;
     r.lambda = cd(m.lambda.real(), 0.0);
